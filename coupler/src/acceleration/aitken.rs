@@ -1,0 +1,41 @@
+//! Aitken's dynamic under-relaxation (Küttler & Wall 2008):
+//! `ω_k = −ω_{k−1} r_{k−1}·(r_k − r_{k−1}) / |r_k − r_{k−1}|²`, `x ← x + ω_k r_k`;
+//! the first iteration of every window uses the initial relaxation.
+
+use super::{dot, relax, Accelerator};
+
+pub struct Aitken {
+    initial: f64,
+    omega: f64,
+    last_residual: Option<Vec<f64>>,
+}
+
+impl Aitken {
+    pub fn new(initial: f64) -> Self {
+        Aitken { initial, omega: initial, last_residual: None }
+    }
+}
+
+impl Accelerator for Aitken {
+    fn next(&mut self, x: &[f64], h: &[f64], iteration: u32) -> Vec<f64> {
+        let r: Vec<f64> = h.iter().zip(x).map(|(h, x)| h - x).collect();
+        self.omega = match (&self.last_residual, iteration) {
+            (Some(prev), i) if i > 0 => {
+                let dr: Vec<f64> = r.iter().zip(prev).map(|(a, b)| a - b).collect();
+                let denom = dot(&dr, &dr);
+                if denom > 0.0 {
+                    -self.omega * dot(prev, &dr) / denom
+                } else {
+                    self.omega
+                }
+            }
+            _ => self.initial,
+        };
+        self.last_residual = Some(r);
+        relax(x, h, self.omega)
+    }
+
+    fn end_window(&mut self) {
+        self.last_residual = None;
+    }
+}

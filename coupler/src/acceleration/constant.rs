@@ -1,0 +1,15 @@
+//! Constant under-relaxation: `x ← x + ω r`.
+
+use super::{relax, Accelerator};
+
+pub struct ConstantRelaxation {
+    pub omega: f64,
+}
+
+impl Accelerator for ConstantRelaxation {
+    fn next(&mut self, x: &[f64], h: &[f64], _iteration: u32) -> Vec<f64> {
+        relax(x, h, self.omega)
+    }
+
+    fn end_window(&mut self) {}
+}

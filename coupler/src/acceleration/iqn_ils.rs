@@ -1,0 +1,85 @@
+//! Interface quasi-Newton with an inverse Jacobian from least squares (IQN-ILS,
+//! Degroote et al. 2009, as in preCICE): with `V` the differences of residuals and `W` the
+//! differences of outputs, `c = argmin |V c + r_k|`, `x ← H(x_k) + W c`. Columns that make
+//! `V` nearly dependent are dropped (QR filter); columns of `reuse` earlier windows are kept.
+
+use super::{relax, Accelerator};
+use nalgebra::{DMatrix, DVector};
+
+pub struct IqnIls {
+    initial: f64,
+    reuse: usize,
+    /// Residual and output of the previous iteration in this window.
+    previous: Option<(Vec<f64>, Vec<f64>)>,
+    /// Columns (ΔR, ΔH) of this window, newest last.
+    columns: Vec<(Vec<f64>, Vec<f64>)>,
+    /// Columns of earlier windows, newest window last.
+    old: Vec<Vec<(Vec<f64>, Vec<f64>)>>,
+}
+
+/// Columns with |R_ii| below this fraction of the largest are dropped.
+const FILTER: f64 = 1e-10;
+
+impl IqnIls {
+    pub fn new(initial: f64, reuse: usize) -> Self {
+        IqnIls { initial, reuse, previous: None, columns: Vec::new(), old: Vec::new() }
+    }
+
+    fn all_columns(&self, n: usize) -> Vec<&(Vec<f64>, Vec<f64>)> {
+        let reused = self.old.iter().rev().flat_map(|w| w.iter().rev());
+        self.columns.iter().rev().chain(reused).filter(|(v, _)| v.len() == n).collect()
+    }
+}
+
+impl Accelerator for IqnIls {
+    fn next(&mut self, x: &[f64], h: &[f64], iteration: u32) -> Vec<f64> {
+        let r: Vec<f64> = h.iter().zip(x).map(|(h, x)| h - x).collect();
+        if iteration == 0 {
+            self.previous = None;
+            self.columns.clear();
+        }
+        if let Some((r_prev, h_prev)) = self.previous.take() {
+            let dv: Vec<f64> = r.iter().zip(&r_prev).map(|(a, b)| a - b).collect();
+            let dw: Vec<f64> = h.iter().zip(&h_prev).map(|(a, b)| a - b).collect();
+            self.columns.push((dv, dw));
+        }
+        self.previous = Some((r.clone(), h.to_vec()));
+        let mut cols = self.all_columns(r.len());
+        if cols.is_empty() {
+            return relax(x, h, self.initial);
+        }
+        loop {
+            let v = DMatrix::from_fn(r.len(), cols.len(), |i, j| cols[j].0[i]);
+            let qr = v.qr();
+            let rr = qr.r();
+            let largest = (0..cols.len()).map(|j| rr[(j, j)].abs()).fold(0.0, f64::max);
+            if let Some(weak) = (0..cols.len()).rev().find(|&j| rr[(j, j)].abs() <= FILTER * largest) {
+                cols.remove(weak);
+                if cols.is_empty() {
+                    return relax(x, h, self.initial);
+                }
+                continue;
+            }
+            let rhs = -(qr.q().transpose() * DVector::from_column_slice(&r));
+            let Some(c) = rr.solve_upper_triangular(&rhs) else {
+                return relax(x, h, self.initial);
+            };
+            let mut next = h.to_vec();
+            for (j, (_, w)) in cols.iter().enumerate() {
+                next.iter_mut().zip(w).for_each(|(n, w)| *n += c[j] * w);
+            }
+            return next;
+        }
+    }
+
+    fn end_window(&mut self) {
+        if self.reuse > 0 {
+            self.old.push(std::mem::take(&mut self.columns));
+            while self.old.len() > self.reuse {
+                self.old.remove(0);
+            }
+        }
+        self.columns.clear();
+        self.previous = None;
+    }
+}

@@ -1,0 +1,157 @@
+//! Starting participant processes, watching them, and stopping them.
+
+use crate::error::CouplerError;
+use schemas::case::{Case, Kind};
+use std::collections::BTreeMap;
+use std::fs::File;
+use std::os::unix::process::CommandExt;
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitStatus, Stdio};
+use std::time::{Duration, Instant};
+
+/// The executable for participant `name`: `--exe` beats the case's `case.executables`, which
+/// beats the solver binary beside the coupler's own executable.
+pub fn executable_for(
+    case: &Case,
+    name: &str,
+    kind: Kind,
+    overrides: &BTreeMap<String, PathBuf>,
+) -> Result<PathBuf, CouplerError> {
+    let (path, source) = if let Some(p) = overrides.get(name) {
+        (p.clone(), format!("--exe {name}=…"))
+    } else if let Some(p) = case.info.executables.get(name) {
+        (case.resolve(p), format!("case.executables.{name} in {}", case.path.display()))
+    } else {
+        let here = std::env::current_exe()
+            .map_err(|e| CouplerError::Io(format!("cannot locate the coupler's own executable: {e}")))?;
+        let dir = here.parent().map(Path::to_path_buf).unwrap_or_default();
+        (dir.join(kind.binary_name()), "the coupler's folder".to_string())
+    };
+    if path.is_file() {
+        Ok(path)
+    } else {
+        Err(CouplerError::Usage(format!(
+            "participant `{name}`: no executable at {} (from {source}); build the workspace with \
+             `cargo build --release`, or name one with --exe {name}=PATH",
+            path.display()
+        )))
+    }
+}
+
+/// One started participant process.
+pub struct Child {
+    pub name: String,
+    pub pid: u32,
+    process: std::process::Child,
+    status: Option<ExitStatus>,
+}
+
+/// The participant processes of a run.
+#[derive(Default)]
+pub struct Children {
+    list: Vec<Child>,
+}
+
+impl Children {
+    /// Starts `exe args…` in its own process group (so Ctrl-C reaches only the coupler),
+    /// with stdout and stderr going to `log`.
+    pub fn spawn(&mut self, name: &str, exe: &Path, args: &[String], log: &Path) -> Result<u32, CouplerError> {
+        let io = |e: std::io::Error| CouplerError::Io(format!("cannot write {}: {e}", log.display()));
+        let out = File::create(log).map_err(io)?;
+        let err = out.try_clone().map_err(io)?;
+        let process = Command::new(exe)
+            .args(args)
+            .stdin(Stdio::null())
+            .stdout(out)
+            .stderr(err)
+            .process_group(0)
+            .spawn()
+            .map_err(|e| CouplerError::Participant {
+                name: name.to_string(),
+                window: None,
+                message: format!("cannot start {}: {e}", exe.display()),
+            })?;
+        let pid = process.id();
+        self.list.push(Child { name: name.to_string(), pid, process, status: None });
+        Ok(pid)
+    }
+
+    /// `Err((name, what happened))` for the first participant that has exited.
+    pub fn check(&mut self) -> Result<(), (String, String)> {
+        for child in &mut self.list {
+            if child.status.is_none() {
+                if let Ok(Some(status)) = child.process.try_wait() {
+                    child.status = Some(status);
+                }
+            }
+            if let Some(status) = child.status {
+                return Err((child.name.clone(), format!("process {} exited ({})", child.pid, describe(status))));
+            }
+        }
+        Ok(())
+    }
+
+    /// Waits up to `grace` for every participant to exit by itself; returns the statuses.
+    pub fn wait_all(&mut self, grace: Duration) -> Vec<(String, Option<ExitStatus>)> {
+        let deadline = Instant::now() + grace;
+        for child in &mut self.list {
+            while child.status.is_none() {
+                match child.process.try_wait() {
+                    Ok(Some(s)) => child.status = Some(s),
+                    Ok(None) if Instant::now() < deadline => std::thread::sleep(Duration::from_millis(10)),
+                    _ => break,
+                }
+            }
+        }
+        self.list.iter().map(|c| (c.name.clone(), c.status)).collect()
+    }
+
+    /// Stops every participant still running: SIGTERM, then SIGKILL after `grace`.
+    pub fn stop_all(&mut self, grace: Duration) {
+        for child in self.list.iter_mut().filter(|c| c.status.is_none()) {
+            // SAFETY: kill(2) on a pid this process started and has not reaped.
+            unsafe {
+                libc::kill(child.pid as libc::pid_t, libc::SIGTERM);
+            }
+        }
+        self.wait_all(grace);
+        for child in self.list.iter_mut().filter(|c| c.status.is_none()) {
+            let _ = child.process.kill();
+            child.status = child.process.wait().ok();
+        }
+    }
+}
+
+impl Drop for Children {
+    fn drop(&mut self) {
+        self.stop_all(Duration::from_millis(500));
+    }
+}
+
+/// "exit code 3", "killed by signal 9 (SIGKILL)".
+pub fn describe(status: ExitStatus) -> String {
+    use std::os::unix::process::ExitStatusExt;
+    match (status.code(), status.signal()) {
+        (Some(code), _) => format!("exit code {code}"),
+        (None, Some(sig)) => format!("killed by signal {sig}{}", signal_name(sig)),
+        _ => "unknown status".into(),
+    }
+}
+
+fn signal_name(sig: i32) -> &'static str {
+    match sig {
+        libc::SIGKILL => " (SIGKILL)",
+        libc::SIGTERM => " (SIGTERM)",
+        libc::SIGSEGV => " (SIGSEGV)",
+        libc::SIGABRT => " (SIGABRT)",
+        libc::SIGINT => " (SIGINT)",
+        _ => "",
+    }
+}
+
+/// The last `n` lines of a participant's log, for error messages.
+pub fn log_tail(log: &Path, n: usize) -> String {
+    let text = std::fs::read_to_string(log).unwrap_or_default();
+    let lines: Vec<&str> = text.lines().collect();
+    lines[lines.len().saturating_sub(n)..].join("\n")
+}

@@ -1,0 +1,17 @@
+//! The coupler: the user's entry point. It starts the participants a case needs, runs the
+//! coupling windows (explicit, or implicit with acceleration), computes the interface laws
+//! once for both sides, keeps the action–reaction ledger, records every message, and replays
+//! recordings against one solver.
+
+pub mod acceleration;
+pub mod error;
+pub mod interface;
+pub mod launch;
+pub mod ledger;
+pub mod progress;
+pub mod replay;
+pub mod run;
+pub mod scheme;
+pub mod signals;
+pub mod stack;
+pub mod state;

@@ -1,0 +1,174 @@
+//! `coupler run`: load the case, start the participants it needs, run the windows, stop cleanly.
+
+use crate::error::CouplerError;
+use crate::interface::Interface;
+use crate::launch::{describe, executable_for};
+use crate::ledger::Ledger;
+use crate::progress::Progress;
+use crate::scheme::{Summary, Windows};
+use crate::signals;
+use crate::stack::{Launch, Stack};
+use schemas::case::{Case, Kind};
+use schemas::message::{Role, PROTOCOL_VERSION};
+use schemas::recording::{Recorder, RecordingHeader};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::{Duration, Instant};
+
+/// What `coupler run` was asked to do.
+pub struct RunOptions {
+    pub case: PathBuf,
+    pub out: Option<PathBuf>,
+    /// Executables that replace a participant's default solver.
+    pub exe: BTreeMap<String, PathBuf>,
+}
+
+/// The output folder: `--out`, or `out/<case name>`.
+pub fn output_folder(case: &Case, out: Option<&Path>) -> Result<PathBuf, CouplerError> {
+    let dir = out.map(Path::to_path_buf).unwrap_or_else(|| PathBuf::from("out").join(&case.info.name));
+    std::fs::create_dir_all(&dir)
+        .map_err(|e| CouplerError::Io(format!("cannot create the output folder {}: {e}", dir.display())))?;
+    Ok(dir)
+}
+
+/// A run id unique on this machine: service names carry it, so concurrent runs never cross.
+pub fn new_run_id() -> String {
+    let nanos = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_nanos()).unwrap_or(0);
+    format!("{:x}-{:x}", std::process::id(), nanos & 0xffff_ffff_ffff)
+}
+
+/// Arguments of `SOLVER participant …`.
+pub fn participant_args(case: &Path, name: &str, run_id: &str, out: &Path) -> Vec<String> {
+    vec![
+        "participant".into(),
+        "--case".into(),
+        case.display().to_string(),
+        "--name".into(),
+        name.into(),
+        "--run-id".into(),
+        run_id.into(),
+        "--coupler-pid".into(),
+        std::process::id().to_string(),
+        "--out".into(),
+        out.join(name).display().to_string(),
+    ]
+}
+
+/// Runs a case to its end time.
+pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
+    let case = Case::load(&opts.case)?;
+    for name in opts.exe.keys() {
+        if case.kind_of(name).is_none() {
+            return Err(CouplerError::Usage(format!(
+                "--exe {name}=…: the case {} has no participant `{name}`",
+                opts.case.display()
+            )));
+        }
+    }
+    let participants = case.participants();
+    let executables = participants
+        .iter()
+        .map(|(name, kind)| executable_for(&case, name, *kind, &opts.exe).map(|exe| (name.clone(), exe)))
+        .collect::<Result<BTreeMap<_, _>, _>>()?;
+    let out = output_folder(&case, opts.out.as_deref())?;
+    signals::install();
+    let Some(coupling) = &case.coupling else {
+        let (name, kind) = &participants[0];
+        return standalone(&case, name, *kind, &executables[name], &out);
+    };
+    let case_path = std::fs::canonicalize(&case.path).unwrap_or_else(|_| case.path.clone());
+    let run_id = new_run_id();
+    let order = coupling.serial_order(&case);
+    let launches = order
+        .iter()
+        .map(|name| Launch {
+            name: name.clone(),
+            role: match case.kind_of(name) {
+                Some(Kind::Fluid) => Role::Fluid,
+                _ => Role::Structure,
+            },
+            exe: executables[name].clone(),
+            args: participant_args(&case_path, name, &run_id, &out),
+        })
+        .collect();
+    let recording = out.join("recording.rec");
+    let header = RecordingHeader {
+        protocol: PROTOCOL_VERSION,
+        case_hash: case.hash,
+        case_path: case_path.display().to_string(),
+        case_text: case.text.clone(),
+        run_id: run_id.clone(),
+        participants: order.clone(),
+    };
+    let recorder = Recorder::create(&recording, &header)
+        .map_err(|e| CouplerError::Io(format!("cannot write {}: {e}", recording.display())))?;
+    let started = Instant::now();
+    let timeout = Duration::from_secs_f64(coupling.timeout);
+    let (mut stack, initial) = Stack::launch(launches, &run_id, case.hash, &out, Some(recorder), timeout)?;
+    let result = (|| {
+        let decls: Vec<_> = stack.sessions.iter().map(|s| s.interface.clone()).collect();
+        let interface = Interface::bind(&case, &order, &decls)?;
+        for (p, fields) in initial.iter().enumerate() {
+            interface.check_outputs(p, fields).map_err(|message| CouplerError::Participant {
+                name: order[p].clone(),
+                window: None,
+                message: format!("initial outputs: {message}"),
+            })?;
+        }
+        let ledger = Ledger::create(&out.join("ledger.csv"), &order, coupling.balance_tolerance)?;
+        let windows = Windows { stack: &mut stack, interface: &interface, config: coupling, ledger, progress: Progress::new(), reference: Default::default() };
+        windows.run(case.info.end_time, initial)
+    })();
+    match result {
+        Ok(summary) => {
+            stack.finish()?;
+            report(&summary, started.elapsed().as_secs_f64(), &out);
+            Ok(())
+        }
+        Err(e) => {
+            stack.abort();
+            Err(e)
+        }
+    }
+}
+
+fn report(s: &Summary, wall: f64, out: &Path) {
+    eprintln!(
+        "done: {} windows, {} solver sweeps (at most {} in a window), {wall:.2} s wall; action–reaction balance \
+         worst {:.1e}{}",
+        s.windows,
+        s.iterations,
+        s.max_iterations,
+        s.worst_balance,
+        if s.balance_violations > 0 { format!(", {} windows above tolerance", s.balance_violations) } else { String::new() }
+    );
+    eprintln!("output: {} (recording.rec, ledger.csv, one log and folder per participant)", out.display());
+}
+
+/// A case with one participant and no coupling: the solver runs alone (`SOLVER run CASE --out DIR`).
+fn standalone(case: &Case, name: &str, kind: Kind, exe: &Path, out: &Path) -> Result<(), CouplerError> {
+    eprintln!("{name}: {} solver alone ({})", kind.binary_name(), exe.display());
+    let status = Command::new(exe)
+        .arg("run")
+        .arg(&case.path)
+        .arg("--out")
+        .arg(out)
+        .status()
+        .map_err(|e| CouplerError::Participant {
+            name: name.to_string(),
+            window: None,
+            message: format!("cannot start {}: {e}", exe.display()),
+        })?;
+    if status.success() {
+        Ok(())
+    } else if signals::interrupted() {
+        Err(CouplerError::Interrupted { window: None })
+    } else {
+        Err(CouplerError::Participant {
+            name: name.to_string(),
+            window: None,
+            message: format!("{} {}", kind.binary_name(), describe(status)),
+        })
+    }
+}

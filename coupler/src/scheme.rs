@@ -1,0 +1,202 @@
+//! Coupling windows: serial explicit (one sweep per window) and serial implicit (sweeps from
+//! checkpoints until the interface converges, with acceleration).
+//!
+//! A sweep advances the participants in serial order. The interface laws are evaluated once per
+//! sweep, on the estimate of every participant's outputs over the window as it stands when the
+//! sweep starts, so each side of a law gets exactly `+f` and `−f` (a spring's force depends on
+//! both of its ends; evaluating it again after the first end moved would hand the second end a
+//! force that is not the reaction of the first). The estimate starts from the last window's
+//! outputs, held constant or extended linearly (`coupling.predictor`); implicit coupling
+//! iterates it to the fixed point.
+
+use crate::acceleration::{self, Accelerator};
+use crate::error::CouplerError;
+use crate::interface::Interface;
+use crate::ledger::Ledger;
+use crate::progress::Progress;
+use crate::stack::{variant, Stack};
+use crate::state;
+use schemas::case::coupling::{CouplingConfig, Predictor, Scheme};
+use schemas::message::{Checkpoint, Fields, FromParticipant, Header, ToParticipant, Waveform, PROTOCOL_VERSION};
+
+/// What a finished run did.
+#[derive(Debug, Clone, Default)]
+pub struct Summary {
+    pub windows: u64,
+    pub iterations: u64,
+    pub max_iterations: u32,
+    pub worst_balance: f64,
+    pub balance_violations: u64,
+}
+
+/// Drives the windows of a run.
+pub struct Windows<'a> {
+    pub stack: &'a mut Stack,
+    pub interface: &'a Interface,
+    pub config: &'a CouplingConfig,
+    pub ledger: Ledger,
+    pub progress: Progress,
+    /// Magnitude of each output field so far, the floor of the convergence measure.
+    pub reference: state::Magnitudes,
+}
+
+impl Windows<'_> {
+    /// Runs every window from 0 to `end_time`, starting from the participants' initial outputs.
+    pub fn run(mut self, end_time: f64, initial: Vec<Fields>) -> Result<Summary, CouplerError> {
+        let dt = self.config.window;
+        let total = ((end_time / dt) - 1e-9).ceil().max(1.0) as u64;
+        let mut accelerator = acceleration::from_config(self.config);
+        let mut last: Vec<Waveform> = initial.into_iter().map(|f| Waveform { times: vec![0.0], samples: vec![f] }).collect();
+        let mut summary = Summary::default();
+        for w in 0..total {
+            let t0 = w as f64 * dt;
+            let t1 = if w + 1 == total { end_time } else { (w + 1) as f64 * dt };
+            let times = Waveform::grid(t0, t1, self.config.samples);
+            let mut estimate: Vec<Vec<Fields>> = last.iter().map(|w| self.predict(w, &times)).collect();
+            let (inputs, iterations, residual) = match self.config.scheme {
+                Scheme::Explicit => (self.sweep(w, 0, Checkpoint::None, &times, &mut estimate)?, 1, 0.0),
+                Scheme::Implicit => self.implicit(w, &times, &mut estimate, accelerator.as_mut())?,
+            };
+            self.ledger.window(w, t1, iterations, residual, &inputs, &estimate)?;
+            self.reference.observe(&estimate);
+            last = estimate.into_iter().map(|samples| Waveform { times: times.clone(), samples }).collect();
+            summary.windows += 1;
+            summary.iterations += u64::from(iterations);
+            summary.max_iterations = summary.max_iterations.max(iterations);
+            self.progress.update(t1, end_time, w + 1, total);
+
+        }
+        self.progress.finish();
+        summary.worst_balance = self.ledger.worst_balance;
+        summary.balance_violations = self.ledger.violations;
+        Ok(summary)
+    }
+
+    /// First estimate of a participant's outputs at `times` from its last window `last`; the
+    /// window-start sample is the last window's end exactly.
+    fn predict(&self, last: &Waveform, times: &[f64]) -> Vec<Fields> {
+        let end = last.last().cloned().unwrap_or_default();
+        let mut samples = vec![end; times.len()];
+        if self.config.predictor == Predictor::Linear {
+            for (sample, &t) in samples.iter_mut().zip(times).skip(1) {
+                *sample = last.extrapolate(t);
+            }
+        }
+        samples
+    }
+
+    /// Repeats the window until every output block's relative residual is below the tolerance.
+    fn implicit(
+        &mut self,
+        w: u64,
+        times: &[f64],
+        estimate: &mut [Vec<Fields>],
+        accelerator: &mut dyn Accelerator,
+    ) -> Result<(Vec<Vec<Fields>>, u32, f64), CouplerError> {
+        let mut scales = Vec::new();
+        for k in 0..self.config.max_iterations {
+            let (x, blocks) = state::flatten(estimate);
+            let checkpoint = if k == 0 { Checkpoint::Save } else { Checkpoint::Restore };
+            let inputs = self.sweep(w, k, checkpoint, times, estimate)?;
+            let (h, after) = state::flatten(estimate);
+            if h.len() != x.len() || after.len() != blocks.len() {
+                return Err(CouplerError::Usage(format!(
+                    "window {w}: the participants' outputs changed size within an implicit window ({} → {} values); \
+                     use coupling.scheme = \"explicit\" for cases whose interface changes shape",
+                    x.len(),
+                    h.len()
+                )));
+            }
+            let (residual, block) = state::worst_residual(&x, &h, &blocks, &self.reference);
+            if residual <= self.config.tolerance {
+                accelerator.end_window();
+                return Ok((inputs, k + 1, residual));
+            }
+            if k + 1 == self.config.max_iterations {
+                let field = block
+                    .map(|b| format!("{}.{}", self.interface.names()[b.participant], b.name))
+                    .unwrap_or_default();
+                return Err(CouplerError::NotConverged {
+                    window: w,
+                    time: times.last().copied().unwrap_or(0.0),
+                    iterations: k + 1,
+                    residual,
+                    field,
+                });
+            }
+            if k == 0 {
+                scales = state::block_scales(&h, &blocks);
+            }
+            let next = accelerator.next(
+                &state::scale(&x, &blocks, &scales, false),
+                &state::scale(&h, &blocks, &scales, false),
+                k,
+            );
+            state::unflatten(&state::scale(&next, &blocks, &scales, true), &blocks, estimate);
+        }
+        unreachable!("max_iterations ≥ 1 is checked when the case is loaded")
+    }
+
+    /// Advances every participant once over the window, in serial order; returns the inputs each got.
+    fn sweep(
+        &mut self,
+        w: u64,
+        k: u32,
+        checkpoint: Checkpoint,
+        times: &[f64],
+        estimate: &mut [Vec<Fields>],
+    ) -> Result<Vec<Vec<Fields>>, CouplerError> {
+        let t_end = times.last().copied().unwrap_or(0.0);
+        let given: Vec<Vec<Fields>> = (0..estimate.len())
+            .map(|p| {
+                (0..times.len())
+                    .map(|j| {
+                        let at: Vec<&Fields> = estimate.iter().map(|s| &s[j]).collect();
+                        self.interface.inputs(p, &at)
+                    })
+                    .collect()
+            })
+            .collect();
+        for (p, inputs) in given.iter().enumerate() {
+            let header = Header { protocol: PROTOCOL_VERSION, window: w, iteration: k, time: t_end };
+            let waveform = Waveform { times: times.to_vec(), samples: inputs.clone() };
+            self.stack.send(p, ToParticipant::Advance { header, checkpoint, inputs: waveform }, Some(w))?;
+            let name = self.stack.sessions[p].name.clone();
+            let refuse = |message: String| CouplerError::Participant { name: name.clone(), window: Some(w), message };
+            match self.stack.recv(p, Some(w))? {
+                FromParticipant::Advanced { header: h, outputs, geometry } => {
+                    if h.window != w || h.iteration != k {
+                        return Err(refuse(format!(
+                            "answered window {} iteration {}, expected window {w} iteration {k}",
+                            h.window, h.iteration
+                        )));
+                    }
+                    let window_length = times.last().unwrap_or(&0.0) - times.first().unwrap_or(&0.0);
+                    if (h.time - t_end).abs() > 1e-9 * window_length {
+                        return Err(refuse(format!(
+                            "reached t = {:.15} s, but the window ends at t = {t_end:.15} s; every solver must land \
+                             exactly on the window end",
+                            h.time
+                        )));
+                    }
+                    if outputs.samples.len() != times.len() {
+                        return Err(refuse(format!(
+                            "sent {} output samples for {} window times",
+                            outputs.samples.len(),
+                            times.len()
+                        )));
+                    }
+                    for sample in &outputs.samples {
+                        self.interface.check_outputs(p, sample).map_err(&refuse)?;
+                    }
+                    if geometry.is_some() {
+                        self.stack.sessions[p].geometry = geometry;
+                    }
+                    estimate[p] = outputs.samples;
+                }
+                other => return Err(refuse(format!("protocol error: expected Advanced, got {}", variant(&other)))),
+            }
+        }
+        Ok(given)
+    }
+}

@@ -1,0 +1,263 @@
+//! The running participants of a case: their processes, their links, the handshake, and
+//! every message in and out (each one recorded).
+
+use crate::error::CouplerError;
+use crate::launch::{log_tail, Children};
+use crate::signals;
+use schemas::link::{Link, LinkError, Side};
+use schemas::message::{FromParticipant, Geometry, InterfaceDecl, Role, ToParticipant, PROTOCOL_VERSION};
+use schemas::recording::{Message, Recorder};
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+/// How long a participant may take to start and say hello.
+const START_TIMEOUT: Duration = Duration::from_secs(60);
+
+/// What the coupler knows of one participant after the handshake.
+pub struct Session {
+    pub name: String,
+    pub role: Role,
+    pub interface: InterfaceDecl,
+    pub geometry: Option<Geometry>,
+    pub log: PathBuf,
+    link: Link,
+}
+
+/// A participant to start: name, role, executable and arguments.
+pub struct Launch {
+    pub name: String,
+    pub role: Role,
+    pub exe: PathBuf,
+    pub args: Vec<String>,
+}
+
+/// The participants of a run, in serial order.
+pub struct Stack {
+    pub sessions: Vec<Session>,
+    children: Children,
+    recorder: Option<Recorder>,
+    started: Instant,
+    timeout: Duration,
+}
+
+impl Stack {
+    /// Starts every participant, opens their links and shakes hands (protocol version, role,
+    /// case hash). Returns the stack and each participant's initial outputs.
+    pub fn launch(
+        launches: Vec<Launch>,
+        run_id: &str,
+        case_hash: u64,
+        out: &std::path::Path,
+        recorder: Option<Recorder>,
+        timeout: Duration,
+    ) -> Result<(Stack, Vec<schemas::message::Fields>), CouplerError> {
+        let mut stack =
+            Stack { sessions: Vec::new(), children: Children::default(), recorder, started: Instant::now(), timeout };
+        for l in &launches {
+            let log = out.join(format!("{}.log", l.name));
+            let pid = stack.children.spawn(&l.name, &l.exe, &l.args, &log)?;
+            eprintln!("started {} ({}, pid {pid})", l.name, l.exe.display());
+            let link = Link::open(run_id, &l.name, Side::Coupler).map_err(|e| link_error(&l.name, None, e))?;
+            stack.sessions.push(Session {
+                name: l.name.clone(),
+                role: l.role,
+                interface: InterfaceDecl::default(),
+                geometry: None,
+                log,
+                link,
+            });
+        }
+        let mut initial = Vec::new();
+        for i in 0..stack.sessions.len() {
+            initial.push(stack.handshake(i, run_id, case_hash)?);
+        }
+        Ok((stack, initial))
+    }
+
+    fn handshake(&mut self, i: usize, run_id: &str, case_hash: u64) -> Result<schemas::message::Fields, CouplerError> {
+        let name = self.sessions[i].name.clone();
+        let expected_role = self.sessions[i].role;
+        let deadline = Instant::now() + START_TIMEOUT;
+        self.wait(i, None, |link, alive| link.wait_for_peer(deadline, alive))?;
+        let hello = match self.recv_until(i, None, Some(deadline))? {
+            FromParticipant::Hello(h) => h,
+            other => return Err(self.protocol_error(i, None, "Hello", &other)),
+        };
+        let refusal = if hello.protocol != PROTOCOL_VERSION {
+            Some(format!(
+                "it speaks protocol version {}, this coupler speaks version {PROTOCOL_VERSION}; rebuild it against \
+                 this workspace's schemas",
+                hello.protocol
+            ))
+        } else if hello.name != name {
+            Some(format!("it says its name is `{}`", hello.name))
+        } else if hello.role != expected_role {
+            Some(format!("it is a {:?} solver, the case declares a {:?} participant", hello.role, expected_role))
+        } else if hello.case_hash != case_hash {
+            Some(format!(
+                "it loaded a different case file (hash {:016x}, the coupler's is {case_hash:016x})",
+                hello.case_hash
+            ))
+        } else {
+            None
+        };
+        if let Some(reason) = refusal {
+            self.send(i, ToParticipant::Refused { reason: reason.clone() }, None)?;
+            return Err(CouplerError::Participant {
+                name,
+                window: None,
+                message: format!("refused at the handshake: {reason}"),
+            });
+        }
+        self.sessions[i].interface = hello.interface;
+        self.send(i, ToParticipant::Welcome { run_id: run_id.to_string() }, None)?;
+        match self.recv(i, None)? {
+            FromParticipant::Initial { outputs, geometry } => {
+                self.sessions[i].geometry = geometry;
+                Ok(outputs)
+            }
+            other => Err(self.protocol_error(i, None, "Initial", &other)),
+        }
+    }
+
+    /// Sends one message to participant `i` and records it.
+    pub fn send(&mut self, i: usize, msg: ToParticipant, window: Option<u64>) -> Result<(), CouplerError> {
+        let name = self.sessions[i].name.clone();
+        self.sessions[i].link.send(&msg).map_err(|e| link_error(&name, window, e))?;
+        self.record(&name, Message::To(msg))
+    }
+
+    /// Waits (idle) for participant `i`'s next message, at most the case's timeout, and records it.
+    pub fn recv(&mut self, i: usize, window: Option<u64>) -> Result<FromParticipant, CouplerError> {
+        let deadline = Instant::now() + self.timeout;
+        self.recv_until(i, window, Some(deadline))
+    }
+
+    fn recv_until(
+        &mut self,
+        i: usize,
+        window: Option<u64>,
+        deadline: Option<Instant>,
+    ) -> Result<FromParticipant, CouplerError> {
+        let msg = self.wait(i, window, |link, alive| link.recv::<FromParticipant>(deadline, alive))?;
+        let name = self.sessions[i].name.clone();
+        self.record(&name, Message::From(msg.clone()))?;
+        if let FromParticipant::Failed { header, diagnostic } = &msg {
+            return Err(CouplerError::Participant {
+                name,
+                window: Some(header.window),
+                message: format!("the solver stopped at t = {:.6} s: {diagnostic}", header.time),
+            });
+        }
+        Ok(msg)
+    }
+
+    /// Runs a blocking link call for participant `i` while watching every process and Ctrl-C.
+    fn wait<T>(
+        &mut self,
+        i: usize,
+        window: Option<u64>,
+        call: impl FnOnce(&Link, &mut dyn FnMut() -> Result<(), String>) -> Result<T, LinkError>,
+    ) -> Result<T, CouplerError> {
+        let mut cause: Option<CouplerError> = None;
+        let children = &mut self.children;
+        let sessions = &self.sessions;
+        let mut alive = || {
+            if signals::interrupted() {
+                cause = Some(CouplerError::Interrupted { window });
+                return Err("interrupted".to_string());
+            }
+            children.check().map_err(|(name, what)| {
+                let log = sessions.iter().find(|s| s.name == name).map(|s| s.log.clone()).unwrap_or_default();
+                let tail = log_tail(&log, 5);
+                let message = if tail.is_empty() {
+                    what.clone()
+                } else {
+                    format!("{what}; the end of {}:\n{tail}", log.display())
+                };
+                cause = Some(CouplerError::Participant { name, window, message });
+                what
+            })
+        };
+        let result = call(&sessions[i].link, &mut alive);
+        match (result, cause) {
+            (Ok(v), _) => Ok(v),
+            (Err(_), Some(c)) => Err(c),
+            (Err(LinkError::Timeout), None) => Err(CouplerError::Participant {
+                name: self.sessions[i].name.clone(),
+                window,
+                message: format!("no answer within {:.1} s (hung?); raise coupling.timeout if it is only slow", self.timeout.as_secs_f64()),
+            }),
+            (Err(e), None) => Err(link_error(&self.sessions[i].name, window, e)),
+        }
+    }
+
+    fn record(&mut self, name: &str, msg: Message) -> Result<(), CouplerError> {
+        let wall = self.started.elapsed().as_secs_f64();
+        match &mut self.recorder {
+            Some(r) => r
+                .record(name, wall, msg)
+                .map_err(|e| CouplerError::Io(format!("cannot write the recording {}: {e}", r.path().display()))),
+            None => Ok(()),
+        }
+    }
+
+    fn protocol_error(&self, i: usize, window: Option<u64>, expected: &str, got: &FromParticipant) -> CouplerError {
+        CouplerError::Participant {
+            name: self.sessions[i].name.clone(),
+            window,
+            message: format!("protocol error: expected {expected}, got {}", variant(got)),
+        }
+    }
+
+    /// Ends the run: `Finish` to everyone, their `Finished`, and their exit.
+    pub fn finish(mut self) -> Result<(), CouplerError> {
+        for i in 0..self.sessions.len() {
+            self.send(i, ToParticipant::Finish, None)?;
+            match self.recv(i, None)? {
+                FromParticipant::Finished => {}
+                other => return Err(self.protocol_error(i, None, "Finished", &other)),
+            }
+        }
+        for (name, status) in self.children.wait_all(Duration::from_secs(10)) {
+            match status {
+                Some(s) if s.success() => {}
+                Some(s) => {
+                    return Err(CouplerError::Participant {
+                        name,
+                        window: None,
+                        message: format!("exited with {} after the run", crate::launch::describe(s)),
+                    })
+                }
+                None => {
+                    return Err(CouplerError::Participant {
+                        name,
+                        window: None,
+                        message: "did not exit within 10 s after Finish".into(),
+                    })
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Stops every participant now (after an error or Ctrl-C).
+    pub fn abort(&mut self) {
+        self.children.stop_all(Duration::from_secs(1));
+    }
+}
+
+/// The name of a participant message's kind, for error messages.
+pub fn variant(m: &FromParticipant) -> &'static str {
+    match m {
+        FromParticipant::Hello(_) => "Hello",
+        FromParticipant::Initial { .. } => "Initial",
+        FromParticipant::Advanced { .. } => "Advanced",
+        FromParticipant::Failed { .. } => "Failed",
+        FromParticipant::Finished => "Finished",
+    }
+}
+
+fn link_error(name: &str, window: Option<u64>, e: LinkError) -> CouplerError {
+    CouplerError::Participant { name: name.to_string(), window, message: format!("link: {e}") }
+}

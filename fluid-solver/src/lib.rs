@@ -1,0 +1,25 @@
+//! `fluid-solver`: a 3D explicit MPS (E-MPS) fluid with particle walls, after Saitoh & Akitomo
+//! (seed 000, equations S1-3 … S1-16 in `physics.md`).
+//!
+//! - [`particles`]: structure-of-arrays storage; [`kind`]: fluid / wall / dummy / body / gate.
+//! - [`layout`]: the initial lattice of a case; [`kernel`]: weights and lattice constants.
+//! - [`neighbour_search`]: cell lists with counting sort; [`operators`]: the particle operators.
+//! - [`emps_step`]: one time step; [`solver`]: the clock, save/restore, advance-to.
+//! - [`stability`]: the instability detector; [`probes`], [`vtu`]: outputs; [`run`]: a standalone run.
+
+pub mod emps_step;
+pub mod kernel;
+pub mod kind;
+pub mod layout;
+pub mod neighbour_search;
+pub mod operators;
+pub mod particles;
+pub mod probes;
+pub mod run;
+pub mod solver;
+pub mod stability;
+pub mod vtu;
+
+pub use kind::Kind;
+pub use solver::{FluidSolver, SavedState};
+pub use stability::Instability;

@@ -1,0 +1,131 @@
+//! A standalone run of a fluid-only case: steps to `case.end_time`, writes VTU frames with a
+//! PVD series every `output_interval` and a probe CSV every `probe_interval`.
+
+use crate::probes::{self, ProbeFile};
+use crate::solver::FluidSolver;
+use crate::stability::Instability;
+use crate::vtu::{self, TimeSeries};
+use schemas::case::{Case, FluidConfig};
+use std::fmt;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Why a standalone run did not finish.
+#[derive(Debug)]
+pub enum RunError {
+    /// The case is not a fluid-only case with exactly one `[fluid.NAME]` section.
+    NotFluidOnly { file: PathBuf, message: String },
+    /// An output could not be written.
+    Output { path: PathBuf, error: std::io::Error },
+    /// The run became unstable; the frames written so far are kept.
+    Unstable(Instability),
+}
+
+impl fmt::Display for RunError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            RunError::NotFluidOnly { file, message } => write!(f, "{}: {message}", file.display()),
+            RunError::Output { path, error } => write!(f, "cannot write {}: {error}", path.display()),
+            RunError::Unstable(i) => write!(f, "{i}"),
+        }
+    }
+}
+
+impl std::error::Error for RunError {}
+
+/// What a finished run did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RunSummary {
+    pub steps: u64,
+    pub particles: usize,
+    pub fluid_particles: usize,
+    pub frames: usize,
+    pub wall_seconds: f64,
+}
+
+/// The single fluid section of a fluid-only case.
+pub fn fluid_only(case: &Case) -> Result<(&str, &FluidConfig), RunError> {
+    let err = |message: String| RunError::NotFluidOnly { file: case.path.clone(), message };
+    if !case.structure.is_empty() || case.coupling.is_some() {
+        return Err(err(
+            "the fluid solver runs alone only on a fluid-only case (one [fluid.NAME] section, no [structure.*], no [coupling]); run coupled cases with `coupler run`".into(),
+        ));
+    }
+    let mut it = case.fluid.iter();
+    match (it.next(), it.next()) {
+        (Some((name, cfg)), None) => Ok((name.as_str(), cfg)),
+        _ => Err(err(format!("a fluid-only case needs exactly one [fluid.NAME] section, found {}", case.fluid.len()))),
+    }
+}
+
+/// Runs the case's fluid participant to `case.end_time`, writing into `out`.
+pub fn run_case(case: &Case, out: &Path, progress: bool) -> Result<RunSummary, RunError> {
+    let (name, cfg) = fluid_only(case)?;
+    let io_err = |path: &Path| {
+        let path = path.to_path_buf();
+        move |error| RunError::Output { path, error }
+    };
+    std::fs::create_dir_all(out).map_err(io_err(out))?;
+    let started = Instant::now();
+    let mut solver = FluidSolver::new(cfg);
+    let pvd_path = out.join(format!("{name}.pvd"));
+    let mut series = TimeSeries::new(pvd_path.clone());
+    let probe_path = out.join(format!("{name}_probes.csv"));
+    let mut probe_file = ProbeFile::create(&probe_path, &cfg.probe).map_err(io_err(&probe_path))?;
+    let probe_interval = cfg.probe_interval.unwrap_or(cfg.output_interval);
+    let end = case.info.end_time;
+
+    let mut frames = 0usize;
+    let mut write_frame = |solver: &FluidSolver, series: &mut TimeSeries| -> Result<(), RunError> {
+        let file = format!("{name}_{frames:05}.vtu");
+        let path = out.join(&file);
+        vtu::write_vtu(&path, solver.particles()).map_err(io_err(&path))?;
+        series.add(solver.time(), &file).map_err(io_err(&pvd_path))?;
+        frames += 1;
+        Ok(())
+    };
+    let sample = |solver: &FluidSolver, file: &mut ProbeFile| -> Result<(), RunError> {
+        let values: Vec<f64> =
+            cfg.probe.iter().map(|p| probes::sample(p, solver.particles(), solver.kernel(), &solver.tank())).collect();
+        file.row(solver.time(), &values).map_err(io_err(&probe_path))
+    };
+    write_frame(&solver, &mut series)?;
+    solver.remove_gates();
+    sample(&solver, &mut probe_file)?;
+    let (mut next_frame, mut next_probe) = (1u64, 1u64);
+    let at = |k: u64, interval: f64| (k as f64 * interval).min(end);
+    while solver.time() < end {
+        let target = at(next_frame, cfg.output_interval).min(at(next_probe, probe_interval));
+        solver.advance_to(target).map_err(RunError::Unstable)?;
+        if solver.time() >= at(next_probe, probe_interval) {
+            sample(&solver, &mut probe_file)?;
+            next_probe += 1;
+        }
+        if solver.time() >= at(next_frame, cfg.output_interval) {
+            write_frame(&solver, &mut series)?;
+            next_frame += 1;
+            if progress {
+                let rate = solver.totals().particle_steps as f64 / started.elapsed().as_secs_f64();
+                eprint!(
+                    "\r{name}: t = {:.4} / {end} s, step {}, {} particles, {:.3e} particle-steps/s   ",
+                    solver.time(),
+                    solver.steps(),
+                    solver.particles().len(),
+                    rate
+                );
+                let _ = std::io::stderr().flush();
+            }
+        }
+    }
+    if progress {
+        eprintln!();
+    }
+    Ok(RunSummary {
+        steps: solver.steps(),
+        particles: solver.particles().len(),
+        fluid_particles: solver.particles().count(crate::Kind::Fluid),
+        frames,
+        wall_seconds: started.elapsed().as_secs_f64(),
+    })
+}

@@ -1,0 +1,199 @@
+//! Instability detector: NaN, particles leaving the domain or entering a wall or body, a
+//! particle moving more than half a spacing in one step, and mechanical energy growing without
+//! a source. Each finding names the step, the particle and the quantity.
+
+use crate::kind::{Kind, FLUID};
+use crate::layout::Domain;
+use crate::particles::Particles;
+use rayon::prelude::*;
+use schemas::case::fluid::Aabb;
+use std::fmt;
+
+/// Largest displacement per step, in spacings, before the step is taken as unstable.
+pub const MAX_STEP_DISPLACEMENT: f64 = 0.5;
+/// Allowed growth of the fluid's mechanical energy, as a fraction of its initial potential
+/// energy above the tank floor (E-MPS dissipates: growth beyond this has no physical source).
+pub const ENERGY_GROWTH_FRACTION: f64 = 0.1;
+
+/// Why a run was stopped.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Instability {
+    pub step: u64,
+    pub time: f64,
+    /// Stable particle id (index in the initial layout), if one particle is to blame.
+    pub particle: Option<u32>,
+    /// The quantity that went wrong, e.g. "velocity".
+    pub quantity: &'static str,
+    pub message: String,
+}
+
+impl fmt::Display for Instability {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "unstable run stopped at step {} (t = {:.6} s): ", self.step, self.time)?;
+        if let Some(id) = self.particle {
+            write!(f, "particle {id}: ")?;
+        }
+        write!(f, "{}: {}", self.quantity, self.message)
+    }
+}
+
+impl std::error::Error for Instability {}
+
+/// Watches a run for the signs of instability.
+#[derive(Debug, Clone)]
+pub struct StabilityMonitor {
+    domain: Domain,
+    /// Regions fluid must not enter: the tank's outside (beyond the first wall layer's centres)
+    /// is checked through `tank`; bodies through their boxes shrunk by half a spacing.
+    tank: Aabb,
+    solids: Vec<Aabb>,
+    spacing: f64,
+    gravity: [f64; 3],
+    /// Mechanical energy per unit particle mass at the start, and the allowed growth.
+    initial_energy: Option<f64>,
+    allowed_growth: f64,
+}
+
+/// A particle-level finding of one scan.
+type Finding = (u32, &'static str, String);
+
+impl StabilityMonitor {
+    /// A monitor for a tank with solid `bodies` (boxes), particles of `spacing`.
+    pub fn new(domain: Domain, tank: Aabb, bodies: &[Aabb], spacing: f64, gravity: [f64; 3]) -> Self {
+        let h = 0.5 * spacing;
+        let solids = bodies
+            .iter()
+            .map(|b| Aabb { min: b.min.map(|v| v + h), max: b.max.map(|v| v - h) })
+            .filter(|b| (0..3).all(|a| b.max[a] > b.min[a]))
+            .collect();
+        StabilityMonitor {
+            domain,
+            tank,
+            solids,
+            spacing,
+            gravity,
+            initial_energy: None,
+            allowed_growth: 0.0,
+        }
+    }
+
+    /// Mechanical energy per unit mass summed over fluid particles: Σ ½|u|² − g·r.
+    pub fn mechanical_energy(&self, p: &Particles) -> f64 {
+        let g = self.gravity;
+        (0..p.len())
+            .into_par_iter()
+            .with_min_len(4096)
+            .filter(|&i| p.kind[i] == FLUID)
+            .map(|i| {
+                let v2 = p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i];
+                0.5 * v2 - (g[0] * p.x[i] + g[1] * p.y[i] + g[2] * p.z[i])
+            })
+            .sum()
+    }
+
+    /// Records the initial energy (call once before the first step).
+    pub fn start(&mut self, p: &Particles) {
+        let g = self.gravity;
+        let gmag = (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt();
+        let height = self.tank.max[2] - self.tank.min[2];
+        let kinetic: f64 = (0..p.len())
+            .filter(|&i| p.kind[i] == FLUID)
+            .map(|i| 0.5 * (p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]))
+            .sum();
+        let fluid = p.count(Kind::Fluid) as f64;
+        self.initial_energy = Some(self.mechanical_energy(p));
+        self.allowed_growth = ENERGY_GROWTH_FRACTION * (fluid * gmag * height + kinetic).max(f64::MIN_POSITIVE);
+    }
+
+    /// Checks the state after step `step` of length `dt` ending at `time`.
+    pub fn check(&self, p: &Particles, step: u64, time: f64, dt: f64) -> Result<(), Instability> {
+        let found = (0..p.len())
+            .into_par_iter()
+            .with_min_len(4096)
+            .filter_map(|i| self.check_particle(p, i, dt))
+            .min_by_key(|f| f.0);
+        if let Some((id, quantity, message)) = found {
+            return Err(Instability { step, time, particle: Some(id), quantity, message });
+        }
+        if let Some(e0) = self.initial_energy {
+            let e = self.mechanical_energy(p);
+            if !e.is_finite() || e - e0 > self.allowed_growth {
+                let fastest = (0..p.len())
+                    .filter(|&i| p.kind[i] == FLUID)
+                    .max_by(|&a, &b| speed(p, a).total_cmp(&speed(p, b)));
+                return Err(Instability {
+                    step,
+                    time,
+                    particle: fastest.map(|i| p.id[i]),
+                    quantity: "mechanical energy",
+                    message: format!(
+                        "the fluid's energy per unit particle mass grew from {e0:.6e} to {e:.6e} (allowed growth {:.3e}) with no source; the named particle is the fastest ({:.3} m/s)",
+                        self.allowed_growth,
+                        fastest.map(|i| speed(p, i)).unwrap_or(0.0)
+                    ),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    fn check_particle(&self, p: &Particles, i: usize, dt: f64) -> Option<Finding> {
+        let id = p.id[i];
+        let r = p.position(i);
+        let u = p.velocity(i);
+        if r.iter().chain(&u).any(|v| !v.is_finite()) || !p.pressure[i].is_finite() {
+            let q = if r.iter().any(|v| !v.is_finite()) {
+                "position"
+            } else if u.iter().any(|v| !v.is_finite()) {
+                "velocity"
+            } else {
+                "pressure"
+            };
+            return Some((id, q, format!("not a number: r = {r:?}, u = {u:?}, P = {}", p.pressure[i])));
+        }
+        if p.kind[i] != FLUID {
+            return None;
+        }
+        if (0..3).any(|a| r[a] < self.domain.lo[a] || r[a] > self.domain.hi[a]) {
+            return Some((
+                id,
+                "position",
+                format!("left the domain {:?} … {:?}: r = {r:?}", self.domain.lo, self.domain.hi),
+            ));
+        }
+        let h = 0.5 * self.spacing;
+        let below_top = r[2] <= self.tank.max[2];
+        let outside = (0..2).any(|a| r[a] < self.tank.min[a] - h || r[a] > self.tank.max[a] + h)
+            || r[2] < self.tank.min[2] - h;
+        if outside && below_top {
+            return Some((
+                id,
+                "position",
+                format!(
+                    "inside a wall: r = {r:?} is more than half a spacing beyond the tank faces {:?} … {:?}",
+                    self.tank.min, self.tank.max
+                ),
+            ));
+        }
+        if let Some(b) = self.solids.iter().find(|b| b.contains_point(r)) {
+            return Some((id, "position", format!("inside a body {:?} … {:?}: r = {r:?}", b.min, b.max)));
+        }
+        let step = speed(p, i) * dt;
+        if step > MAX_STEP_DISPLACEMENT * self.spacing {
+            return Some((
+                id,
+                "velocity",
+                format!(
+                    "|u| = {:.4} m/s at r = {r:?} moves {:.3} spacings in one step (limit {MAX_STEP_DISPLACEMENT}): Δt or c is too large for this flow",
+                    speed(p, i),
+                    step / self.spacing
+                ),
+            ));
+        }
+        None
+    }
+}
+
+fn speed(p: &Particles, i: usize) -> f64 {
+    (p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]).sqrt()
+}

@@ -1,0 +1,201 @@
+//! `[coupling]`: windows, scheme, acceleration and the interface laws between participants.
+
+use super::error::check;
+use super::{Case, FieldError};
+use serde::Deserialize;
+
+/// How a window's exchange is iterated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Scheme {
+    /// Serial explicit (staggered): one sweep per window; the first participant sees its
+    /// partners' data of the last window end held constant.
+    Explicit,
+    /// Serial implicit: the window is repeated from checkpoints until the interface converges.
+    Implicit,
+}
+
+/// Acceleration of the implicit fixed-point iteration.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum AccelerationKind {
+    /// Plain fixed-point iteration with constant relaxation `initial_relaxation`.
+    Constant,
+    /// Aitken's dynamic under-relaxation.
+    #[default]
+    Aitken,
+    /// Interface quasi-Newton, inverse least squares (IQN-ILS).
+    IqnIls,
+}
+
+/// How the data of a window are first estimated from the windows before it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Predictor {
+    /// The last window's end values held over the window (preCICE's default).
+    Constant,
+    /// The line through the last two samples of the last window, extended over the window.
+    #[default]
+    Linear,
+}
+
+/// `[[coupling.spring]]`: a linear spring between two points of two participants,
+/// `f_a = k (u_b − u_a)`, `f_b = −f_a` (u: displacements of the points).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpringLink {
+    /// `participant/point`.
+    pub a: String,
+    /// `participant/point`.
+    pub b: String,
+    /// Stiffness [N/m].
+    pub stiffness: f64,
+}
+
+/// `[coupling]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CouplingConfig {
+    /// Coupling window Δt_c [s]; every solver lands exactly on each window end.
+    pub window: f64,
+    pub scheme: Scheme,
+    /// Serial order of the participants (default: fluid participants, then structure ones).
+    #[serde(default)]
+    pub order: Vec<String>,
+    /// Interface samples per window (≥ 1): data are exchanged at this many equally spaced
+    /// times in each window and interpolated in between (linear for 1, cubic spline above).
+    #[serde(default = "default_samples")]
+    pub samples: u32,
+    /// First estimate of a window's data: the explicit scheme's data, the implicit scheme's first iterate.
+    #[serde(default)]
+    pub predictor: Predictor,
+    #[serde(default)]
+    pub acceleration: AccelerationKind,
+    /// Relaxation of the first iteration (and of every iteration with `constant`).
+    #[serde(default = "default_relaxation")]
+    pub initial_relaxation: f64,
+    /// Convergence: relative interface residual ‖H(x) − x‖ / ‖H(x)‖ per field.
+    #[serde(default = "default_tolerance")]
+    pub tolerance: f64,
+    /// Iterations per window before the run stops with a report.
+    #[serde(default = "default_max_iterations")]
+    pub max_iterations: u32,
+    /// IQN-ILS: windows whose secant pairs are reused.
+    #[serde(default = "default_reuse")]
+    pub reuse_windows: u32,
+    /// Largest allowed relative action–reaction residual of the ledger.
+    #[serde(default = "default_balance_tolerance")]
+    pub balance_tolerance: f64,
+    /// Wall seconds a participant may take for one answer before it is taken as hung.
+    #[serde(default = "default_timeout")]
+    pub timeout: f64,
+    #[serde(default)]
+    pub spring: Vec<SpringLink>,
+}
+
+fn default_samples() -> u32 {
+    1
+}
+fn default_relaxation() -> f64 {
+    0.5
+}
+fn default_tolerance() -> f64 {
+    1e-8
+}
+fn default_max_iterations() -> u32 {
+    50
+}
+fn default_reuse() -> u32 {
+    0
+}
+fn default_balance_tolerance() -> f64 {
+    1e-12
+}
+fn default_timeout() -> f64 {
+    120.0
+}
+
+impl CouplingConfig {
+    /// Checks the section against the case's participants.
+    pub fn validate(&self, case: &Case) -> Result<(), FieldError> {
+        check::positive("coupling.window", self.window)?;
+        if self.window > case.info.end_time {
+            return Err(FieldError::new(
+                "coupling.window",
+                format!(
+                    "the window {} s is longer than case.end_time {} s; it must be ≤ end_time",
+                    self.window, case.info.end_time
+                ),
+            ));
+        }
+        if !(1..=64).contains(&self.samples) {
+            return Err(FieldError::new("coupling.samples", format!("must be 1 … 64, got {}", self.samples)));
+        }
+        check::within("coupling.initial_relaxation", self.initial_relaxation, 1e-6, 1.0)?;
+        check::within("coupling.tolerance", self.tolerance, 1e-15, 0.5)?;
+        if self.max_iterations == 0 {
+            return Err(FieldError::new("coupling.max_iterations", "must be ≥ 1, got 0"));
+        }
+        check::positive("coupling.balance_tolerance", self.balance_tolerance)?;
+        check::positive("coupling.timeout", self.timeout)?;
+        let names = case.participants();
+        for (i, name) in self.order.iter().enumerate() {
+            if case.kind_of(name).is_none() {
+                return Err(FieldError::new(
+                    format!("coupling.order[{i}]"),
+                    format!("`{name}` is not a participant; participants are: {}", super::list(&names)),
+                ));
+            }
+        }
+        if !self.order.is_empty() && self.order.len() != names.len() {
+            return Err(FieldError::new(
+                "coupling.order",
+                format!("must list every participant once: {}", super::list(&names)),
+            ));
+        }
+        for (i, s) in self.spring.iter().enumerate() {
+            let key = format!("coupling.spring[{i}]");
+            check::positive(&format!("{key}.stiffness"), s.stiffness)?;
+            let a = point_ref(case, &format!("{key}.a"), &s.a)?;
+            let b = point_ref(case, &format!("{key}.b"), &s.b)?;
+            if a.0 == b.0 {
+                return Err(FieldError::new(
+                    key,
+                    format!("both ends are in participant `{}`; a coupling spring joins two participants (a spring inside one participant belongs in its own section)", a.0),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Participants in serial order.
+    pub fn serial_order(&self, case: &Case) -> Vec<String> {
+        if self.order.is_empty() {
+            case.participants().into_iter().map(|(n, _)| n).collect()
+        } else {
+            self.order.clone()
+        }
+    }
+}
+
+/// Splits and checks `participant/point` against the structure participants' point masses.
+pub fn point_ref<'a>(case: &Case, key: &str, text: &'a str) -> Result<(&'a str, &'a str), FieldError> {
+    let Some((participant, point)) = text.split_once('/') else {
+        return Err(FieldError::new(key, format!("must be `participant/point`, got `{text}`")));
+    };
+    let Some(cfg) = case.structure.get(participant) else {
+        let names: Vec<&String> = case.structure.keys().collect();
+        return Err(FieldError::new(
+            key,
+            format!("`{participant}` is not a structure participant; structure participants are: {names:?}"),
+        ));
+    };
+    let points = cfg.point_names();
+    if !points.contains(&point) {
+        return Err(FieldError::new(
+            key,
+            format!("participant `{participant}` has no point mass `{point}`; its point masses are: {points:?}"),
+        ));
+    }
+    Ok((participant, point))
+}

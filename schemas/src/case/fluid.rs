@@ -1,0 +1,429 @@
+//! `[fluid.NAME]`: a fluid participant solved by E-MPS (Saitoh & Akitomo, S1-3 … S1-16).
+//!
+//! ```toml
+//! [fluid.tank]
+//! spacing = 0.01            # Δs [m]
+//! time_step = 5e-4          # Δt [s], checked against the acoustic and viscous limits
+//! sound_speed = 12.1        # c [m/s]; default u_max / 0.2 with u_max = √(2gH) (S1-16)
+//! viscosity_term = false    # switch ν⟨∇²u⟩ off when ν is far below the numerical dissipation
+//! output_interval = 0.05
+//! tank = { min = [0, 0, 0], max = [0.6, 0.45, 0.3] }
+//! [[fluid.tank.block]]      # water, filled on the lattice
+//! min = [0, 0, 0]
+//! max = [0.3, 0.3, 0.3]
+//! [[fluid.tank.gate]]       # partition board, removed at t = 0
+//! min = [0.3, 0, 0]
+//! max = [0.33, 0.3, 0.3]
+//! [[fluid.tank.probe]]
+//! name = "front"
+//! kind = "surge-front"
+//! ```
+
+use super::error::check;
+use super::FieldError;
+use serde::Deserialize;
+
+/// Mach number used for the default sound speed (S1-16: `c = u_max / 0.2`).
+pub const MACH: f64 = 0.2;
+
+/// Largest acoustic Courant number `c Δt / Δs`. The E-MPS update is symplectic Euler on a
+/// lattice whose equation of state makes it a spring chain with wave speed c; its highest
+/// mode has ω = 2c/Δs and symplectic Euler is stable only for ωΔt < 2, i.e. cΔt/Δs < 1.
+pub const MAX_ACOUSTIC_COURANT: f64 = 1.0;
+
+/// Largest viscous number `ν Δt / Δs²`: explicit diffusion in d = 3 is stable for
+/// `ν Δt / Δs² ≤ 1/(2d)`.
+pub const MAX_VISCOUS_NUMBER: f64 = 1.0 / 6.0;
+
+/// Fewest wall layers: two pressure layers (a fluid particle half a spacing off the wall reaches
+/// 2.1 Δs, i.e. wall centres 0.5 Δs and 1.5 Δs deep) plus dummy layers until the first wall
+/// layer's number density (r_e = 3.1 Δs) is complete: centres down to 3.5 Δs, so four layers.
+pub const MIN_WALL_LAYERS: u32 = 4;
+
+/// Most particles a case may create (a guard against a spacing typo filling the memory).
+pub const MAX_PARTICLES: f64 = 5.0e7;
+
+/// An axis-aligned box `[min, max]` [m].
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Aabb {
+    pub min: [f64; 3],
+    pub max: [f64; 3],
+}
+
+impl Aabb {
+    /// Checks that the box is finite and has positive extent along every axis.
+    pub fn validate(&self, key: &str) -> Result<(), FieldError> {
+        check::finite(&format!("{key}.min"), &self.min)?;
+        check::finite(&format!("{key}.max"), &self.max)?;
+        for a in 0..3 {
+            if self.max[a] <= self.min[a] {
+                return Err(FieldError::new(
+                    format!("{key}.max"),
+                    format!(
+                        "must be greater than `min` along every axis; axis {} has min {} and max {}",
+                        ["x", "y", "z"][a],
+                        self.min[a],
+                        self.max[a]
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// True when `other` lies inside `self` (faces may touch).
+    pub fn contains(&self, other: &Aabb) -> bool {
+        (0..3).all(|a| other.min[a] >= self.min[a] - 1e-12 && other.max[a] <= self.max[a] + 1e-12)
+    }
+
+    /// True when the two boxes share a volume (touching faces do not overlap).
+    pub fn overlaps(&self, other: &Aabb) -> bool {
+        (0..3).all(|a| self.min[a] < other.max[a] - 1e-12 && other.min[a] < self.max[a] - 1e-12)
+    }
+
+    /// True when `p` lies inside the box (faces included).
+    pub fn contains_point(&self, p: [f64; 3]) -> bool {
+        (0..3).all(|a| p[a] >= self.min[a] && p[a] <= self.max[a])
+    }
+}
+
+/// `tank`: the inner faces of the walls; walls are `wall_layers` particle layers outside it.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TankConfig {
+    pub min: [f64; 3],
+    pub max: [f64; 3],
+    /// Close the top with a wall too (default: open top).
+    #[serde(default)]
+    pub lid: bool,
+}
+
+impl TankConfig {
+    /// The tank's inner box.
+    pub fn inner(&self) -> Aabb {
+        Aabb { min: self.min, max: self.max }
+    }
+}
+
+/// `[[fluid.NAME.body]]`: a rigid box made of `Body` particles. In a fluid-only run it is held
+/// fixed (an obstacle); coupled scenes move it with the structure's kinematics.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodyConfig {
+    pub name: String,
+    pub min: [f64; 3],
+    pub max: [f64; 3],
+}
+
+/// What a probe measures.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ProbeKind {
+    /// Height of the water surface above the tank floor at `position = [x, y]`.
+    WaterHeight,
+    /// Pressure at `position = [x, y, z]` (weighted mean of the particles within r_e).
+    Pressure,
+    /// Largest coordinate of the water along `axis` (the surge front), measured from `tank.min`.
+    SurgeFront,
+}
+
+/// `[[fluid.NAME.probe]]`: one column of the probe CSV.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProbeConfig {
+    pub name: String,
+    pub kind: ProbeKind,
+    /// `[x, y]` for water-height, `[x, y, z]` for pressure, unused for surge-front.
+    #[serde(default)]
+    pub position: Vec<f64>,
+    /// Axis of a surge front: "x" (default), "y" or "z".
+    #[serde(default)]
+    pub axis: Option<String>,
+}
+
+impl ProbeConfig {
+    /// The surge-front axis as an index (0 = x).
+    pub fn axis_index(&self) -> usize {
+        match self.axis.as_deref() {
+            Some("y") => 1,
+            Some("z") => 2,
+            _ => 0,
+        }
+    }
+}
+
+/// Configuration of one fluid participant (E-MPS).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FluidConfig {
+    /// Particle spacing Δs [m].
+    pub spacing: f64,
+    /// Fixed time step Δt [s].
+    pub time_step: f64,
+    /// Reference density ρ0 [kg/m³].
+    #[serde(default = "default_density")]
+    pub density: f64,
+    /// Kinematic viscosity ν [m²/s].
+    #[serde(default = "default_viscosity")]
+    pub viscosity: f64,
+    /// Whether the viscous term ν⟨∇²u⟩ (S1-10) is computed.
+    #[serde(default = "default_true")]
+    pub viscosity_term: bool,
+    /// Gravity g [m/s²].
+    #[serde(default = "default_gravity")]
+    pub gravity: [f64; 3],
+    /// Sound speed c [m/s]; default `u_max / 0.2` (S1-16).
+    #[serde(default)]
+    pub sound_speed: Option<f64>,
+    /// Predicted largest fluid speed u_max [m/s] for S1-16; default `√(2 g H)` with H the height
+    /// of the highest water block's top above the tank floor.
+    #[serde(default)]
+    pub max_velocity: Option<f64>,
+    /// Wall particle layers (≥ 4): the two inner ones carry pressure, the others fill the number density.
+    #[serde(default = "default_wall_layers")]
+    pub wall_layers: u32,
+    /// Interval between VTU frames [s].
+    pub output_interval: f64,
+    /// Interval between probe rows [s]; default: every output interval.
+    #[serde(default)]
+    pub probe_interval: Option<f64>,
+    pub tank: TankConfig,
+    /// Water blocks.
+    #[serde(default)]
+    pub block: Vec<Aabb>,
+    /// Partition boards: present in the initial layout, removed at t = 0.
+    #[serde(default)]
+    pub gate: Vec<Aabb>,
+    /// Rigid bodies made of particles.
+    #[serde(default)]
+    pub body: Vec<BodyConfig>,
+    #[serde(default)]
+    pub probe: Vec<ProbeConfig>,
+}
+
+fn default_density() -> f64 {
+    1000.0
+}
+fn default_viscosity() -> f64 {
+    1.0e-6
+}
+fn default_true() -> bool {
+    true
+}
+fn default_gravity() -> [f64; 3] {
+    [0.0, 0.0, -9.8]
+}
+fn default_wall_layers() -> u32 {
+    MIN_WALL_LAYERS
+}
+
+impl FluidConfig {
+    /// Checks every key; `key` is the section's dotted path, e.g. `fluid.tank`.
+    pub fn validate(&self, key: &str) -> Result<(), FieldError> {
+        let k = |s: &str| format!("{key}.{s}");
+        check::positive(&k("spacing"), self.spacing)?;
+        check::positive(&k("time_step"), self.time_step)?;
+        check::positive(&k("density"), self.density)?;
+        check::non_negative(&k("viscosity"), self.viscosity)?;
+        check::finite(&k("gravity"), &self.gravity)?;
+        check::positive(&k("output_interval"), self.output_interval)?;
+        if let Some(p) = self.probe_interval {
+            check::positive(&k("probe_interval"), p)?;
+        }
+        if let Some(c) = self.sound_speed {
+            check::positive(&k("sound_speed"), c)?;
+        }
+        if let Some(u) = self.max_velocity {
+            check::positive(&k("max_velocity"), u)?;
+        }
+        if !(MIN_WALL_LAYERS..=10).contains(&self.wall_layers) {
+            return Err(FieldError::new(
+                k("wall_layers"),
+                format!(
+                    "must be {MIN_WALL_LAYERS} … 10 (fewer leave the first wall layer's number density incomplete), got {}",
+                    self.wall_layers
+                ),
+            ));
+        }
+        let tank = self.tank.inner();
+        tank.validate(&k("tank"))?;
+        for a in 0..3 {
+            let cells = (tank.max[a] - tank.min[a]) / self.spacing;
+            if (cells - cells.round()).abs() > 1e-6 * cells.max(1.0) || cells.round() < 1.0 {
+                return Err(FieldError::new(
+                    k("tank"),
+                    format!(
+                        "the tank's {} extent {} m must be a whole number of spacings ({} m); it is {cells:.4} spacings",
+                        ["x", "y", "z"][a],
+                        tank.max[a] - tank.min[a],
+                        self.spacing
+                    ),
+                ));
+            }
+        }
+        let l = f64::from(self.wall_layers);
+        let outer: f64 = (0..3).map(|a| (tank.max[a] - tank.min[a]) / self.spacing + 2.0 * l).product();
+        if outer > MAX_PARTICLES {
+            return Err(FieldError::new(
+                k("spacing"),
+                format!(
+                    "spacing {} m would make about {outer:.3e} particles; at most {MAX_PARTICLES:.0e} are allowed",
+                    self.spacing
+                ),
+            ));
+        }
+        if self.block.is_empty() {
+            return Err(FieldError::new(k("block"), "a fluid participant needs at least one [[block]] of water"));
+        }
+        let mut named: Vec<(String, Aabb)> = Vec::new();
+        for (i, b) in self.block.iter().enumerate() {
+            let bk = format!("{key}.block[{i}]");
+            b.validate(&bk)?;
+            named.push((bk, *b));
+        }
+        for (i, g) in self.gate.iter().enumerate() {
+            let gk = format!("{key}.gate[{i}]");
+            g.validate(&gk)?;
+            named.push((gk, *g));
+        }
+        for (i, b) in self.body.iter().enumerate() {
+            let bk = format!("{key}.body[{i}]");
+            if b.name.trim().is_empty() {
+                return Err(FieldError::new(format!("{bk}.name"), "must not be empty"));
+            }
+            if self.body[..i].iter().any(|o| o.name == b.name) {
+                return Err(FieldError::new(
+                    format!("{bk}.name"),
+                    format!("body name `{}` is used twice; names must be unique", b.name),
+                ));
+            }
+            let bb = Aabb { min: b.min, max: b.max };
+            bb.validate(&bk)?;
+            named.push((bk, bb));
+        }
+        for (i, (ka, a)) in named.iter().enumerate() {
+            if !tank.contains(a) {
+                return Err(FieldError::new(
+                    ka.clone(),
+                    format!(
+                        "the box {:?} … {:?} is outside the domain: it must lie inside the tank {:?} … {:?}",
+                        a.min, a.max, tank.min, tank.max
+                    ),
+                ));
+            }
+            for (kb, b) in &named[..i] {
+                if a.overlaps(b) {
+                    return Err(FieldError::new(
+                        ka.clone(),
+                        format!("overlaps `{kb}`; water blocks, gates and bodies must not share volume"),
+                    ));
+                }
+            }
+        }
+        self.validate_probes(key)?;
+        self.validate_time_step(key)
+    }
+
+    fn validate_probes(&self, key: &str) -> Result<(), FieldError> {
+        for (i, p) in self.probe.iter().enumerate() {
+            let pk = format!("{key}.probe[{i}]");
+            if p.name.trim().is_empty() || p.name.contains(',') {
+                return Err(FieldError::new(format!("{pk}.name"), "must be a non-empty name without commas"));
+            }
+            if self.probe[..i].iter().any(|o| o.name == p.name) {
+                return Err(FieldError::new(
+                    format!("{pk}.name"),
+                    format!("probe name `{}` is used twice", p.name),
+                ));
+            }
+            let want = match p.kind {
+                ProbeKind::WaterHeight => 2,
+                ProbeKind::Pressure => 3,
+                ProbeKind::SurgeFront => 0,
+            };
+            if p.position.len() != want {
+                return Err(FieldError::new(
+                    format!("{pk}.position"),
+                    format!("a {:?} probe needs {want} coordinates, got {}", p.kind, p.position.len()),
+                ));
+            }
+            check::finite(&format!("{pk}.position"), &p.position)?;
+            let t = self.tank;
+            if (0..want).any(|a| p.position[a] < t.min[a] || p.position[a] > t.max[a]) {
+                return Err(FieldError::new(
+                    format!("{pk}.position"),
+                    format!("{:?} is outside the tank {:?} … {:?}", p.position, t.min, t.max),
+                ));
+            }
+            if let Some(axis) = &p.axis {
+                if !matches!(axis.as_str(), "x" | "y" | "z") || p.kind != ProbeKind::SurgeFront {
+                    return Err(FieldError::new(
+                        format!("{pk}.axis"),
+                        format!("only a surge-front probe has an axis, one of \"x\", \"y\", \"z\"; got `{axis}`"),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Refuses a Δt above the acoustic (c Δt/Δs ≤ 1) or viscous (ν Δt/Δs² ≤ 1/6) limit.
+    fn validate_time_step(&self, key: &str) -> Result<(), FieldError> {
+        let c = self.sound_speed();
+        if !(c.is_finite() && c > 0.0) {
+            return Err(FieldError::new(
+                format!("{key}.sound_speed"),
+                format!("the default c = u_max/0.2 is {c} (no gravity or no water height): set sound_speed > 0"),
+            ));
+        }
+        let courant = c * self.time_step / self.spacing;
+        if courant > MAX_ACOUSTIC_COURANT {
+            return Err(FieldError::new(
+                format!("{key}.time_step"),
+                format!(
+                    "Δt = {} s is unstable: the acoustic Courant number c·Δt/Δs = {courant:.3} (c = {c:.3} m/s) must be ≤ {MAX_ACOUSTIC_COURANT}; use time_step ≤ {:.3e} s",
+                    self.time_step,
+                    MAX_ACOUSTIC_COURANT * self.spacing / c
+                ),
+            ));
+        }
+        if self.viscosity_term {
+            let vn = self.viscosity * self.time_step / (self.spacing * self.spacing);
+            if vn > MAX_VISCOUS_NUMBER {
+                return Err(FieldError::new(
+                    format!("{key}.time_step"),
+                    format!(
+                        "Δt = {} s is unstable: the viscous number ν·Δt/Δs² = {vn:.3} must be ≤ 1/6; use time_step ≤ {:.3e} s",
+                        self.time_step,
+                        MAX_VISCOUS_NUMBER * self.spacing * self.spacing / self.viscosity
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// |g| [m/s²].
+    pub fn gravity_magnitude(&self) -> f64 {
+        self.gravity.iter().map(|g| g * g).sum::<f64>().sqrt()
+    }
+
+    /// u_max of S1-16: the case's `max_velocity`, else √(2gH) with H the highest block top above the floor.
+    pub fn max_velocity(&self) -> f64 {
+        self.max_velocity.unwrap_or_else(|| {
+            let top = self.block.iter().map(|b| b.max[2]).fold(self.tank.min[2], f64::max);
+            (2.0 * self.gravity_magnitude() * (top - self.tank.min[2])).sqrt()
+        })
+    }
+
+    /// c of S1-16: the case's `sound_speed`, else `u_max / 0.2`.
+    pub fn sound_speed(&self) -> f64 {
+        self.sound_speed.unwrap_or_else(|| self.max_velocity() / MACH)
+    }
+
+    /// Names of the resolved rigid bodies this participant owns.
+    pub fn body_names(&self) -> Vec<&str> {
+        self.body.iter().map(|b| b.name.as_str()).collect()
+    }
+}

@@ -1,0 +1,382 @@
+//! `[structure.NAME.frame]`: an ASI-Gauss framed structure (S2 §3).
+//!
+//! ```toml
+//! [structure.bridge.frame]
+//! time_step = 1.0e-4                 # Newmark Δt [s]
+//! gravity = [0.0, 0.0, -9.81]        # [m/s²], applied to the lumped masses
+//!
+//! [structure.bridge.frame.material]
+//! young_modulus = 2.0e11             # E [Pa]
+//! poisson = 0.3
+//! density = 7850.0                   # [kg/m³]
+//! yield_stress = 2.35e8              # [Pa]; fully plastic section forces come from it
+//! fracture_curvature = [0.05, 0.05]  # optional, S2-17: critical curvatures about local y, z [1/m]
+//! fracture_axial_strain = 0.1        # optional, S2-17
+//! fracture_shear_strain = [0.1, 0.1] # optional, S2-17: critical shear strains in local y, z
+//!
+//! [[structure.bridge.frame.section]]
+//! name = "column"
+//! kind = "rectangle"                 # width along local y, depth along local z
+//! width = 0.1
+//! depth = 0.15
+//!
+//! [[structure.bridge.frame.section]]
+//! name = "pipe"
+//! kind = "general"                   # every property given
+//! area = 1.0e-3
+//! iy = 1.0e-6
+//! iz = 1.0e-6
+//! j = 2.0e-6
+//! shear_area_y = 5.0e-4
+//! shear_area_z = 5.0e-4
+//! plastic_modulus_y = 2.0e-5
+//! plastic_modulus_z = 2.0e-5
+//! width = 0.05                       # projected width for drag
+//!
+//! [[structure.bridge.frame.node]]
+//! id = 1
+//! position = [0.0, 0.0, 0.0]
+//!
+//! [[structure.bridge.frame.member]]
+//! nodes = [1, 2]
+//! section = "column"
+//! orientation = [0.0, 1.0, 0.0]      # optional: direction of the local y axis
+//!
+//! [[structure.bridge.frame.support]]
+//! node = 1
+//! fixed = ["x", "y", "z", "rx", "ry", "rz"]
+//! ```
+
+use super::error::check;
+use super::FieldError;
+use serde::Deserialize;
+use std::collections::{BTreeMap, BTreeSet};
+
+/// The six degrees of freedom of a frame node, as written in `fixed`.
+pub const DOF_NAMES: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];
+
+/// `[structure.NAME.frame]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrameConfig {
+    /// Newmark time step [s].
+    pub time_step: f64,
+    /// Gravitational acceleration [m/s²], global axes.
+    pub gravity: [f64; 3],
+    pub material: MaterialConfig,
+    #[serde(default)]
+    pub section: Vec<SectionConfig>,
+    #[serde(default)]
+    pub node: Vec<NodeConfig>,
+    #[serde(default)]
+    pub member: Vec<MemberConfig>,
+    #[serde(default)]
+    pub support: Vec<SupportConfig>,
+}
+
+/// `[structure.NAME.frame.material]`: one elastic–perfectly-plastic material for every member.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialConfig {
+    /// Young's modulus E [Pa].
+    pub young_modulus: f64,
+    /// Poisson's ratio ν; G = E / (2 (1 + ν)).
+    pub poisson: f64,
+    /// Density [kg/m³].
+    pub density: f64,
+    /// Yield stress σ_y [Pa].
+    pub yield_stress: f64,
+    /// S2-17 critical curvatures about local y and z [1/m]; absent: that term is not checked.
+    #[serde(default)]
+    pub fracture_curvature: Option<[f64; 2]>,
+    /// S2-17 critical axial strain; absent: not checked.
+    #[serde(default)]
+    pub fracture_axial_strain: Option<f64>,
+    /// S2-17 critical shear strains in local y and z; absent: not checked.
+    #[serde(default)]
+    pub fracture_shear_strain: Option<[f64; 2]>,
+}
+
+/// `[[structure.NAME.frame.section]]`: a cross-section, by shape or by its properties.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SectionConfig {
+    pub name: String,
+    /// `"rectangle"` (from `width` and `depth`) or `"general"` (every property given).
+    pub kind: String,
+    /// Extent along local y [m] (rectangle); projected width for drag (both kinds).
+    #[serde(default)]
+    pub width: Option<f64>,
+    /// Extent along local z [m] (rectangle only).
+    #[serde(default)]
+    pub depth: Option<f64>,
+    /// Area [m²] (general).
+    #[serde(default)]
+    pub area: Option<f64>,
+    /// Second moment about local y [m⁴] (general).
+    #[serde(default)]
+    pub iy: Option<f64>,
+    /// Second moment about local z [m⁴] (general).
+    #[serde(default)]
+    pub iz: Option<f64>,
+    /// Torsion constant [m⁴] (general).
+    #[serde(default)]
+    pub j: Option<f64>,
+    /// Shear area for shear along local y [m²] (general).
+    #[serde(default)]
+    pub shear_area_y: Option<f64>,
+    /// Shear area for shear along local z [m²] (general).
+    #[serde(default)]
+    pub shear_area_z: Option<f64>,
+    /// Plastic section modulus for bending about local y [m³] (general).
+    #[serde(default)]
+    pub plastic_modulus_y: Option<f64>,
+    /// Plastic section modulus for bending about local z [m³] (general).
+    #[serde(default)]
+    pub plastic_modulus_z: Option<f64>,
+}
+
+/// `[[structure.NAME.frame.node]]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NodeConfig {
+    pub id: u32,
+    /// Position [m].
+    pub position: [f64; 3],
+}
+
+/// `[[structure.NAME.frame.member]]`: one member, modelled as two ASI-Gauss elements.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MemberConfig {
+    /// Ids of its end nodes.
+    pub nodes: [u32; 2],
+    /// Name of its section.
+    pub section: String,
+    /// Direction of the member's local y axis (projected normal to the member). Default: horizontal,
+    /// global z × member axis; for a vertical member, global y.
+    #[serde(default)]
+    pub orientation: Option<[f64; 3]>,
+}
+
+/// `[[structure.NAME.frame.support]]`: fixed degrees of freedom of one node.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SupportConfig {
+    pub node: u32,
+    /// Any of `"x"`, `"y"`, `"z"` (translations) and `"rx"`, `"ry"`, `"rz"` (rotations).
+    pub fixed: Vec<String>,
+}
+
+/// The section kinds that `kind` may name.
+pub const SECTION_KINDS: [&str; 2] = ["rectangle", "general"];
+
+impl SectionConfig {
+    /// Checks the keys its kind needs; `key` is the section's path, e.g. `structure.a.frame.section[0]`.
+    pub fn validate(&self, key: &str) -> Result<(), FieldError> {
+        if self.name.trim().is_empty() {
+            return Err(FieldError::new(format!("{key}.name"), "must not be empty"));
+        }
+        let general = [
+            ("area", self.area),
+            ("iy", self.iy),
+            ("iz", self.iz),
+            ("j", self.j),
+            ("shear_area_y", self.shear_area_y),
+            ("shear_area_z", self.shear_area_z),
+            ("plastic_modulus_y", self.plastic_modulus_y),
+            ("plastic_modulus_z", self.plastic_modulus_z),
+        ];
+        match self.kind.as_str() {
+            "rectangle" => {
+                for (name, value) in [("width", self.width), ("depth", self.depth)] {
+                    let value = value.ok_or_else(|| {
+                        FieldError::new(format!("{key}.{name}"), "is required for kind = \"rectangle\"")
+                    })?;
+                    check::positive(&format!("{key}.{name}"), value)?;
+                }
+                if let Some((name, _)) = general.iter().find(|(_, v)| v.is_some()) {
+                    return Err(FieldError::new(
+                        format!("{key}.{name}"),
+                        "is not used by kind = \"rectangle\" (it is computed from width and depth); \
+                         use kind = \"general\" to give it",
+                    ));
+                }
+                Ok(())
+            }
+            "general" => {
+                for (name, value) in general {
+                    let value = value.ok_or_else(|| {
+                        FieldError::new(format!("{key}.{name}"), "is required for kind = \"general\"")
+                    })?;
+                    check::positive(&format!("{key}.{name}"), value)?;
+                }
+                if let Some(width) = self.width {
+                    check::positive(&format!("{key}.width"), width)?;
+                }
+                if self.depth.is_some() {
+                    return Err(FieldError::new(
+                        format!("{key}.depth"),
+                        "is not used by kind = \"general\"; give iy, iz, … instead",
+                    ));
+                }
+                Ok(())
+            }
+            other => Err(FieldError::new(
+                format!("{key}.kind"),
+                format!("unknown section kind `{other}`; allowed: {}", SECTION_KINDS.join(", ")),
+            )),
+        }
+    }
+}
+
+impl MaterialConfig {
+    /// Checks every material constant; `key` is the material's path.
+    pub fn validate(&self, key: &str) -> Result<(), FieldError> {
+        check::positive(&format!("{key}.young_modulus"), self.young_modulus)?;
+        if !(self.poisson.is_finite() && self.poisson > -1.0 && self.poisson < 0.5) {
+            return Err(FieldError::new(
+                format!("{key}.poisson"),
+                format!("must be in (-1, 0.5), got {}", self.poisson),
+            ));
+        }
+        check::positive(&format!("{key}.density"), self.density)?;
+        check::positive(&format!("{key}.yield_stress"), self.yield_stress)?;
+        if let Some(c) = self.fracture_curvature {
+            for v in c {
+                check::positive(&format!("{key}.fracture_curvature"), v)?;
+            }
+        }
+        if let Some(v) = self.fracture_axial_strain {
+            check::positive(&format!("{key}.fracture_axial_strain"), v)?;
+        }
+        if let Some(c) = self.fracture_shear_strain {
+            for v in c {
+                check::positive(&format!("{key}.fracture_shear_strain"), v)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl FrameConfig {
+    /// Checks every key and the topology; `key` is the table's path, e.g. `structure.bridge.frame`.
+    pub fn validate(&self, key: &str) -> Result<(), FieldError> {
+        check::positive(&format!("{key}.time_step"), self.time_step)?;
+        check::finite(&format!("{key}.gravity"), &self.gravity)?;
+        self.material.validate(&format!("{key}.material"))?;
+
+        let mut sections = BTreeSet::new();
+        for (i, s) in self.section.iter().enumerate() {
+            let skey = format!("{key}.section[{i}]");
+            s.validate(&skey)?;
+            if !sections.insert(s.name.as_str()) {
+                return Err(FieldError::new(
+                    format!("{skey}.name"),
+                    format!("section name `{}` is used twice; names must be unique", s.name),
+                ));
+            }
+        }
+
+        if self.node.is_empty() {
+            return Err(FieldError::new(
+                format!("{key}.node"),
+                "the frame has no node: add [[…frame.node]] tables",
+            ));
+        }
+        let mut positions = BTreeMap::new();
+        for (i, n) in self.node.iter().enumerate() {
+            let nkey = format!("{key}.node[{i}]");
+            check::finite(&format!("{nkey}.position"), &n.position)?;
+            if positions.insert(n.id, n.position).is_some() {
+                return Err(FieldError::new(
+                    format!("{nkey}.id"),
+                    format!("node id {} is used twice; ids must be unique", n.id),
+                ));
+            }
+        }
+
+        if self.member.is_empty() {
+            return Err(FieldError::new(
+                format!("{key}.member"),
+                "the frame has no member: add [[…frame.member]] tables",
+            ));
+        }
+        let mut used = BTreeSet::new();
+        for (i, m) in self.member.iter().enumerate() {
+            let mkey = format!("{key}.member[{i}]");
+            let mut ends = [[0.0; 3]; 2];
+            for (end, id) in m.nodes.iter().enumerate() {
+                ends[end] = *positions.get(id).ok_or_else(|| {
+                    FieldError::new(format!("{mkey}.nodes"), format!("node id {id} is not defined in {key}.node"))
+                })?;
+                used.insert(*id);
+            }
+            if !sections.contains(m.section.as_str()) {
+                return Err(FieldError::new(
+                    format!("{mkey}.section"),
+                    format!(
+                        "names no section; sections are: {}",
+                        sections.iter().copied().collect::<Vec<_>>().join(", ")
+                    ),
+                ));
+            }
+            let axis = sub(ends[1], ends[0]);
+            let length = norm(axis);
+            if !(length > 0.0) {
+                return Err(FieldError::new(
+                    format!("{mkey}.nodes"),
+                    format!("member from node {} to node {} has zero length", m.nodes[0], m.nodes[1]),
+                ));
+            }
+            if let Some(o) = m.orientation {
+                let okey = format!("{mkey}.orientation");
+                check::finite(&okey, &o)?;
+                let across = norm(cross(axis, o));
+                if !(across > 1e-6 * length * norm(o)) {
+                    return Err(FieldError::new(
+                        okey,
+                        "must be a nonzero vector not parallel to the member (it gives the local y axis)",
+                    ));
+                }
+            }
+        }
+        if let Some(n) = self.node.iter().find(|n| !used.contains(&n.id)) {
+            return Err(FieldError::new(
+                format!("{key}.node"),
+                format!("node id {} belongs to no member; remove it or connect it", n.id),
+            ));
+        }
+
+        for (i, s) in self.support.iter().enumerate() {
+            let skey = format!("{key}.support[{i}]");
+            if !positions.contains_key(&s.node) {
+                return Err(FieldError::new(
+                    format!("{skey}.node"),
+                    format!("node id {} is not defined in {key}.node", s.node),
+                ));
+            }
+            for d in &s.fixed {
+                if !DOF_NAMES.contains(&d.as_str()) {
+                    return Err(FieldError::new(
+                        format!("{skey}.fixed"),
+                        format!("unknown degree of freedom `{d}`; allowed: {}", DOF_NAMES.join(", ")),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+fn norm(a: [f64; 3]) -> f64 {
+    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
+}

@@ -1,0 +1,239 @@
+//! The case file: TOML → a typed, validated [`Case`].
+//!
+//! A case names its participants by kind and name (`[fluid.NAME]`, `[structure.NAME]`),
+//! says how long to simulate (`[case]`) and, when there is more than one participant,
+//! how they are coupled (`[coupling]`). Unknown keys are errors; every error names the
+//! file, the key and what is allowed.
+
+pub mod coupling;
+pub mod error;
+pub mod fluid;
+pub mod frame;
+pub mod structure;
+
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+pub use coupling::CouplingConfig;
+pub use error::{CaseError, FieldError};
+pub use fluid::FluidConfig;
+pub use structure::StructureConfig;
+
+/// `[case]`: what the run is and how long it lasts.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CaseInfo {
+    /// Short name of the case, used in output file names.
+    pub name: String,
+    /// One or two sentences on what the case is and where its reference data come from.
+    #[serde(default)]
+    pub description: Option<String>,
+    /// Simulated time to reach [s].
+    pub end_time: f64,
+    /// Executable per participant name, replacing the default solver binary
+    /// (relative paths are taken from the case file's folder).
+    #[serde(default)]
+    pub executables: BTreeMap<String, PathBuf>,
+}
+
+/// The file as written; [`Case`] adds where it came from.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CaseFile {
+    case: CaseInfo,
+    #[serde(default)]
+    fluid: BTreeMap<String, FluidConfig>,
+    #[serde(default)]
+    structure: BTreeMap<String, StructureConfig>,
+    #[serde(default)]
+    coupling: Option<CouplingConfig>,
+}
+
+/// Which solver a participant runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    Fluid,
+    Structure,
+}
+
+impl Kind {
+    /// The default executable's file name for this kind.
+    pub fn binary_name(self) -> &'static str {
+        match self {
+            Kind::Fluid => "fluid-solver",
+            Kind::Structure => "structure-solver",
+        }
+    }
+}
+
+/// A validated case.
+#[derive(Debug, Clone)]
+pub struct Case {
+    /// The case file.
+    pub path: PathBuf,
+    /// The case file's text, as read (recordings keep it so a replay needs nothing else).
+    pub text: String,
+    /// FNV-1a hash of the text; participants and recordings carry it.
+    pub hash: u64,
+    pub info: CaseInfo,
+    pub fluid: BTreeMap<String, FluidConfig>,
+    pub structure: BTreeMap<String, StructureConfig>,
+    pub coupling: Option<CouplingConfig>,
+}
+
+impl Case {
+    /// Reads, parses and validates a case file.
+    pub fn load(path: &Path) -> Result<Case, CaseError> {
+        let text = std::fs::read_to_string(path).map_err(|e| CaseError {
+            file: path.to_path_buf(),
+            key: String::new(),
+            message: format!("cannot read the case file: {e}"),
+        })?;
+        Case::parse(path, text)
+    }
+
+    /// Parses and validates case text that came from `path`.
+    pub fn parse(path: &Path, text: String) -> Result<Case, CaseError> {
+        let file: CaseFile = toml::from_str(&text).map_err(|e| CaseError {
+            file: path.to_path_buf(),
+            key: e.span().map(|s| key_at(&text, s.start)).unwrap_or_default(),
+            message: e.message().trim().to_string(),
+        })?;
+        let case = Case {
+            path: path.to_path_buf(),
+            hash: fnv1a(text.as_bytes()),
+            text,
+            info: file.case,
+            fluid: file.fluid,
+            structure: file.structure,
+            coupling: file.coupling,
+        };
+        case.validate().map_err(|e| CaseError::at(path, e))?;
+        Ok(case)
+    }
+
+    /// The folder that relative paths in the case are taken from.
+    pub fn dir(&self) -> PathBuf {
+        self.path.parent().map(Path::to_path_buf).unwrap_or_default()
+    }
+
+    /// Resolves a path written in the case against the case's folder.
+    pub fn resolve(&self, p: &Path) -> PathBuf {
+        if p.is_absolute() {
+            p.to_path_buf()
+        } else {
+            self.dir().join(p)
+        }
+    }
+
+    /// Participant names with their kind: fluid participants first, then structure ones.
+    pub fn participants(&self) -> Vec<(String, Kind)> {
+        let fluid = self.fluid.keys().map(|n| (n.clone(), Kind::Fluid));
+        let structure = self.structure.keys().map(|n| (n.clone(), Kind::Structure));
+        fluid.chain(structure).collect()
+    }
+
+    /// The kind of the participant `name`, if the case has one.
+    pub fn kind_of(&self, name: &str) -> Option<Kind> {
+        self.participants().into_iter().find(|(n, _)| n == name).map(|(_, k)| k)
+    }
+
+    fn validate(&self) -> Result<(), FieldError> {
+        error::check::positive("case.end_time", self.info.end_time)?;
+        if self.info.name.trim().is_empty() {
+            return Err(FieldError::new("case.name", "must not be empty"));
+        }
+        let names = self.participants();
+        if names.is_empty() {
+            return Err(FieldError::new(
+                "",
+                "the case has no participant: add a [fluid.NAME] or [structure.NAME] section",
+            ));
+        }
+        for (name, kind) in &names {
+            let section = match kind {
+                Kind::Fluid => "fluid",
+                Kind::Structure => "structure",
+            };
+            check_participant_name(&format!("{section}.{name}"), name)?;
+        }
+        if let Some(dup) = self.fluid.keys().find(|n| self.structure.contains_key(*n)) {
+            return Err(FieldError::new(
+                format!("structure.{dup}"),
+                format!("participant name `{dup}` is used by a fluid and a structure section; names must be unique"),
+            ));
+        }
+        for name in self.info.executables.keys() {
+            if self.kind_of(name).is_none() {
+                return Err(FieldError::new(
+                    format!("case.executables.{name}"),
+                    format!("names no participant; participants are: {}", list(&names)),
+                ));
+            }
+        }
+        for (name, cfg) in &self.fluid {
+            cfg.validate(&format!("fluid.{name}"))?;
+        }
+        for (name, cfg) in &self.structure {
+            cfg.validate(&format!("structure.{name}"))?;
+        }
+        match (&self.coupling, names.len()) {
+            (None, n) if n > 1 => Err(FieldError::new(
+                "coupling",
+                format!("the case has {n} participants ({}) and needs a [coupling] section", list(&names)),
+            )),
+            (Some(c), _) => c.validate(self),
+            _ => Ok(()),
+        }
+    }
+}
+
+/// Participant names go into shared-memory service names: lowercase letters, digits and `-`.
+fn check_participant_name(key: &str, name: &str) -> Result<(), FieldError> {
+    let ok = !name.is_empty()
+        && name.len() <= 32
+        && name.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-');
+    if ok {
+        Ok(())
+    } else {
+        Err(FieldError::new(
+            key,
+            format!("participant name `{name}` must be 1–32 characters of a–z, 0–9 and `-`"),
+        ))
+    }
+}
+
+fn list(names: &[(String, Kind)]) -> String {
+    names.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>().join(", ")
+}
+
+/// The dotted key of the TOML line that holds byte `offset` (best effort, for error messages).
+fn key_at(text: &str, offset: usize) -> String {
+    let mut table = String::new();
+    let mut key = String::new();
+    let mut pos = 0;
+    for line in text.lines() {
+        let trimmed = line.trim();
+        if trimmed.starts_with('[') {
+            table = trimmed.trim_matches(|c| c == '[' || c == ']').trim().to_string();
+            key.clear();
+        } else if let Some((k, _)) = trimmed.split_once('=') {
+            key = k.trim().to_string();
+        }
+        pos += line.len() + 1;
+        if pos > offset {
+            break;
+        }
+    }
+    match (table.is_empty(), key.is_empty()) {
+        (true, _) => key,
+        (false, true) => table,
+        (false, false) => format!("{table}.{key}"),
+    }
+}
+
+/// 64-bit FNV-1a: a stable hash of the case text (std's hasher is not stable across releases).
+pub fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325_u64, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3))
+}

@@ -1,0 +1,15 @@
+//! The contract between the coupler and its participants: case files ([`case`]),
+//! interface messages ([`message`]) with their interpolation in a window ([`waveform`]),
+//! recordings ([`recording`]), the iceoryx2 link ([`link`]) and the participant loop
+//! ([`participant`]).
+
+pub mod case;
+pub mod codec;
+pub mod f64s;
+pub mod link;
+pub mod message;
+pub mod participant;
+pub mod recording;
+pub mod waveform;
+
+pub use f64s::F64s;

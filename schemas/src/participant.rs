@@ -1,0 +1,191 @@
+//! The participant side of the protocol: a solver implements [`Participant`] and calls [`serve`].
+//!
+//! The loop: open the link, wait for the coupler, say [`Hello`], get `Welcome` (or `Refused`),
+//! send the initial outputs, then answer every `Advance` until `Finish`. The coupler's liveness
+//! is checked during every wait; a participant whose coupler is gone stops.
+
+use crate::link::{process_alive, Link, LinkError, Side};
+use crate::message::{
+    Checkpoint, Fields, FromParticipant, Geometry, Header, Hello, InterfaceDecl, Role, ToParticipant, Waveform,
+    PROTOCOL_VERSION,
+};
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+/// A solver that can take part in a coupled run.
+pub trait Participant {
+    /// Fluid or structure.
+    fn role(&self) -> Role;
+    /// Simulated time the solver has reached.
+    fn time(&self) -> f64;
+    /// Names that fix the order of the interface arrays.
+    fn interface(&self) -> InterfaceDecl;
+    /// Interface outputs at t = 0.
+    fn initial_outputs(&mut self) -> Fields;
+    /// Member geometry, when it changed since the last call (beam frames only).
+    fn geometry_update(&mut self) -> Option<Geometry> {
+        None
+    }
+    /// Keeps the current state (the window start) in memory.
+    fn save_checkpoint(&mut self);
+    /// Goes back to the state kept by the last [`Participant::save_checkpoint`].
+    fn restore_checkpoint(&mut self) -> Result<(), String>;
+    /// Advances from `inputs.start()` to exactly `inputs.end()`, reading inputs with
+    /// `inputs.at(t)`; returns the outputs at each of `inputs.times` (the first is the window start).
+    fn advance(&mut self, inputs: &Waveform) -> Result<Vec<Fields>, String>;
+    /// The run is over: write final output.
+    fn finish(&mut self) -> Result<(), String>;
+}
+
+/// Command-line arguments every solver takes in participant mode (`SOLVER participant …`).
+#[derive(clap::Args, Debug, Clone)]
+pub struct ParticipantArgs {
+    /// The case file.
+    #[arg(long)]
+    pub case: PathBuf,
+    /// This participant's name in the case.
+    #[arg(long)]
+    pub name: String,
+    /// Run id given by the coupler; it keeps the shared-memory services of concurrent runs apart.
+    #[arg(long)]
+    pub run_id: String,
+    /// The coupler's process id; the participant stops when the coupler is gone.
+    #[arg(long)]
+    pub coupler_pid: u32,
+    /// Folder for this participant's own output (VTU, CSV).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+/// Why a participant stopped.
+#[derive(Debug)]
+pub enum ServeError {
+    Link(LinkError),
+    /// The coupler refused the handshake.
+    Refused(String),
+    /// The solver failed; the coupler was told.
+    Solver(String),
+    /// The coupler sent something out of order.
+    Protocol(String),
+}
+
+impl std::fmt::Display for ServeError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ServeError::Link(e) => write!(f, "link to the coupler: {e}"),
+            ServeError::Refused(r) => write!(f, "the coupler refused this participant: {r}"),
+            ServeError::Solver(m) => write!(f, "solver failed: {m}"),
+            ServeError::Protocol(m) => write!(f, "protocol error: {m}"),
+        }
+    }
+}
+
+impl std::error::Error for ServeError {}
+
+impl From<LinkError> for ServeError {
+    fn from(e: LinkError) -> Self {
+        ServeError::Link(e)
+    }
+}
+
+/// How long a participant waits for its coupler to open the link.
+const CONNECT_TIMEOUT: Duration = Duration::from_secs(30);
+
+/// Runs the participant protocol with this crate's protocol version.
+pub fn serve<P: Participant>(args: &ParticipantArgs, case_hash: u64, solver: &mut P) -> Result<(), ServeError> {
+    serve_announcing(args, case_hash, solver, PROTOCOL_VERSION)
+}
+
+/// Runs the participant protocol announcing `protocol` (another version is refused by the
+/// coupler; tests use this to check the refusal).
+pub fn serve_announcing<P: Participant>(
+    args: &ParticipantArgs,
+    case_hash: u64,
+    solver: &mut P,
+    protocol: u32,
+) -> Result<(), ServeError> {
+    stop_with_parent();
+    let link = Link::open(&args.run_id, &args.name, Side::Participant)?;
+    let coupler = args.coupler_pid;
+    let mut alive = move || process_alive(coupler).map_err(|e| format!("the coupler (pid {coupler}) is gone: {e}"));
+    link.wait_for_peer(Instant::now() + CONNECT_TIMEOUT, &mut alive)?;
+    let hello = Hello {
+        protocol,
+        role: solver.role(),
+        name: args.name.clone(),
+        case_hash,
+        pid: std::process::id(),
+        interface: solver.interface(),
+    };
+    link.send(&FromParticipant::Hello(hello))?;
+    match link.recv::<ToParticipant>(None, &mut alive)? {
+        ToParticipant::Welcome { .. } => {}
+        ToParticipant::Refused { reason } => return Err(ServeError::Refused(reason)),
+        other => return Err(ServeError::Protocol(format!("expected Welcome, got {}", name_of(&other)))),
+    }
+    let outputs = solver.initial_outputs();
+    let geometry = solver.geometry_update();
+    link.send(&FromParticipant::Initial { outputs, geometry })?;
+    loop {
+        match link.recv::<ToParticipant>(None, &mut alive)? {
+            ToParticipant::Advance { header, checkpoint, inputs } => {
+                let result = match checkpoint {
+                    Checkpoint::None => Ok(()),
+                    Checkpoint::Save => {
+                        solver.save_checkpoint();
+                        Ok(())
+                    }
+                    Checkpoint::Restore => solver.restore_checkpoint(),
+                }
+                .and_then(|()| solver.advance(&inputs))
+                .and_then(|outputs| {
+                    if outputs.len() == inputs.times.len() {
+                        Ok(outputs)
+                    } else {
+                        Err(format!(
+                            "the solver returned {} output samples for {} input times",
+                            outputs.len(),
+                            inputs.times.len()
+                        ))
+                    }
+                });
+                match result {
+                    Ok(samples) => {
+                        let outputs = Waveform { times: inputs.times.clone(), samples };
+                        let geometry = solver.geometry_update();
+                        let reached = Header { time: solver.time(), ..header };
+                        link.send(&FromParticipant::Advanced { header: reached, outputs, geometry })?;
+                    }
+                    Err(diagnostic) => {
+                        link.send(&FromParticipant::Failed { header, diagnostic: diagnostic.clone() })?;
+                        return Err(ServeError::Solver(diagnostic));
+                    }
+                }
+            }
+            ToParticipant::Finish => {
+                let done = solver.finish();
+                link.send(&FromParticipant::Finished)?;
+                return done.map_err(ServeError::Solver);
+            }
+            other => return Err(ServeError::Protocol(format!("unexpected {} during the run", name_of(&other)))),
+        }
+    }
+}
+
+fn name_of(m: &ToParticipant) -> &'static str {
+    match m {
+        ToParticipant::Welcome { .. } => "Welcome",
+        ToParticipant::Refused { .. } => "Refused",
+        ToParticipant::Advance { .. } => "Advance",
+        ToParticipant::Finish => "Finish",
+    }
+}
+
+/// Asks the kernel to end this process when its parent (the coupler) dies.
+fn stop_with_parent() {
+    #[cfg(target_os = "linux")]
+    // SAFETY: prctl(PR_SET_PDEATHSIG) takes a signal number and touches no memory of ours.
+    unsafe {
+        libc::prctl(libc::PR_SET_PDEATHSIG, libc::SIGTERM);
+    }
+}

@@ -1,0 +1,205 @@
+//! Sparse assembly of the effective stiffness and its Cholesky factorisation with faer. The symbolic
+//! factorisation is made once per connectivity (it changes only when a member fractures); every step
+//! only scatters new values into the fixed pattern and redoes the numeric part.
+
+use super::element::ELEMENT_DOFS;
+use faer::linalg::solvers::Solve;
+use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use faer::{MatMut, Side};
+
+/// Marks an entry that is not stored (a fixed DOF, or the upper triangle).
+const NOT_STORED: u32 = u32::MAX;
+
+/// Degrees of freedom per node.
+pub const NODE_DOFS: usize = 6;
+
+/// The lower triangle of the system matrix over the free DOFs, where each element and node block
+/// lands in it, and the reusable symbolic factorisation.
+#[derive(Clone)]
+pub struct SparseSystem {
+    /// Equation number of each global DOF (`6 node + k`), or `None` for fixed or unused DOFs.
+    equation: Vec<Option<usize>>,
+    pattern: SymbolicSparseColMat<usize>,
+    symbolic: Option<SymbolicLlt<usize>>,
+    /// Per element, the value slot of each of its 12 × 12 entries (row-major).
+    element_slots: Vec<[u32; ELEMENT_DOFS * ELEMENT_DOFS]>,
+    /// Per node, the value slot of each entry of its 6 × 6 diagonal block (row-major).
+    node_slots: Vec<[u32; NODE_DOFS * NODE_DOFS]>,
+    /// Matrix values, in the pattern's order.
+    pub values: Vec<f64>,
+}
+
+impl SparseSystem {
+    /// Builds the pattern for elements joining `element_nodes`; a DOF is an unknown when its node
+    /// belongs to an element and `fixed` does not hold it.
+    pub fn new(
+        node_count: usize,
+        fixed: &[[bool; NODE_DOFS]],
+        element_nodes: &[[usize; 2]],
+    ) -> Result<Self, String> {
+        let mut used = vec![false; node_count];
+        for &[a, b] in element_nodes {
+            used[a] = true;
+            used[b] = true;
+        }
+        let mut equation = vec![None; node_count * NODE_DOFS];
+        let mut n = 0;
+        for node in 0..node_count {
+            for k in 0..NODE_DOFS {
+                if used[node] && !fixed[node][k] {
+                    equation[node * NODE_DOFS + k] = Some(n);
+                    n += 1;
+                }
+            }
+        }
+        let dofs = |nodes: &[usize]| -> Vec<Option<usize>> {
+            nodes
+                .iter()
+                .flat_map(|&v| (0..NODE_DOFS).map(move |k| v * NODE_DOFS + k))
+                .map(|g| equation[g])
+                .collect()
+        };
+        let mut columns: Vec<Vec<usize>> = vec![Vec::new(); n];
+        for &[a, b] in element_nodes {
+            let eq = dofs(&[a, b]);
+            for &c in eq.iter().flatten() {
+                columns[c].extend(eq.iter().flatten().filter(|&&r| r >= c));
+            }
+        }
+        let mut col_ptr = Vec::with_capacity(n + 1);
+        let mut row_idx = Vec::new();
+        col_ptr.push(0);
+        for col in &mut columns {
+            col.sort_unstable();
+            col.dedup();
+            row_idx.extend_from_slice(col);
+            col_ptr.push(row_idx.len());
+        }
+        if row_idx.len() >= NOT_STORED as usize {
+            return Err(format!(
+                "the frame's matrix has {} entries, more than this solver indexes",
+                row_idx.len()
+            ));
+        }
+        let pattern = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
+        let symbolic = if n > 0 {
+            Some(
+                SymbolicLlt::try_new(pattern.as_ref(), Side::Lower)
+                    .map_err(|e| format!("symbolic Cholesky factorisation failed: {e:?}"))?,
+            )
+        } else {
+            None
+        };
+        let slot = |r: Option<usize>, c: Option<usize>| -> u32 {
+            match (r, c) {
+                (Some(r), Some(c)) if r >= c => {
+                    let start = pattern.col_ptr()[c];
+                    let rows = &pattern.row_idx()[start..pattern.col_ptr()[c + 1]];
+                    rows.binary_search(&r).map_or(NOT_STORED, |i| (start + i) as u32)
+                }
+                _ => NOT_STORED,
+            }
+        };
+        let element_slots = element_nodes
+            .iter()
+            .map(|&[a, b]| {
+                let eq = dofs(&[a, b]);
+                let mut s = [NOT_STORED; ELEMENT_DOFS * ELEMENT_DOFS];
+                for i in 0..ELEMENT_DOFS {
+                    for j in 0..ELEMENT_DOFS {
+                        s[i * ELEMENT_DOFS + j] = slot(eq[i], eq[j]);
+                    }
+                }
+                s
+            })
+            .collect();
+        let node_slots = (0..node_count)
+            .map(|v| {
+                let eq = dofs(&[v]);
+                let mut s = [NOT_STORED; NODE_DOFS * NODE_DOFS];
+                for i in 0..NODE_DOFS {
+                    for j in 0..NODE_DOFS {
+                        s[i * NODE_DOFS + j] = slot(eq[i], eq[j]);
+                    }
+                }
+                s
+            })
+            .collect();
+        let nnz = pattern.row_idx().len();
+        Ok(SparseSystem {
+            equation,
+            pattern,
+            symbolic,
+            element_slots,
+            node_slots,
+            values: vec![0.0; nnz],
+        })
+    }
+
+    /// Number of unknowns.
+    pub fn unknowns(&self) -> usize {
+        self.pattern.nrows()
+    }
+
+    /// Equation number of global DOF `dof`, if it is an unknown.
+    pub fn equation(&self, dof: usize) -> Option<usize> {
+        self.equation[dof]
+    }
+
+    /// Sets every value to zero.
+    pub fn clear(&mut self) {
+        self.values.iter_mut().for_each(|v| *v = 0.0);
+    }
+
+    /// Adds the global 12 × 12 matrix of element `e` (only its lower-triangle entries land).
+    pub fn add_element(&mut self, e: usize, k: &[[f64; ELEMENT_DOFS]; ELEMENT_DOFS]) {
+        let slots = &self.element_slots[e];
+        for (i, row) in k.iter().enumerate() {
+            for (j, v) in row.iter().enumerate() {
+                let s = slots[i * ELEMENT_DOFS + j];
+                if s != NOT_STORED {
+                    self.values[s as usize] += v;
+                }
+            }
+        }
+    }
+
+    /// Adds a 6 × 6 block on node `v`'s diagonal.
+    pub fn add_node(&mut self, v: usize, m: &[[f64; NODE_DOFS]; NODE_DOFS]) {
+        let slots = &self.node_slots[v];
+        for (i, row) in m.iter().enumerate() {
+            for (j, x) in row.iter().enumerate() {
+                let s = slots[i * NODE_DOFS + j];
+                if s != NOT_STORED {
+                    self.values[s as usize] += x;
+                }
+            }
+        }
+    }
+
+    /// Value of entry (r, c) of the symmetric matrix.
+    pub fn get(&self, r: usize, c: usize) -> f64 {
+        let (r, c) = if r >= c { (r, c) } else { (c, r) };
+        let start = self.pattern.col_ptr()[c];
+        let rows = &self.pattern.row_idx()[start..self.pattern.col_ptr()[c + 1]];
+        rows.binary_search(&r).map_or(0.0, |i| self.values[start + i])
+    }
+
+    /// Factorises the current values (numeric part only) and solves in place.
+    pub fn solve(&self, rhs: &mut [f64]) -> Result<(), String> {
+        let Some(symbolic) = &self.symbolic else {
+            return Ok(());
+        };
+        let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
+        let llt = Llt::try_new_with_symbolic(symbolic.clone(), matrix, Side::Lower).map_err(|e| {
+            format!(
+                "the frame's system matrix is not positive definite ({e:?}): a part of the frame is free \
+                 to move without resistance (a mechanism or a missing support) or the state is corrupt"
+            )
+        })?;
+        let n = rhs.len();
+        llt.solve_in_place(MatMut::from_column_major_slice_mut(rhs, n, 1));
+        Ok(())
+    }
+}

@@ -1,0 +1,216 @@
+//! The ASI-Gauss element: a linear Timoshenko beam with one integration point at ξ = s (S2 §3,
+//! physics.md §5), in a co-rotational frame so that rigid motion of any size leaves it unstrained.
+
+use super::section::Resultants;
+use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
+
+/// Integration point of an elastic member's elements, `s = ±(2/√3 − 1)`: it puts the stress-evaluation
+/// points r = −s on the member's Gauss points, which makes one member exact for the cantilever.
+pub const S_GAUSS: f64 = 2.0 / 1.732_050_807_568_877_2 - 1.0;
+
+/// Local degrees of freedom per element: `[u v w θx θy θz]` at each end.
+pub const ELEMENT_DOFS: usize = 12;
+
+/// Strain–displacement matrix B(s) of the element (6 × 12): generalised strains at the integration
+/// point ξ = s from the local end displacements and rotations (physics.md §5, N1 = (1−ξ)/2, N2 = (1+ξ)/2).
+pub fn strain_matrix(length: f64, s: f64) -> [[f64; ELEMENT_DOFS]; 6] {
+    let (n1, n2) = ((1.0 - s) / 2.0, (1.0 + s) / 2.0);
+    let il = 1.0 / length;
+    let mut b = [[0.0; ELEMENT_DOFS]; 6];
+    // axial ε = (u2 − u1)/l
+    b[0][0] = -il;
+    b[0][6] = il;
+    // γy = (v2 − v1)/l − (N1 θz1 + N2 θz2)
+    b[1][1] = -il;
+    b[1][7] = il;
+    b[1][5] = -n1;
+    b[1][11] = -n2;
+    // γz = (w2 − w1)/l + (N1 θy1 + N2 θy2)
+    b[2][2] = -il;
+    b[2][8] = il;
+    b[2][4] = n1;
+    b[2][10] = n2;
+    // κx, κy, κz = (θ2 − θ1)/l
+    for (row, dof) in [(3, 3), (4, 4), (5, 5)] {
+        b[row][dof] = -il;
+        b[row][dof + 6] = il;
+    }
+    b
+}
+
+/// Generalised strain increment `B(s) d`.
+pub fn strains(b: &[[f64; ELEMENT_DOFS]; 6], d: &[f64; ELEMENT_DOFS]) -> Resultants {
+    let mut e = [0.0; 6];
+    for (ei, row) in e.iter_mut().zip(b) {
+        *ei = row.iter().zip(d).map(|(x, y)| x * y).sum();
+    }
+    e
+}
+
+/// Local stiffness `K = l Bᵀ D B` for a one-point rule (weight 2 × l/2), D a 6 × 6 section stiffness.
+pub fn local_stiffness(length: f64, s: f64, d: &[[f64; 6]; 6]) -> [[f64; ELEMENT_DOFS]; ELEMENT_DOFS] {
+    let b = strain_matrix(length, s);
+    let mut db = [[0.0; ELEMENT_DOFS]; 6];
+    for i in 0..6 {
+        for j in 0..ELEMENT_DOFS {
+            db[i][j] = (0..6).map(|k| d[i][k] * b[k][j]).sum();
+        }
+    }
+    let mut k = [[0.0; ELEMENT_DOFS]; ELEMENT_DOFS];
+    for i in 0..ELEMENT_DOFS {
+        for j in 0..ELEMENT_DOFS {
+            k[i][j] = length * (0..6).map(|m| b[m][i] * db[m][j]).sum::<f64>();
+        }
+    }
+    k
+}
+
+/// Adds the geometric stiffness of the axial force N to a local stiffness: the string term
+/// `(N/l) [I⊥ −I⊥; −I⊥ I⊥]` on the transverse translations, which turns the force with the chord
+/// (without it, the one-solve-per-step update feeds energy into spinning members).
+pub fn add_axial_geometric_stiffness(k: &mut [[f64; ELEMENT_DOFS]; ELEMENT_DOFS], axial_force: f64, length: f64) {
+    let g = axial_force / length;
+    for dof in [1, 2] {
+        k[dof][dof] += g;
+        k[dof + 6][dof + 6] += g;
+        k[dof][dof + 6] -= g;
+        k[dof + 6][dof] -= g;
+    }
+}
+
+/// Local end forces `f = l Bᵀ σ` of resultants σ read at the stress-evaluation point.
+pub fn local_forces(length: f64, s: f64, sigma: &Resultants) -> [f64; ELEMENT_DOFS] {
+    let b = strain_matrix(length, s);
+    let mut f = [0.0; ELEMENT_DOFS];
+    for (j, fj) in f.iter_mut().enumerate() {
+        *fj = length * (0..6).map(|m| b[m][j] * sigma[m]).sum::<f64>();
+    }
+    f
+}
+
+/// Bending moments `(My, Mz)` at ξ of an element whose resultants σ are read at r = −s: the moment
+/// varies linearly with slope set by the shear (dM/dx = Q), `My(ξ) = My + l Qz (ξ + s)/2`,
+/// `Mz(ξ) = Mz − l Qy (ξ + s)/2`.
+pub fn moments_at(length: f64, s: f64, sigma: &Resultants, xi: f64) -> (f64, f64) {
+    let shift = length * (xi + s) / 2.0;
+    (sigma[4] + sigma[2] * shift, sigma[5] - sigma[1] * shift)
+}
+
+/// Re-expresses σ for a new integration point `s_new` with the same end forces (the hinge moves).
+pub fn move_integration_point(length: f64, s: f64, s_new: f64, sigma: &mut Resultants) {
+    let (my, mz) = moments_at(length, s, sigma, -s_new);
+    sigma[4] = my;
+    sigma[5] = mz;
+}
+
+/// Current co-rotational frame of an element and its natural deformations.
+#[derive(Debug, Clone, Copy)]
+pub struct Corotated {
+    /// Columns: local x (the chord), y, z in global axes.
+    pub frame: Matrix3<f64>,
+    /// Local `[u v w θx θy θz]` at both ends: only the elongation `u2` and the end rotations
+    /// relative to the chord frame are nonzero.
+    pub deformation: [f64; ELEMENT_DOFS],
+    /// Current chord length.
+    pub length: f64,
+}
+
+/// Co-rotational frame and natural deformations from the end positions and nodal rotations.
+/// `reference` is the element frame at t = 0 (nodal rotations are measured from there); `length0`
+/// its length then.
+pub fn corotate(
+    xa: &Vector3<f64>,
+    xb: &Vector3<f64>,
+    qa: &UnitQuaternion<f64>,
+    qb: &UnitQuaternion<f64>,
+    reference: &Matrix3<f64>,
+    length0: f64,
+) -> Corotated {
+    let chord = xb - xa;
+    let length = chord.norm();
+    let e1 = chord / length;
+    let triad_a = qa.to_rotation_matrix().matrix() * reference;
+    let triad_b = qb.to_rotation_matrix().matrix() * reference;
+    let y_mean = (triad_a.column(1) + triad_b.column(1)) * 0.5;
+    let e3 = e1.cross(&y_mean).normalize();
+    let e2 = e3.cross(&e1);
+    let frame = Matrix3::from_columns(&[e1, e2, e3]);
+    let theta_a = rotation_vector(&(frame.transpose() * triad_a));
+    let theta_b = rotation_vector(&(frame.transpose() * triad_b));
+    let mut deformation = [0.0; ELEMENT_DOFS];
+    deformation[3..6].copy_from_slice(theta_a.as_slice());
+    deformation[6] = length - length0;
+    deformation[9..12].copy_from_slice(theta_b.as_slice());
+    Corotated {
+        frame,
+        deformation,
+        length,
+    }
+}
+
+/// Rotation vector (axis × angle, |angle| ≤ π) of a rotation matrix, exact down to the smallest
+/// angles (through the quaternion: θ = 2 atan2(|v|, w) v/|v|).
+pub fn rotation_vector(r: &Matrix3<f64>) -> Vector3<f64> {
+    let q = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(*r));
+    let (w, v) = if q.w < 0.0 {
+        (-q.w, -q.imag())
+    } else {
+        (q.w, q.imag())
+    };
+    let s = v.norm();
+    if s > 0.0 {
+        v * (2.0 * s.atan2(w) / s)
+    } else {
+        Vector3::zeros()
+    }
+}
+
+/// Rotates a local 12 × 12 matrix to global axes, `T K Tᵀ` block by block with T = diag(E, E, E, E).
+pub fn to_global_matrix(
+    frame: &Matrix3<f64>,
+    k: &[[f64; ELEMENT_DOFS]; ELEMENT_DOFS],
+) -> [[f64; ELEMENT_DOFS]; ELEMENT_DOFS] {
+    let mut out = [[0.0; ELEMENT_DOFS]; ELEMENT_DOFS];
+    for bi in 0..4 {
+        for bj in 0..4 {
+            let block = Matrix3::from_fn(|i, j| k[3 * bi + i][3 * bj + j]);
+            let g = frame * block * frame.transpose();
+            for i in 0..3 {
+                for j in 0..3 {
+                    out[3 * bi + i][3 * bj + j] = g[(i, j)];
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Rotates a local 12-vector to global axes.
+pub fn to_global_vector(frame: &Matrix3<f64>, f: &[f64; ELEMENT_DOFS]) -> [f64; ELEMENT_DOFS] {
+    let mut out = [0.0; ELEMENT_DOFS];
+    for b in 0..4 {
+        let g = frame * Vector3::new(f[3 * b], f[3 * b + 1], f[3 * b + 2]);
+        out[3 * b..3 * b + 3].copy_from_slice(g.as_slice());
+    }
+    out
+}
+
+/// Element frame at t = 0: x along the member, y from `orientation` (projected normal to x), or by
+/// default horizontal (global z × x; global y for a vertical member).
+pub fn initial_frame(axis: &Vector3<f64>, orientation: Option<[f64; 3]>) -> Matrix3<f64> {
+    let e1 = axis.normalize();
+    let hint = match orientation {
+        Some(o) => Vector3::new(o[0], o[1], o[2]),
+        None => {
+            let horizontal = Vector3::z().cross(&e1);
+            if horizontal.norm() > 1e-6 {
+                horizontal
+            } else {
+                Vector3::y()
+            }
+        }
+    };
+    let e2 = (hint - e1 * e1.dot(&hint)).normalize();
+    let e3 = e1.cross(&e2);
+    Matrix3::from_columns(&[e1, e2, e3])
+}

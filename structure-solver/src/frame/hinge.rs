@@ -1,0 +1,140 @@
+//! Plastic hinges of ASI-Gauss elements (S2 §3, physics.md §5): a section that reaches the full-plastic
+//! yield surface becomes a hinge; the integration point moves so that the hinge sits on the node, the
+//! flow follows the normality rule, and the hinge closes again when it unloads.
+
+use super::element::move_integration_point;
+use super::section::{Resultants, Section, YIELDING};
+
+/// The end of an element where a hinge sits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum End {
+    /// ξ = −1, the element's first node.
+    Start,
+    /// ξ = +1, the element's second node.
+    Finish,
+}
+
+impl End {
+    /// Natural coordinate of this end.
+    pub fn xi(self) -> f64 {
+        match self {
+            End::Start => -1.0,
+            End::Finish => 1.0,
+        }
+    }
+
+    /// Integration point that puts the stress-evaluation point r = −s on this end.
+    pub fn integration_point(self) -> f64 {
+        -self.xi()
+    }
+
+    /// Index (0 or 1) of this end's node in the element.
+    pub fn node(self) -> usize {
+        match self {
+            End::Start => 0,
+            End::Finish => 1,
+        }
+    }
+}
+
+/// Stress state of one element: resultants at its stress-evaluation point, where that point is, and
+/// the hinge if any.
+#[derive(Debug, Clone, Copy)]
+pub struct StressState {
+    /// Integration point ξ = s; resultants are read at r = −s.
+    pub s: f64,
+    /// `[N, Qy, Qz, T, My, Mz]` at r = −s.
+    pub sigma: Resultants,
+    /// Accumulated generalised strains at the integration point (for fracture, S2-17).
+    pub strain: Resultants,
+    pub hinge: Option<End>,
+}
+
+impl StressState {
+    /// An unstressed elastic element with its integration point at `s`.
+    pub fn elastic(s: f64) -> StressState {
+        StressState {
+            s,
+            sigma: [0.0; 6],
+            strain: [0.0; 6],
+            hinge: None,
+        }
+    }
+
+    /// Moves the integration point to `s_new`, keeping the end forces.
+    pub fn move_to(&mut self, length: f64, s_new: f64) {
+        if s_new != self.s {
+            move_integration_point(length, self.s, s_new, &mut self.sigma);
+            self.s = s_new;
+        }
+    }
+
+    /// Section stiffness relating resultant and strain increments: elastic D, or at a hinge the
+    /// normality-rule `D − D a aᵀ D / (aᵀ D a)` (physics.md §5).
+    pub fn tangent(&self, section: &Section) -> [[f64; 6]; 6] {
+        let d = section.stiffness;
+        let mut t = [[0.0; 6]; 6];
+        for (i, row) in t.iter_mut().enumerate() {
+            row[i] = d[i];
+        }
+        if self.hinge.is_some() {
+            let a = section.yield_gradient(&self.sigma);
+            let ada: f64 = YIELDING.iter().map(|&i| a[i] * d[i] * a[i]).sum();
+            if ada > 0.0 {
+                for &i in &YIELDING {
+                    for &j in &YIELDING {
+                        t[i][j] -= d[i] * a[i] * a[j] * d[j] / ada;
+                    }
+                }
+            }
+        }
+        t
+    }
+
+    /// Advances the resultants by the strain increment `de`: forms a hinge where an elastic element's
+    /// end reaches the yield surface, flows plastically at a loading hinge, closes an unloading one.
+    pub fn update(&mut self, section: &Section, length: f64, de: &Resultants) {
+        let d = section.stiffness;
+        for (e, de) in self.strain.iter_mut().zip(de) {
+            *e += de;
+        }
+        match self.hinge {
+            None => {
+                for i in 0..6 {
+                    self.sigma[i] += d[i] * de[i];
+                }
+                let f_at = |end: End| {
+                    let (my, mz) = super::element::moments_at(length, self.s, &self.sigma, end.xi());
+                    section.yield_function(self.sigma[0], my, mz)
+                };
+                let (f_start, f_finish) = (f_at(End::Start), f_at(End::Finish));
+                let end = if f_start >= f_finish {
+                    End::Start
+                } else {
+                    End::Finish
+                };
+                if f_start.max(f_finish) >= 0.0 {
+                    self.move_to(length, end.integration_point());
+                    self.hinge = Some(end);
+                    section.return_to_surface(&mut self.sigma);
+                }
+            }
+            Some(_) => {
+                let a = section.yield_gradient(&self.sigma);
+                let loading: f64 = YIELDING.iter().map(|&i| a[i] * d[i] * de[i]).sum();
+                if loading >= 0.0 {
+                    let t = self.tangent(section);
+                    for (i, row) in t.iter().enumerate() {
+                        self.sigma[i] += row.iter().zip(de).map(|(x, y)| x * y).sum::<f64>();
+                    }
+                    section.return_to_surface(&mut self.sigma);
+                } else {
+                    for i in 0..6 {
+                        self.sigma[i] += d[i] * de[i];
+                    }
+                    self.hinge = None;
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,131 @@
+//! Nodes and elements of a frame, built from its config: each member becomes two ASI-Gauss elements
+//! joined at a new mid node.
+
+use super::element::{corotate, initial_frame, Corotated, S_GAUSS};
+use super::hinge::StressState;
+use nalgebra::{Matrix3, UnitQuaternion, Vector3};
+use schemas::case::frame::{FrameConfig, DOF_NAMES};
+use schemas::case::FieldError;
+use std::collections::BTreeMap;
+
+/// A node: 3 translations and 3 rotations.
+#[derive(Debug, Clone)]
+pub struct Node {
+    /// Its id in the config; `None` for member mid nodes and nodes made by fracture.
+    pub id: Option<u32>,
+    pub position: Vector3<f64>,
+    /// Rotation from the initial orientation.
+    pub rotation: UnitQuaternion<f64>,
+    /// `[v, ω]`, global.
+    pub velocity: [f64; 6],
+    /// `[a, α]`, global.
+    pub acceleration: [f64; 6],
+    pub fixed: [bool; 6],
+}
+
+impl Node {
+    fn new(id: Option<u32>, position: Vector3<f64>) -> Node {
+        Node {
+            id,
+            position,
+            rotation: UnitQuaternion::identity(),
+            velocity: [0.0; 6],
+            acceleration: [0.0; 6],
+            fixed: [false; 6],
+        }
+    }
+}
+
+/// One half of a member.
+#[derive(Debug, Clone)]
+pub struct Element {
+    pub nodes: [usize; 2],
+    pub member: usize,
+    /// 0 for the member's first half, 1 for its second.
+    pub half: usize,
+    pub section: usize,
+    /// Length at t = 0 (the strain reference).
+    pub length0: f64,
+    /// Element frame at t = 0 (nodal rotations are measured from it).
+    pub reference: Matrix3<f64>,
+    /// Current frame and natural deformations.
+    pub current: Corotated,
+    pub stress: StressState,
+    /// Times this element has fractured (and been split off a node).
+    pub fractures: u32,
+}
+
+impl Element {
+    /// The integration point of this element while elastic: on the member's Gauss point placement
+    /// (+s in the first half, −s in the second), or at the midpoint when the other half has a hinge.
+    pub fn elastic_integration_point(&self, other_half_hinged: bool) -> f64 {
+        match (other_half_hinged, self.half) {
+            (true, _) => 0.0,
+            (false, 0) => S_GAUSS,
+            (false, _) => -S_GAUSS,
+        }
+    }
+}
+
+/// Nodes (config nodes first, in config order, then member mid nodes in member order), elements
+/// (two per member, in member order) and the config-id → index map.
+pub fn build(
+    cfg: &FrameConfig,
+    key: &str,
+) -> Result<(Vec<Node>, Vec<Element>, BTreeMap<u32, usize>), FieldError> {
+    cfg.validate(key)?;
+    let mut nodes: Vec<Node> = Vec::with_capacity(cfg.node.len() + cfg.member.len());
+    let mut index = BTreeMap::new();
+    for n in &cfg.node {
+        index.insert(n.id, nodes.len());
+        nodes.push(Node::new(Some(n.id), Vector3::from(n.position)));
+    }
+    for s in &cfg.support {
+        let node = &mut nodes[index[&s.node]];
+        for d in &s.fixed {
+            if let Some(k) = DOF_NAMES.iter().position(|n| n == d) {
+                node.fixed[k] = true;
+            }
+        }
+    }
+    let sections: BTreeMap<&str, usize> = cfg
+        .section
+        .iter()
+        .enumerate()
+        .map(|(i, s)| (s.name.as_str(), i))
+        .collect();
+    let mut elements = Vec::with_capacity(2 * cfg.member.len());
+    for (m, member) in cfg.member.iter().enumerate() {
+        let (a, b) = (index[&member.nodes[0]], index[&member.nodes[1]]);
+        let mid = nodes.len();
+        nodes.push(Node::new(None, (nodes[a].position + nodes[b].position) * 0.5));
+        let axis = nodes[b].position - nodes[a].position;
+        let reference = initial_frame(&axis, member.orientation);
+        for (half, pair) in [[a, mid], [mid, b]].into_iter().enumerate() {
+            let length0 = (nodes[pair[1]].position - nodes[pair[0]].position).norm();
+            let q = UnitQuaternion::identity();
+            let current = corotate(
+                &nodes[pair[0]].position,
+                &nodes[pair[1]].position,
+                &q,
+                &q,
+                &reference,
+                length0,
+            );
+            let mut element = Element {
+                nodes: pair,
+                member: m,
+                half,
+                section: sections[member.section.as_str()],
+                length0,
+                reference,
+                current,
+                stress: StressState::elastic(0.0),
+                fractures: 0,
+            };
+            element.stress = StressState::elastic(element.elastic_integration_point(false));
+            elements.push(element);
+        }
+    }
+    Ok((nodes, elements, index))
+}

@@ -1,0 +1,72 @@
+//! VTK unstructured-grid output of a frame: one line cell per element, with hinge and fracture flags.
+
+use super::Frame;
+use std::fmt::Write as _;
+use std::path::Path;
+
+impl Frame {
+    /// Writes the frame as an ASCII `.vtu`: points = nodes (with velocity and angular velocity),
+    /// cells = elements (with member, hinge: 0 none / 1 at the first node / 2 at the second, and
+    /// the number of fractures).
+    pub fn write_vtu(&self, path: &Path) -> std::io::Result<()> {
+        let mut s = String::new();
+        let (np, nc) = (self.nodes.len(), self.elements.len());
+        let _ = writeln!(s, "<?xml version=\"1.0\"?>");
+        let _ = writeln!(
+            s,
+            "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">"
+        );
+        let _ = writeln!(
+            s,
+            "<UnstructuredGrid><Piece NumberOfPoints=\"{np}\" NumberOfCells=\"{nc}\">"
+        );
+        s.push_str("<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+        for n in &self.nodes {
+            let _ = writeln!(s, "{} {} {}", n.position.x, n.position.y, n.position.z);
+        }
+        s.push_str("</DataArray></Points>\n<PointData>\n");
+        for (name, range) in [("velocity", 0..3), ("angular_velocity", 3..6)] {
+            let _ = writeln!(
+                s,
+                "<DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"3\" format=\"ascii\">"
+            );
+            for n in &self.nodes {
+                let v = &n.velocity[range.clone()];
+                let _ = writeln!(s, "{} {} {}", v[0], v[1], v[2]);
+            }
+            s.push_str("</DataArray>\n");
+        }
+        s.push_str(
+            "</PointData>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n",
+        );
+        for e in &self.elements {
+            let _ = writeln!(s, "{} {}", e.nodes[0], e.nodes[1]);
+        }
+        s.push_str("</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
+        for i in 0..nc {
+            let _ = writeln!(s, "{}", 2 * (i + 1));
+        }
+        s.push_str("</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
+        for _ in 0..nc {
+            s.push_str("3\n");
+        }
+        s.push_str("</DataArray>\n</Cells>\n<CellData>\n");
+        let columns: [(&str, Box<dyn Fn(&super::Element) -> i64>); 3] = [
+            ("member", Box::new(|e| e.member as i64)),
+            (
+                "hinge",
+                Box::new(|e| e.stress.hinge.map_or(0, |end| end.node() as i64 + 1)),
+            ),
+            ("fractures", Box::new(|e| i64::from(e.fractures))),
+        ];
+        for (name, value) in columns {
+            let _ = writeln!(s, "<DataArray type=\"Int64\" Name=\"{name}\" format=\"ascii\">");
+            for e in &self.elements {
+                let _ = writeln!(s, "{}", value(e));
+            }
+            s.push_str("</DataArray>\n");
+        }
+        s.push_str("</CellData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n");
+        std::fs::write(path, s)
+    }
+}

@@ -1,0 +1,75 @@
+//! Frame configs shared by the frame tests: straight beams along x made of rectangular steel members.
+#![allow(dead_code)]
+
+use schemas::case::frame::{
+    FrameConfig, MaterialConfig, MemberConfig, NodeConfig, SectionConfig, SupportConfig,
+};
+
+/// Steel of the reference data (`/work/shared/data/structure/README.md`): E = 200 GPa, ν = 0.3,
+/// ρ = 7850 kg/m³; yield stress 235 MPa.
+pub fn steel() -> MaterialConfig {
+    MaterialConfig {
+        young_modulus: 200e9,
+        poisson: 0.3,
+        density: 7850.0,
+        yield_stress: 235e6,
+        fracture_curvature: None,
+        fracture_axial_strain: None,
+        fracture_shear_strain: None,
+    }
+}
+
+/// A rectangular section `width` (local y) × `depth` (local z).
+pub fn rectangle(name: &str, width: f64, depth: f64) -> SectionConfig {
+    SectionConfig {
+        name: name.into(),
+        kind: "rectangle".into(),
+        width: Some(width),
+        depth: Some(depth),
+        area: None,
+        iy: None,
+        iz: None,
+        j: None,
+        shear_area_y: None,
+        shear_area_z: None,
+        plastic_modulus_y: None,
+        plastic_modulus_z: None,
+    }
+}
+
+/// A straight beam from x = 0 to x = `length` of `members` equal members (node ids 1 … members + 1),
+/// depth vertical (local z = global z), no gravity.
+pub fn beam(length: f64, members: usize, width: f64, depth: f64, material: MaterialConfig) -> FrameConfig {
+    let node = (0..=members)
+        .map(|i| NodeConfig {
+            id: i as u32 + 1,
+            position: [length * i as f64 / members as f64, 0.0, 0.0],
+        })
+        .collect();
+    let member = (0..members)
+        .map(|i| MemberConfig {
+            nodes: [i as u32 + 1, i as u32 + 2],
+            section: "rect".into(),
+            orientation: Some([0.0, 1.0, 0.0]),
+        })
+        .collect();
+    FrameConfig {
+        time_step: 1e-4,
+        gravity: [0.0; 3],
+        material,
+        section: vec![rectangle("rect", width, depth)],
+        node,
+        member,
+        support: Vec::new(),
+    }
+}
+
+/// A support of node `id` fixing the named DOFs.
+pub fn support(id: u32, fixed: &[&str]) -> SupportConfig {
+    SupportConfig {
+        node: id,
+        fixed: fixed.iter().map(|s| s.to_string()).collect(),
+    }
+}
+
+pub const ALL: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];

@@ -1,0 +1,139 @@
+//! Helpers for the workspace tests that start real processes: where the built binaries are,
+//! throw-away output folders, case files written from a template, and reading results back
+//! from recordings.
+
+use schemas::message::{FromParticipant, ToParticipant};
+use schemas::recording::{Message, Recording};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::OnceLock;
+
+/// The workspace root.
+pub fn workspace() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+/// The folder of the built binaries (`target/release` when tests run with `--release`).
+pub fn bin_dir() -> PathBuf {
+    let exe = std::env::current_exe().unwrap_or_default();
+    // target/<profile>/deps/<test binary>
+    exe.parent().and_then(Path::parent).map(Path::to_path_buf).unwrap_or_default()
+}
+
+/// A workspace binary, built first (once per test process) so the tests never run a stale one:
+/// `cargo test` builds a package's binaries only for that package's own integration tests.
+pub fn binary(name: &str) -> PathBuf {
+    static BUILT: OnceLock<()> = OnceLock::new();
+    BUILT.get_or_init(|| {
+        let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+        let mut build = Command::new(cargo);
+        build.args(["build", "--bins", "--workspace"]).current_dir(workspace());
+        if bin_dir().ends_with("release") {
+            build.arg("--release");
+        }
+        let status = build.status().unwrap_or_else(|e| panic!("cannot run cargo build: {e}"));
+        assert!(status.success(), "cargo build --bins --workspace failed");
+    });
+    let path = bin_dir().join(name);
+    assert!(
+        path.is_file(),
+        "{} is missing: run the tests with `cargo test --workspace --release`, which builds every binary",
+        path.display()
+    );
+    path
+}
+
+/// A fresh, empty output folder for one test under `target/test-out/`.
+pub fn out_dir(test: &str) -> PathBuf {
+    let dir = bin_dir().join("..").join("test-out").join(format!("{test}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("cannot create {}: {e}", dir.display()));
+    dir
+}
+
+/// Runs `coupler ARGS…` to completion.
+pub fn coupler(args: &[&str]) -> Output {
+    Command::new(binary("coupler")).args(args).output().unwrap_or_else(|e| panic!("cannot start the coupler: {e}"))
+}
+
+/// The oscillator case of `cases/oscillator` with `key = value` lines replaced, written to `dir/case.toml`.
+pub fn oscillator_case(dir: &Path, replace: &[(&str, &str)]) -> PathBuf {
+    let template = std::fs::read_to_string(workspace().join("cases/oscillator/case.toml"))
+        .unwrap_or_else(|e| panic!("cannot read cases/oscillator/case.toml: {e}"));
+    let mut text = template;
+    for (key, value) in replace {
+        let start = text.find(&format!("\n{key} =")).unwrap_or_else(|| panic!("no `{key} =` line in the template"));
+        let line_end = text[start + 1..].find('\n').map(|i| start + 1 + i).unwrap_or(text.len());
+        text.replace_range(start + 1..line_end, &format!("{key} = {value}"));
+    }
+    let path = dir.join("case.toml");
+    std::fs::write(&path, text).unwrap_or_else(|e| panic!("cannot write {}: {e}", path.display()));
+    path
+}
+
+/// The last output of `participant`'s array `array` at the end of the run (converged window).
+pub fn final_output(recording: &Path, participant: &str, array: &str) -> (f64, Vec<f64>) {
+    let rec = Recording::read(recording).unwrap_or_else(|e| panic!("{e}"));
+    let last = rec
+        .frames
+        .iter()
+        .rev()
+        .filter(|f| f.participant == participant)
+        .find_map(|f| match &f.message {
+            Message::From(FromParticipant::Advanced { header, outputs, .. }) => Some((header.time, outputs.clone())),
+            _ => None,
+        })
+        .unwrap_or_else(|| panic!("no answer of `{participant}` in {}", recording.display()));
+    let fields = last.1.last().cloned().unwrap_or_default();
+    let values = fields.arrays().into_iter().find(|(n, _)| *n == array).map(|(_, a)| a.0.clone()).unwrap_or_default();
+    (last.0, values)
+}
+
+/// Number of `Advance` messages sent to `participant` (sweeps) in a recording.
+pub fn advances(recording: &Path, participant: &str) -> usize {
+    let rec = Recording::read(recording).unwrap_or_else(|e| panic!("{e}"));
+    rec.frames
+        .iter()
+        .filter(|f| f.participant == participant && matches!(f.message, Message::To(ToParticipant::Advance { .. })))
+        .count()
+}
+
+/// Exact two-mass oscillator: u1 = ½(cos 2πt + cos 6πt), u2 = ½(cos 2πt − cos 6πt).
+pub fn oscillator_exact(t: f64) -> (f64, f64) {
+    use std::f64::consts::PI;
+    let (a, b) = ((2.0 * PI * t).cos(), (6.0 * PI * t).cos());
+    (0.5 * (a + b), 0.5 * (a - b))
+}
+
+/// The coupled oscillator's error at its end time: max over both masses of |u − u_exact|.
+pub fn oscillator_error(recording: &Path) -> f64 {
+    let (t1, u1) = final_output(recording, "mass-left", "point_displacement");
+    let (t2, u2) = final_output(recording, "mass-right", "point_displacement");
+    let (e1, e2) = oscillator_exact(t1);
+    assert_eq!(t1, t2, "both masses end at the same time");
+    (u1[0] - e1).abs().max((u2[0] - e2).abs())
+}
+
+/// The coupled oscillator's largest error over all window ends: for each window, the outputs of
+/// its last (converged) sweep against the exact solution, max over both masses.
+pub fn oscillator_max_error(recording: &Path) -> f64 {
+    let rec = Recording::read(recording).unwrap_or_else(|e| panic!("{e}"));
+    let mut ends: std::collections::BTreeMap<(u64, bool), (f64, f64)> = std::collections::BTreeMap::new();
+    for f in &rec.frames {
+        if let Message::From(FromParticipant::Advanced { header, outputs, .. }) = &f.message {
+            let u = outputs.last().and_then(|o| o.point_displacement.first().copied()).unwrap_or(f64::NAN);
+            ends.insert((header.window, f.participant == "mass-left"), (header.time, u));
+        }
+    }
+    ends.iter()
+        .map(|(&(_, left), &(t, u))| {
+            let (e1, e2) = oscillator_exact(t);
+            (u - if left { e1 } else { e2 }).abs()
+        })
+        .fold(0.0, f64::max)
+}
+
+/// stderr of a finished process as text.
+pub fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
