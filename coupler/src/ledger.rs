@@ -2,7 +2,7 @@
 //! and the work done on each side across the interface, written to `ledger.csv`.
 
 use crate::error::CouplerError;
-use crate::interface::{force_sum, window_work};
+use crate::interface::{force_taken, window_work};
 use schemas::message::Fields;
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -48,7 +48,10 @@ impl Ledger {
         let mut net = [0.0; 3];
         let mut magnitude = 0.0;
         for (p_inputs, p_outputs) in inputs.iter().zip(outputs) {
-            let f = p_inputs.last().map(force_sum).unwrap_or([0.0; 3]);
+            let f = match (p_inputs.last(), p_outputs.last()) {
+                (Some(i), Some(o)) => force_taken(i, o),
+                _ => [0.0; 3],
+            };
             let work = window_work(p_inputs, p_outputs);
             line.push_str(&format!(",{:.12e},{:.12e},{:.12e},{work:.12e}", f[0], f[1], f[2]));
             (0..3).for_each(|c| net[c] += f[c]);

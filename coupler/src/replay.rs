@@ -148,7 +148,7 @@ fn drive(
     for m in messages {
         match m {
             Message::From(FromParticipant::Initial { outputs, .. }) => {
-                compare(&mut report, 0, &[outputs.clone()], &[initial.clone()], tolerance);
+                compare(&mut report, 0, std::slice::from_ref(outputs), std::slice::from_ref(&initial), tolerance);
             }
             Message::To(msg @ ToParticipant::Advance { header, .. }) => {
                 if signals::interrupted() {

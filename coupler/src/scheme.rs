@@ -1,11 +1,12 @@
 //! Coupling windows: serial explicit (one sweep per window) and serial implicit (sweeps from
 //! checkpoints until the interface converges, with acceleration).
 //!
-//! A sweep advances the participants in serial order. The interface laws are evaluated once per
-//! sweep, on the estimate of every participant's outputs over the window as it stands when the
-//! sweep starts, so each side of a law gets exactly `+f` and `−f` (a spring's force depends on
-//! both of its ends; evaluating it again after the first end moved would hand the second end a
-//! force that is not the reaction of the first). The estimate starts from the last window's
+//! A sweep advances the participants in serial order. Two-sided laws (springs) are evaluated
+//! once per sweep, on the estimate of every participant's outputs as it stands when the sweep
+//! starts, so each end gets exactly `+f` and `−f` (evaluating a spring again after its first end
+//! moved would hand the second end a force that is not the reaction of the first). One-way
+//! transfers (a body's force from the fluid to the structure, its motion back) are evaluated when
+//! their receiver advances, so the serial order passes fresh data on. The estimate starts from the last window's
 //! outputs, held constant or extended linearly (`coupling.predictor`); implicit coupling
 //! iterates it to the fixed point.
 
@@ -147,17 +148,16 @@ impl Windows<'_> {
         estimate: &mut [Vec<Fields>],
     ) -> Result<Vec<Vec<Fields>>, CouplerError> {
         let t_end = times.last().copied().unwrap_or(0.0);
-        let given: Vec<Vec<Fields>> = (0..estimate.len())
-            .map(|p| {
-                (0..times.len())
-                    .map(|j| {
-                        let at: Vec<&Fields> = estimate.iter().map(|s| &s[j]).collect();
-                        self.interface.inputs(p, &at)
-                    })
-                    .collect()
-            })
-            .collect();
-        for (p, inputs) in given.iter().enumerate() {
+        let start = estimate.to_vec();
+        let mut given = Vec::with_capacity(estimate.len());
+        for p in 0..estimate.len() {
+            let inputs: Vec<Fields> = (0..times.len())
+                .map(|j| {
+                    let at_start: Vec<&Fields> = start.iter().map(|s| &s[j]).collect();
+                    let current: Vec<&Fields> = estimate.iter().map(|s| &s[j]).collect();
+                    self.interface.inputs(p, &at_start, &current)
+                })
+                .collect();
             let header = Header { protocol: PROTOCOL_VERSION, window: w, iteration: k, time: t_end };
             let waveform = Waveform { times: times.to_vec(), samples: inputs.clone() };
             self.stack.send(p, ToParticipant::Advance { header, checkpoint, inputs: waveform }, Some(w))?;
@@ -196,6 +196,7 @@ impl Windows<'_> {
                 }
                 other => return Err(refuse(format!("protocol error: expected Advanced, got {}", variant(&other)))),
             }
+            given.push(inputs);
         }
         Ok(given)
     }

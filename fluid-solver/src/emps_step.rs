@@ -6,17 +6,17 @@
 //! passed the first wall layer (seen in the seed tank at t ≈ 0.18 s), or is shot out at
 //! 15 m/s after a near contact.
 
-/// Particles closer than this many spacings that approach each other collide.
-pub const COLLISION_DISTANCE: f64 = 0.8;
-/// Coefficient of restitution of a collision.
-pub const RESTITUTION: f64 = 0.2;
-
 use crate::kernel::Kernel;
 use crate::kind::{Kind, FLUID};
 use crate::neighbour_search::CellGrid;
 use crate::operators::{self, VectorField};
 use crate::particles::Particles;
 use rayon::prelude::*;
+
+/// Particles closer than this many spacings that approach each other collide.
+pub const COLLISION_DISTANCE: f64 = 0.8;
+/// Coefficient of restitution of a collision.
+pub const RESTITUTION: f64 = 0.2;
 
 /// The physical parameters of the step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -37,7 +37,7 @@ pub struct Physics {
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct StepTotals {
     /// Force of the walls, dummies and bodies on the fluid during the step [N]
-    /// (pressure of S1-3 and viscous no-slip of S1-4).
+    /// (pressure of S1-3, viscous no-slip of S1-4 and collisions).
     pub force_from_walls: [f64; 3],
     /// Neighbour candidates examined over all passes.
     pub candidates: u64,
@@ -56,40 +56,68 @@ pub struct EmpsStep {
 impl EmpsStep {
     /// A step for particles of spacing Δs = `kernel.spacing` inside `grid`.
     pub fn new(kernel: Kernel, physics: Physics, grid: CellGrid) -> EmpsStep {
-        EmpsStep { kernel, physics, grid, scratch: Vec::new(), accel: VectorField::default() }
+        EmpsStep {
+            kernel,
+            physics,
+            grid,
+            scratch: Vec::new(),
+            accel: VectorField::default(),
+        }
     }
 
-    /// Advances the particles by `dt`.
+    /// Advances the particles by `dt`: the stages of S1-9 … S1-15 in order.
     pub fn advance(&mut self, p: &mut Particles, dt: f64) -> StepTotals {
-        let mass = self.physics.density * self.kernel.spacing.powi(3);
         let mut totals = StepTotals::default();
         let viscous = self.physics.viscosity_term && self.physics.viscosity > 0.0;
         if viscous {
-            self.grid.sort(p, &mut self.scratch);
-            let t = operators::laplacian(&self.grid, &self.kernel, p, &mut self.accel);
-            let nu = self.physics.viscosity;
-            totals.force_from_walls = t.from_non_fluid.map(|l| mass * nu * l);
-            totals.candidates += t.candidates;
+            self.grid.sort(p, &mut self.scratch); // cell lists at r^k
+            self.viscous_laplacian(p, &mut totals); // S1-4
         }
-        self.predict(p, dt, viscous);
-        self.grid.sort(p, &mut self.scratch);
-        totals.candidates += operators::number_density(&self.grid, &self.kernel, p);
-        self.equation_of_state(p);
-        let t = operators::gradient(&self.grid, &self.kernel, p, &p.pressure, &mut self.accel);
-        let rho = self.physics.density;
+        self.predict(p, dt, viscous); // S1-10, S1-11
+        self.grid.sort(p, &mut self.scratch); // cell lists at r*
+        totals.candidates += operators::number_density(&self.grid, &self.kernel, p); // S1-15
+        self.equation_of_state(p); // S1-14
+        self.pressure_gradient(p, &mut totals); // S1-3
+        self.correct(p, dt); // S1-12, S1-13
+        self.collide(p, dt, &mut totals);
+        totals
+    }
+
+    /// Mass of one particle ρ0 Δs³.
+    fn particle_mass(&self) -> f64 {
+        self.physics.density * self.kernel.spacing.powi(3)
+    }
+
+    /// S1-4 on the velocities at r^k, into the acceleration buffer.
+    fn viscous_laplacian(&mut self, p: &Particles, totals: &mut StepTotals) {
+        let t = operators::laplacian(&self.grid, &self.kernel, p, &mut self.accel);
+        let m_nu = self.particle_mass() * self.physics.viscosity;
         for a in 0..3 {
-            totals.force_from_walls[a] -= mass / rho * t.from_non_fluid[a];
+            totals.force_from_walls[a] += m_nu * t.from_non_fluid[a];
         }
         totals.candidates += t.candidates;
-        self.correct(p, dt);
+    }
+
+    /// S1-3 on the pressures at r*, into the acceleration buffer.
+    fn pressure_gradient(&mut self, p: &Particles, totals: &mut StepTotals) {
+        let t = operators::gradient(&self.grid, &self.kernel, p, &p.pressure, &mut self.accel);
+        let volume = self.particle_mass() / self.physics.density;
+        for a in 0..3 {
+            totals.force_from_walls[a] -= volume * t.from_non_fluid[a];
+        }
+        totals.candidates += t.candidates;
+    }
+
+    /// Collisions of close approaching particles (see the module doc), applied like S1-13.
+    fn collide(&mut self, p: &mut Particles, dt: f64, totals: &mut StepTotals) {
         let distance = COLLISION_DISTANCE * self.kernel.spacing;
         let t = operators::collision(&self.grid, p, distance, RESTITUTION, &mut self.accel);
+        let m = self.particle_mass();
         for a in 0..3 {
-            totals.force_from_walls[a] += mass * t.from_non_fluid[a] / dt;
+            totals.force_from_walls[a] += m * t.from_non_fluid[a] / dt;
         }
         totals.candidates += t.candidates;
         self.apply_collisions(p, dt);
-        totals
     }
 
     /// Sorts the particles and computes the number density and pressure at their present
@@ -107,13 +135,19 @@ impl EmpsStep {
         let nu = if viscous { self.physics.viscosity } else { 0.0 };
         let lap = &self.accel;
         let body = Kind::Body.code();
-        (&mut p.x, &mut p.y, &mut p.z, &mut p.vx, &mut p.vy, &mut p.vz, &p.kind)
+        (
+            &mut p.x, &mut p.y, &mut p.z, &mut p.vx, &mut p.vy, &mut p.vz, &p.kind,
+        )
             .into_par_iter()
             .enumerate()
             .with_min_len(4096)
             .for_each(|(i, (x, y, z, u, v, w, &k))| {
                 if k == FLUID {
-                    let (lx, ly, lz) = if viscous { (lap.x[i], lap.y[i], lap.z[i]) } else { (0.0, 0.0, 0.0) };
+                    let (lx, ly, lz) = if viscous {
+                        (lap.x[i], lap.y[i], lap.z[i])
+                    } else {
+                        (0.0, 0.0, 0.0)
+                    };
                     *u += (nu * lx + g[0]) * dt;
                     *v += (nu * ly + g[1]) * dt;
                     *w += (nu * lz + g[2]) * dt;
@@ -132,10 +166,17 @@ impl EmpsStep {
         let rho = self.physics.density;
         let c2 = self.physics.sound_speed * self.physics.sound_speed;
         let inv_n0 = 1.0 / self.kernel.n0;
-        (&mut p.pressure, &p.number_density).into_par_iter().with_min_len(4096).for_each(|(pr, &n)| {
-            let rho_star = rho * n * inv_n0;
-            *pr = if rho_star > rho { c2 * (rho_star - rho) } else { 0.0 };
-        });
+        (&mut p.pressure, &p.number_density)
+            .into_par_iter()
+            .with_min_len(4096)
+            .for_each(|(pr, &n)| {
+                let rho_star = rho * n * inv_n0;
+                *pr = if rho_star > rho {
+                    c2 * (rho_star - rho)
+                } else {
+                    0.0
+                };
+            });
     }
 
     /// Adds the collision velocity change Δu and moves the particle by Δu Δt, as S1-13 does.

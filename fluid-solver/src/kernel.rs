@@ -62,7 +62,14 @@ impl Kernel {
                 }
             }
         }
-        Kernel { spacing, re_grad, re, n0_grad, n0, lambda0: r2w / n0 }
+        Kernel {
+            spacing,
+            re_grad,
+            re,
+            n0_grad,
+            n0,
+            lambda0: r2w / n0,
+        }
     }
 
     /// S1-3's factor d / n0_grad.

@@ -1,4 +1,4 @@
-//! What a particle is: fluid, wall, dummy, body or gate, and what each kind takes part in.
+//! What a particle is: fluid, wall, dummy, body, gate or inflow, and what each kind takes part in.
 
 /// The kind of a particle, stored as one byte per particle.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -15,6 +15,9 @@ pub enum Kind {
     Body = 3,
     /// A partition board: a wall until it is removed at t = 0.
     Gate = 4,
+    /// An inflow strip's particles: they move with the prescribed u_in (not by S1-10 … S1-13),
+    /// carry pressure like walls and become fluid when they cross the inflow plane.
+    Inflow = 5,
 }
 
 impl Kind {
@@ -30,6 +33,7 @@ impl Kind {
             1 => Kind::Wall,
             3 => Kind::Body,
             4 => Kind::Gate,
+            5 => Kind::Inflow,
             _ => Kind::Dummy,
         }
     }
@@ -47,6 +51,7 @@ impl Kind {
             Kind::Dummy => "dummy",
             Kind::Body => "body",
             Kind::Gate => "gate",
+            Kind::Inflow => "inflow",
         }
     }
 }

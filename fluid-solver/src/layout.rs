@@ -4,7 +4,8 @@
 //! Lattice sites are `tank.min + (i + ½) Δs`; the tank's inner faces lie half a spacing from the
 //! nearest sites. Sites outside the tank within `wall_layers` layers are walls: the two layers
 //! next to the tank are [`Kind::Wall`] (they carry pressure), the outer ones [`Kind::Dummy`].
-//! Sites inside the tank whose centre is inside a gate, a body or a water block get that kind.
+//! Sites inside the tank whose centre is inside a gate, a body, a solid wall box or a water block
+//! get that kind.
 
 use crate::kind::Kind;
 use crate::particles::Particles;
@@ -14,8 +15,16 @@ use schemas::case::fluid::{Aabb, FluidConfig};
 /// r_e,grad = 2.1 Δs, i.e. wall centres 0.5 Δs and 1.5 Δs deep.
 pub const PRESSURE_LAYERS: i64 = 2;
 
+/// Headroom above an open tank, in tank heights, before a particle counts as gone.
+pub const SPLASH_HEADROOM: f64 = 4.0;
+
+/// The cell grid covers one tank height above an open tank; particles higher up are spray and
+/// are kept in the top cell layer (their distances stay exact, only the search does more work).
+pub const GRID_HEADROOM: f64 = 1.0;
+
 /// The box particles must stay in: the walls' outer faces, and above an open tank a headroom
-/// of one tank height for splashes.
+/// of [`SPLASH_HEADROOM`] tank heights (jets in the corners of the seed's tank rise at 4 m/s,
+/// i.e. 0.8 m, above a 0.3 m tank).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Domain {
     pub lo: [f64; 3],
@@ -34,6 +43,8 @@ pub struct BodyParticles {
 pub struct Layout {
     pub particles: Particles,
     pub domain: Domain,
+    /// The box the cell grid covers.
+    pub grid_box: Domain,
     pub tank: Aabb,
     pub bodies: Vec<BodyParticles>,
 }
@@ -46,34 +57,69 @@ pub fn build(cfg: &FluidConfig) -> Layout {
     let n: [i64; 3] = std::array::from_fn(|a| ((tank.max[a] - tank.min[a]) / ds).round() as i64);
     let top = if cfg.tank.lid { n[2] + layers } else { n[2] };
     let mut particles = Particles::default();
-    let mut bodies: Vec<BodyParticles> =
-        cfg.body.iter().map(|b| BodyParticles { name: b.name.clone(), ids: Vec::new() }).collect();
-    let boxes_of_bodies: Vec<Aabb> = cfg.body.iter().map(|b| Aabb { min: b.min, max: b.max }).collect();
+    let mut bodies: Vec<BodyParticles> = cfg
+        .body
+        .iter()
+        .map(|b| BodyParticles {
+            name: b.name.clone(),
+            ids: Vec::new(),
+        })
+        .collect();
+    let boxes_of_bodies: Vec<Aabb> = cfg
+        .body
+        .iter()
+        .map(|b| Aabb {
+            min: b.min,
+            max: b.max,
+        })
+        .collect();
     for k in -layers..top {
         for j in -layers..n[1] + layers {
             for i in -layers..n[0] + layers {
                 let idx = [i, j, k];
                 let p: [f64; 3] = std::array::from_fn(|a| tank.min[a] + (idx[a] as f64 + 0.5) * ds);
-                let depth = (0..3).map(|a| (-idx[a]).max(idx[a] - n[a] + 1)).max().unwrap_or(0);
+                let depth = (0..3)
+                    .map(|a| (-idx[a]).max(idx[a] - n[a] + 1))
+                    .max()
+                    .unwrap_or(0);
                 if depth > 0 {
-                    let kind = if depth <= PRESSURE_LAYERS { Kind::Wall } else { Kind::Dummy };
+                    let kind = if depth <= PRESSURE_LAYERS {
+                        Kind::Wall
+                    } else {
+                        Kind::Dummy
+                    };
                     particles.push(p, kind);
                 } else if cfg.gate.iter().any(|g| g.contains_point(p)) {
                     particles.push(p, Kind::Gate);
                 } else if let Some(b) = boxes_of_bodies.iter().position(|b| b.contains_point(p)) {
                     bodies[b].ids.push(particles.len() as u32);
                     particles.push(p, Kind::Body);
+                } else if cfg.wall.iter().any(|w| w.contains_point(p)) {
+                    // Only sites within r_e,grad of water get a pressure (see `operators`), so
+                    // the inside of a solid box costs no more than dummies.
+                    particles.push(p, Kind::Wall);
                 } else if cfg.block.iter().any(|b| b.contains_point(p)) {
                     particles.push(p, Kind::Fluid);
                 }
             }
         }
     }
+    particles.shrink_to_fit();
     let l = layers as f64 * ds;
     let height = tank.max[2] - tank.min[2];
-    let domain = Domain {
+    let above = |headroom: f64| Domain {
         lo: std::array::from_fn(|a| tank.min[a] - l),
-        hi: [tank.max[0] + l, tank.max[1] + l, tank.max[2] + if cfg.tank.lid { l } else { height }],
+        hi: [
+            tank.max[0] + l,
+            tank.max[1] + l,
+            tank.max[2] + if cfg.tank.lid { l } else { headroom * height },
+        ],
     };
-    Layout { particles, domain, tank, bodies }
+    Layout {
+        particles,
+        domain: above(SPLASH_HEADROOM),
+        grid_box: above(GRID_HEADROOM),
+        tank,
+        bodies,
+    }
 }

@@ -4,20 +4,27 @@
 //! - [`particles`]: structure-of-arrays storage; [`kind`]: fluid / wall / dummy / body / gate.
 //! - [`layout`]: the initial lattice of a case; [`kernel`]: weights and lattice constants.
 //! - [`neighbour_search`]: cell lists with counting sort; [`operators`]: the particle operators.
-//! - [`emps_step`]: one time step; [`solver`]: the clock, save/restore, advance-to.
-//! - [`stability`]: the instability detector; [`probes`], [`vtu`]: outputs; [`run`]: a standalone run.
+//! - [`bodies`]: rigid bodies of particles (kinematics in, loads out); [`emps_step`]: one time step; [`solver`]: the clock, save/restore, advance-to.
+//! - [`open_boundary`]: inflow and outflow boundaries (particles added and removed during a run).
+//! - [`stability`]: the instability detector; [`probes`], [`vtu`], [`surface_mesh`] + [`vtp`]: outputs; [`run`]: a standalone run;
+//!   [`participant`]: the coupled-run side (`fluid-solver participant …`).
 
+pub mod bodies;
 pub mod emps_step;
 pub mod kernel;
 pub mod kind;
 pub mod layout;
 pub mod neighbour_search;
+pub mod open_boundary;
 pub mod operators;
+pub mod participant;
 pub mod particles;
 pub mod probes;
 pub mod run;
 pub mod solver;
 pub mod stability;
+pub mod surface_mesh;
+pub mod vtp;
 pub mod vtu;
 
 pub use kind::Kind;

@@ -1,7 +1,10 @@
-//! `fluid-solver run CASE [--out DIR]`: runs a fluid-only case standalone.
+//! `fluid-solver run CASE [--out DIR]`: runs a fluid-only case standalone;
+//! `fluid-solver participant …`: one fluid participant inside a coupled run (started by the coupler).
 
 use clap::{Parser, Subcommand};
+use fluid_solver::participant::FluidParticipant;
 use schemas::case::Case;
+use schemas::participant::{serve, ParticipantArgs};
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -24,11 +27,26 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Serve one [fluid.NAME] participant of a coupled run (started by `coupler run`).
+    Participant(ParticipantArgs),
+}
+
+fn participant(args: &ParticipantArgs) -> Result<(), String> {
+    let case = Case::load(&args.case).map_err(|e| e.to_string())?;
+    let mut solver = FluidParticipant::from_case(&case, &args.name, args.out.as_deref())?;
+    serve(args, case.hash, &mut solver).map_err(|e| e.to_string())
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
+        Command::Participant(args) => match participant(&args) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::FAILURE
+            }
+        },
         Command::Run { case, out } => {
             let case = match Case::load(&case) {
                 Ok(c) => c,

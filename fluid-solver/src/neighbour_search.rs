@@ -3,8 +3,11 @@
 //! The domain is cut into cubic cells of 1.05 Δs (r_e,grad / 2, and ≥ r_e / 3), so the gradient
 //! looks 2 cells and the number density 3 cells each way. A counting sort by cell index (x
 //! fastest) reorders the particles, so a run of cells along x is one contiguous index range:
-//! a neighbour query visits (2·reach + 1)² ranges, each read straight through memory.
+//! a neighbour query visits (2·reach + 1)² ranges, each read straight through memory. A
+//! running count of fluid particles per cell tells in (2·reach + 1)² look-ups whether a wall
+//! particle has any water near it.
 
+use crate::kind::FLUID;
 use crate::particles::Particles;
 use rayon::prelude::*;
 
@@ -14,7 +17,7 @@ pub const CELL_IN_SPACINGS: f64 = 1.05;
 const PAD: usize = 3;
 
 /// A uniform grid of cells over a box, with the particles sorted by cell.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct CellGrid {
     origin: [f64; 3],
     inv_cell: f64,
@@ -26,6 +29,8 @@ pub struct CellGrid {
     cell_of: Vec<u32>,
     /// Sorting permutation: sorted index → previous index.
     perm: Vec<u32>,
+    /// Fluid particles in the cells before cell c (after [`CellGrid::sort`]).
+    fluid_before: Vec<u32>,
 }
 
 impl CellGrid {
@@ -47,6 +52,7 @@ impl CellGrid {
             start: vec![0; cells + 1],
             cell_of: Vec::new(),
             perm: Vec::new(),
+            fluid_before: vec![0; cells + 1],
         }
     }
 
@@ -57,7 +63,10 @@ impl CellGrid {
 
     /// Bytes held by the grid.
     pub fn memory_bytes(&self) -> usize {
-        4 * (self.start.capacity() + self.cell_of.capacity() + self.perm.capacity())
+        4 * (self.start.capacity()
+            + self.cell_of.capacity()
+            + self.perm.capacity()
+            + self.fluid_before.capacity())
     }
 
     /// Cells each way needed to see every neighbour within `radius`.
@@ -70,17 +79,17 @@ impl CellGrid {
     fn cell_index(&self, p: [f64; 3]) -> u32 {
         let mut idx = 0;
         let mut stride = 1;
-        for a in 0..3 {
-            let c = ((p[a] - self.origin[a]) * self.inv_cell).floor();
-            let c = (c.max(PAD as f64) as usize).min(self.dims[a] - PAD - 1);
+        for ((&pa, &origin), &dim) in p.iter().zip(&self.origin).zip(&self.dims) {
+            let c = ((pa - origin) * self.inv_cell).floor();
+            let c = (c.max(PAD as f64) as usize).min(dim - PAD - 1);
             idx += c * stride;
-            stride *= self.dims[a];
+            stride *= dim;
         }
         idx as u32
     }
 
-    /// Counting sort of the particles by cell; reorders every particle array (and `extra`
-    /// per-particle arrays) and fills the cell ranges.
+    /// Counting sort of the particles by cell; reorders every particle array and fills the
+    /// cell ranges.
     pub fn sort(&mut self, p: &mut Particles, scratch: &mut Vec<f64>) {
         let n = p.len();
         let mut cells = std::mem::take(&mut self.cell_of);
@@ -110,14 +119,45 @@ impl CellGrid {
         self.start[0] = 0;
         let perm = &self.perm;
         self.cell_of.resize(n, 0);
-        self.cell_of.par_iter_mut().zip(perm.par_iter()).with_min_len(4096).for_each(|(c, &j)| *c = cells[j as usize]);
+        self.cell_of
+            .par_iter_mut()
+            .zip(perm.par_iter())
+            .with_min_len(4096)
+            .for_each(|(c, &j)| *c = cells[j as usize]);
         p.permute(&self.perm, scratch);
+        self.fluid_before.iter_mut().for_each(|f| *f = 0);
+        for (&c, &k) in self.cell_of.iter().zip(&p.kind) {
+            if k == FLUID {
+                self.fluid_before[c as usize + 1] += 1;
+            }
+        }
+        for c in 0..self.cell_count() {
+            self.fluid_before[c + 1] += self.fluid_before[c];
+        }
+    }
+
+    /// Whether any fluid particle lies in the cells within `reach` of particle `i`'s cell.
+    pub fn fluid_near(&self, i: usize, reach: usize) -> bool {
+        let mut any = false;
+        self.for_each_cell_range(i, reach, |lo, hi| {
+            any |= self.fluid_before[hi] > self.fluid_before[lo]
+        });
+        any
     }
 
     /// Calls `f(begin, end)` for each contiguous index range of the cells within `reach` of
     /// particle `i`'s cell (valid after [`CellGrid::sort`], until particles are added or removed).
     #[inline(always)]
     pub fn for_each_range(&self, i: usize, reach: usize, mut f: impl FnMut(usize, usize)) {
+        self.for_each_cell_range(i, reach, |lo, hi| {
+            f(self.start[lo] as usize, self.start[hi] as usize)
+        });
+    }
+
+    /// Calls `f(first cell, one past the last cell)` for each run of cells along x within
+    /// `reach` of particle `i`'s cell.
+    #[inline(always)]
+    fn for_each_cell_range(&self, i: usize, reach: usize, mut f: impl FnMut(usize, usize)) {
         let c = self.cell_of[i] as usize;
         let nx = self.dims[0];
         let nxy = nx * self.dims[1];
@@ -125,8 +165,7 @@ impl CellGrid {
             for dy in 0..=2 * reach {
                 let row = c + dz * nxy + dy * nx;
                 let lo = row - reach * nxy - reach * nx - reach;
-                let hi = row - reach * nxy - reach * nx + reach + 1;
-                f(self.start[lo] as usize, self.start[hi] as usize);
+                f(lo, lo + 2 * reach + 1);
             }
         }
     }

@@ -48,20 +48,23 @@ fn add(a: PassTotals, b: PassTotals) -> PassTotals {
     }
 }
 
-/// S1-15 (sum part): `n_i = Σ_{j≠i} w(|r_j − r_i|)` with r_e = 3.1 Δs, for every particle that
-/// carries pressure (all but dummies; dummies get 0). Returns the candidates examined.
+/// S1-15 (sum part): `n_i = Σ_{j≠i} w(|r_j − r_i|)` with r_e = 3.1 Δs, for fluid particles and
+/// for wall, body and gate particles that have fluid within r_e,grad (only those enter the
+/// gradient S1-3 of a fluid particle). Dummies and walls away from the water get n = 0, so
+/// P = 0: no fluid particle would read their pressure. Returns the candidates examined.
 pub fn number_density(grid: &CellGrid, kernel: &Kernel, p: &mut Particles) -> u64 {
     let re = kernel.re;
     let re2 = re * re;
     let inv_re = 1.0 / re;
     let reach = grid.reach(re);
+    let reach_grad = grid.reach(kernel.re_grad);
     let (x, y, z, kind) = (&p.x, &p.y, &p.z, &p.kind);
     p.number_density
         .par_iter_mut()
         .enumerate()
         .with_min_len(256)
         .map(|(i, n)| {
-            if kind[i] == DUMMY {
+            if kind[i] == DUMMY || (kind[i] != FLUID && !grid.fluid_near(i, reach_grad)) {
                 *n = 0.0;
                 return 0;
             }
@@ -87,7 +90,13 @@ pub fn number_density(grid: &CellGrid, kernel: &Kernel, p: &mut Particles) -> u6
 /// S1-3: `⟨∇f⟩_i = d/n0_grad Σ_j (f_j + f_i) r_ij/|r_ij|² w_grad(|r_ij|)` for fluid particles i,
 /// over neighbours j that carry pressure (dummies only fill the number density). Writes `out`
 /// (0 for non-fluid particles). `from_non_fluid` is Σ_i of the part due to non-fluid j.
-pub fn gradient(grid: &CellGrid, kernel: &Kernel, p: &Particles, f: &[f64], out: &mut VectorField) -> PassTotals {
+pub fn gradient(
+    grid: &CellGrid,
+    kernel: &Kernel,
+    p: &Particles,
+    f: &[f64],
+    out: &mut VectorField,
+) -> PassTotals {
     let re = kernel.re_grad;
     let re2 = re * re;
     let inv_re = 1.0 / re;
@@ -110,13 +119,22 @@ pub fn gradient(grid: &CellGrid, kernel: &Kernel, p: &Particles, f: &[f64], out:
             let mut seen = 0u64;
             grid.for_each_range(i, reach, |s, e| {
                 seen += (e - s) as u64;
-                let it = x[s..e].iter().zip(&y[s..e]).zip(&z[s..e]).zip(&f[s..e]).zip(&kind[s..e]);
+                let it = x[s..e]
+                    .iter()
+                    .zip(&y[s..e])
+                    .zip(&z[s..e])
+                    .zip(&f[s..e])
+                    .zip(&kind[s..e]);
                 for ((((&xj, &yj), &zj), &fj), &kj) in it {
                     let (dx, dy, dz) = (xj - xi, yj - yi, zj - zi);
                     let r2 = dx * dx + dy * dy + dz * dz;
                     let r = r2.sqrt();
                     let c = (fj + fi) * (re / r - r * inv_re) / r2;
-                    let c = if r2 < re2 && r2 > 0.0 && kj != DUMMY { c } else { 0.0 };
+                    let c = if r2 < re2 && r2 > 0.0 && kj != DUMMY {
+                        c
+                    } else {
+                        0.0
+                    };
                     g[0] += c * dx;
                     g[1] += c * dy;
                     g[2] += c * dz;
@@ -127,7 +145,10 @@ pub fn gradient(grid: &CellGrid, kernel: &Kernel, p: &Particles, f: &[f64], out:
                 }
             });
             (*ox, *oy, *oz) = (factor * g[0], factor * g[1], factor * g[2]);
-            PassTotals { from_non_fluid: wall.map(|v| factor * v), candidates: seen }
+            PassTotals {
+                from_non_fluid: wall.map(|v| factor * v),
+                candidates: seen,
+            }
         })
         .reduce(PassTotals::default, add)
 }
@@ -174,7 +195,10 @@ pub fn laplacian(grid: &CellGrid, kernel: &Kernel, p: &Particles, out: &mut Vect
                 }
             });
             (*ox, *oy, *oz) = (factor * l[0], factor * l[1], factor * l[2]);
-            PassTotals { from_non_fluid: wall.map(|v| factor * v), candidates: seen }
+            PassTotals {
+                from_non_fluid: wall.map(|v| factor * v),
+                candidates: seen,
+            }
         })
         .reduce(PassTotals::default, add)
 }
@@ -208,11 +232,12 @@ pub fn collision(grid: &CellGrid, p: &Particles, distance: f64, e: f64, out: &mu
                 for j in s..e_ {
                     let r = [x[j] - xi, y[j] - yi, z[j] - zi];
                     let r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
-                    if r2 >= d2 || r2 == 0.0 {
+                    // Written so that a NaN neighbour is skipped (it is the detector's to report).
+                    if !(r2 < d2 && r2 > 0.0) {
                         continue;
                     }
                     let closing = (vx[j] - vx[i]) * r[0] + (vy[j] - vy[i]) * r[1] + (vz[j] - vz[i]) * r[2];
-                    if closing >= 0.0 {
+                    if closing >= 0.0 || closing.is_nan() {
                         continue;
                     }
                     let share = if kind[j] == FLUID { 0.5 } else { 1.0 };
@@ -226,7 +251,10 @@ pub fn collision(grid: &CellGrid, p: &Particles, distance: f64, e: f64, out: &mu
                 }
             });
             (*ox, *oy, *oz) = (du[0], du[1], du[2]);
-            PassTotals { from_non_fluid: wall, candidates: seen }
+            PassTotals {
+                from_non_fluid: wall,
+                candidates: seen,
+            }
         })
         .reduce(PassTotals::default, add)
 }

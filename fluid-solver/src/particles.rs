@@ -3,7 +3,8 @@
 //! Memory per particle of the state: positions 3 × 8 B, velocities 3 × 8 B, pressure 8 B,
 //! number density 8 B, kind 1 B, id 4 B = 69 B. The step adds a 3 × 8 B acceleration buffer,
 //! the cell list 2 × 4 B (cell index, permutation) and one 8 B reorder scratch: 109 B per
-//! particle, plus 4 B per grid cell (about one cell per particle).
+//! particle, plus 8 B per grid cell (cell start, fluid count; one to three cells per particle,
+//! depending on how much of the grid is headroom above the water).
 
 use crate::kind::Kind;
 use rayon::prelude::*;
@@ -56,6 +57,15 @@ impl Particles {
         self.id.push(id);
     }
 
+    /// Appends a particle at `p` moving with `v`, with identity `id` (for particles added during
+    /// a run, e.g. by an inflow; the caller keeps ids unique).
+    pub fn push_moving(&mut self, p: [f64; 3], v: [f64; 3], kind: Kind, id: u32) {
+        self.push(p, kind);
+        let i = self.len() - 1;
+        (self.vx[i], self.vy[i], self.vz[i]) = (v[0], v[1], v[2]);
+        self.id[i] = id;
+    }
+
     /// Position of particle `i`.
     pub fn position(&self, i: usize) -> [f64; 3] {
         [self.x[i], self.y[i], self.z[i]]
@@ -96,13 +106,34 @@ impl Particles {
         gather(&mut self.id, perm, &mut id);
     }
 
+    /// Releases spare capacity (after building or removing particles).
+    pub fn shrink_to_fit(&mut self) {
+        for v in [
+            &mut self.x,
+            &mut self.y,
+            &mut self.z,
+            &mut self.vx,
+            &mut self.vy,
+            &mut self.vz,
+            &mut self.pressure,
+            &mut self.number_density,
+        ] {
+            v.shrink_to_fit();
+        }
+        self.kind.shrink_to_fit();
+        self.id.shrink_to_fit();
+    }
+
     /// Removes every particle of `kind` (keeps the order of the others); returns how many.
     pub fn remove_kind(&mut self, kind: Kind) -> usize {
-        let keep: Vec<u32> = (0..self.len() as u32).filter(|&i| self.kind[i as usize] != kind.code()).collect();
+        let keep: Vec<u32> = (0..self.len() as u32)
+            .filter(|&i| self.kind[i as usize] != kind.code())
+            .collect();
         let removed = self.len() - keep.len();
         if removed > 0 {
             let mut scratch = Vec::new();
             self.permute(&keep, &mut scratch);
+            self.shrink_to_fit();
         }
         removed
     }
@@ -112,6 +143,10 @@ impl Particles {
 fn gather<T: Copy + Send + Sync + Default>(v: &mut Vec<T>, perm: &[u32], scratch: &mut Vec<T>) {
     scratch.resize(perm.len(), T::default());
     let src = &*v;
-    scratch.par_iter_mut().zip(perm.par_iter()).with_min_len(4096).for_each(|(s, &p)| *s = src[p as usize]);
+    scratch
+        .par_iter_mut()
+        .zip(perm.par_iter())
+        .with_min_len(4096)
+        .for_each(|(s, &p)| *s = src[p as usize]);
     std::mem::swap(v, scratch);
 }

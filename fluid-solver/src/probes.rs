@@ -36,7 +36,8 @@ pub fn sample(probe: &ProbeConfig, p: &Particles, kernel: &Kernel, tank: &Aabb) 
                 if k == Kind::Dummy || k == Kind::Gate {
                     continue;
                 }
-                let r = ((p.x[i] - at[0]).powi(2) + (p.y[i] - at[1]).powi(2) + (p.z[i] - at[2]).powi(2)).sqrt();
+                let r =
+                    ((p.x[i] - at[0]).powi(2) + (p.y[i] - at[1]).powi(2) + (p.z[i] - at[2]).powi(2)).sqrt();
                 let wi = weight(r.max(1e-6 * ds), kernel.re_grad);
                 pw += wi * p.pressure[i];
                 w += wi;

@@ -1,9 +1,13 @@
 //! A standalone run of a fluid-only case: steps to `case.end_time`, writes VTU frames with a
-//! PVD series every `output_interval` and a probe CSV every `probe_interval`.
+//! PVD series (and free-surface VTP frames when `surface_mesh = true`) every `output_interval`
+//! and a probe CSV every `probe_interval` (with an inflow or outflow also `NAME_balance.csv`,
+//! the particle balance of [`crate::open_boundary`]).
 
+use crate::open_boundary::BalanceFile;
 use crate::probes::{self, ProbeFile};
 use crate::solver::FluidSolver;
 use crate::stability::Instability;
+use crate::vtp::SurfaceFrames;
 use crate::vtu::{self, TimeSeries};
 use schemas::case::{Case, FluidConfig};
 use std::fmt;
@@ -46,7 +50,10 @@ pub struct RunSummary {
 
 /// The single fluid section of a fluid-only case.
 pub fn fluid_only(case: &Case) -> Result<(&str, &FluidConfig), RunError> {
-    let err = |message: String| RunError::NotFluidOnly { file: case.path.clone(), message };
+    let err = |message: String| RunError::NotFluidOnly {
+        file: case.path.clone(),
+        message,
+    };
     if !case.structure.is_empty() || case.coupling.is_some() {
         return Err(err(
             "the fluid solver runs alone only on a fluid-only case (one [fluid.NAME] section, no [structure.*], no [coupling]); run coupled cases with `coupler run`".into(),
@@ -55,7 +62,10 @@ pub fn fluid_only(case: &Case) -> Result<(&str, &FluidConfig), RunError> {
     let mut it = case.fluid.iter();
     match (it.next(), it.next()) {
         (Some((name, cfg)), None) => Ok((name.as_str(), cfg)),
-        _ => Err(err(format!("a fluid-only case needs exactly one [fluid.NAME] section, found {}", case.fluid.len()))),
+        _ => Err(err(format!(
+            "a fluid-only case needs exactly one [fluid.NAME] section, found {}",
+            case.fluid.len()
+        ))),
     }
 }
 
@@ -77,17 +87,35 @@ pub fn run_case(case: &Case, out: &Path, progress: bool) -> Result<RunSummary, R
     let end = case.info.end_time;
 
     let mut frames = 0usize;
+    let mut surfaces = cfg.surface_mesh.then(|| SurfaceFrames::new(out, name, cfg.spacing));
     let mut write_frame = |solver: &FluidSolver, series: &mut TimeSeries| -> Result<(), RunError> {
         let file = format!("{name}_{frames:05}.vtu");
         let path = out.join(&file);
         vtu::write_vtu(&path, solver.particles()).map_err(io_err(&path))?;
         series.add(solver.time(), &file).map_err(io_err(&pvd_path))?;
+        if let Some(s) = &mut surfaces {
+            s.write(frames as u64, solver.time(), solver.particles())
+                .map_err(|(path, error)| RunError::Output { path, error })?;
+        }
         frames += 1;
         Ok(())
     };
-    let sample = |solver: &FluidSolver, file: &mut ProbeFile| -> Result<(), RunError> {
-        let values: Vec<f64> =
-            cfg.probe.iter().map(|p| probes::sample(p, solver.particles(), solver.kernel(), &solver.tank())).collect();
+    let balance_path = out.join(format!("{name}_balance.csv"));
+    let mut balance = match solver.open_boundaries().is_active() {
+        true => Some(BalanceFile::create(&balance_path).map_err(io_err(&balance_path))?),
+        false => None,
+    };
+    let mut sample = |solver: &FluidSolver, file: &mut ProbeFile| -> Result<(), RunError> {
+        if let Some(b) = &mut balance {
+            let (counts, p) = (solver.open_boundaries().balance(), solver.particles());
+            b.row(solver.time(), counts, p, solver.particle_mass())
+                .map_err(io_err(&balance_path))?;
+        }
+        let values: Vec<f64> = cfg
+            .probe
+            .iter()
+            .map(|p| probes::sample(p, solver.particles(), solver.kernel(), &solver.tank()))
+            .collect();
         file.row(solver.time(), &values).map_err(io_err(&probe_path))
     };
     write_frame(&solver, &mut series)?;

@@ -1,11 +1,13 @@
 //! The fluid solver of one `[fluid.NAME]` participant: the particles, the step, the clock and
 //! the stability monitor; advances to a given time and saves/restores its state in memory.
 
+use crate::bodies::RigidBodies;
 use crate::emps_step::{EmpsStep, Physics, StepTotals};
 use crate::kernel::Kernel;
 use crate::kind::Kind;
-use crate::layout::{self, BodyParticles, Domain};
+use crate::layout::{self, Domain};
 use crate::neighbour_search::CellGrid;
+use crate::open_boundary::OpenBoundaries;
 use crate::particles::Particles;
 use crate::stability::{Instability, StabilityMonitor};
 use schemas::case::fluid::{Aabb, FluidConfig};
@@ -18,9 +20,14 @@ const LANDING_SLACK: f64 = 1e-9;
 #[derive(Debug, Clone, PartialEq)]
 pub struct SavedState {
     particles: Particles,
+    /// The cell list matching the particles' order (loads are read through it).
+    grid: CellGrid,
+    body_pose: Vec<f64>,
+    body_velocity: Vec<f64>,
     time: f64,
     steps: u64,
     gates_removed: bool,
+    open_boundaries: OpenBoundaries,
 }
 
 /// Running totals since the solver was made.
@@ -47,8 +54,13 @@ pub struct FluidSolver {
     started: bool,
     domain: Domain,
     tank: Aabb,
-    bodies: Vec<BodyParticles>,
+    bodies: RigidBodies,
+    /// Present pose (7 per body: centre, quaternion w x y z) and velocity (6 per body: V, ω).
+    body_pose: Vec<f64>,
+    body_velocity: Vec<f64>,
     totals: RunTotals,
+    /// Inflow and outflow (inactive without `inflow` / `outflow` in the case).
+    open_boundaries: OpenBoundaries,
 }
 
 impl FluidSolver {
@@ -63,10 +75,31 @@ impl FluidSolver {
             gravity: cfg.gravity,
             sound_speed: cfg.sound_speed(),
         };
-        let grid = CellGrid::new(layout.domain.lo, layout.domain.hi, cfg.spacing);
-        let bodies: Vec<Aabb> = cfg.body.iter().map(|b| Aabb { min: b.min, max: b.max }).collect();
-        let monitor = StabilityMonitor::new(layout.domain, layout.tank, &bodies, cfg.spacing, cfg.gravity);
+        let grid = CellGrid::new(layout.grid_box.lo, layout.grid_box.hi, cfg.spacing);
+        let boxes: Vec<([f64; 3], [f64; 3])> = cfg.body.iter().map(|b| (b.min, b.max)).collect();
+        let bodies = RigidBodies::new(&layout.bodies, &boxes, &layout.particles);
+        let body_pose: Vec<f64> = (0..boxes.len())
+            .flat_map(|b| {
+                let c = bodies.initial_centre(b);
+                [c[0], c[1], c[2], 1.0, 0.0, 0.0, 0.0]
+            })
+            .collect();
+        let solids: Vec<Aabb> = cfg
+            .body
+            .iter()
+            .map(|b| Aabb {
+                min: b.min,
+                max: b.max,
+            })
+            .chain(cfg.wall.iter().copied())
+            .collect();
+        let mut monitor =
+            StabilityMonitor::new(layout.domain, layout.tank, &solids, cfg.spacing, cfg.gravity);
         let mut particles = layout.particles;
+        let open_boundaries = OpenBoundaries::new(cfg, &mut particles);
+        if open_boundaries.has_inflow() {
+            monitor.set_driven(); // the inflow feeds energy in
+        }
         let mut step = EmpsStep::new(kernel, physics, grid);
         step.refresh_pressure(&mut particles);
         FluidSolver {
@@ -80,9 +113,17 @@ impl FluidSolver {
             started: false,
             domain: layout.domain,
             tank: layout.tank,
-            bodies: layout.bodies,
+            body_velocity: vec![0.0; 6 * boxes.len()],
+            body_pose,
+            bodies,
             totals: RunTotals::default(),
+            open_boundaries,
         }
+    }
+
+    /// The inflow and outflow boundaries and their particle balance.
+    pub fn open_boundaries(&self) -> &OpenBoundaries {
+        &self.open_boundaries
     }
 
     /// The particles (in cell order; use `id` for identity).
@@ -130,9 +171,54 @@ impl FluidSolver {
         self.tank
     }
 
-    /// The rigid bodies' particle ids.
-    pub fn bodies(&self) -> &[BodyParticles] {
-        &self.bodies
+    /// Names of the rigid bodies, in interface order.
+    pub fn body_names(&self) -> &[String] {
+        self.bodies.names()
+    }
+
+    /// Moves the bodies' particles to `pose` (7 per body: centre, quaternion w x y z relative to
+    /// the initial placement) with `velocity` (6 per body: V, ω); held until the next call.
+    pub fn set_body_motion(&mut self, pose: &[f64], velocity: &[f64]) -> Result<(), String> {
+        let n = self.bodies.names().len();
+        if pose.len() != 7 * n || velocity.len() != 6 * n {
+            return Err(format!(
+                "body motion for {n} bodies needs 7 pose and 6 velocity values per body, got {} and {}",
+                pose.len(),
+                velocity.len()
+            ));
+        }
+        if pose.iter().chain(velocity).any(|v| !v.is_finite()) {
+            return Err("body motion holds a value that is not finite".into());
+        }
+        if velocity.iter().any(|&v| v != 0.0) {
+            self.monitor.set_driven();
+        }
+        self.body_pose.copy_from_slice(pose);
+        self.body_velocity.copy_from_slice(velocity);
+        self.bodies.set_kinematics(&mut self.particles, pose, velocity);
+        Ok(())
+    }
+
+    /// Force and moment the bodies exert on the fluid (6 per body), evaluated from the fluid's
+    /// side; minus [`FluidSolver::body_loads`] up to round-off.
+    pub fn body_reactions(&self) -> Vec<f64> {
+        self.bodies.pressure_reaction(
+            &self.step.grid,
+            &self.step.kernel,
+            &self.particles,
+            &self.body_pose,
+        )
+    }
+
+    /// Pressure force and moment of the fluid on each body about its present centre (6 per
+    /// body), from the last step's pressures.
+    pub fn body_loads(&self) -> Vec<f64> {
+        self.bodies.pressure_loads(
+            &self.step.grid,
+            &self.step.kernel,
+            &self.particles,
+            &self.body_pose,
+        )
     }
 
     /// Totals since the start.
@@ -150,7 +236,11 @@ impl FluidSolver {
     /// Returns how many particles were removed.
     pub fn remove_gates(&mut self) -> usize {
         self.gates_removed = true;
-        self.particles.remove_kind(Kind::Gate)
+        let removed = self.particles.remove_kind(Kind::Gate);
+        if removed > 0 {
+            self.step.refresh_pressure(&mut self.particles);
+        }
+        removed
     }
 
     /// One step of length `dt` (≤ Δt); stops with a diagnostic if the state became unstable.
@@ -162,6 +252,7 @@ impl FluidSolver {
             self.monitor.start(&self.particles);
             self.started = true;
         }
+        self.open_boundaries.apply(&mut self.particles, self.time, dt);
         let totals = self.step.advance(&mut self.particles, dt);
         self.steps += 1;
         self.time += dt;
@@ -174,39 +265,59 @@ impl FluidSolver {
         Ok(totals)
     }
 
+    /// The next step's length towards `t_end`: Δt, or the remainder when it is at most Δt
+    /// (the last step lands exactly); `None` when `t_end` is reached (up to rounding).
+    pub fn next_step_towards(&self, t_end: f64) -> Option<f64> {
+        let left = t_end - self.time;
+        if left <= self.time_step * LANDING_SLACK {
+            None
+        } else if left <= self.time_step * (1.0 + LANDING_SLACK) {
+            Some(left)
+        } else {
+            Some(self.time_step)
+        }
+    }
+
     /// Steps with Δt until `t_end`, shortening the last step to land exactly on it.
     pub fn advance_to(&mut self, t_end: f64) -> Result<(), Instability> {
-        while self.time < t_end {
-            let left = t_end - self.time;
-            if left <= self.time_step * LANDING_SLACK {
-                self.time = t_end;
-                break;
-            }
-            let dt = if left <= self.time_step * (1.0 + LANDING_SLACK) { left } else { self.time_step };
+        while let Some(dt) = self.next_step_towards(t_end) {
             self.step(dt)?;
-            if dt == left {
-                self.time = t_end;
-            }
         }
+        self.land_on(t_end);
         Ok(())
+    }
+
+    /// Sets the clock to `t_end` when the steps have reached it up to rounding.
+    pub fn land_on(&mut self, t_end: f64) {
+        if (self.time - t_end).abs() <= self.time_step * LANDING_SLACK {
+            self.time = t_end;
+        }
     }
 
     /// A copy of the state (particles, clock) for implicit coupling.
     pub fn save_state(&self) -> SavedState {
         SavedState {
             particles: self.particles.clone(),
+            grid: self.step.grid.clone(),
+            body_pose: self.body_pose.clone(),
+            body_velocity: self.body_velocity.clone(),
             time: self.time,
             steps: self.steps,
             gates_removed: self.gates_removed,
+            open_boundaries: self.open_boundaries.clone(),
         }
     }
 
     /// Puts back a state saved by [`FluidSolver::save_state`].
     pub fn restore_state(&mut self, s: &SavedState) {
         self.particles.clone_from(&s.particles);
+        self.step.grid.clone_from(&s.grid);
+        self.body_pose.clone_from(&s.body_pose);
+        self.body_velocity.clone_from(&s.body_velocity);
         self.time = s.time;
         self.steps = s.steps;
         self.gates_removed = s.gates_removed;
+        self.open_boundaries.clone_from(&s.open_boundaries);
     }
 
     /// Total momentum of the fluid [kg m/s].

@@ -1,6 +1,7 @@
 //! Instability detector: NaN, particles leaving the domain or entering a wall or body, a
 //! particle moving more than half a spacing in one step, and mechanical energy growing without
-//! a source. Each finding names the step, the particle and the quantity.
+//! a source (checked until a body moves: moving bodies are a source). Each finding names the
+//! step, the particle and the quantity.
 
 use crate::kind::{Kind, FLUID};
 use crate::layout::Domain;
@@ -29,7 +30,11 @@ pub struct Instability {
 
 impl fmt::Display for Instability {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "unstable run stopped at step {} (t = {:.6} s): ", self.step, self.time)?;
+        write!(
+            f,
+            "unstable run stopped at step {} (t = {:.6} s): ",
+            self.step, self.time
+        )?;
         if let Some(id) = self.particle {
             write!(f, "particle {id}: ")?;
         }
@@ -52,6 +57,8 @@ pub struct StabilityMonitor {
     /// Mechanical energy per unit particle mass at the start, and the allowed growth.
     initial_energy: Option<f64>,
     allowed_growth: f64,
+    /// Moving bodies do work on the fluid: the energy check is off once one has moved.
+    driven: bool,
 }
 
 /// A particle-level finding of one scan.
@@ -63,7 +70,10 @@ impl StabilityMonitor {
         let h = 0.5 * spacing;
         let solids = bodies
             .iter()
-            .map(|b| Aabb { min: b.min.map(|v| v + h), max: b.max.map(|v| v - h) })
+            .map(|b| Aabb {
+                min: b.min.map(|v| v + h),
+                max: b.max.map(|v| v - h),
+            })
             .filter(|b| (0..3).all(|a| b.max[a] > b.min[a]))
             .collect();
         StabilityMonitor {
@@ -74,6 +84,7 @@ impl StabilityMonitor {
             gravity,
             initial_energy: None,
             allowed_growth: 0.0,
+            driven: false,
         }
     }
 
@@ -91,6 +102,11 @@ impl StabilityMonitor {
             .sum()
     }
 
+    /// Marks the fluid as driven by moving bodies (an energy source): no energy check from now on.
+    pub fn set_driven(&mut self) {
+        self.driven = true;
+    }
+
     /// Records the initial energy (call once before the first step).
     pub fn start(&mut self, p: &Particles) {
         let g = self.gravity;
@@ -102,7 +118,8 @@ impl StabilityMonitor {
             .sum();
         let fluid = p.count(Kind::Fluid) as f64;
         self.initial_energy = Some(self.mechanical_energy(p));
-        self.allowed_growth = ENERGY_GROWTH_FRACTION * (fluid * gmag * height + kinetic).max(f64::MIN_POSITIVE);
+        self.allowed_growth =
+            ENERGY_GROWTH_FRACTION * (fluid * gmag * height + kinetic).max(f64::MIN_POSITIVE);
     }
 
     /// Checks the state after step `step` of length `dt` ending at `time`.
@@ -113,9 +130,15 @@ impl StabilityMonitor {
             .filter_map(|i| self.check_particle(p, i, dt))
             .min_by_key(|f| f.0);
         if let Some((id, quantity, message)) = found {
-            return Err(Instability { step, time, particle: Some(id), quantity, message });
+            return Err(Instability {
+                step,
+                time,
+                particle: Some(id),
+                quantity,
+                message,
+            });
         }
-        if let Some(e0) = self.initial_energy {
+        if let Some(e0) = self.initial_energy.filter(|_| !self.driven) {
             let e = self.mechanical_energy(p);
             if !e.is_finite() || e - e0 > self.allowed_growth {
                 let fastest = (0..p.len())
@@ -149,7 +172,11 @@ impl StabilityMonitor {
             } else {
                 "pressure"
             };
-            return Some((id, q, format!("not a number: r = {r:?}, u = {u:?}, P = {}", p.pressure[i])));
+            return Some((
+                id,
+                q,
+                format!("not a number: r = {r:?}, u = {u:?}, P = {}", p.pressure[i]),
+            ));
         }
         if p.kind[i] != FLUID {
             return None;
@@ -158,7 +185,10 @@ impl StabilityMonitor {
             return Some((
                 id,
                 "position",
-                format!("left the domain {:?} … {:?}: r = {r:?}", self.domain.lo, self.domain.hi),
+                format!(
+                    "left the domain {:?} … {:?}: r = {r:?}",
+                    self.domain.lo, self.domain.hi
+                ),
             ));
         }
         let h = 0.5 * self.spacing;
@@ -176,7 +206,11 @@ impl StabilityMonitor {
             ));
         }
         if let Some(b) = self.solids.iter().find(|b| b.contains_point(r)) {
-            return Some((id, "position", format!("inside a body {:?} … {:?}: r = {r:?}", b.min, b.max)));
+            return Some((
+                id,
+                "position",
+                format!("inside a body {:?} … {:?}: r = {r:?}", b.min, b.max),
+            ));
         }
         let step = speed(p, i) * dt;
         if step > MAX_STEP_DISPLACEMENT * self.spacing {

@@ -39,7 +39,9 @@ pub fn write_vtu(path: &Path, p: &Particles) -> io::Result<()> {
     let mut xml = String::new();
     xml.push_str("<?xml version=\"1.0\"?>\n");
     xml.push_str("<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n");
-    xml.push_str(&format!("<UnstructuredGrid>\n<Piece NumberOfPoints=\"{n}\" NumberOfCells=\"{n}\">\n"));
+    xml.push_str(&format!(
+        "<UnstructuredGrid>\n<Piece NumberOfPoints=\"{n}\" NumberOfCells=\"{n}\">\n"
+    ));
     xml.push_str("<PointData Scalars=\"pressure\" Vectors=\"velocity\">\n");
     let da = |ty: &str, name: &str, comps: usize, off: usize| {
         format!(
@@ -82,7 +84,10 @@ pub struct TimeSeries {
 impl TimeSeries {
     /// A series written to `path`; frame files are named relative to its folder.
     pub fn new(path: PathBuf) -> TimeSeries {
-        TimeSeries { path, frames: Vec::new() }
+        TimeSeries {
+            path,
+            frames: Vec::new(),
+        }
     }
 
     /// Adds a frame file (relative to the PVD's folder) at `time` and rewrites the PVD.
@@ -92,7 +97,9 @@ impl TimeSeries {
             "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n<Collection>\n",
         );
         for (t, f) in &self.frames {
-            s.push_str(&format!("<DataSet timestep=\"{t}\" group=\"\" part=\"0\" file=\"{f}\"/>\n"));
+            s.push_str(&format!(
+                "<DataSet timestep=\"{t}\" group=\"\" part=\"0\" file=\"{f}\"/>\n"
+            ));
         }
         s.push_str("</Collection>\n</VTKFile>\n");
         let tmp = self.path.with_extension("pvd.tmp");

@@ -106,6 +106,9 @@ fields! {
     point_force,
     /// Fluid → coupler → structure: hydrodynamic force and torque about the centre (6 per body).
     body_force,
+    /// Fluid → coupler: force and torque (about the body's centre) the body exerted on the fluid,
+    /// summed over the fluid's particles — the reaction the ledger sets against `body_force`.
+    body_reaction,
     /// Structure → coupler → fluid: centre and unit quaternion w, x, y, z (7 per body).
     body_pose,
     /// Structure → coupler → fluid: velocity of the centre and angular velocity (6 per body).
@@ -142,22 +145,38 @@ pub enum ToParticipant {
     /// The handshake is refused; the participant exits with the reason.
     Refused { reason: String },
     /// Advance over one window with these inputs.
-    Advance { header: Header, checkpoint: Checkpoint, inputs: Waveform },
+    Advance {
+        header: Header,
+        checkpoint: Checkpoint,
+        inputs: Waveform,
+    },
     /// The run is over: write final output and exit.
     Finish,
 }
 
-/// Participant → coupler.
+/// Participant → coupler. (Variants differ in size; a message is built and moved once per
+/// window, so boxing would only add an allocation.)
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, PartialEq, Encode, Decode)]
 pub enum FromParticipant {
     Hello(Hello),
     /// Interface outputs at t = 0, answered right after `Welcome`.
-    Initial { outputs: Fields, geometry: Option<Geometry> },
+    Initial {
+        outputs: Fields,
+        geometry: Option<Geometry>,
+    },
     /// The window is done: the header's time is the time the solver reached, and the outputs
     /// are given at each input time.
-    Advanced { header: Header, outputs: Waveform, geometry: Option<Geometry> },
+    Advanced {
+        header: Header,
+        outputs: Waveform,
+        geometry: Option<Geometry>,
+    },
     /// The solver stopped (instability, bad state): the diagnostic says where and why.
-    Failed { header: Header, diagnostic: String },
+    Failed {
+        header: Header,
+        diagnostic: String,
+    },
     /// Final output written.
     Finished,
 }

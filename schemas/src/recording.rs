@@ -29,6 +29,7 @@ pub struct RecordingHeader {
 }
 
 /// One recorded message.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, PartialEq, Encode, Decode)]
 pub enum Message {
     To(ToParticipant),
@@ -56,7 +57,11 @@ impl Recorder {
     pub fn create(path: &Path, header: &RecordingHeader) -> io::Result<Recorder> {
         let mut out = BufWriter::new(File::create(path)?);
         out.write_all(MAGIC)?;
-        let mut rec = Recorder { out, path: path.to_path_buf(), scratch: Vec::new() };
+        let mut rec = Recorder {
+            out,
+            path: path.to_path_buf(),
+            scratch: Vec::new(),
+        };
         rec.write_frame(header)?;
         Ok(rec)
     }
@@ -68,14 +73,23 @@ impl Recorder {
 
     /// Appends one message and flushes it to the file.
     pub fn record(&mut self, participant: &str, wall_time: f64, message: Message) -> io::Result<()> {
-        self.write_frame(&Frame { participant: participant.to_string(), wall_time, message })
+        self.write_frame(&Frame {
+            participant: participant.to_string(),
+            wall_time,
+            message,
+        })
     }
 
     fn write_frame<T: Encode>(&mut self, value: &T) -> io::Result<()> {
         self.scratch.clear();
-        bincode::encode_into_std_write(value, &mut self.scratch, codec::config()).map_err(io::Error::other)?;
-        let len = u32::try_from(self.scratch.len())
-            .map_err(|_| io::Error::other(format!("a message of {} bytes is too large to record", self.scratch.len())))?;
+        bincode::encode_into_std_write(value, &mut self.scratch, codec::config())
+            .map_err(io::Error::other)?;
+        let len = u32::try_from(self.scratch.len()).map_err(|_| {
+            io::Error::other(format!(
+                "a message of {} bytes is too large to record",
+                self.scratch.len()
+            ))
+        })?;
         self.out.write_all(&len.to_le_bytes())?;
         self.out.write_all(&self.scratch)?;
         self.out.flush()
@@ -109,11 +123,16 @@ impl std::error::Error for RecordingError {}
 impl Recording {
     /// Reads a whole recording.
     pub fn read(path: &Path) -> Result<Recording, RecordingError> {
-        let fail = |message: String| RecordingError { path: path.to_path_buf(), message };
+        let fail = |message: String| RecordingError {
+            path: path.to_path_buf(),
+            message,
+        };
         let file = File::open(path).map_err(|e| fail(format!("cannot open: {e}")))?;
         let mut input = BufReader::new(file);
         let mut magic = vec![0u8; MAGIC.len()];
-        input.read_exact(&mut magic).map_err(|_| fail("not a recording (file too short)".into()))?;
+        input
+            .read_exact(&mut magic)
+            .map_err(|_| fail("not a recording (file too short)".into()))?;
         if magic != MAGIC {
             return Err(fail("not a recording of this project (wrong magic line)".into()));
         }
@@ -134,7 +153,11 @@ impl Recording {
                 Err(e) => return Err(fail(format!("frame {}: {e}", frames.len() + 1))),
             }
         }
-        Ok(Recording { header, frames, truncated })
+        Ok(Recording {
+            header,
+            frames,
+            truncated,
+        })
     }
 }
 
@@ -146,10 +169,15 @@ fn read_frame<T: Decode<()>>(input: &mut impl Read) -> Result<Option<T>, String>
         Ok(_) => {}
         Err(e) => return Err(e.to_string()),
     }
-    input.read_exact(&mut len[1..]).map_err(|_| "cut inside a frame length".to_string())?;
+    input
+        .read_exact(&mut len[1..])
+        .map_err(|_| "cut inside a frame length".to_string())?;
     let mut bytes = vec![0u8; u32::from_le_bytes(len) as usize];
-    input.read_exact(&mut bytes).map_err(|_| "cut inside a frame".to_string())?;
-    let (value, _) = bincode::decode_from_slice(&bytes, codec::config()).map_err(|e| format!("cannot decode: {e}"))?;
+    input
+        .read_exact(&mut bytes)
+        .map_err(|_| "cut inside a frame".to_string())?;
+    let (value, _) =
+        bincode::decode_from_slice(&bytes, codec::config()).map_err(|e| format!("cannot decode: {e}"))?;
     Ok(Some(value))
 }
 
@@ -170,9 +198,18 @@ mod tests {
     }
 
     fn advance(window: u64) -> Message {
-        let h = Header { protocol: 1, window, iteration: 0, time: 0.1 * window as f64 };
+        let h = Header {
+            protocol: 1,
+            window,
+            iteration: 0,
+            time: 0.1 * window as f64,
+        };
         let inputs = Waveform::constant(vec![0.0, 0.1], &Fields::default());
-        Message::To(ToParticipant::Advance { header: h, checkpoint: Checkpoint::None, inputs })
+        Message::To(ToParticipant::Advance {
+            header: h,
+            checkpoint: Checkpoint::None,
+            inputs,
+        })
     }
 
     #[test]

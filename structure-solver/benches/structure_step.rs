@@ -16,11 +16,22 @@ fn chain(n: usize) -> String {
         let d = if i == 0 { 0.1 } else { 0.0 };
         let _ = write!(s, "[[structure.s.point_mass]]\nname = \"m{i}\"\nmass = 1.0\nposition = [{i}, 0, 0]\ndisplacement = [{d}, 0, 0]\n");
     }
-    let _ = write!(s, "[[structure.s.spring]]\na = \"m0\"\nb = \"ground\"\nstiffness = 100.0\n");
+    let _ = write!(
+        s,
+        "[[structure.s.spring]]\na = \"m0\"\nb = \"ground\"\nstiffness = 100.0\n"
+    );
     for i in 1..n {
-        let _ = write!(s, "[[structure.s.spring]]\na = \"m{}\"\nb = \"m{i}\"\nstiffness = 100.0\n", i - 1);
+        let _ = write!(
+            s,
+            "[[structure.s.spring]]\na = \"m{}\"\nb = \"m{i}\"\nstiffness = 100.0\n",
+            i - 1
+        );
     }
-    let _ = write!(s, "[[structure.s.spring]]\na = \"m{}\"\nb = \"ground\"\nstiffness = 100.0\n", n - 1);
+    let _ = write!(
+        s,
+        "[[structure.s.spring]]\na = \"m{}\"\nb = \"ground\"\nstiffness = 100.0\n",
+        n - 1
+    );
     s
 }
 
@@ -61,7 +72,10 @@ fn time(mut s: Structure, steps: u32) -> f64 {
 }
 
 fn main() {
-    println!("{:<28} {:>9} {:>11} {:>14} {:>16}", "case", "substeps", "wall [s]", "µs / substep", "ns / DOF·substep");
+    println!(
+        "{:<28} {:>9} {:>11} {:>14} {:>16}",
+        "case", "substeps", "wall [s]", "µs / substep", "ns / DOF·substep"
+    );
     let cases: [(&str, String, u32, usize); 5] = [
         ("2 point masses", chain(2), 100_000, 2),
         ("100 point masses", chain(100), 10_000, 100),
@@ -73,7 +87,11 @@ fn main() {
         let s = build(&section);
         let wall = time(s, steps);
         let per_step = wall / f64::from(steps);
-        let dofs = if name.contains("rigid") { 6 * things } else { 3 * things };
+        let dofs = if name.contains("rigid") {
+            6 * things
+        } else {
+            3 * things
+        };
         println!(
             "{name:<28} {steps:>9} {wall:>11.3} {:>14.2} {:>16.1}",
             per_step * 1e6,

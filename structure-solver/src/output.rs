@@ -20,9 +20,17 @@ impl Output {
     /// Creates `dir` and the history files declared in `cfg`.
     pub fn create(dir: &Path, cfg: &StructureConfig, s: &Structure) -> Result<Self, String> {
         std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-        let history = cfg.history.as_ref().map(|h| HistoryWriter::create(dir, h, s)).transpose()?;
+        let history = cfg
+            .history
+            .as_ref()
+            .map(|h| HistoryWriter::create(dir, h, s))
+            .transpose()?;
         let vtu = s.frame().map(|_| VtuSeries::new(dir));
-        Ok(Self { dir: dir.to_path_buf(), history, vtu })
+        Ok(Self {
+            dir: dir.to_path_buf(),
+            history,
+            vtu,
+        })
     }
 
     pub fn dir(&self) -> &Path {
@@ -35,7 +43,9 @@ impl Output {
             h.record(s).map_err(|e| self.error(e))?;
         }
         if let (Some(series), Some(frame)) = (&mut self.vtu, s.frame()) {
-            series.write(frame, s.time()).map_err(|e| format!("writing to {}: {e}", self.dir.display()))?;
+            series
+                .write(frame, s.time())
+                .map_err(|e| format!("writing to {}: {e}", self.dir.display()))?;
         }
         Ok(())
     }
@@ -43,7 +53,8 @@ impl Output {
     /// Flushes the histories and writes `releases.csv` when there are supports.
     pub fn finish(&mut self, s: &Structure) -> Result<(), String> {
         if let Some(h) = &mut self.history {
-            h.flush().map_err(|e| format!("writing to {}: {e}", self.dir.display()))?;
+            h.flush()
+                .map_err(|e| format!("writing to {}: {e}", self.dir.display()))?;
         }
         if !s.supports().is_empty() {
             write_releases(&self.dir.join("releases.csv"), s).map_err(|e| self.error(e))?;
@@ -59,7 +70,9 @@ impl Output {
 /// Output times of a history with `interval` up to `end`: interval, 2·interval, …, end.
 pub fn output_times(interval: f64, end: f64) -> Vec<f64> {
     let n = (end / interval * (1.0 - 1e-12)).ceil().max(1.0) as u64;
-    (1..=n).map(|k| if k == n { end } else { interval * k as f64 }).collect()
+    (1..=n)
+        .map(|k| if k == n { end } else { interval * k as f64 })
+        .collect()
 }
 
 /// `body,release_time` per support; the time is empty for a body never released.

@@ -55,7 +55,11 @@ impl StructureParticipant {
         if let Some(o) = &mut output {
             o.record(&structure)?;
         }
-        let history = cfg.history.as_ref().filter(|_| output.is_some()).map(|h| (h.interval, case.info.end_time));
+        let history = cfg
+            .history
+            .as_ref()
+            .filter(|_| output.is_some())
+            .map(|h| (h.interval, case.info.end_time));
         Ok(Self {
             name: name.to_string(),
             structure,

@@ -142,7 +142,8 @@ impl RigidBody {
                 break;
             }
         }
-        if !(change <= 1e3 * MIDPOINT_TOLERANCE * scale) {
+        let converged = change <= 1e3 * MIDPOINT_TOLERANCE * scale;
+        if !converged {
             let omega = (self.inertia_inv * l0).norm();
             return Err(format!(
                 "body `{}`: the rotation step did not converge (|ω| Δt = {:.3}); lower max_step",

@@ -32,7 +32,10 @@ pub fn run(case_path: &Path, out: Option<&Path>) -> Result<RunSummary, String> {
         ));
     }
     let Some((name, cfg)) = case.structure.iter().next() else {
-        return Err(format!("{}: the case has no [structure.NAME] section", case_path.display()));
+        return Err(format!(
+            "{}: the case has no [structure.NAME] section",
+            case_path.display()
+        ));
     };
     let key = format!("structure.{name}");
     let at_key = |e: schemas::case::FieldError| schemas::case::CaseError::at(&case.path, e).to_string();
@@ -42,7 +45,10 @@ pub fn run(case_path: &Path, out: Option<&Path>) -> Result<RunSummary, String> {
     let mut output = Output::create(&out_dir, cfg, &structure)?;
 
     let end_time = case.info.end_time;
-    let stops = cfg.history.as_ref().map_or_else(|| vec![end_time], |h| output_times(h.interval, end_time));
+    let stops = cfg
+        .history
+        .as_ref()
+        .map_or_else(|| vec![end_time], |h| output_times(h.interval, end_time));
     output.record(&structure)?;
     let loads = |t: f64| Ok(schedule.at(t));
     let mut reported = 0;
@@ -60,6 +66,15 @@ pub fn run(case_path: &Path, out: Option<&Path>) -> Result<RunSummary, String> {
         output.record(&structure)?;
     }
     output.finish(&structure)?;
-    let releases = structure.releases().into_iter().map(|(b, t)| (b.to_string(), t)).collect();
-    Ok(RunSummary { out_dir, end_time, substeps: structure.substeps(), releases })
+    let releases = structure
+        .releases()
+        .into_iter()
+        .map(|(b, t)| (b.to_string(), t))
+        .collect();
+    Ok(RunSummary {
+        out_dir,
+        end_time,
+        substeps: structure.substeps(),
+        releases,
+    })
 }

@@ -162,3 +162,36 @@ fn duplicate_names_and_unknown_keys() {
     let e = error(&format!("max_step = 0.01\nstiffnes = 3\n{POINT}"));
     assert!(e.message.contains("stiffnes"), "{e}");
 }
+
+#[test]
+fn frame_nodes_without_a_frame() {
+    let e = error(&format!(
+        "max_step = 0.01\n{POINT}\n[[structure.s.load]]\nnode = 3\nvalue = [0, 0, 1, 0, 0, 0]\n"
+    ));
+    assert_eq!(e.key, "structure.s.load[0].node");
+    assert!(e.message.contains("no [frame] section"), "{e}");
+    let e = error(&format!(
+        "max_step = 0.01\n{POINT}\n[structure.s.history]\ninterval = 0.1\nnodes = [3]\n"
+    ));
+    assert_eq!(e.key, "structure.s.history.nodes[0]");
+}
+
+#[test]
+fn frame_node_that_does_not_exist_and_conflicting_gravity() {
+    let case = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/structure-cantilever/case.toml"),
+    )
+    .expect("cantilever case");
+    let bad_node = case.replace("nodes = [5]", "nodes = [50]");
+    let e = Case::parse(Path::new("c.toml"), bad_node).expect_err("node 50 does not exist");
+    assert_eq!(e.key, "structure.beam.history.nodes[0]");
+    assert!(e.message.contains("50"), "{e}");
+    let two_gravities = case
+        .replace(
+            "max_step = 1e-3\n",
+            "max_step = 1e-3\ngravity = [0.0, 0.0, -9.8]\n",
+        )
+        .replace("gravity = [0.0, 0.0, 0.0]", "gravity = [0.0, 0.0, -9.81]");
+    let e = Case::parse(Path::new("c.toml"), two_gravities).expect_err("two gravities");
+    assert_eq!(e.key, "structure.beam.frame.gravity");
+}

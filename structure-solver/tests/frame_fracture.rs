@@ -5,6 +5,7 @@ mod frame_common;
 
 use frame_common::{rectangle, steel, support, ALL};
 use schemas::case::frame::{FrameConfig, MemberConfig, NodeConfig};
+use std::path::Path;
 use structure_solver::frame::Frame;
 
 /// A 2 m cantilever along x: a strong member (0.1 × 0.1 m) from the fixed base to x = 1 m, then a
@@ -14,10 +15,19 @@ fn two_part_cantilever() -> FrameConfig {
     let mut material = steel();
     // critical curvature ≈ 3 × the weak section's yield curvature Mp/EI = 0.07 1/m
     material.fracture_curvature = Some([0.2, 0.2]);
-    let node = (0..3).map(|i| NodeConfig { id: i + 1, position: [i as f64, 0.0, 0.0] }).collect();
+    let node = (0..3)
+        .map(|i| NodeConfig {
+            id: i + 1,
+            position: [i as f64, 0.0, 0.0],
+        })
+        .collect();
     let member = [(1, 2, "strong"), (2, 3, "weak")]
         .into_iter()
-        .map(|(a, b, s)| MemberConfig { nodes: [a, b], section: s.into(), orientation: Some([0.0, 1.0, 0.0]) })
+        .map(|(a, b, s)| MemberConfig {
+            nodes: [a, b],
+            section: s.into(),
+            orientation: Some([0.0, 1.0, 0.0]),
+        })
         .collect();
     FrameConfig {
         time_step: 1e-4,
@@ -27,6 +37,8 @@ fn two_part_cantilever() -> FrameConfig {
         node,
         member,
         support: vec![support(1, &ALL)],
+        contact: None,
+        wall: Vec::new(),
     }
 }
 
@@ -34,7 +46,10 @@ fn two_part_cantilever() -> FrameConfig {
 fn overloaded_member_splits_at_its_hinge_and_the_pieces_separate() {
     let cfg = two_part_cantilever();
     let mut frame = Frame::from_config(&cfg, "structure.test.frame").expect("valid test config");
-    let (joint, tip) = (frame.node_index(2).expect("node"), frame.node_index(3).expect("node"));
+    let (joint, tip) = (
+        frame.node_index(2).expect("node"),
+        frame.node_index(3).expect("node"),
+    );
     let mass_before: f64 = frame.node_masses().iter().sum();
     let exact_mass = 7850.0 * (0.1 * 0.1 + 0.05 * 0.05);
     // lumped masses add up to ρ Σ A L (round-off only)
@@ -57,7 +72,10 @@ fn overloaded_member_splits_at_its_hinge_and_the_pieces_separate() {
         if fractured_at.is_some() {
             let x = frame.node_positions();
             let new = frame.node_count() - 1;
-            let d: f64 = (0..3).map(|k| (x[3 * new + k] - x[3 * joint + k]).powi(2)).sum::<f64>().sqrt();
+            let d: f64 = (0..3)
+                .map(|k| (x[3 * new + k] - x[3 * joint + k]).powi(2))
+                .sum::<f64>()
+                .sqrt();
             separation.push(d);
             // z momentum of the free piece: the new node, the weak member's mid node and the tip
             let (m, v) = (frame.node_masses(), frame.node_velocities());
@@ -90,11 +108,40 @@ fn overloaded_member_splits_at_its_hinge_and_the_pieces_separate() {
     let impulse = momentum[momentum.len() - 1] - momentum[0];
     let expected = -12e3 * dt * (momentum.len() - 1) as f64;
     println!("piece impulse {impulse:.4} N s, expected {expected:.4} N s");
-    assert!((impulse / expected - 1.0).abs() < 1e-3, "impulse {impulse} vs {expected}");
+    assert!(
+        (impulse / expected - 1.0).abs() < 1e-3,
+        "impulse {impulse} vs {expected}"
+    );
     // mass is conserved (lumped masses are element halves: round-off only)
     let mass_after: f64 = frame.node_masses().iter().sum();
-    assert!((mass_after / mass_before - 1.0).abs() < 1e-12, "mass {mass_before} → {mass_after}");
+    assert!(
+        (mass_after / mass_before - 1.0).abs() < 1e-12,
+        "mass {mass_before} → {mass_after}"
+    );
     // the remaining cantilever stays attached and bounded: its joint is within 0.1 m of where it was
     let x = frame.node_positions();
-    assert!((x[3 * joint] - 1.0).abs() < 0.1 && x[3 * joint + 2].abs() < 0.1, "joint moved away");
+    assert!(
+        (x[3 * joint] - 1.0).abs() < 0.1 && x[3 * joint + 2].abs() < 0.1,
+        "joint moved away"
+    );
+    // the VTU output shows the split: one more point, one fractured cell
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("out")
+        .join("frame_tests");
+    std::fs::create_dir_all(&dir).expect("out folder");
+    let path = dir.join("fractured_cantilever.vtu");
+    frame.write_vtu(&path).expect("write vtu");
+    let text = std::fs::read_to_string(&path).expect("read vtu");
+    assert!(text.contains(&format!(
+        "NumberOfPoints=\"{}\" NumberOfCells=\"4\"",
+        frame.node_count()
+    )));
+    let fractures = text.split("Name=\"fractures\"").nth(1).expect("fractures column");
+    let flags: Vec<i64> = fractures
+        .lines()
+        .skip(1)
+        .take(4)
+        .map(|l| l.trim().parse().expect("integer flag"))
+        .collect();
+    assert_eq!(flags, [0, 0, 1, 0]);
 }

@@ -81,10 +81,19 @@ fn free_spinning_beam_turns_past_pi_and_stays_straight() {
     // Newmark (5/6, 4/9) damps the circular motion (damping ≈ Ω/6, h_newmark_spectral.csv) and is
     // first-order accurate, so the spin lost over 2.5 turns is a few % and halves with Δt.
     let (loss_coarse, loss_fine) = (1.0 - spin_coarse / omega, 1.0 - spin_fine / omega);
-    assert!(loss_coarse > 0.0 && loss_coarse < 0.06, "spin {spin_coarse} rad/s");
+    assert!(
+        loss_coarse > 0.0 && loss_coarse < 0.06,
+        "spin {spin_coarse} rad/s"
+    );
     let ratio = loss_fine / loss_coarse;
-    assert!((0.4..0.6).contains(&ratio), "spin loss ratio {ratio} when Δt halves (first order: 0.5)");
+    assert!(
+        (0.4..0.6).contains(&ratio),
+        "spin loss ratio {ratio} when Δt halves (first order: 0.5)"
+    );
     // straight and unstretched to 1e-6 m (the centrifugal strain ρω²L²/8E ≈ 5e-7)
     assert!(worst_bend < 1e-6, "the spinning beam bent by {worst_bend} m");
-    assert!(worst_stretch < 1e-6, "the spinning beam stretched by {worst_stretch} m");
+    assert!(
+        worst_stretch < 1e-6,
+        "the spinning beam stretched by {worst_stretch} m"
+    );
 }

@@ -67,6 +67,11 @@ fn fixed_fixed_beam_collapses_at_eight_mp_over_l_with_three_hinges() {
         first_hinge.map(|p| p.map(|p| p / pc))
     );
     println!("centre deflection at 0.95, 1.0, 1.1 Pc: {w_095:.4e}, {w_100:.4e}, {w_110:.4e} m");
+    println!(
+        "unconverged steps {} of {steps}, factorisations {}",
+        frame.unconverged_steps(),
+        frame.factorization_count()
+    );
     for (where_, p) in ["end 1", "centre", "end 2"].iter().zip(first_hinge) {
         let p = p.unwrap_or_else(|| panic!("no hinge formed at {where_}"));
         assert!(

@@ -152,12 +152,27 @@ fn histories_are_written_once_per_accepted_window() {
     }
     p.finish().expect("written");
     let text = std::fs::read_to_string(dir.join("point-m1.csv")).expect("history file");
-    let times: Vec<f64> = text.lines().skip(1).filter_map(|l| l.split(',').next()?.parse().ok()).collect();
+    let times: Vec<f64> = text
+        .lines()
+        .skip(1)
+        .filter_map(|l| l.split(',').next()?.parse().ok())
+        .collect();
     assert_eq!(times.len(), 3, "rows at 0, 0.01, 0.02: {times:?}");
-    assert!(times[0] == 0.0 && (times[1] - 0.01).abs() < 1e-12 && (times[2] - 0.02).abs() < 1e-12, "{times:?}");
-    let u: Vec<f64> = text.lines().skip(1).filter_map(|l| l.split(',').nth(1)?.parse().ok()).collect();
+    assert!(
+        times[0] == 0.0 && (times[1] - 0.01).abs() < 1e-12 && (times[2] - 0.02).abs() < 1e-12,
+        "{times:?}"
+    );
+    let u: Vec<f64> = text
+        .lines()
+        .skip(1)
+        .filter_map(|l| l.split(',').nth(1)?.parse().ok())
+        .collect();
     let exact = 1.0 / (4.0 * PI * PI) * (1.0 - (2.0 * PI * 0.02).cos());
-    assert!((u[2] - exact).abs() < 1e-10, "the row holds the accepted (F = 1 N) run: {} vs {exact}", u[2]);
+    assert!(
+        (u[2] - exact).abs() < 1e-10,
+        "the row holds the accepted (F = 1 N) run: {} vs {exact}",
+        u[2]
+    );
 }
 
 #[test]
@@ -165,8 +180,8 @@ fn body_inputs_and_pose_outputs_follow_the_interface_layout() {
     // A 2 kg cube (I = M a²/6 = 1/3 kg m² for a = 1) spinning about z at 1 rad/s under a body_force
     // input of (4, 0, 0 | 0, 0, 0): centre x = ½ (F/M) t², quaternion (cos t/2, 0, 0, sin t/2)
     // in the order w, x, y, z; velocity (F/M t, 0, 0 | 0, 0, 1). Kick–drift–kick is exact for the
-    // force; the Cayley angle 2 atan(ωΔt/2) per step has an error of (ωΔt)³/12 per step: < 1e-9
-    // at Δt = 1e-3 over 0.5 s.
+    // force; the Cayley angle 2 atan(ωΔt/2) per step is short by (ωΔt)³/12 = 8e-11 rad, 4e-8 rad
+    // over 500 steps: tolerance 1e-7 on the pose.
     let text = r#"
 [case]
 name = "spin"
@@ -186,16 +201,33 @@ inertia = { box = [1, 1, 1] }
     let mut p = StructureParticipant::from_case(&case, "b", None).expect("builds");
     assert_eq!(p.interface().bodies, vec!["cube".to_string()]);
     let times = Waveform::grid(0.0, 0.5, 1);
-    let force = Fields { body_force: F64s(vec![4.0, 0.0, 0.0, 0.0, 0.0, 0.0]), ..Fields::default() };
+    let force = Fields {
+        body_force: F64s(vec![4.0, 0.0, 0.0, 0.0, 0.0, 0.0]),
+        ..Fields::default()
+    };
     let out = p.advance(&Waveform::constant(times, &force)).expect("stable");
     let end = &out[1];
     let t: f64 = 0.5;
-    let expect_pose = [0.5 * 2.0 * t * t, 0.0, 0.0, (t / 2.0).cos(), 0.0, 0.0, (t / 2.0).sin()];
+    let expect_pose = [
+        0.5 * 2.0 * t * t,
+        0.0,
+        0.0,
+        (t / 2.0).cos(),
+        0.0,
+        0.0,
+        (t / 2.0).sin(),
+    ];
     for (k, (got, want)) in end.body_pose.iter().zip(expect_pose).enumerate() {
-        assert!((got - want).abs() < 1e-9, "body_pose[{k}] = {got}, expected {want}");
+        assert!(
+            (got - want).abs() < 1e-7,
+            "body_pose[{k}] = {got}, expected {want}"
+        );
     }
     let expect_velocity = [2.0 * t, 0.0, 0.0, 0.0, 0.0, 1.0];
     for (k, (got, want)) in end.body_velocity.iter().zip(expect_velocity).enumerate() {
-        assert!((got - want).abs() < 1e-12, "body_velocity[{k}] = {got}, expected {want}");
+        assert!(
+            (got - want).abs() < 1e-12,
+            "body_velocity[{k}] = {got}, expected {want}"
+        );
     }
 }

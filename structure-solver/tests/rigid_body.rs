@@ -172,3 +172,25 @@ inertia = { particle_mass = 1.0, particles = [[0,0,0],[2,0,0],[0,2,0],[2,2,0],[0
         }
     }
 }
+
+#[test]
+fn a_rotation_too_fast_for_the_step_stops_with_a_diagnostic() {
+    // |ω| Δt = 10: the implicit midpoint iteration cannot converge; the run must stop and say so.
+    let mut s = structure(
+        r#"
+[[structure.s.body]]
+name = "spinner"
+mass = 1.0
+centre = [0, 0, 0]
+angular_velocity = [1, 100, 1]
+inertia = { tensor = [[1, 0, 0], [0, 2, 0], [0, 0, 3]] }
+"#,
+        0.1,
+    );
+    let e = s.advance(1.0, &no_load(1)).expect_err("must stop");
+    assert!(
+        e.message.contains("spinner") && e.message.contains("lower max_step"),
+        "{e}"
+    );
+    assert_eq!(e.time, 0.0);
+}

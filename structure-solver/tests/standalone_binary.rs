@@ -127,13 +127,24 @@ fn frame_case_writes_node_history_and_vtu_series() {
     // and Newmark's numerical damping leaves a residual vibration well below that.
     let out = scratch("cantilever");
     let o = run(&[&case("structure-cantilever"), Path::new("--out"), &out]);
-    assert!(o.status.success(), "stderr: {}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        o.status.success(),
+        "stderr: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     let tip = rows(&out.join("node-5.csv"));
     let last = tip.last().expect("rows");
     assert_eq!(last[0], 1.0);
     let deflection = -last[3];
-    assert!((deflection - 4.031e-4).abs() < 0.01 * 4.031e-4, "tip deflection {deflection}");
+    assert!(
+        (deflection - 4.031e-4).abs() < 0.01 * 4.031e-4,
+        "tip deflection {deflection}"
+    );
     let pvd = std::fs::read_to_string(out.join("frame.pvd")).expect("frame.pvd");
-    assert_eq!(pvd.matches("<DataSet").count(), 21, "a snapshot at t = 0, 0.05, …, 1");
+    assert_eq!(
+        pvd.matches("<DataSet").count(),
+        21,
+        "a snapshot at t = 0, 0.05, …, 1"
+    );
     assert!(out.join("frame-00020.vtu").exists());
 }

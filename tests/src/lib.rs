@@ -58,8 +58,14 @@ pub fn coupler(args: &[&str]) -> Output {
 
 /// The oscillator case of `cases/oscillator` with `key = value` lines replaced, written to `dir/case.toml`.
 pub fn oscillator_case(dir: &Path, replace: &[(&str, &str)]) -> PathBuf {
-    let template = std::fs::read_to_string(workspace().join("cases/oscillator/case.toml"))
-        .unwrap_or_else(|e| panic!("cannot read cases/oscillator/case.toml: {e}"));
+    case_from("oscillator", dir, replace)
+}
+
+/// `cases/NAME/case.toml` with the first `key = …` line of each key replaced, written to `dir/case.toml`.
+pub fn case_from(name: &str, dir: &Path, replace: &[(&str, &str)]) -> PathBuf {
+    let source = workspace().join("cases").join(name).join("case.toml");
+    let template =
+        std::fs::read_to_string(&source).unwrap_or_else(|e| panic!("cannot read {}: {e}", source.display()));
     let mut text = template;
     for (key, value) in replace {
         let start = text.find(&format!("\n{key} =")).unwrap_or_else(|| panic!("no `{key} =` line in the template"));

@@ -52,6 +52,18 @@ pub struct SpringLink {
     pub stiffness: f64,
 }
 
+/// `[[coupling.body]]`: a resolved rigid body, its particles in a fluid participant and its
+/// dynamics in a structure participant. The fluid's `body_force` goes to the structure; the
+/// structure's `body_pose` and `body_velocity` go to the fluid.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodyLink {
+    /// `fluid-participant/body`.
+    pub fluid: String,
+    /// `structure-participant/body`.
+    pub structure: String,
+}
+
 /// `[coupling]`.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -91,6 +103,8 @@ pub struct CouplingConfig {
     pub timeout: f64,
     #[serde(default)]
     pub spring: Vec<SpringLink>,
+    #[serde(default)]
+    pub body: Vec<BodyLink>,
 }
 
 fn default_samples() -> u32 {
@@ -129,7 +143,10 @@ impl CouplingConfig {
             ));
         }
         if !(1..=64).contains(&self.samples) {
-            return Err(FieldError::new("coupling.samples", format!("must be 1 … 64, got {}", self.samples)));
+            return Err(FieldError::new(
+                "coupling.samples",
+                format!("must be 1 … 64, got {}", self.samples),
+            ));
         }
         check::within("coupling.initial_relaxation", self.initial_relaxation, 1e-6, 1.0)?;
         check::within("coupling.tolerance", self.tolerance, 1e-15, 0.5)?;
@@ -143,7 +160,10 @@ impl CouplingConfig {
             if case.kind_of(name).is_none() {
                 return Err(FieldError::new(
                     format!("coupling.order[{i}]"),
-                    format!("`{name}` is not a participant; participants are: {}", super::list(&names)),
+                    format!(
+                        "`{name}` is not a participant; participants are: {}",
+                        super::list(&names)
+                    ),
                 ));
             }
         }
@@ -165,6 +185,32 @@ impl CouplingConfig {
                 ));
             }
         }
+        for (i, link) in self.body.iter().enumerate() {
+            let key = format!("coupling.body[{i}]");
+            body_ref(case, &format!("{key}.fluid"), &link.fluid, true)?;
+            body_ref(case, &format!("{key}.structure"), &link.structure, false)?;
+            for (j, other) in self.body[..i].iter().enumerate() {
+                if other.fluid == link.fluid || other.structure == link.structure {
+                    return Err(FieldError::new(
+                        key,
+                        format!("couples a body that coupling.body[{j}] couples already; each body is coupled once"),
+                    ));
+                }
+            }
+        }
+        for (name, fluid) in &case.fluid {
+            for body in fluid.body_names() {
+                let full = format!("{name}/{body}");
+                if case.participants().len() > 1 && !self.body.iter().any(|l| l.fluid == full) {
+                    return Err(FieldError::new(
+                        "coupling.body",
+                        format!(
+                            "fluid body `{full}` has no [[coupling.body]] giving it a structure to move with"
+                        ),
+                    ));
+                }
+            }
+        }
         Ok(())
     }
 
@@ -181,7 +227,10 @@ impl CouplingConfig {
 /// Splits and checks `participant/point` against the structure participants' point masses.
 pub fn point_ref<'a>(case: &Case, key: &str, text: &'a str) -> Result<(&'a str, &'a str), FieldError> {
     let Some((participant, point)) = text.split_once('/') else {
-        return Err(FieldError::new(key, format!("must be `participant/point`, got `{text}`")));
+        return Err(FieldError::new(
+            key,
+            format!("must be `participant/point`, got `{text}`"),
+        ));
     };
     let Some(cfg) = case.structure.get(participant) else {
         let names: Vec<&String> = case.structure.keys().collect();
@@ -194,8 +243,46 @@ pub fn point_ref<'a>(case: &Case, key: &str, text: &'a str) -> Result<(&'a str, 
     if !points.contains(&point) {
         return Err(FieldError::new(
             key,
-            format!("participant `{participant}` has no point mass `{point}`; its point masses are: {points:?}"),
+            format!(
+                "participant `{participant}` has no point mass `{point}`; its point masses are: {points:?}"
+            ),
         ));
     }
     Ok((participant, point))
+}
+
+/// Splits and checks `participant/body` against the fluid (or structure) participants' bodies.
+pub fn body_ref<'a>(
+    case: &Case,
+    key: &str,
+    text: &'a str,
+    fluid: bool,
+) -> Result<(&'a str, &'a str), FieldError> {
+    let Some((participant, body)) = text.split_once('/') else {
+        return Err(FieldError::new(
+            key,
+            format!("must be `participant/body`, got `{text}`"),
+        ));
+    };
+    let (kind, bodies) = if fluid {
+        ("fluid", case.fluid.get(participant).map(|c| c.body_names()))
+    } else {
+        (
+            "structure",
+            case.structure.get(participant).map(|c| c.body_names()),
+        )
+    };
+    let Some(bodies) = bodies else {
+        return Err(FieldError::new(
+            key,
+            format!("`{participant}` is not a {kind} participant"),
+        ));
+    };
+    if !bodies.contains(&body) {
+        return Err(FieldError::new(
+            key,
+            format!("{kind} participant `{participant}` has no body `{body}`; its bodies are: {bodies:?}"),
+        ));
+    }
+    Ok((participant, body))
 }

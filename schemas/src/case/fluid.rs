@@ -7,6 +7,7 @@
 //! sound_speed = 12.1        # c [m/s]; default u_max / 0.2 with u_max = √(2gH) (S1-16)
 //! viscosity_term = false    # switch ν⟨∇²u⟩ off when ν is far below the numerical dissipation
 //! output_interval = 0.05
+//! surface_mesh = true       # also a free-surface mesh (VTP) per frame; default false
 //! tank = { min = [0, 0, 0], max = [0.6, 0.45, 0.3] }
 //! [[fluid.tank.block]]      # water, filled on the lattice
 //! min = [0, 0, 0]
@@ -102,7 +103,10 @@ pub struct TankConfig {
 impl TankConfig {
     /// The tank's inner box.
     pub fn inner(&self) -> Aabb {
-        Aabb { min: self.min, max: self.max }
+        Aabb {
+            min: self.min,
+            max: self.max,
+        }
     }
 }
 
@@ -120,11 +124,14 @@ pub struct BodyConfig {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum ProbeKind {
-    /// Height of the water surface above the tank floor at `position = [x, y]`.
+    /// Height of the water surface above the tank floor at `position = [x, y]`: the highest
+    /// water particle within Δs horizontally, plus Δs/2 (spray excluded).
     WaterHeight,
-    /// Pressure at `position = [x, y, z]` (weighted mean of the particles within r_e).
+    /// Pressure at `position = [x, y, z]`: the mean over fluid, wall and body particles within
+    /// r_e,grad = 2.1 Δs, weighted by w(r) of S1-6.
     Pressure,
-    /// Largest coordinate of the water along `axis` (the surge front), measured from `tank.min`.
+    /// Surge front: the largest coordinate of the water along `axis`, plus Δs/2, measured from
+    /// `tank.min` (spray excluded).
     SurgeFront,
 }
 
@@ -185,6 +192,10 @@ pub struct FluidConfig {
     pub wall_layers: u32,
     /// Interval between VTU frames [s].
     pub output_interval: f64,
+    /// Also write a free-surface mesh of the water (`NAME_surface_*.vtp`, `NAME_surface.pvd`)
+    /// with every VTU frame.
+    #[serde(default)]
+    pub surface_mesh: bool,
     /// Interval between probe rows [s]; default: every output interval.
     #[serde(default)]
     pub probe_interval: Option<f64>,
@@ -198,8 +209,17 @@ pub struct FluidConfig {
     /// Rigid bodies made of particles.
     #[serde(default)]
     pub body: Vec<BodyConfig>,
+    /// Fixed solid boxes inside the tank (piers, levees) made of wall particles.
+    #[serde(default)]
+    pub wall: Vec<Aabb>,
     #[serde(default)]
     pub probe: Vec<ProbeConfig>,
+    /// Inflow boundary (`[fluid.NAME.inflow]`): water fed in along +x.
+    #[serde(default)]
+    pub inflow: Option<InflowConfig>,
+    /// Outflow boundary (`[fluid.NAME.outflow]`): water beyond a plane is removed.
+    #[serde(default)]
+    pub outflow: Option<OutflowConfig>,
 }
 
 fn default_density() -> f64 {
@@ -263,7 +283,9 @@ impl FluidConfig {
             }
         }
         let l = f64::from(self.wall_layers);
-        let outer: f64 = (0..3).map(|a| (tank.max[a] - tank.min[a]) / self.spacing + 2.0 * l).product();
+        let outer: f64 = (0..3)
+            .map(|a| (tank.max[a] - tank.min[a]) / self.spacing + 2.0 * l)
+            .product();
         if outer > MAX_PARTICLES {
             return Err(FieldError::new(
                 k("spacing"),
@@ -273,8 +295,11 @@ impl FluidConfig {
                 ),
             ));
         }
-        if self.block.is_empty() {
-            return Err(FieldError::new(k("block"), "a fluid participant needs at least one [[block]] of water"));
+        if self.block.is_empty() && self.inflow.is_none() {
+            return Err(FieldError::new(
+                k("block"),
+                "a fluid participant needs at least one [[block]] of water or an [inflow]",
+            ));
         }
         let mut named: Vec<(String, Aabb)> = Vec::new();
         for (i, b) in self.block.iter().enumerate() {
@@ -287,6 +312,11 @@ impl FluidConfig {
             g.validate(&gk)?;
             named.push((gk, *g));
         }
+        for (i, w) in self.wall.iter().enumerate() {
+            let wk = format!("{key}.wall[{i}]");
+            w.validate(&wk)?;
+            named.push((wk, *w));
+        }
         for (i, b) in self.body.iter().enumerate() {
             let bk = format!("{key}.body[{i}]");
             if b.name.trim().is_empty() {
@@ -298,7 +328,10 @@ impl FluidConfig {
                     format!("body name `{}` is used twice; names must be unique", b.name),
                 ));
             }
-            let bb = Aabb { min: b.min, max: b.max };
+            let bb = Aabb {
+                min: b.min,
+                max: b.max,
+            };
             bb.validate(&bk)?;
             named.push((bk, bb));
         }
@@ -312,24 +345,77 @@ impl FluidConfig {
                     ),
                 ));
             }
+            if !self.holds_a_site(a) {
+                return Err(FieldError::new(
+                    ka.clone(),
+                    format!(
+                        "the box {:?} … {:?} holds no particle: particles sit at tank.min + (k + ½)·spacing ({} m)",
+                        a.min, a.max, self.spacing
+                    ),
+                ));
+            }
             for (kb, b) in &named[..i] {
                 if a.overlaps(b) {
                     return Err(FieldError::new(
                         ka.clone(),
-                        format!("overlaps `{kb}`; water blocks, gates and bodies must not share volume"),
+                        format!(
+                            "overlaps `{kb}`; water blocks, gates, walls and bodies must not share volume"
+                        ),
                     ));
                 }
             }
         }
         self.validate_probes(key)?;
+        self.validate_open_boundaries(key, &named)?;
         self.validate_time_step(key)
+    }
+
+    /// Checks `inflow` and `outflow`: planes inside the tank, u_in > 0, the level inside the
+    /// tank, and the inflow strip clear of blocks, gates and bodies.
+    fn validate_open_boundaries(&self, key: &str, named: &[(String, Aabb)]) -> Result<(), FieldError> {
+        let tank = self.tank.inner();
+        let ds = self.spacing;
+        let mut inflow_plane = None;
+        if let Some(inflow) = &self.inflow {
+            let strip = inflow.validate(&format!("{key}.inflow"), &tank, ds)?;
+            for (kb, b) in named {
+                if strip.overlaps(b) {
+                    return Err(FieldError::new(
+                        format!("{key}.inflow"),
+                        format!(
+                            "the inflow strip {:?} … {:?} overlaps `{kb}`; the strip must be free of water blocks, gates and bodies",
+                            strip.min, strip.max
+                        ),
+                    ));
+                }
+            }
+            inflow_plane = Some(inflow.plane);
+        }
+        if let Some(outflow) = &self.outflow {
+            let k = format!("{key}.outflow.plane");
+            let (lo, hi) = (inflow_plane.unwrap_or(tank.min[0]), tank.max[0] - ds);
+            if !(outflow.plane.is_finite() && outflow.plane > lo && outflow.plane <= hi) {
+                return Err(FieldError::new(
+                    k,
+                    format!(
+                        "the outflow plane x = {} is outside the domain: it must lie after the {} (x > {lo}) and at least one spacing before the tank's end (x ≤ {hi})",
+                        outflow.plane,
+                        if inflow_plane.is_some() { "inflow plane" } else { "tank's start" }
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     fn validate_probes(&self, key: &str) -> Result<(), FieldError> {
         for (i, p) in self.probe.iter().enumerate() {
             let pk = format!("{key}.probe[{i}]");
             if p.name.trim().is_empty() || p.name.contains(',') {
-                return Err(FieldError::new(format!("{pk}.name"), "must be a non-empty name without commas"));
+                return Err(FieldError::new(
+                    format!("{pk}.name"),
+                    "must be a non-empty name without commas",
+                ));
             }
             if self.probe[..i].iter().any(|o| o.name == p.name) {
                 return Err(FieldError::new(
@@ -337,15 +423,18 @@ impl FluidConfig {
                     format!("probe name `{}` is used twice", p.name),
                 ));
             }
-            let want = match p.kind {
-                ProbeKind::WaterHeight => 2,
-                ProbeKind::Pressure => 3,
-                ProbeKind::SurgeFront => 0,
+            let (want, kind) = match p.kind {
+                ProbeKind::WaterHeight => (2, "water-height"),
+                ProbeKind::Pressure => (3, "pressure"),
+                ProbeKind::SurgeFront => (0, "surge-front"),
             };
             if p.position.len() != want {
                 return Err(FieldError::new(
                     format!("{pk}.position"),
-                    format!("a {:?} probe needs {want} coordinates, got {}", p.kind, p.position.len()),
+                    format!(
+                        "a {kind} probe needs {want} coordinates, got {}",
+                        p.position.len()
+                    ),
                 ));
             }
             check::finite(&format!("{pk}.position"), &p.position)?;
@@ -360,12 +449,22 @@ impl FluidConfig {
                 if !matches!(axis.as_str(), "x" | "y" | "z") || p.kind != ProbeKind::SurgeFront {
                     return Err(FieldError::new(
                         format!("{pk}.axis"),
-                        format!("only a surge-front probe has an axis, one of \"x\", \"y\", \"z\"; got `{axis}`"),
+                        format!(
+                            "only a surge-front probe has an axis, one of \"x\", \"y\", \"z\"; got `{axis}`"
+                        ),
                     ));
                 }
             }
         }
         Ok(())
+    }
+
+    /// True when the box holds at least one lattice site `tank.min + (k + ½) Δs` on every axis.
+    fn holds_a_site(&self, b: &Aabb) -> bool {
+        (0..3).all(|a| {
+            let first = ((b.min[a] - self.tank.min[a]) / self.spacing - 0.5).ceil();
+            self.tank.min[a] + (first + 0.5) * self.spacing <= b.max[a]
+        })
     }
 
     /// Refuses a Δt above the acoustic (c Δt/Δs ≤ 1) or viscous (ν Δt/Δs² ≤ 1/6) limit.
@@ -374,7 +473,9 @@ impl FluidConfig {
         if !(c.is_finite() && c > 0.0) {
             return Err(FieldError::new(
                 format!("{key}.sound_speed"),
-                format!("the default c = u_max/0.2 is {c} (no gravity or no water height): set sound_speed > 0"),
+                format!(
+                    "the default c = u_max/0.2 is {c} (no gravity or no water height): set sound_speed > 0"
+                ),
             ));
         }
         let courant = c * self.time_step / self.spacing;
@@ -409,11 +510,15 @@ impl FluidConfig {
         self.gravity.iter().map(|g| g * g).sum::<f64>().sqrt()
     }
 
-    /// u_max of S1-16: the case's `max_velocity`, else √(2gH) with H the highest block top above the floor.
+    /// u_max of S1-16: the case's `max_velocity`, else √(u_in² + 2gH) with H the highest block
+    /// top or inflow level above the floor (u_in = 0 without an inflow).
     pub fn max_velocity(&self) -> f64 {
         self.max_velocity.unwrap_or_else(|| {
-            let top = self.block.iter().map(|b| b.max[2]).fold(self.tank.min[2], f64::max);
-            (2.0 * self.gravity_magnitude() * (top - self.tank.min[2])).sqrt()
+            let (u_in, inflow_top) = self.inflow.as_ref().map_or((0.0, self.tank.min[2]), |i| {
+                (i.velocity, self.tank.min[2] + i.level)
+            });
+            let top = self.block.iter().map(|b| b.max[2]).fold(inflow_top, f64::max);
+            (u_in * u_in + 2.0 * self.gravity_magnitude() * (top - self.tank.min[2])).sqrt()
         })
     }
 
@@ -426,4 +531,147 @@ impl FluidConfig {
     pub fn body_names(&self) -> Vec<&str> {
         self.body.iter().map(|b| b.name.as_str()).collect()
     }
+}
+
+/// Fewest strip layers of an inflow: the fluid at the plane must see a full r_e = 3.1 Δs of
+/// strip behind it while the back layer lags up to 1.5 Δs behind the strip's back (see
+/// `fluid_solver::open_boundary`), so 3.1 + 1.5 rounded up.
+pub const MIN_INFLOW_STRIP_LAYERS: f64 = 5.0;
+
+/// `[fluid.NAME.inflow]`: an inflow boundary for run-up (Saitoh & Akitomo, Fig. 5): a strip of
+/// particles upstream of the plane x = `plane` moves with u_in along +x and feeds water up to the
+/// level h(t), which rises linearly from `initial_level` to `level` over `rise_time`.
+///
+/// ```toml
+/// [fluid.river.inflow]
+/// plane = 40.0          # x of the inflow plane [m]
+/// velocity = 10.0       # u_in [m/s], along +x
+/// strip_length = 40.0   # strip depth upstream of the plane [m]
+/// level = 20.0          # h_max above the tank floor [m]
+/// initial_level = 0.0   # h(0) [m]
+/// rise_time = 4.0       # h reaches h_max at this time [s]
+/// span = [0.0, 100.0]   # y range fed [m]; default: the tank's width
+/// ```
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InflowConfig {
+    /// x of the inflow plane [m].
+    pub plane: f64,
+    /// u_in [m/s] along +x.
+    pub velocity: f64,
+    /// Depth of the strip upstream of the plane [m], a whole number of spacings.
+    pub strip_length: f64,
+    /// Largest water level h_max above the tank floor [m].
+    pub level: f64,
+    /// Water level at t = 0 [m].
+    #[serde(default)]
+    pub initial_level: f64,
+    /// Time over which the level rises linearly to `level` [s]; 0 means at once.
+    #[serde(default)]
+    pub rise_time: f64,
+    /// `[y_min, y_max]` fed with water [m]; default: the tank's width.
+    #[serde(default)]
+    pub span: Option<[f64; 2]>,
+}
+
+impl InflowConfig {
+    /// The water level h(t) above the tank floor [m].
+    pub fn level_at(&self, t: f64) -> f64 {
+        if self.rise_time > 0.0 && t < self.rise_time {
+            self.initial_level + (self.level - self.initial_level) * (t.max(0.0) / self.rise_time)
+        } else {
+            self.level
+        }
+    }
+
+    /// The fed y range: `span`, or the tank's width.
+    pub fn span_or(&self, tank: &Aabb) -> [f64; 2] {
+        self.span.unwrap_or([tank.min[1], tank.max[1]])
+    }
+
+    /// Checks every key against the tank and the spacing; returns the strip's box at full level.
+    pub fn validate(&self, key: &str, tank: &Aabb, spacing: f64) -> Result<Aabb, FieldError> {
+        let k = |s: &str| format!("{key}.{s}");
+        check::positive(&k("velocity"), self.velocity)?;
+        check::positive(&k("strip_length"), self.strip_length)?;
+        check::positive(&k("level"), self.level)?;
+        check::non_negative(&k("rise_time"), self.rise_time)?;
+        let layers = self.strip_length / spacing;
+        if (layers - layers.round()).abs() > 1e-6 * layers || layers.round() < MIN_INFLOW_STRIP_LAYERS {
+            return Err(FieldError::new(
+                k("strip_length"),
+                format!(
+                    "must be a whole number of spacings ({spacing} m), at least {MIN_INFLOW_STRIP_LAYERS}; got {} m = {layers:.4} spacings",
+                    self.strip_length
+                ),
+            ));
+        }
+        let (back, front) = (tank.min[0] + self.strip_length, tank.max[0] - spacing);
+        if !(self.plane.is_finite() && self.plane >= back - 1e-9 * spacing && self.plane <= front) {
+            return Err(FieldError::new(
+                k("plane"),
+                format!(
+                    "the inflow plane x = {} is outside the domain: with strip_length = {} m the strip must fit inside the tank, so the plane must be in [{back}, {front}] (tank x from {} to {})",
+                    self.plane, self.strip_length, tank.min[0], tank.max[0]
+                ),
+            ));
+        }
+        let offset = (self.plane - tank.min[0]) / spacing;
+        if (offset - offset.round()).abs() > 1e-6 * offset.max(1.0) {
+            return Err(FieldError::new(
+                k("plane"),
+                format!(
+                    "the inflow plane x = {} must lie on a lattice face, tank.min.x + a whole number of spacings ({spacing} m); it is {offset:.4} spacings in",
+                    self.plane
+                ),
+            ));
+        }
+        let height = tank.max[2] - tank.min[2];
+        if self.level > height || self.level < spacing {
+            return Err(FieldError::new(
+                k("level"),
+                format!(
+                    "the level {} m must be at least one spacing ({spacing} m) and must not be above the domain: at most the tank height {height} m",
+                    self.level
+                ),
+            ));
+        }
+        if !(self.initial_level.is_finite() && (0.0..=self.level).contains(&self.initial_level)) {
+            return Err(FieldError::new(
+                k("initial_level"),
+                format!(
+                    "must be in [0, level = {}], got {}",
+                    self.level, self.initial_level
+                ),
+            ));
+        }
+        let span = self.span_or(tank);
+        let sites = ((span[1] - tank.min[1]) / spacing - 0.5).floor()
+            - ((span[0] - tank.min[1]) / spacing - 0.5).ceil();
+        if !(span[0].is_finite() && span[1].is_finite())
+            || span[0] < tank.min[1]
+            || span[1] > tank.max[1]
+            || sites < 0.0
+        {
+            return Err(FieldError::new(
+                k("span"),
+                format!(
+                    "{span:?} must be an increasing y range inside the tank [{}, {}] that holds a lattice site tank.min.y + (j + ½)·{spacing} m",
+                    tank.min[1], tank.max[1]
+                ),
+            ));
+        }
+        Ok(Aabb {
+            min: [self.plane - self.strip_length, span[0], tank.min[2]],
+            max: [self.plane, span[1], tank.min[2] + self.level],
+        })
+    }
+}
+
+/// `[fluid.NAME.outflow]`: fluid particles beyond the plane x = `plane` are removed.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutflowConfig {
+    /// x of the outflow plane [m].
+    pub plane: f64,
 }

@@ -45,6 +45,15 @@
 //! [[structure.bridge.frame.support]]
 //! node = 1
 //! fixed = ["x", "y", "z", "rx", "ry", "rz"]
+//!
+//! [structure.bridge.frame.contact]    # optional: penalty contact
+//! stiffness = 1.0e7                  # [N/m] per particle pair
+//! damping_ratio = 0.2                # optional, share of critical (default 0)
+//! members = true                     # optional: members touch each other (default true)
+//!
+//! [[structure.bridge.frame.wall]]     # optional, needs [contact]
+//! point = [0.0, 0.0, 0.0]
+//! normal = [0.0, 0.0, 1.0]
 //! ```
 
 use super::error::check;
@@ -72,6 +81,40 @@ pub struct FrameConfig {
     pub member: Vec<MemberConfig>,
     #[serde(default)]
     pub support: Vec<SupportConfig>,
+    /// Penalty contact between members and with walls; absent: no contact.
+    #[serde(default)]
+    pub contact: Option<ContactConfig>,
+    #[serde(default)]
+    pub wall: Vec<WallConfig>,
+}
+
+/// `[structure.NAME.frame.contact]`: members and walls meet through particles along the members
+/// (S2 §3(2)) pushed apart by a penalty spring and dashpot.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactConfig {
+    /// Penalty stiffness per particle pair [N/m].
+    pub stiffness: f64,
+    /// Damping of the contact spring as a share of critical, in [0, 1].
+    #[serde(default)]
+    pub damping_ratio: f64,
+    /// Whether members touch each other (walls always touch members).
+    #[serde(default = "yes")]
+    pub members: bool,
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// `[[structure.NAME.frame.wall]]`: a rigid plane; members stay on the side its normal points to.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WallConfig {
+    /// A point of the plane [m].
+    pub point: [f64; 3],
+    /// Normal pointing to the side where the frame is.
+    pub normal: [f64; 3],
 }
 
 /// `[structure.NAME.frame.material]`: one elastic–perfectly-plastic material for every member.
@@ -224,7 +267,10 @@ impl SectionConfig {
             }
             other => Err(FieldError::new(
                 format!("{key}.kind"),
-                format!("unknown section kind `{other}`; allowed: {}", SECTION_KINDS.join(", ")),
+                format!(
+                    "unknown section kind `{other}`; allowed: {}",
+                    SECTION_KINDS.join(", ")
+                ),
             )),
         }
     }
@@ -308,7 +354,10 @@ impl FrameConfig {
             let mut ends = [[0.0; 3]; 2];
             for (end, id) in m.nodes.iter().enumerate() {
                 ends[end] = *positions.get(id).ok_or_else(|| {
-                    FieldError::new(format!("{mkey}.nodes"), format!("node id {id} is not defined in {key}.node"))
+                    FieldError::new(
+                        format!("{mkey}.nodes"),
+                        format!("node id {id} is not defined in {key}.node"),
+                    )
                 })?;
                 used.insert(*id);
             }
@@ -323,17 +372,20 @@ impl FrameConfig {
             }
             let axis = sub(ends[1], ends[0]);
             let length = norm(axis);
-            if !(length > 0.0) {
+            if length <= 0.0 {
                 return Err(FieldError::new(
                     format!("{mkey}.nodes"),
-                    format!("member from node {} to node {} has zero length", m.nodes[0], m.nodes[1]),
+                    format!(
+                        "member from node {} to node {} has zero length",
+                        m.nodes[0], m.nodes[1]
+                    ),
                 ));
             }
             if let Some(o) = m.orientation {
                 let okey = format!("{mkey}.orientation");
                 check::finite(&okey, &o)?;
                 let across = norm(cross(axis, o));
-                if !(across > 1e-6 * length * norm(o)) {
+                if across <= 1e-6 * length * norm(o) {
                     return Err(FieldError::new(
                         okey,
                         "must be a nonzero vector not parallel to the member (it gives the local y axis)",
@@ -348,6 +400,27 @@ impl FrameConfig {
             ));
         }
 
+        if let Some(c) = &self.contact {
+            check::positive(&format!("{key}.contact.stiffness"), c.stiffness)?;
+            check::within(&format!("{key}.contact.damping_ratio"), c.damping_ratio, 0.0, 1.0)?;
+        }
+        for (i, w) in self.wall.iter().enumerate() {
+            let wkey = format!("{key}.wall[{i}]");
+            if self.contact.is_none() {
+                return Err(FieldError::new(
+                    wkey,
+                    format!("a wall needs a [{key}.contact] table (its penalty stiffness)"),
+                ));
+            }
+            check::finite(&format!("{wkey}.point"), &w.point)?;
+            check::finite(&format!("{wkey}.normal"), &w.normal)?;
+            if norm(w.normal) == 0.0 {
+                return Err(FieldError::new(
+                    format!("{wkey}.normal"),
+                    "must be a nonzero vector",
+                ));
+            }
+        }
         for (i, s) in self.support.iter().enumerate() {
             let skey = format!("{key}.support[{i}]");
             if !positions.contains_key(&s.node) {
@@ -360,7 +433,10 @@ impl FrameConfig {
                 if !DOF_NAMES.contains(&d.as_str()) {
                     return Err(FieldError::new(
                         format!("{skey}.fixed"),
-                        format!("unknown degree of freedom `{d}`; allowed: {}", DOF_NAMES.join(", ")),
+                        format!(
+                            "unknown degree of freedom `{d}`; allowed: {}",
+                            DOF_NAMES.join(", ")
+                        ),
                     ));
                 }
             }
@@ -374,7 +450,11 @@ fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 }
 
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 
 fn norm(a: [f64; 3]) -> f64 {

@@ -136,7 +136,10 @@ impl Case {
 
     /// The kind of the participant `name`, if the case has one.
     pub fn kind_of(&self, name: &str) -> Option<Kind> {
-        self.participants().into_iter().find(|(n, _)| n == name).map(|(_, k)| k)
+        self.participants()
+            .into_iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, k)| k)
     }
 
     fn validate(&self) -> Result<(), FieldError> {
@@ -181,7 +184,10 @@ impl Case {
         match (&self.coupling, names.len()) {
             (None, n) if n > 1 => Err(FieldError::new(
                 "coupling",
-                format!("the case has {n} participants ({}) and needs a [coupling] section", list(&names)),
+                format!(
+                    "the case has {n} participants ({}) and needs a [coupling] section",
+                    list(&names)
+                ),
             )),
             (Some(c), _) => c.validate(self),
             _ => Ok(()),
@@ -193,7 +199,9 @@ impl Case {
 fn check_participant_name(key: &str, name: &str) -> Result<(), FieldError> {
     let ok = !name.is_empty()
         && name.len() <= 32
-        && name.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-');
+        && name
+            .chars()
+            .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-');
     if ok {
         Ok(())
     } else {
@@ -205,7 +213,11 @@ fn check_participant_name(key: &str, name: &str) -> Result<(), FieldError> {
 }
 
 fn list(names: &[(String, Kind)]) -> String {
-    names.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>().join(", ")
+    names
+        .iter()
+        .map(|(n, _)| n.as_str())
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// The dotted key of the TOML line that holds byte `offset` (best effort, for error messages).
@@ -235,5 +247,7 @@ fn key_at(text: &str, offset: usize) -> String {
 
 /// 64-bit FNV-1a: a stable hash of the case text (std's hasher is not stable across releases).
 pub fn fnv1a(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325_u64, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3))
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325_u64, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    })
 }

@@ -35,10 +35,13 @@
 //! start = 0.0
 //! end = 1.0
 //!
-//! [structure.tower.history]      # CSV histories written in standalone mode
+//! [structure.tower.history]      # CSV histories (standalone mode, and participant mode with --out)
 //! interval = 0.01
 //! points = ["m1"]
 //! bodies = ["deck"]
+//! nodes = [12]                   # frame node ids
+//!
+//! [structure.tower.frame]        # optional ASI-Gauss frame: see `frame.rs`
 //! ```
 
 use super::error::check;
@@ -57,7 +60,8 @@ pub const GROUND: &str = "ground";
 pub struct StructureConfig {
     /// Largest integrator substep [s]; each advance lands exactly on its end time.
     pub max_step: f64,
-    /// Gravity acceleration [m/s²] on point masses and bodies.
+    /// Gravity acceleration [m/s²] on point masses and bodies (a frame takes `frame.gravity`;
+    /// when both are given they must agree).
     #[serde(default)]
     pub gravity: [f64; 3],
     #[serde(default)]
@@ -146,7 +150,8 @@ pub struct InertiaConfig {
     /// Inertia tensor about the centre [kg m²], symmetric positive definite.
     #[serde(default)]
     pub tensor: Option<[[f64; 3]; 3]>,
-    /// Positions [m] of the body's particles (body frame = world frame at t = 0).
+    /// World positions [m] of the body's particles at t = 0; the body's mass is their count ×
+    /// `particle_mass`, its centre their centroid.
     #[serde(default)]
     pub particles: Option<Vec<[f64; 3]>>,
     /// Mass of each particle [kg].
@@ -268,6 +273,16 @@ impl StructureConfig {
         let mut names = BTreeSet::new();
         if let Some(f) = &self.frame {
             f.validate(&format!("{key}.frame"))?;
+            let given = |g: &[f64; 3]| g.iter().any(|c| *c != 0.0);
+            if given(&self.gravity) && given(&f.gravity) && self.gravity != f.gravity {
+                return Err(FieldError::new(
+                    format!("{key}.frame.gravity"),
+                    format!(
+                        "{:?} differs from {key}.gravity = {:?}; a participant has one gravity",
+                        f.gravity, self.gravity
+                    ),
+                ));
+            }
         }
         for (i, p) in self.point_mass.iter().enumerate() {
             let k = format!("{key}.point_mass[{i}]");

@@ -6,20 +6,21 @@
 //! is reported instead of waited on forever.
 
 use super::codec::{decode_exact, encode_into_uninit, encoded_len};
-use super::iceoryx_config::{link_config, INITIAL_MAX_SLICE_LEN, SUBSCRIBER_BUFFER};
+use super::handshake::Hello;
+use super::iceoryx_config::{link_config, quiet_iceoryx_logs, INITIAL_MAX_SLICE_LEN, SUBSCRIBER_BUFFER};
 use super::liveness::process_alive;
 use super::names::{ServiceNames, Side};
 use super::LinkError;
-use iceoryx2::node::NodeView;
 use iceoryx2::port::listener::{Listener, ListenerWaitError};
 use iceoryx2::port::notifier::Notifier;
 use iceoryx2::port::publisher::Publisher;
 use iceoryx2::port::subscriber::Subscriber;
+use iceoryx2::port::update_connections::UpdateConnections;
 use iceoryx2::port::{BackpressureAction, BackpressureInfo, SendError};
 use iceoryx2::prelude::*;
 use iceoryx2::service::port_factory::{event, publish_subscribe};
 use std::fmt::Debug;
-use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -36,7 +37,8 @@ const PEER_POLL_MAX: Duration = Duration::from_millis(20);
 pub struct Link {
     side: Side,
     names: ServiceNames,
-    config: Config,
+    /// Set once the hellos were exchanged; `send` refuses to run before.
+    connected: AtomicBool,
     /// Pid of the peer process once known (0 = not yet); read by the publisher's backpressure handler.
     peer_pid: Arc<AtomicU32>,
     // Ports are declared before their services and the node, so they are dropped first.
@@ -55,10 +57,12 @@ impl Link {
     /// Opens this side of the coupler<->participant channel pair. Services carry the run id and
     /// participant name: `tsunami/{run_id}/{participant}/down` (coupler -> participant), `.../up`,
     /// and `.../down/wake`, `.../up/wake` for wake-ups. Creating the node first removes the shared
-    /// memory of dead (e.g. SIGKILLed) processes.
+    /// memory of dead (e.g. SIGKILLed) processes. The first call limits iceoryx2's console log to
+    /// errors unless the environment variable `IOX2_LOG_LEVEL` is set.
     pub fn open(run_id: &str, participant: &str, side: Side) -> Result<Link, LinkError> {
         let names = ServiceNames::new(run_id, participant)?;
-        let config = link_config();
+        quiet_iceoryx_logs();
+        let config = link_config()?;
         let node = NodeBuilder::new()
             .config(&config)
             .signal_handling_mode(SignalHandlingMode::Disabled)
@@ -75,8 +79,10 @@ impl Link {
             .buffer_size(SUBSCRIBER_BUFFER)
             .create()
             .map_err(|e| port_error("subscriber", in_name, e))?;
-        let listener =
-            incoming_wake.listener_builder().create().map_err(|e| port_error("listener", in_wake_name, e))?;
+        let listener = incoming_wake
+            .listener_builder()
+            .create()
+            .map_err(|e| port_error("listener", in_wake_name, e))?;
         let peer_pid = Arc::new(AtomicU32::new(0));
         let handler_pid = Arc::clone(&peer_pid);
         let publisher = outgoing
@@ -96,7 +102,7 @@ impl Link {
         Ok(Link {
             side,
             names,
-            config,
+            connected: AtomicBool::new(false),
             peer_pid,
             publisher,
             subscriber,
@@ -130,20 +136,19 @@ impl Link {
 
     /// Idle-waits until the peer's ports are connected (so nothing sent is lost), checking `alive`
     /// at least every 100 ms; `Err(PeerGone(msg))` as soon as `alive` returns `Err(msg)`;
-    /// `Err(Timeout)` at `deadline`.
+    /// `Err(Timeout)` at `deadline`. Once the peer's ports exist, both sides attach their subscriber
+    /// and exchange a hello (protocol version, side, pid) that this call consumes. Calling it again
+    /// after success returns at once.
     pub fn wait_for_peer(
         &self,
         deadline: Instant,
         alive: &mut dyn FnMut() -> Result<(), String>,
     ) -> Result<(), LinkError> {
+        if self.connected.load(Ordering::Acquire) {
+            return Ok(());
+        }
         let mut pause = Duration::from_micros(250);
-        loop {
-            if self.peer_connected() {
-                if let Some(pid) = self.find_peer_pid() {
-                    self.peer_pid.store(pid, Ordering::Relaxed);
-                }
-                return Ok(());
-            }
+        while !self.peer_ports_exist() {
             alive().map_err(LinkError::PeerGone)?;
             let remaining = deadline.saturating_duration_since(Instant::now());
             if remaining.is_zero() {
@@ -152,17 +157,44 @@ impl Link {
             std::thread::sleep(pause.min(remaining));
             pause = (pause * 2).min(PEER_POLL_MAX);
         }
+        // Attach our subscriber to the peer's publisher before saying hello: a publisher drops
+        // samples for a subscriber that never attached once that subscriber's buffer is full.
+        self.subscriber.update_connections().map_err(|e| {
+            LinkError::Iceoryx(format!(
+                "cannot attach to the peer's publisher on \"{}\": {e:?}",
+                self.incoming.name()
+            ))
+        })?;
+        self.send_now(&Hello::new(self.side))?;
+        let hello: Hello = self.recv(Some(deadline), alive)?;
+        self.peer_pid.store(hello.accept(self.side)?, Ordering::Relaxed);
+        self.connected.store(true, Ordering::Release);
+        Ok(())
     }
 
     /// Encodes `msg` with bincode 2 ([`super::bincode_config`]) straight into a loaned shared-memory
     /// sample, sends it and wakes the peer. Lock-step delivery: nothing is dropped; on a full peer
-    /// buffer it waits (sleeping) until the peer takes a message, or fails with `PeerGone` if the
-    /// peer process died. Returns the encoded size in bytes.
+    /// buffer (more than [`SUBSCRIBER_BUFFER`] unread messages) it waits (iceoryx2 yields, then
+    /// sleeps) until the peer takes one, or fails with `PeerGone` once the peer process is dead.
+    /// `Err(NotConnected)` before [`Link::wait_for_peer`] succeeded. Returns the encoded size in bytes.
     pub fn send<T: bincode::Encode>(&self, msg: &T) -> Result<usize, LinkError> {
+        if !self.connected.load(Ordering::Acquire) {
+            return Err(LinkError::NotConnected(format!(
+                "call wait_for_peer before sending on \"{}\"",
+                self.out_name()
+            )));
+        }
+        self.send_now(msg)
+    }
+
+    /// [`Link::send`] without the check that the hellos were exchanged.
+    fn send_now<T: bincode::Encode>(&self, msg: &T) -> Result<usize, LinkError> {
         let len = encoded_len(msg)?;
-        let out_name = &self.outgoing.name().as_str().to_owned();
+        let out_name = self.out_name();
         let mut sample = self.publisher.loan_slice_uninit(len).map_err(|e| {
-            LinkError::Iceoryx(format!("cannot get {len} bytes of shared memory on \"{out_name}\": {e:?}"))
+            LinkError::Iceoryx(format!(
+                "cannot get {len} bytes of shared memory on \"{out_name}\": {e:?}"
+            ))
         })?;
         encode_into_uninit(msg, sample.payload_mut())?;
         // SAFETY: `encode_into_uninit` returned Ok, so it wrote all `len` bytes of the payload.
@@ -175,24 +207,31 @@ impl Link {
                     self.peer_pid.load(Ordering::Relaxed)
                 )))
             }
-            Err(e) => return Err(LinkError::Iceoryx(format!("cannot send on \"{out_name}\": {e:?}"))),
+            Err(e) => {
+                return Err(LinkError::Iceoryx(format!(
+                    "cannot send on \"{out_name}\": {e:?}"
+                )))
+            }
         };
         if receivers == 0 {
             return Err(LinkError::PeerGone(format!(
-                "nobody receives on \"{out_name}\": the peer has exited or was never waited for \
-                 (call wait_for_peer before the first send)"
+                "nobody receives on \"{out_name}\": the peer has exited"
             )));
         }
         self.notifier.notify().map_err(|e| {
-            LinkError::Iceoryx(format!("cannot wake the peer on \"{}\": {e:?}", self.outgoing_wake.name()))
+            LinkError::Iceoryx(format!(
+                "cannot wake the peer on \"{}\": {e:?}",
+                self.outgoing_wake.name()
+            ))
         })?;
         Ok(len)
     }
 
     /// Idle-waits (event-listener waits of at most 100 ms, never busy polling) for the next message,
     /// checking `alive` between waits, and decodes it straight from the shared-memory sample.
-    /// `deadline: None` waits forever (but still checks `alive`). A message the peer sent just
-    /// before it exited is still returned.
+    /// `deadline: None` waits forever (but still checks `alive`). `alive` runs after every wait that
+    /// brought no message, so a dead peer is reported within about 100 ms; a message the peer sent
+    /// just before it exited is still returned.
     pub fn recv<T: bincode::Decode<()>>(
         &self,
         deadline: Option<Instant>,
@@ -201,12 +240,6 @@ impl Link {
         loop {
             if let Some(msg) = self.try_recv()? {
                 return Ok(msg);
-            }
-            if let Err(why) = alive() {
-                return match self.try_recv()? {
-                    Some(msg) => Ok(msg),
-                    None => Err(LinkError::PeerGone(why)),
-                };
             }
             let wait = match deadline {
                 None => MAX_WAIT,
@@ -227,6 +260,13 @@ impl Link {
                     )))
                 }
             }
+            if let Some(msg) = self.try_recv()? {
+                return Ok(msg);
+            }
+            if let Err(why) = alive() {
+                // The peer may have sent a last message between our look and its exit.
+                return self.try_recv()?.ok_or(LinkError::PeerGone(why));
+            }
         }
     }
 
@@ -235,33 +275,24 @@ impl Link {
         match self.subscriber.receive() {
             Ok(Some(sample)) => decode_exact(sample.payload()).map(Some),
             Ok(None) => Ok(None),
-            Err(e) => {
-                Err(LinkError::Iceoryx(format!("cannot receive on \"{}\": {e:?}", self.incoming.name())))
-            }
+            Err(e) => Err(LinkError::Iceoryx(format!(
+                "cannot receive on \"{}\": {e:?}",
+                self.incoming.name()
+            ))),
         }
     }
 
+    /// Name of the service this side publishes on.
+    fn out_name(&self) -> &str {
+        self.names.for_side(self.side).0
+    }
+
     /// True when the peer's subscriber, publisher, listener and notifier all exist.
-    fn peer_connected(&self) -> bool {
+    fn peer_ports_exist(&self) -> bool {
         self.outgoing.dynamic_config().number_of_subscribers() > 0
             && self.incoming.dynamic_config().number_of_publishers() > 0
             && self.outgoing_wake.dynamic_config().number_of_listeners() > 0
             && self.incoming_wake.dynamic_config().number_of_notifiers() > 0
-    }
-
-    /// Pid of the process owning the subscriber of our outgoing service.
-    fn find_peer_pid(&self) -> Option<u32> {
-        let mut node_id = None;
-        self.outgoing.dynamic_config().list_subscribers(|details| {
-            node_id = Some(details.node_id);
-            CallbackProgression::Stop
-        });
-        match Node::<Ipc>::state_of(&self.config, node_id?).ok()?? {
-            NodeState::Alive(view) => {
-                view.details().as_ref().and_then(|d| u32::try_from(d.process_id().value()).ok())
-            }
-            _ => None,
-        }
     }
 }
 

@@ -15,7 +15,10 @@ pub type LinkConfig = Configuration<LittleEndian, Varint, bincode::config::Limit
 
 /// The bincode configuration every link message is encoded and decoded with.
 pub fn bincode_config() -> LinkConfig {
-    bincode::config::standard().with_little_endian().with_variable_int_encoding().with_limit()
+    bincode::config::standard()
+        .with_little_endian()
+        .with_variable_int_encoding()
+        .with_limit()
 }
 
 /// Number of bytes `msg` encodes to (a dry run through bincode's `SizeWriter`).
@@ -102,7 +105,11 @@ mod tests {
     }
 
     fn probe() -> Probe {
-        Probe { step: 300, name: "wall".into(), values: vec![1.5, -2.0, f64::MAX] }
+        Probe {
+            step: 300,
+            name: "wall".into(),
+            values: vec![1.5, -2.0, f64::MAX],
+        }
     }
 
     #[test]
@@ -122,7 +129,10 @@ mod tests {
         let msg = probe();
         let len = encoded_len(&msg).unwrap();
         let mut buf = vec![MaybeUninit::<u8>::uninit(); len - 1];
-        assert!(matches!(encode_into_uninit(&msg, &mut buf), Err(LinkError::Encode(_))));
+        assert!(matches!(
+            encode_into_uninit(&msg, &mut buf),
+            Err(LinkError::Encode(_))
+        ));
     }
 
     #[test]
@@ -144,6 +154,9 @@ mod tests {
     #[test]
     fn truncated_message_is_a_decode_error() {
         let bytes = bincode::encode_to_vec(probe(), bincode_config()).unwrap();
-        assert!(matches!(decode_exact::<Probe>(&bytes[..bytes.len() - 3]), Err(LinkError::Decode(_))));
+        assert!(matches!(
+            decode_exact::<Probe>(&bytes[..bytes.len() - 3]),
+            Err(LinkError::Decode(_))
+        ));
     }
 }

@@ -15,6 +15,8 @@ pub enum LinkError {
     Encode(String),
     /// Received bytes are not a valid message of the expected type (or exceed the size limit).
     Decode(String),
+    /// The link was used before [`super::Link::wait_for_peer`] connected it.
+    NotConnected(String),
     /// A run id or participant name that cannot be part of a service name.
     InvalidName(String),
 }
@@ -35,6 +37,7 @@ impl fmt::Display for LinkError {
                 "could not decode a message from the link (coupler and participant built from \
                  different versions?): {msg}"
             ),
+            LinkError::NotConnected(msg) => write!(f, "the link is not connected yet: {msg}"),
             LinkError::InvalidName(msg) => write!(f, "invalid link name: {msg}"),
         }
     }

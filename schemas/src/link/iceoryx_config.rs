@@ -1,6 +1,11 @@
 //! The iceoryx2 configuration of the link, set in code (no config file is read, so no warning).
 
-use iceoryx2::prelude::{AllocationStrategy, BackpressureStrategy, Config};
+use super::LinkError;
+use iceoryx2::prelude::{
+    set_log_level_from_env_or, AllocationStrategy, BackpressureStrategy, Config, FileName, LogLevel,
+    SemanticString,
+};
+use std::sync::Once;
 
 /// Messages a subscriber can hold before its publisher must wait (lock-step needs 1; the rest is slack
 /// for a few messages sent in a row).
@@ -14,9 +19,15 @@ pub const INITIAL_MAX_SLICE_LEN: usize = 64 * 1024;
 const PORTS_PER_SERVICE: usize = 1;
 const NODES_PER_SERVICE: usize = 2;
 
+/// Prefix of every shared-memory file of the link. Keeps the link's nodes apart from other iceoryx2
+/// users on the machine (whose dead nodes it would otherwise inspect and clean up).
+pub const FILE_PREFIX: &str = "tsunami_";
+
 /// The configuration every node of the link is created with.
-pub fn link_config() -> Config {
+pub fn link_config() -> Result<Config, LinkError> {
     let mut config = Config::default();
+    config.global.prefix = FileName::new(FILE_PREFIX.as_bytes())
+        .map_err(|e| LinkError::Iceoryx(format!("invalid shared-memory prefix {FILE_PREFIX:?}: {e:?}")))?;
     // Dead nodes of a SIGKILLed run are removed when a node is created or a service opened (the
     // 0.10 defaults, set explicitly because the link relies on them).
     config.global.node.cleanup_dead_nodes_on_creation = true;
@@ -39,5 +50,13 @@ pub fn link_config() -> Config {
     ev.max_listeners = PORTS_PER_SERVICE;
     ev.max_notifiers = PORTS_PER_SERVICE;
     ev.max_nodes = NODES_PER_SERVICE;
-    config
+    Ok(config)
+}
+
+/// Limits iceoryx2's own console messages to errors unless `IOX2_LOG_LEVEL` says otherwise (once per
+/// process). Its warnings are routine for the link, e.g. "Detected dead node ... Trying to cleanup
+/// stale resources" after a killed run, which the link expects and handles.
+pub fn quiet_iceoryx_logs() {
+    static QUIET: Once = Once::new();
+    QUIET.call_once(|| set_log_level_from_env_or(LogLevel::Error));
 }

@@ -59,7 +59,10 @@ mod tests {
         let pid = child.id();
         let deadline = std::time::Instant::now() + std::time::Duration::from_secs(5);
         while process_alive(pid).is_ok() {
-            assert!(std::time::Instant::now() < deadline, "zombie child {pid} still reported alive");
+            assert!(
+                std::time::Instant::now() < deadline,
+                "zombie child {pid} still reported alive"
+            );
             std::thread::sleep(std::time::Duration::from_millis(5));
         }
         child.wait().expect("reap `true`");

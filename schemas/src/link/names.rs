@@ -77,9 +77,17 @@ mod tests {
     #[test]
     fn bad_names_are_refused() {
         let long = "x".repeat(MAX_NAME_LEN + 1);
-        for (run, part) in [("", "fluid"), ("a/b", "fluid"), ("run", "fl uid"), ("run", long.as_str())] {
+        for (run, part) in [
+            ("", "fluid"),
+            ("a/b", "fluid"),
+            ("run", "fl uid"),
+            ("run", long.as_str()),
+        ] {
             let err = ServiceNames::new(run, part).unwrap_err();
-            assert!(matches!(err, LinkError::InvalidName(_)), "{run:?} {part:?}: {err}");
+            assert!(
+                matches!(err, LinkError::InvalidName(_)),
+                "{run:?} {part:?}: {err}"
+            );
         }
     }
 }

@@ -28,6 +28,8 @@ pub struct SparseSystem {
     node_slots: Vec<[u32; NODE_DOFS * NODE_DOFS]>,
     /// Matrix values, in the pattern's order.
     pub values: Vec<f64>,
+    /// The last numeric factor and the time step it was made for.
+    factor: Option<(Llt<usize, f64>, f64)>,
 }
 
 impl SparseSystem {
@@ -134,6 +136,7 @@ impl SparseSystem {
             element_slots,
             node_slots,
             values: vec![0.0; nnz],
+            factor: None,
         })
     }
 
@@ -186,8 +189,10 @@ impl SparseSystem {
         rows.binary_search(&r).map_or(0.0, |i| self.values[start + i])
     }
 
-    /// Factorises the current values (numeric part only) and solves in place.
-    pub fn solve(&self, rhs: &mut [f64]) -> Result<(), String> {
+    /// Factorises the current values (numeric part only, on the kept symbolic factorisation) and keeps
+    /// the factor, labelled with the time step it was made for.
+    pub fn factorize(&mut self, dt: f64) -> Result<(), String> {
+        self.factor = None;
         let Some(symbolic) = &self.symbolic else {
             return Ok(());
         };
@@ -198,6 +203,28 @@ impl SparseSystem {
                  to move without resistance (a mechanism or a missing support) or the state is corrupt"
             )
         })?;
+        self.factor = Some((llt, dt));
+        Ok(())
+    }
+
+    /// Whether a factor made for time step `dt` is kept.
+    pub fn has_factor_for(&self, dt: f64) -> bool {
+        self.symbolic.is_none() || self.factor.as_ref().is_some_and(|(_, d)| *d == dt)
+    }
+
+    /// Forgets the kept factor (the matrix changed too much for it to be a good iteration matrix).
+    pub fn drop_factor(&mut self) {
+        self.factor = None;
+    }
+
+    /// Solves in place with the kept factor.
+    pub fn solve_factored(&self, rhs: &mut [f64]) -> Result<(), String> {
+        if self.symbolic.is_none() {
+            return Ok(());
+        }
+        let Some((llt, _)) = &self.factor else {
+            return Err("internal error: the frame's system was solved before it was factorised".into());
+        };
         let n = rhs.len();
         llt.solve_in_place(MatMut::from_column_major_slice_mut(rhs, n, 1));
         Ok(())

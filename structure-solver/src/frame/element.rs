@@ -68,7 +68,11 @@ pub fn local_stiffness(length: f64, s: f64, d: &[[f64; 6]; 6]) -> [[f64; ELEMENT
 /// Adds the geometric stiffness of the axial force N to a local stiffness: the string term
 /// `(N/l) [I⊥ −I⊥; −I⊥ I⊥]` on the transverse translations, which turns the force with the chord
 /// (without it, the one-solve-per-step update feeds energy into spinning members).
-pub fn add_axial_geometric_stiffness(k: &mut [[f64; ELEMENT_DOFS]; ELEMENT_DOFS], axial_force: f64, length: f64) {
+pub fn add_axial_geometric_stiffness(
+    k: &mut [[f64; ELEMENT_DOFS]; ELEMENT_DOFS],
+    axial_force: f64,
+    length: f64,
+) {
     let g = axial_force / length;
     for dof in [1, 2] {
         k[dof][dof] += g;

@@ -1,6 +1,9 @@
-//! Fracture of a fully plastic section (S2-17).
+//! Fracture of a fully plastic section (S2-17) and the split of the fractured element at its hinge.
 
+use super::assembly::{SparseSystem, NODE_DOFS};
+use super::hinge::StressState;
 use super::section::Resultants;
+use super::Frame;
 use schemas::case::frame::MaterialConfig;
 
 /// Critical strains of S2-17; a term whose critical value is not given is left out.
@@ -32,5 +35,42 @@ impl FractureCriterion {
             .map(|(e, c)| (e / c).powi(2))
             .sum::<f64>()
             >= 1.0
+    }
+}
+
+impl Frame {
+    /// S2-17 at every hinge; a fractured element is split off its hinge node onto a new node (same
+    /// position and motion), left unstressed, and the sparse pattern is rebuilt.
+    pub(super) fn split_fractured(&mut self) -> Result<(), String> {
+        let Some(criterion) = self.fracture else {
+            return Ok(());
+        };
+        let mut changed = false;
+        for i in 0..self.elements.len() {
+            let e = &self.elements[i];
+            let Some(end) = e.stress.hinge else { continue };
+            if !criterion.is_reached(&e.stress.strain) {
+                continue;
+            }
+            let old = e.nodes[end.node()];
+            let mut node = self.nodes[old].clone();
+            node.id = None;
+            node.fixed = [false; NODE_DOFS];
+            self.nodes.push(node);
+            let e = &mut self.elements[i];
+            e.nodes[end.node()] = self.nodes.len() - 1;
+            e.stress = StressState::elastic(e.stress.s);
+            e.stress.hinge = None;
+            e.fractures += 1;
+            changed = true;
+        }
+        if changed {
+            self.update_integration_points();
+            let fixed: Vec<_> = self.nodes.iter().map(|n| n.fixed).collect();
+            let pairs: Vec<_> = self.elements.iter().map(|e| e.nodes).collect();
+            self.system = SparseSystem::new(self.nodes.len(), &fixed, &pairs)?;
+            self.connectivity += 1;
+        }
+        Ok(())
     }
 }

@@ -2,7 +2,7 @@
 //! yield surface becomes a hinge; the integration point moves so that the hinge sits on the node, the
 //! flow follows the normality rule, and the hinge closes again when it unloads.
 
-use super::element::move_integration_point;
+use super::element::{moments_at, move_integration_point, strain_matrix, strains, ELEMENT_DOFS};
 use super::section::{Resultants, Section, YIELDING};
 
 /// The end of an element where a hinge sits.
@@ -91,50 +91,50 @@ impl StressState {
         t
     }
 
-    /// Advances the resultants by the strain increment `de`: forms a hinge where an elastic element's
-    /// end reaches the yield surface, flows plastically at a loading hinge, closes an unloading one.
-    pub fn update(&mut self, section: &Section, length: f64, de: &Resultants) {
-        let d = section.stiffness;
-        for (e, de) in self.strain.iter_mut().zip(de) {
-            *e += de;
-        }
+    /// Advances the resultants by the natural deformation increment `dd` (local, 12): forms a hinge
+    /// where an elastic element's end reaches the yield surface (the whole increment is then taken
+    /// with the integration point already at the hinge, which keeps the response consistent with the
+    /// hinge's tangent), flows plastically at a loading hinge (closest-point return) and closes a
+    /// hinge whose elastic trial falls inside the surface.
+    pub fn update(&mut self, section: &Section, length: f64, dd: &[f64; ELEMENT_DOFS]) {
+        let start = *self;
+        self.elastic_trial(section, length, dd);
         match self.hinge {
             None => {
-                for i in 0..6 {
-                    self.sigma[i] += d[i] * de[i];
-                }
                 let f_at = |end: End| {
-                    let (my, mz) = super::element::moments_at(length, self.s, &self.sigma, end.xi());
+                    let (my, mz) = moments_at(length, self.s, &self.sigma, end.xi());
                     section.yield_function(self.sigma[0], my, mz)
                 };
                 let (f_start, f_finish) = (f_at(End::Start), f_at(End::Finish));
-                let end = if f_start >= f_finish {
-                    End::Start
-                } else {
-                    End::Finish
-                };
                 if f_start.max(f_finish) >= 0.0 {
+                    let end = if f_start >= f_finish {
+                        End::Start
+                    } else {
+                        End::Finish
+                    };
+                    *self = start;
                     self.move_to(length, end.integration_point());
                     self.hinge = Some(end);
+                    self.elastic_trial(section, length, dd);
                     section.return_to_surface(&mut self.sigma);
                 }
             }
             Some(_) => {
-                let a = section.yield_gradient(&self.sigma);
-                let loading: f64 = YIELDING.iter().map(|&i| a[i] * d[i] * de[i]).sum();
-                if loading >= 0.0 {
-                    let t = self.tangent(section);
-                    for (i, row) in t.iter().enumerate() {
-                        self.sigma[i] += row.iter().zip(de).map(|(x, y)| x * y).sum::<f64>();
-                    }
+                if section.yield_function(self.sigma[0], self.sigma[4], self.sigma[5]) > 0.0 {
                     section.return_to_surface(&mut self.sigma);
                 } else {
-                    for i in 0..6 {
-                        self.sigma[i] += d[i] * de[i];
-                    }
                     self.hinge = None;
                 }
             }
+        }
+    }
+
+    /// Adds the elastic response `D B(s) dd` to the resultants and `B(s) dd` to the strains.
+    fn elastic_trial(&mut self, section: &Section, length: f64, dd: &[f64; ELEMENT_DOFS]) {
+        let de = strains(&strain_matrix(length, self.s), dd);
+        for (i, de) in de.iter().enumerate() {
+            self.strain[i] += de;
+            self.sigma[i] += section.stiffness[i] * de;
         }
     }
 }

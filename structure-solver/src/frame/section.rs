@@ -25,6 +25,8 @@ pub struct Section {
     pub plastic: [f64; 3],
     /// Projected width for drag [m].
     pub width: f64,
+    /// Radius of the contact particles: half the larger side (rectangle) or half the width [m].
+    pub contact_radius: f64,
 }
 
 impl Section {
@@ -33,7 +35,7 @@ impl Section {
         let e = material.young_modulus;
         let g = e / (2.0 * (1.0 + material.poisson));
         let sy = material.yield_stress;
-        let (area, iy, iz, j, asy, asz, zy, zz, width) = match (cfg.width, cfg.depth) {
+        let (area, iy, iz, j, asy, asz, zy, zz, width, contact_radius) = match (cfg.width, cfg.depth) {
             (Some(b), Some(h)) if cfg.kind == "rectangle" => {
                 let area = b * h;
                 let k = RECTANGLE_SHEAR_COEFFICIENT;
@@ -47,11 +49,13 @@ impl Section {
                     b * h * h / 4.0,
                     h * b * b / 4.0,
                     b,
+                    0.5 * b.max(h),
                 )
             }
             _ => {
                 let v = |x: Option<f64>| x.unwrap_or(0.0);
                 let area = v(cfg.area);
+                let width = cfg.width.unwrap_or_else(|| area.sqrt());
                 (
                     area,
                     v(cfg.iy),
@@ -61,7 +65,8 @@ impl Section {
                     v(cfg.shear_area_z),
                     v(cfg.plastic_modulus_y),
                     v(cfg.plastic_modulus_z),
-                    cfg.width.unwrap_or_else(|| area.sqrt()),
+                    width,
+                    0.5 * width,
                 )
             }
         };
@@ -72,6 +77,7 @@ impl Section {
             stiffness: [e * area, g * asy, g * asz, g * j, e * iy, e * iz],
             plastic: [sy * area, sy * zy, sy * zz],
             width,
+            contact_radius,
         }
     }
 
@@ -95,14 +101,37 @@ impl Section {
         ]
     }
 
-    /// Scales N, My and Mz of `sigma` back onto the yield surface when it lies outside.
+    /// Closest-point return of a trial state outside the yield surface (associated flow, backward
+    /// Euler): `σᵢ = σᵢ,trial / (1 + 2 Dᵢ Δλ / σᵢ0²)` for N, My, Mz with Δλ ≥ 0 such that f(σ) = 0.
     pub fn return_to_surface(&self, sigma: &mut Resultants) {
-        let f = self.yield_function(sigma[0], sigma[4], sigma[5]);
-        if f > 0.0 {
-            let scale = 1.0 / (1.0 + f).sqrt();
-            for i in YIELDING {
-                sigma[i] *= scale;
+        let trial = [sigma[0], sigma[4], sigma[5]];
+        let d = [self.stiffness[0], self.stiffness[4], self.stiffness[5]];
+        let c2 = self.plastic.map(|c| c * c);
+        let at = |lambda: f64| -> (f64, f64) {
+            let mut g = -1.0;
+            let mut dg = 0.0;
+            for i in 0..3 {
+                let q = 1.0 + 2.0 * d[i] * lambda / c2[i];
+                let x = trial[i] * trial[i] / (c2[i] * q * q);
+                g += x;
+                dg += -2.0 * x * (2.0 * d[i] / c2[i]) / q;
             }
+            (g, dg)
+        };
+        if at(0.0).0 <= 0.0 {
+            return;
+        }
+        // g(Δλ) is convex and decreasing: Newton from Δλ = 0 approaches the root from below
+        let mut lambda = 0.0;
+        for _ in 0..100 {
+            let (g, dg) = at(lambda);
+            if g.abs() < 1e-13 || dg == 0.0 {
+                break;
+            }
+            lambda -= g / dg;
+        }
+        for (k, i) in YIELDING.into_iter().enumerate() {
+            sigma[i] = trial[k] / (1.0 + 2.0 * d[k] * lambda / c2[k]);
         }
     }
 }

@@ -67,12 +67,18 @@ impl Element {
     }
 }
 
-/// Nodes (config nodes first, in config order, then member mid nodes in member order), elements
-/// (two per member, in member order) and the config-id → index map.
-pub fn build(
-    cfg: &FrameConfig,
-    key: &str,
-) -> Result<(Vec<Node>, Vec<Element>, BTreeMap<u32, usize>), FieldError> {
+/// A frame's nodes and elements as built from its config.
+pub struct Topology {
+    /// Config nodes first, in config order, then member mid nodes in member order.
+    pub nodes: Vec<Node>,
+    /// Two per member, in member order.
+    pub elements: Vec<Element>,
+    /// Config node id → node index.
+    pub ids: BTreeMap<u32, usize>,
+}
+
+/// Validates the config and builds its nodes and elements.
+pub fn build(cfg: &FrameConfig, key: &str) -> Result<Topology, FieldError> {
     cfg.validate(key)?;
     let mut nodes: Vec<Node> = Vec::with_capacity(cfg.node.len() + cfg.member.len());
     let mut index = BTreeMap::new();
@@ -127,5 +133,9 @@ pub fn build(
             elements.push(element);
         }
     }
-    Ok((nodes, elements, index))
+    Ok(Topology {
+        nodes,
+        elements,
+        ids: index,
+    })
 }

@@ -51,18 +51,17 @@ impl Frame {
             s.push_str("3\n");
         }
         s.push_str("</DataArray>\n</Cells>\n<CellData>\n");
-        let columns: [(&str, Box<dyn Fn(&super::Element) -> i64>); 3] = [
-            ("member", Box::new(|e| e.member as i64)),
-            (
-                "hinge",
-                Box::new(|e| e.stress.hinge.map_or(0, |end| end.node() as i64 + 1)),
-            ),
-            ("fractures", Box::new(|e| i64::from(e.fractures))),
-        ];
-        for (name, value) in columns {
+        let member: Vec<i64> = self.elements.iter().map(|e| e.member as i64).collect();
+        let hinge: Vec<i64> = self
+            .elements
+            .iter()
+            .map(|e| e.stress.hinge.map_or(0, |end| end.node() as i64 + 1))
+            .collect();
+        let fractures: Vec<i64> = self.elements.iter().map(|e| i64::from(e.fractures)).collect();
+        for (name, values) in [("member", member), ("hinge", hinge), ("fractures", fractures)] {
             let _ = writeln!(s, "<DataArray type=\"Int64\" Name=\"{name}\" format=\"ascii\">");
-            for e in &self.elements {
-                let _ = writeln!(s, "{}", value(e));
+            for v in values {
+                let _ = writeln!(s, "{v}");
             }
             s.push_str("</DataArray>\n");
         }

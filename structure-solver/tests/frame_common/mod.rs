@@ -61,6 +61,8 @@ pub fn beam(length: f64, members: usize, width: f64, depth: f64, material: Mater
         node,
         member,
         support: Vec::new(),
+        contact: None,
+        wall: Vec::new(),
     }
 }
 

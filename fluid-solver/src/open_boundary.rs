@@ -1,0 +1,261 @@
+//! Inflow and outflow boundaries for tsunami run-up (Saitoh & Akitomo, §IV-B and Fig. 5):
+//! water is fed in at u_in with a rising level, and removed downstream, so the particle count
+//! changes during the run.
+//!
+//! Inflow: a strip of [`Kind::Inflow`] particles on the tank's lattice, `strip_length` deep
+//! upstream of the plane x = x_in, moves rigidly with u_in along +x. Its particles are not
+//! integrated by S1-10 … S1-13; like wall particles they count in the number density (S1-15),
+//! get a pressure from S1-14 and enter the gradient (S1-3) of their fluid neighbours, so the
+//! strip pushes the water in front of it like a piston moving at u_in. Whenever the strip has
+//! advanced one spacing a new layer is inserted at its back; whenever the level h(t) reaches a
+//! new particle row (h rounded to whole spacings), that row is added along the whole strip, so
+//! the strip is always a box of height h(t). A strip particle that crosses the plane becomes
+//! fluid, keeping u_in.
+//!
+//! Outflow: fluid particles beyond the plane x = x_out are removed.
+//!
+//! [`ParticleBalance`] counts the particles inserted, turned into fluid and removed; with the
+//! counts by kind they close exactly: Δ(all particles) = inserted − removed and
+//! Δ(fluid) = entered − removed.
+
+use crate::kind::{Kind, FLUID};
+use crate::particles::Particles;
+use rayon::prelude::*;
+use schemas::case::fluid::{FluidConfig, InflowConfig};
+use std::fs;
+use std::io::{self, BufWriter, Write};
+use std::path::Path;
+
+/// Particles added and removed by the open boundaries since the solver was made.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ParticleBalance {
+    /// Strip particles created during the run (the initial strip is part of the initial layout).
+    pub inserted: u64,
+    /// Strip particles that crossed the inflow plane and became fluid.
+    pub entered: u64,
+    /// Fluid particles removed behind the outflow plane.
+    pub removed: u64,
+}
+
+/// The inflow strip: where its lattice is and how far it is filled.
+#[derive(Debug, Clone, PartialEq)]
+struct InflowStrip {
+    cfg: InflowConfig,
+    spacing: f64,
+    /// x of the strip's back face: `plane − strip_length`.
+    back: f64,
+    /// y of the lattice sites fed with water.
+    ys: Vec<f64>,
+    /// z of the lowest site (half a spacing above the tank floor).
+    z0: f64,
+    /// Distance the strip has moved since its back layer was inserted, in [0, Δs).
+    shift: f64,
+    /// Particle rows the whole strip is filled to.
+    rows: usize,
+}
+
+impl InflowStrip {
+    fn new(cfg: &InflowConfig, fluid: &FluidConfig) -> InflowStrip {
+        let tank = fluid.tank.inner();
+        let ds = fluid.spacing;
+        let span = cfg.span_or(&tank);
+        let first = ((span[0] - tank.min[1]) / ds - 0.5).ceil().max(0.0) as usize;
+        let last = ((span[1] - tank.min[1]) / ds - 0.5).floor().max(0.0) as usize;
+        InflowStrip {
+            cfg: cfg.clone(),
+            spacing: ds,
+            back: cfg.plane - cfg.strip_length,
+            ys: (first..=last)
+                .map(|j| tank.min[1] + (j as f64 + 0.5) * ds)
+                .collect(),
+            z0: tank.min[2] + 0.5 * ds,
+            shift: 0.0,
+            rows: 0,
+        }
+    }
+
+    /// Rows of particles for the level h(t): h rounded to whole spacings.
+    fn rows_at(&self, t: f64) -> usize {
+        (self.cfg.level_at(t) / self.spacing).round() as usize
+    }
+
+    /// x of the strip's layers that are still upstream of the plane, back to front.
+    fn layers(&self) -> Vec<f64> {
+        (0..)
+            .map(|m| self.back + self.shift + (m as f64 + 0.5) * self.spacing)
+            .take_while(|&x| x < self.cfg.plane)
+            .collect()
+    }
+
+    /// Adds the sites of layer `x`, rows `rows`, moving with u_in; returns how many.
+    fn fill(&self, p: &mut Particles, x: f64, rows: std::ops::Range<usize>, next_id: &mut u32) -> u64 {
+        let mut added = 0;
+        for k in rows {
+            let z = self.z0 + k as f64 * self.spacing;
+            for &y in &self.ys {
+                p.push_moving([x, y, z], [self.cfg.velocity, 0.0, 0.0], Kind::Inflow, *next_id);
+                *next_id += 1;
+                added += 1;
+            }
+        }
+        added
+    }
+
+    /// Raises the whole strip to the rows of level h(t); returns the particles added.
+    fn raise_to(&mut self, p: &mut Particles, t: f64, next_id: &mut u32) -> u64 {
+        let rows = self.rows_at(t);
+        if rows <= self.rows {
+            return 0;
+        }
+        let added = self
+            .layers()
+            .into_iter()
+            .map(|x| self.fill(p, x, self.rows..rows, next_id))
+            .sum();
+        self.rows = rows;
+        added
+    }
+
+    /// Turns the strip particles that crossed the plane during the last step into fluid, moves
+    /// the rest by u_in·dt and inserts a back layer for every spacing travelled; returns
+    /// (inserted, entered). Converting before moving moves every particle once per step: a
+    /// particle moved across the plane here is integrated from the next step on, not moved
+    /// twice (by the strip, then by the E-MPS step) in this one.
+    fn advance(&mut self, p: &mut Particles, dt: f64, next_id: &mut u32) -> (u64, u64) {
+        let (u, plane) = (self.cfg.velocity, self.cfg.plane);
+        let inflow = Kind::Inflow.code();
+        let entered: u64 = (&mut p.x, &mut p.kind)
+            .into_par_iter()
+            .with_min_len(4096)
+            .map(|(x, k)| {
+                if *k != inflow {
+                    0
+                } else if *x >= plane {
+                    *k = FLUID;
+                    1
+                } else {
+                    *x += u * dt;
+                    0
+                }
+            })
+            .sum();
+        self.shift += u * dt;
+        let mut inserted = 0;
+        while self.shift >= self.spacing {
+            self.shift -= self.spacing;
+            let x = self.back + self.shift + 0.5 * self.spacing;
+            inserted += self.fill(p, x, 0..self.rows, next_id);
+        }
+        (inserted, entered)
+    }
+}
+
+/// The inflow and outflow boundaries of one fluid participant, with their particle balance.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OpenBoundaries {
+    inflow: Option<InflowStrip>,
+    /// x of the outflow plane.
+    outflow: Option<f64>,
+    balance: ParticleBalance,
+    /// The id the next inserted particle gets (ids are never reused).
+    next_id: u32,
+}
+
+impl OpenBoundaries {
+    /// The boundaries of a validated section; adds the initial strip (level h(0)) to `p`.
+    pub fn new(cfg: &FluidConfig, p: &mut Particles) -> OpenBoundaries {
+        let mut next_id = p.id.iter().max().map_or(0, |&m| m + 1);
+        let inflow = cfg.inflow.as_ref().map(|c| {
+            let mut strip = InflowStrip::new(c, cfg);
+            strip.raise_to(p, 0.0, &mut next_id);
+            strip
+        });
+        OpenBoundaries {
+            inflow,
+            outflow: cfg.outflow.as_ref().map(|o| o.plane),
+            balance: ParticleBalance::default(),
+            next_id,
+        }
+    }
+
+    /// True when the case has an inflow or an outflow.
+    pub fn is_active(&self) -> bool {
+        self.inflow.is_some() || self.outflow.is_some()
+    }
+
+    /// True when water is fed in (an energy source for the stability monitor).
+    pub fn has_inflow(&self) -> bool {
+        self.inflow.is_some()
+    }
+
+    /// Counts since the start.
+    pub fn balance(&self) -> ParticleBalance {
+        self.balance
+    }
+
+    /// The inflow level h(t) above the tank floor [m] (0 without an inflow).
+    pub fn level_at(&self, t: f64) -> f64 {
+        self.inflow.as_ref().map_or(0.0, |s| s.cfg.level_at(t))
+    }
+
+    /// The boundaries' part of a step from `t` to `t + dt`, done before the E-MPS stages: the
+    /// strip moves, crosses into fluid, gets its new back layers and rows for h(t + dt); fluid
+    /// behind the outflow plane is removed. The particle order changes (the step re-sorts).
+    pub fn apply(&mut self, p: &mut Particles, t: f64, dt: f64) {
+        if let Some(strip) = &mut self.inflow {
+            let (inserted, entered) = strip.advance(p, dt, &mut self.next_id);
+            let raised = strip.raise_to(p, t + dt, &mut self.next_id);
+            self.balance.inserted += inserted + raised;
+            self.balance.entered += entered;
+        }
+        if let Some(plane) = self.outflow {
+            self.balance.removed += remove_fluid_beyond(p, plane);
+        }
+    }
+}
+
+/// Removes the fluid particles with x > `plane` (the others keep their order); returns how many.
+fn remove_fluid_beyond(p: &mut Particles, plane: f64) -> u64 {
+    let keep: Vec<u32> = (0..p.len() as u32)
+        .into_par_iter()
+        .with_min_len(4096)
+        .filter(|&i| !(p.kind[i as usize] == FLUID && p.x[i as usize] > plane))
+        .collect();
+    let removed = p.len() - keep.len();
+    if removed > 0 {
+        let mut scratch = Vec::new();
+        p.permute(&keep, &mut scratch);
+    }
+    removed as u64
+}
+
+/// The balance CSV: `time, inserted, entered, removed, inflow, fluid, total, fluid_mass`.
+pub struct BalanceFile {
+    out: BufWriter<fs::File>,
+}
+
+impl BalanceFile {
+    /// Creates the file with its header.
+    pub fn create(path: &Path) -> io::Result<BalanceFile> {
+        let mut out = BufWriter::new(fs::File::create(path)?);
+        writeln!(out, "time,inserted,entered,removed,inflow,fluid,total,fluid_mass")?;
+        out.flush()?;
+        Ok(BalanceFile { out })
+    }
+
+    /// Appends the row of time `t`; `particle_mass` is ρ0 Δs³.
+    pub fn row(&mut self, t: f64, b: ParticleBalance, p: &Particles, particle_mass: f64) -> io::Result<()> {
+        let fluid = p.count(Kind::Fluid);
+        writeln!(
+            self.out,
+            "{t:.6},{},{},{},{},{fluid},{},{:.6e}",
+            b.inserted,
+            b.entered,
+            b.removed,
+            p.count(Kind::Inflow),
+            p.len(),
+            fluid as f64 * particle_mass
+        )?;
+        self.out.flush()
+    }
+}

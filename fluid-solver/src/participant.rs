@@ -1,0 +1,220 @@
+//! [`FluidParticipant`]: the fluid solver taking part in a coupled run through
+//! [`schemas::participant::serve`].
+//!
+//! Inputs: `body_pose` (7 per body) and `body_velocity` (6 per body), read at the start of each
+//! substep by the window's interpolation. Outputs at every exchange time: `body_force` (6 per
+//! body: the fluid's pressure force and moment about the body's centre) and `body_reaction`
+//! (the same pair forces summed from the fluid's side, for the action–reaction ledger). Both
+//! hold the pressure (S1-3) part only: the viscous and collision forces between body and fluid
+//! particles are not in them yet. Save/restore keep a copy of
+//! the particle arrays. `advance` steps from the window start to exactly its end, shortening
+//! the last substep before each exchange time. Sample points and point reactions (the
+//! unresolved drag coupling, S2) are not served by E-MPS: a window asking for them fails with
+//! a message. With an output folder, VTU frames (and surface meshes) are written at the first
+//! exchange time at or after each output time, once the window is accepted.
+
+use crate::solver::{FluidSolver, SavedState};
+use crate::vtp::SurfaceFrames;
+use crate::vtu::{self, TimeSeries};
+use schemas::case::Case;
+use schemas::f64s::F64s;
+use schemas::message::{Fields, InterfaceDecl, Role, Waveform};
+use schemas::participant::Participant;
+use std::path::{Path, PathBuf};
+
+/// A window may start this far (relative to max(1, t)) from the time the fluid is at.
+const TIME_MATCH: f64 = 1e-9;
+
+/// VTU frames of a participant: where, how often, and the frame due next.
+struct Frames {
+    dir: PathBuf,
+    name: String,
+    interval: f64,
+    series: TimeSeries,
+    next: u64,
+    /// A state due for a frame in the last window, written once the window is accepted.
+    pending: Option<crate::particles::Particles>,
+    pending_time: f64,
+    /// Free-surface meshes written with each frame (`surface_mesh = true`).
+    surfaces: Option<SurfaceFrames>,
+}
+
+/// One fluid participant of a case, with its checkpoint.
+pub struct FluidParticipant {
+    name: String,
+    solver: FluidSolver,
+    checkpoint: Option<SavedState>,
+    frames: Option<Frames>,
+}
+
+impl FluidParticipant {
+    /// Builds participant `name` of `case` at t = 0; with `out`, writes VTU frames there.
+    pub fn from_case(case: &Case, name: &str, out: Option<&Path>) -> Result<Self, String> {
+        let cfg = case.fluid.get(name).ok_or_else(|| {
+            let names: Vec<&String> = case.fluid.keys().collect();
+            format!(
+                "{}: there is no [fluid.{name}] section; fluid participants: {names:?}",
+                case.path.display()
+            )
+        })?;
+        let mut solver = FluidSolver::new(cfg);
+        let frames = match out {
+            Some(dir) => {
+                std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+                let mut f = Frames {
+                    dir: dir.to_path_buf(),
+                    name: name.to_string(),
+                    interval: cfg.output_interval,
+                    series: TimeSeries::new(dir.join(format!("{name}.pvd"))),
+                    next: 1,
+                    pending: None,
+                    pending_time: 0.0,
+                    surfaces: cfg.surface_mesh.then(|| SurfaceFrames::new(dir, name, cfg.spacing)),
+                };
+                f.write(0, 0.0, solver.particles())?;
+                Some(f)
+            }
+            None => None,
+        };
+        solver.remove_gates();
+        Ok(Self {
+            name: name.to_string(),
+            solver,
+            checkpoint: None,
+            frames,
+        })
+    }
+
+    /// The solver as it is now.
+    pub fn solver(&self) -> &FluidSolver {
+        &self.solver
+    }
+
+    /// The interface outputs of the current state.
+    pub fn outputs(&self) -> Fields {
+        Fields {
+            body_force: F64s(self.solver.body_loads()),
+            body_reaction: F64s(self.solver.body_reactions()),
+            ..Fields::default()
+        }
+    }
+
+    /// Writes the frame kept back from the last window: that window was accepted.
+    fn commit(&mut self) -> Result<(), String> {
+        if let Some(f) = &mut self.frames {
+            if let Some(p) = f.pending.take() {
+                let k = f.next;
+                f.write(k, f.pending_time, &p)?;
+                f.next += 1;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Frames {
+    fn write(&mut self, k: u64, time: f64, p: &crate::particles::Particles) -> Result<(), String> {
+        let file = format!("{}_{k:05}.vtu", self.name);
+        let path = self.dir.join(&file);
+        vtu::write_vtu(&path, p).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        if let Some(s) = &mut self.surfaces {
+            s.write(k, time, p)
+                .map_err(|(path, e)| format!("cannot write {}: {e}", path.display()))?;
+        }
+        self.series
+            .add(time, &file)
+            .map_err(|e| format!("cannot write the PVD in {}: {e}", self.dir.display()))
+    }
+}
+
+impl Participant for FluidParticipant {
+    fn role(&self) -> Role {
+        Role::Fluid
+    }
+
+    fn time(&self) -> f64 {
+        self.solver.time()
+    }
+
+    fn interface(&self) -> InterfaceDecl {
+        InterfaceDecl {
+            bodies: self.solver.body_names().to_vec(),
+            ..InterfaceDecl::default()
+        }
+    }
+
+    fn initial_outputs(&mut self) -> Fields {
+        self.outputs()
+    }
+
+    fn save_checkpoint(&mut self) {
+        self.checkpoint = Some(self.solver.save_state());
+    }
+
+    fn restore_checkpoint(&mut self) -> Result<(), String> {
+        if let Some(f) = &mut self.frames {
+            f.pending = None;
+        }
+        let saved = self.checkpoint.as_ref().ok_or_else(|| {
+            format!(
+                "fluid `{}`: asked to restore a checkpoint, but none was saved",
+                self.name
+            )
+        })?;
+        self.solver.restore_state(saved);
+        Ok(())
+    }
+
+    fn advance(&mut self, inputs: &Waveform) -> Result<Vec<Fields>, String> {
+        let now = self.solver.time();
+        let start = inputs.start();
+        if (start - now).abs() > TIME_MATCH * now.abs().max(1.0) {
+            return Err(format!(
+                "fluid `{}`: the window starts at t = {start} s but the fluid is at t = {now} s",
+                self.name
+            ));
+        }
+        if let Some(s) = inputs
+            .samples
+            .iter()
+            .find(|s| !s.sample_point.is_empty() || !s.reaction.is_empty())
+        {
+            return Err(format!(
+                "fluid `{}`: the E-MPS participant does not serve sample points or point reactions (got {} and {} values)",
+                self.name,
+                s.sample_point.len(),
+                s.reaction.len()
+            ));
+        }
+        self.commit()?;
+        let bodies = self.solver.body_names().len();
+        let mut outputs = vec![self.outputs()];
+        for &t in inputs.times.iter().skip(1) {
+            while let Some(dt) = self.solver.next_step_towards(t) {
+                if bodies > 0 {
+                    let f = inputs.at(self.solver.time());
+                    if !f.body_pose.is_empty() || !f.body_velocity.is_empty() {
+                        self.solver.set_body_motion(&f.body_pose, &f.body_velocity)?;
+                    }
+                }
+                self.solver
+                    .step(dt)
+                    .map_err(|e| format!("fluid `{}`: {e}", self.name))?;
+            }
+            self.solver.land_on(t);
+            outputs.push(self.outputs());
+            if let Some(f) = &mut self.frames {
+                let due = f.next as f64 * f.interval - 1e-9 * f.interval;
+                if f.pending.is_none() && t >= due {
+                    f.pending = Some(self.solver.particles().clone());
+                    f.pending_time = t;
+                }
+            }
+        }
+        Ok(outputs)
+    }
+
+    fn finish(&mut self) -> Result<(), String> {
+        self.commit()
+    }
+}

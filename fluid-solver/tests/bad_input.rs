@@ -1,0 +1,211 @@
+//! Bad input is refused before any step with an error naming the file, the key and what is
+//! allowed; an unstable run stops with a diagnostic naming the step, the particle and the
+//! quantity, and keeps the output written so far.
+
+use fluid_solver::FluidSolver;
+use schemas::case::Case;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const GOOD: &str = r#"
+[case]
+name = "small"
+end_time = 0.2
+
+[fluid.water]
+spacing = 0.02
+time_step = 8.0e-4
+output_interval = 0.05
+tank = { min = [0.0, 0.0, 0.0], max = [0.2, 0.2, 0.3] }
+
+[[fluid.water.block]]
+min = [0.0, 0.0, 0.0]
+max = [0.1, 0.2, 0.2]
+"#;
+
+fn parse(text: &str) -> Result<Case, String> {
+    Case::parse(Path::new("cases/small/case.toml"), text.to_string()).map_err(|e| e.to_string())
+}
+
+fn error_of(text: &str) -> String {
+    match parse(text) {
+        Ok(_) => panic!("the case should have been refused:\n{text}"),
+        Err(e) => {
+            println!("{e}");
+            e
+        }
+    }
+}
+
+#[test]
+fn the_reference_case_is_accepted() {
+    let case = parse(GOOD).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(case.fluid["water"].body_names(), Vec::<&str>::new());
+}
+
+#[test]
+fn unstable_time_step_is_refused_with_the_limit() {
+    let e = error_of(&GOOD.replace("time_step = 8.0e-4", "time_step = 5.0e-3"));
+    assert!(
+        e.contains("cases/small/case.toml") && e.contains("`fluid.water.time_step`"),
+        "{e}"
+    );
+    assert!(e.contains("Courant") && e.contains("time_step ≤"), "{e}");
+    let viscous = GOOD
+        .replace("time_step = 8.0e-4", "time_step = 8.0e-4\nviscosity = 1.0")
+        .replace("spacing = 0.02", "spacing = 0.02\nsound_speed = 1.0");
+    let e = error_of(&viscous);
+    assert!(
+        e.contains("`fluid.water.time_step`") && e.contains("viscous"),
+        "{e}"
+    );
+}
+
+#[test]
+fn body_outside_the_domain_is_refused() {
+    let text = format!(
+        "{GOOD}\n[[fluid.water.body]]\nname = \"box\"\nmin = [0.15, 0.05, 0.25]\nmax = [0.25, 0.1, 0.28]\n"
+    );
+    let e = error_of(&text);
+    assert!(
+        e.contains("`fluid.water.body[0]`") && e.contains("outside the domain"),
+        "{e}"
+    );
+}
+
+#[test]
+fn zero_spacing_is_refused() {
+    let e = error_of(&GOOD.replace("spacing = 0.02", "spacing = 0.0"));
+    assert!(e.contains("`fluid.water.spacing`") && e.contains("> 0"), "{e}");
+}
+
+#[test]
+fn overlapping_blocks_are_refused() {
+    let text = format!("{GOOD}\n[[fluid.water.block]]\nmin = [0.05, 0.0, 0.0]\nmax = [0.15, 0.2, 0.1]\n");
+    let e = error_of(&text);
+    assert!(
+        e.contains("`fluid.water.block[1]`") && e.contains("overlaps `fluid.water.block[0]`"),
+        "{e}"
+    );
+    let gate = format!("{GOOD}\n[[fluid.water.gate]]\nmin = [0.08, 0.0, 0.0]\nmax = [0.12, 0.2, 0.2]\n");
+    let e = error_of(&gate);
+    assert!(
+        e.contains("`fluid.water.gate[0]`") && e.contains("overlaps"),
+        "{e}"
+    );
+}
+
+#[test]
+fn other_bad_keys_name_what_is_allowed() {
+    let e = error_of(&GOOD.replace("max = [0.2, 0.2, 0.3]", "max = [0.2, 0.21, 0.3]"));
+    assert!(e.contains("whole number of spacings"), "{e}");
+    let e = error_of(&GOOD.replace(
+        "output_interval = 0.05",
+        "output_interval = 0.05\nwall_layers = 2",
+    ));
+    assert!(
+        e.contains("`fluid.water.wall_layers`") && e.contains("4 … 10"),
+        "{e}"
+    );
+    let e = error_of(&GOOD.replace("output_interval = 0.05", "output_interval = 0.05\nspeed = 3"));
+    assert!(e.contains("speed"), "{e}");
+    let probe =
+        format!("{GOOD}\n[[fluid.water.probe]]\nname = \"p\"\nkind = \"pressure\"\nposition = [0.1, 0.1]\n");
+    let e = error_of(&probe);
+    assert!(
+        e.contains("`fluid.water.probe[0].position`") && e.contains("3 coordinates"),
+        "{e}"
+    );
+}
+
+#[test]
+fn nan_is_caught_naming_step_particle_and_quantity() {
+    let case = parse(GOOD).unwrap_or_else(|e| panic!("{e}"));
+    let mut solver = FluidSolver::new(&case.fluid["water"]);
+    solver.advance_to(0.01).unwrap_or_else(|e| panic!("{e}"));
+    let p = solver.particles_mut();
+    let i = (0..p.len())
+        .find(|&i| p.kind[i] == fluid_solver::Kind::Fluid.code())
+        .unwrap_or(0);
+    p.vx[i] = f64::NAN;
+    let id = p.id[i];
+    let e = solver.step(8.0e-4).expect_err("a NaN velocity must stop the run");
+    println!("{e}");
+    assert_eq!(e.particle, Some(id));
+    assert_eq!(e.step, 14);
+    assert!(e.quantity == "position" || e.quantity == "velocity", "{e}");
+}
+
+#[test]
+fn cli_reports_instability_and_keeps_the_last_good_frames() {
+    // A valid but far too soft case: c = 1 m/s passes the acoustic check with Δt = 0.02 s, but
+    // the falling water soon moves more than half a spacing per step.
+    let text = GOOD
+        .replace("time_step = 8.0e-4", "time_step = 0.01\nsound_speed = 1.0")
+        .replace("name = \"small\"", "name = \"soft\"")
+        .replace("end_time = 0.2", "end_time = 2.0");
+    let dir =
+        PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("fluid-bad-input-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+    let case = dir.join("case.toml");
+    std::fs::write(&case, text).unwrap_or_else(|e| panic!("{e}"));
+    let out = dir.join("out");
+    let run = Command::new(env!("CARGO_BIN_EXE_fluid-solver"))
+        .args(["run", &case.to_string_lossy(), "--out", &out.to_string_lossy()])
+        .output()
+        .unwrap_or_else(|e| panic!("{e}"));
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    println!("{stderr}");
+    assert!(!run.status.success());
+    assert!(
+        stderr.contains("unstable run stopped at step") && stderr.contains("particle"),
+        "{stderr}"
+    );
+    let pvd = std::fs::read_to_string(out.join("water.pvd")).unwrap_or_else(|e| panic!("{e}"));
+    let frames: Vec<&str> = pvd.lines().filter(|l| l.contains("<DataSet")).collect();
+    assert!(!frames.is_empty());
+    for f in frames {
+        let file = f
+            .split("file=\"")
+            .nth(1)
+            .and_then(|s| s.split('"').next())
+            .unwrap_or_default();
+        assert!(out.join(file).is_file(), "the PVD lists {file}, which is missing");
+    }
+    // A missing case file is a clear error too.
+    let run = Command::new(env!("CARGO_BIN_EXE_fluid-solver"))
+        .args(["run", &dir.join("nope.toml").to_string_lossy()])
+        .output()
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(!run.status.success());
+    assert!(String::from_utf8_lossy(&run.stderr).contains("cannot read the case file"));
+}
+
+#[test]
+fn energy_growing_without_a_source_is_caught() {
+    let case = parse(GOOD).unwrap_or_else(|e| panic!("{e}"));
+    let mut solver = FluidSolver::new(&case.fluid["water"]);
+    solver.advance_to(0.01).unwrap_or_else(|e| panic!("{e}"));
+    // Kick the resting water upwards at 1.5 m/s: 1.1 J/kg per particle, more than the allowed
+    // growth of 0.1 · g · tank height = 0.29 J/kg; each particle moves only 0.06 Δs per step.
+    let p = solver.particles_mut();
+    for i in (0..p.len()).filter(|&i| p.kind[i] == fluid_solver::Kind::Fluid.code()) {
+        p.vz[i] = 1.5;
+    }
+    let e = solver
+        .step(8.0e-4)
+        .expect_err("energy from nowhere must stop the run");
+    println!("{e}");
+    assert_eq!(e.quantity, "mechanical energy");
+    assert!(e.particle.is_some() && e.step == 14, "{e}");
+}
+
+#[test]
+fn a_box_without_particles_is_refused() {
+    let text = format!("{GOOD}\n[[fluid.water.gate]]\nmin = [0.101, 0.0, 0.0]\nmax = [0.109, 0.2, 0.2]\n");
+    let e = error_of(&text);
+    assert!(
+        e.contains("`fluid.water.gate[0]`") && e.contains("holds no particle"),
+        "{e}"
+    );
+}

@@ -1,0 +1,349 @@
+//! Inflow and outflow boundaries (`open_boundary`): the particle balance closes exactly, the
+//! inflow feeds u_in × area, the boundaries' state is saved and restored with the particles, the
+//! bridge-washout cases build and run, and bad boundary keys are refused naming the key.
+
+use fluid_solver::{FluidSolver, Kind};
+use schemas::case::{Case, FluidConfig};
+use std::collections::HashSet;
+use std::path::{Path, PathBuf};
+
+/// A dry channel 3.0 × 0.5 × 0.6 m (Δs = 5 cm): a 0.5 m strip feeds u_in = 1 m/s up to a level of
+/// 0.3 m (from 0.1 m, reached at 0.4 s); water leaves behind x = 2.5 m.
+const CHANNEL: &str = r#"
+[case]
+name = "channel"
+end_time = 2.0
+
+[fluid.river]
+spacing = 0.05
+time_step = 2.0e-3
+viscosity_term = false
+output_interval = 0.1
+tank = { min = [0.0, 0.0, 0.0], max = [3.0, 0.5, 0.6] }
+
+[fluid.river.inflow]
+plane = 0.5
+velocity = 1.0
+strip_length = 0.5
+level = 0.3
+initial_level = 0.1
+rise_time = 0.4
+
+[fluid.river.outflow]
+plane = 2.5
+"#;
+
+const SPACING: f64 = 0.05;
+const PLANE: f64 = 0.5;
+const U_IN: f64 = 1.0;
+/// u_in × level × width of the channel [m³/s].
+const INFLOW_RATE: f64 = 1.0 * 0.3 * 0.5;
+
+fn parse(text: &str) -> Result<Case, String> {
+    Case::parse(Path::new("cases/channel/case.toml"), text.to_string()).map_err(|e| e.to_string())
+}
+
+fn channel() -> FluidConfig {
+    let case = parse(CHANNEL).unwrap_or_else(|e| panic!("{e}"));
+    case.fluid["river"].clone()
+}
+
+fn error_of(text: &str) -> String {
+    match parse(text) {
+        Ok(_) => panic!("the case should have been refused:\n{text}"),
+        Err(e) => {
+            println!("{e}");
+            e
+        }
+    }
+}
+
+/// Counts of (all, fluid, inflow) particles.
+fn counts(s: &FluidSolver) -> (i64, i64, i64) {
+    let p = s.particles();
+    (
+        p.len() as i64,
+        p.count(Kind::Fluid) as i64,
+        p.count(Kind::Inflow) as i64,
+    )
+}
+
+#[test]
+fn particle_balance_closes_exactly_and_ids_stay_unique() {
+    let cfg = channel();
+    let mut s = FluidSolver::new(&cfg);
+    let m = s.particle_mass();
+    let (n0, f0, i0) = counts(&s);
+    assert_eq!(
+        (f0, i0),
+        (0, 10 * 10 * 2),
+        "the initial strip: 10 layers × 10 sites × 2 rows"
+    );
+    let mut count_changed = false;
+    while s.time() < 2.0 - 1e-9 {
+        s.advance_to((s.time() + 0.05).min(2.0))
+            .unwrap_or_else(|e| panic!("{e}"));
+        let b = s.open_boundaries().balance();
+        let (n, f, i) = counts(&s);
+        let (ins, ent, rem) = (b.inserted as i64, b.entered as i64, b.removed as i64);
+        // Exact: every particle added or removed is counted once.
+        assert_eq!(n - n0, ins - rem, "t = {}: all particles vs {b:?}", s.time());
+        assert_eq!(f - f0, ent - rem, "t = {}: fluid vs {b:?}", s.time());
+        assert_eq!(i - i0, ins - ent, "t = {}: strip vs {b:?}", s.time());
+        // Mass inside = mass in − mass out (each particle carries ρ0 Δs³).
+        let inside = f as f64 * m;
+        assert_eq!(inside, (f0 + ent - rem) as f64 * m);
+        let p = s.particles();
+        let ids: HashSet<u32> = p.id.iter().copied().collect();
+        assert_eq!(
+            ids.len(),
+            p.len(),
+            "t = {}: particle ids are not unique",
+            s.time()
+        );
+        assert!(
+            (0..p.len()).all(|k| p.kind[k] != Kind::Fluid.code() || p.x[k] <= 2.5 + 0.5 * SPACING),
+            "fluid left behind the outflow plane"
+        );
+        count_changed |= n != n0;
+    }
+    let b = s.open_boundaries().balance();
+    println!("{b:?}, fluid mass {:.3} kg", counts(&s).1 as f64 * m);
+    assert!(count_changed && b.removed > 0 && b.entered > b.removed, "{b:?}");
+}
+
+#[test]
+fn inflow_rate_matches_u_in_times_area() {
+    let cfg = channel();
+    let mut s = FluidSolver::new(&cfg);
+    // The level is at its maximum from 0.4 s, and the water just inside the plane stops slowing
+    // down by 0.9 s (it decelerates while the flow downstream builds up); measure over
+    // [1.0, 2.0] s: 20 spacings of strip travel, so the count holds whole layers.
+    let start = 1.0;
+    s.advance_to(start).unwrap_or_else(|e| panic!("{e}"));
+    let entered0 = s.open_boundaries().balance().entered;
+    let volume = SPACING.powi(3);
+    // Velocity flux just inside the plane: Σ u_x Δs³ / δ over the water in [x_in, x_in + δ],
+    // i.e. what the water really carries (it may be squeezed or stretched by the pressure).
+    // Strip particles that crossed the plane in the last step count too: they turn into fluid
+    // at the start of the next one.
+    let slab = 2.0 * SPACING;
+    let (mut flux_sum, mut samples) = (0.0, 0);
+    while s.time() < 2.0 - 1e-9 {
+        s.step(s.time_step()).unwrap_or_else(|e| panic!("{e}"));
+        let p = s.particles();
+        let q: f64 = (0..p.len())
+            .filter(|&k| p.kind[k] == Kind::Fluid.code() || p.kind[k] == Kind::Inflow.code())
+            .filter(|&k| p.x[k] >= PLANE && p.x[k] < PLANE + slab)
+            .map(|k| p.vx[k])
+            .sum::<f64>()
+            * volume
+            / slab;
+        flux_sum += q;
+        samples += 1;
+    }
+    let counted = (s.open_boundaries().balance().entered - entered0) as f64 * volume / (s.time() - start);
+    let carried = flux_sum / samples as f64;
+    println!(
+        "u_in A = {INFLOW_RATE:.5} m³/s; particles through the plane {counted:.5} m³/s; velocity flux inside the plane {carried:.5} m³/s"
+    );
+    // Tolerance 2 %: the issue's requirement for the inflow rate.
+    for (what, q) in [("counted", counted), ("carried", carried)] {
+        let err = (q - INFLOW_RATE).abs() / INFLOW_RATE;
+        assert!(
+            err < 0.02,
+            "{what} inflow rate {q} vs u_in A = {INFLOW_RATE}: {:.2} %",
+            100.0 * err
+        );
+    }
+    assert_eq!(U_IN, cfg.inflow.as_ref().map_or(0.0, |i| i.velocity));
+}
+
+#[test]
+fn restore_puts_the_boundaries_back_with_the_particles() {
+    let cfg = channel();
+    let mut s = FluidSolver::new(&cfg);
+    s.advance_to(1.2).unwrap_or_else(|e| panic!("{e}"));
+    let saved = s.save_state();
+    s.advance_to(1.4).unwrap_or_else(|e| panic!("{e}"));
+    let (first, b1) = (s.particles().clone(), s.open_boundaries().balance());
+    s.restore_state(&saved);
+    s.advance_to(1.4).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(s.open_boundaries().balance(), b1);
+    assert!(
+        s.particles() == &first,
+        "a repeated window must give the same particles"
+    );
+    assert!(b1.removed > 0, "the window should have removed particles: {b1:?}");
+}
+
+#[test]
+fn sound_speed_defaults_to_s1_16_with_the_inflow_speed() {
+    // S1-16 with u_max = √(u_in² + 2gH): Table II's u_in = 10 m/s, H = 20 m give 110.9 m/s
+    // (the table's value, given to 0.1 m/s).
+    let mut cfg = channel();
+    if let Some(i) = cfg.inflow.as_mut() {
+        (i.velocity, i.level) = (10.0, 20.0);
+    }
+    assert!(
+        (cfg.sound_speed() - 110.9).abs() < 0.05,
+        "c = {}",
+        cfg.sound_speed()
+    );
+}
+
+#[test]
+fn bad_boundaries_are_refused_naming_the_key() {
+    let cases = [
+        // The plane outside the domain, or too close to the tank's start for the strip.
+        (
+            "plane = 0.5",
+            "plane = 3.5",
+            "`fluid.river.inflow.plane`",
+            "outside the domain",
+        ),
+        (
+            "plane = 0.5",
+            "plane = 0.3",
+            "`fluid.river.inflow.plane`",
+            "outside the domain",
+        ),
+        (
+            "velocity = 1.0",
+            "velocity = 0.0",
+            "`fluid.river.inflow.velocity`",
+            "> 0",
+        ),
+        (
+            "velocity = 1.0",
+            "velocity = -1.0",
+            "`fluid.river.inflow.velocity`",
+            "> 0",
+        ),
+        (
+            "level = 0.3",
+            "level = 0.8",
+            "`fluid.river.inflow.level`",
+            "above the domain",
+        ),
+        (
+            "strip_length = 0.5",
+            "strip_length = 0.1",
+            "`fluid.river.inflow.strip_length`",
+            "at least",
+        ),
+        (
+            "plane = 2.5",
+            "plane = 3.0",
+            "`fluid.river.outflow.plane`",
+            "outside the domain",
+        ),
+        (
+            "plane = 2.5",
+            "plane = 0.4",
+            "`fluid.river.outflow.plane`",
+            "after the inflow plane",
+        ),
+    ];
+    for (from, to, key, what) in cases {
+        let text = if key.contains("outflow") {
+            let (head, tail) = CHANNEL.split_at(CHANNEL.find("[fluid.river.outflow]").unwrap_or(0));
+            format!("{head}{}", tail.replace(from, to))
+        } else {
+            CHANNEL.replacen(from, to, 1)
+        };
+        let e = error_of(&text);
+        assert!(
+            e.contains("cases/channel/case.toml") && e.contains(key) && e.contains(what),
+            "{to}: {e}"
+        );
+    }
+    let e = error_of(&CHANNEL.replace("[fluid.river.inflow]", "[fluid.river.inflow]\nspeed = 1.0"));
+    assert!(e.contains("speed"), "{e}");
+}
+
+fn case_path(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../cases")
+        .join(name)
+        .join("case.toml")
+}
+
+/// Particles of (deck, walls, fluid, strip) of a case's single fluid section.
+fn layout_counts(case: &Case) -> (FluidSolver, [usize; 4]) {
+    let cfg = case
+        .fluid
+        .values()
+        .next()
+        .unwrap_or_else(|| panic!("no fluid section"));
+    let s = FluidSolver::new(cfg);
+    let p = s.particles();
+    let c = [
+        p.count(Kind::Body),
+        p.count(Kind::Wall) + p.count(Kind::Dummy),
+        p.count(Kind::Fluid),
+        p.count(Kind::Inflow),
+    ];
+    (s, c)
+}
+
+#[test]
+fn bridge_washout_builds_with_the_papers_deck() {
+    let case = Case::load(&case_path("bridge-washout")).unwrap_or_else(|e| panic!("{e}"));
+    let cfg = &case.fluid["river"];
+    let steps = case.info.end_time / cfg.time_step;
+    assert!(
+        (steps - 1000.0).abs() < 1e-6,
+        "Table II: 1 000 steps, got {steps}"
+    );
+    let (_, [deck, walls, fluid, strip]) = layout_counts(&case);
+    println!("bridge-washout at t = 0: deck {deck}, walls/levees/piers/bed {walls}, fluid {fluid}, inflow strip {strip}");
+    // Seed 000 §IV-B: superstructure 3 380 particles.
+    assert_eq!(deck, 3380);
+}
+
+#[test]
+fn bridge_washout_small_runs_with_a_closing_balance() {
+    let case = Case::load(&case_path("bridge-washout-small")).unwrap_or_else(|e| panic!("{e}"));
+    let (mut s, [deck, walls, fluid, strip]) = layout_counts(&case);
+    println!("bridge-washout-small at t = 0: deck {deck}, walls {walls}, fluid {fluid}, strip {strip}");
+    let (n0, f0, _) = counts(&s);
+    // Fluid-only run of the coupled case's fluid section: the deck is held in place.
+    let end = case.info.end_time;
+    s.advance_to(end).unwrap_or_else(|e| panic!("{e}"));
+    let b = s.open_boundaries().balance();
+    let (n, f, _) = counts(&s);
+    println!("t = {end} s after {} steps: {b:?}, fluid {f}", s.steps());
+    assert_eq!(n - n0, b.inserted as i64 - b.removed as i64);
+    assert_eq!(f - f0, b.entered as i64 - b.removed as i64);
+    assert!(b.entered > 0 && b.removed > 0, "{b:?}");
+    // The surge must reach the deck: water above the deck's underside upstream of it.
+    let p = s.particles();
+    let wet = (0..p.len()).any(|k| p.kind[k] == Kind::Fluid.code() && p.z[k] > 12.0 && p.x[k] > 80.0);
+    assert!(wet, "the tsunami did not reach the deck's height");
+}
+
+#[test]
+fn standalone_run_writes_the_balance_csv() {
+    let case = parse(&CHANNEL.replace("end_time = 2.0", "end_time = 0.3")).unwrap_or_else(|e| panic!("{e}"));
+    let out =
+        PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("inflow-balance-{}", std::process::id()));
+    fluid_solver::run::run_case(&case, &out, false).unwrap_or_else(|e| panic!("{e}"));
+    let csv = std::fs::read_to_string(out.join("river_balance.csv")).unwrap_or_else(|e| panic!("{e}"));
+    let rows: Vec<Vec<f64>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap_or(f64::NAN)).collect())
+        .collect();
+    assert!(
+        csv.starts_with("time,inserted,entered,removed,inflow,fluid,total,fluid_mass"),
+        "{csv}"
+    );
+    assert_eq!(rows.len(), 4, "rows at t = 0, 0.1, 0.2, 0.3 s:\n{csv}");
+    let (first, last) = (&rows[0], &rows[3]);
+    assert_eq!(last[0], 0.3);
+    // Δ total = inserted − removed; Δ fluid = entered − removed.
+    assert_eq!(last[6] - first[6], last[1] - last[3], "{csv}");
+    assert_eq!(last[5] - first[5], last[2] - last[3], "{csv}");
+    assert!(last[2] > 0.0, "{csv}");
+}

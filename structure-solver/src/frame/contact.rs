@@ -1,0 +1,201 @@
+//! Contact between members and with walls (S2 §3(2)): each element is represented by particles along
+//! its axis (radius: half the section's larger side, spacing about one diameter); overlapping
+//! particles of elements that share no node, and particles that cross a wall, are pushed apart by a
+//! penalty spring and dashpot. The forces are taken at the start of each step (explicit), so the
+//! penalty stiffness must stay below the mass of the lightest particle over Δt².
+
+use super::section::Section;
+use super::topology::{Element, Node};
+use nalgebra::Vector3;
+use schemas::case::frame::{ContactConfig, WallConfig};
+use std::collections::HashMap;
+
+/// Contact parameters and walls of a frame.
+#[derive(Debug, Clone)]
+pub struct Contact {
+    stiffness: f64,
+    damping_ratio: f64,
+    members: bool,
+    /// Point and unit normal of each wall.
+    walls: Vec<(Vector3<f64>, Vector3<f64>)>,
+}
+
+/// A contact particle: where it is on which element.
+struct Particle {
+    element: usize,
+    /// Position along the element, 0 at its first node, 1 at its second.
+    t: f64,
+    position: Vector3<f64>,
+    velocity: Vector3<f64>,
+    radius: f64,
+    mass: f64,
+}
+
+impl Contact {
+    pub fn new(cfg: &ContactConfig, walls: &[WallConfig]) -> Contact {
+        Contact {
+            stiffness: cfg.stiffness,
+            damping_ratio: cfg.damping_ratio,
+            members: cfg.members,
+            walls: walls
+                .iter()
+                .map(|w| (Vector3::from(w.point), Vector3::from(w.normal).normalize()))
+                .collect(),
+        }
+    }
+
+    /// Largest stable penalty stiffness for a time step: the lightest particle's mass over Δt².
+    pub fn stiffness_limit(elements: &[Element], sections: &[Section], density: f64, dt: f64) -> f64 {
+        elements
+            .iter()
+            .map(|e| {
+                let section = &sections[e.section];
+                let count = particle_count(e.length0, section.contact_radius);
+                density * section.area * e.length0 / count as f64 / (dt * dt)
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// Contact forces, 6 per node (moments zero), at the given state.
+    pub fn forces(
+        &self,
+        nodes: &[Node],
+        elements: &[Element],
+        sections: &[Section],
+        density: f64,
+    ) -> Vec<f64> {
+        let particles = particles(nodes, elements, sections, density);
+        let mut forces = vec![0.0; nodes.len() * 6];
+        let mut push = |p: &Particle, f: Vector3<f64>| {
+            let [a, b] = elements[p.element].nodes;
+            for k in 0..3 {
+                forces[6 * a + k] += (1.0 - p.t) * f[k];
+                forces[6 * b + k] += p.t * f[k];
+            }
+        };
+        for p in &particles {
+            for (point, normal) in &self.walls {
+                let gap = (p.position - point).dot(normal) - p.radius;
+                if gap < 0.0 {
+                    let magnitude = self.normal_force(-gap, p.velocity.dot(normal), p.mass);
+                    push(p, normal * magnitude);
+                }
+            }
+        }
+        if self.members {
+            for (i, j) in touching_pairs(&particles, elements) {
+                let (pi, pj) = (&particles[i], &particles[j]);
+                let d = pj.position - pi.position;
+                let distance = d.norm();
+                let overlap = pi.radius + pj.radius - distance;
+                if overlap > 0.0 && distance > 0.0 {
+                    let n = d / distance;
+                    let reduced = pi.mass * pj.mass / (pi.mass + pj.mass);
+                    let magnitude = self.normal_force(overlap, (pj.velocity - pi.velocity).dot(&n), reduced);
+                    push(pi, -n * magnitude);
+                    push(pj, n * magnitude);
+                }
+            }
+        }
+        forces
+    }
+
+    /// Stops a run in which a member went through a wall (a particle's centre more than one radius
+    /// behind it).
+    pub fn check_walls(
+        &self,
+        nodes: &[Node],
+        elements: &[Element],
+        sections: &[Section],
+    ) -> Result<(), String> {
+        for p in particles(nodes, elements, sections, 0.0) {
+            for (w, (point, normal)) in self.walls.iter().enumerate() {
+                let depth = -(p.position - point).dot(normal);
+                if depth > p.radius {
+                    return Err(format!(
+                        "frame: element {} went through wall {w} ({depth:.3e} m behind it): the run is unstable; \
+                         raise the contact stiffness or reduce the time step",
+                        p.element
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Repulsive normal force `k δ − c v_n` (never pulling), `c = 2 ζ √(k m)`.
+    fn normal_force(&self, overlap: f64, approach_velocity: f64, mass: f64) -> f64 {
+        let c = 2.0 * self.damping_ratio * (self.stiffness * mass).sqrt();
+        (self.stiffness * overlap - c * approach_velocity).max(0.0)
+    }
+}
+
+/// Particles per element: about one per diameter, at least one.
+fn particle_count(length: f64, radius: f64) -> usize {
+    ((length / (2.0 * radius)).ceil() as usize).max(1)
+}
+
+fn particles(nodes: &[Node], elements: &[Element], sections: &[Section], density: f64) -> Vec<Particle> {
+    let mut out = Vec::new();
+    for (i, e) in elements.iter().enumerate() {
+        let section = &sections[e.section];
+        let radius = section.contact_radius;
+        let count = particle_count(e.length0, radius);
+        let [a, b] = e.nodes.map(|n| &nodes[n]);
+        let (va, vb) = (
+            Vector3::from_column_slice(&a.velocity[..3]),
+            Vector3::from_column_slice(&b.velocity[..3]),
+        );
+        let mass = density * section.area * e.length0 / count as f64;
+        for k in 0..count {
+            let t = (k as f64 + 0.5) / count as f64;
+            out.push(Particle {
+                element: i,
+                t,
+                position: a.position * (1.0 - t) + b.position * t,
+                velocity: va * (1.0 - t) + vb * t,
+                radius,
+                mass,
+            });
+        }
+    }
+    out
+}
+
+/// Pairs of particles closer than the sum of the largest radii, on elements that share no node,
+/// found with a cell list.
+fn touching_pairs(particles: &[Particle], elements: &[Element]) -> Vec<(usize, usize)> {
+    let reach = 2.0 * particles.iter().map(|p| p.radius).fold(0.0, f64::max);
+    if reach <= 0.0 {
+        return Vec::new();
+    }
+    let cell = |x: &Vector3<f64>| [0, 1, 2].map(|k| (x[k] / reach).floor() as i64);
+    let mut cells: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
+    for (i, p) in particles.iter().enumerate() {
+        cells.entry(cell(&p.position)).or_default().push(i);
+    }
+    let mut pairs = Vec::new();
+    for (i, p) in particles.iter().enumerate() {
+        let c = cell(&p.position);
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    let Some(list) = cells.get(&[c[0] + dx, c[1] + dy, c[2] + dz]) else {
+                        continue;
+                    };
+                    for &j in list {
+                        if j <= i {
+                            continue;
+                        }
+                        let (ei, ej) = (&elements[p.element], &elements[particles[j].element]);
+                        let adjacent = ei.nodes.iter().any(|n| ej.nodes.contains(n));
+                        if !adjacent && (particles[j].position - p.position).norm() < reach {
+                            pairs.push((i, j));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    pairs
+}
