@@ -4,8 +4,24 @@
 //! A body's pose is its centre and a unit quaternion (w, x, y, z) relative to its initial
 //! placement: at t = 0 the centre is the middle of its `[[body]]` box and the quaternion is
 //! (1, 0, 0, 0). Each body particle keeps its offset from the initial centre.
+//!
+//! What the fluid exchanges with a body, pair by pair between a fluid particle i and a body
+//! particle j (each pair force acts on the body and, reversed, on the fluid, so action = reaction
+//! holds to round-off and the moments balance too, the pair forces lying along r_ij):
+//! - the pressure pair terms of S1-3 (body particles carry pressure like walls, S1-14, and fill
+//!   the fluid's number density, S1-15, as the seed's PMS does, S1-19 … S1-21);
+//! - the collision stage's impulses between close approaching fluid and body particles (see
+//!   [`crate::emps_step`]), with the body particle's rigid velocity, reported as impulse / Δt of
+//!   the last step;
+//! - when the viscous term is on, S1-4's pair terms with the body particles' rigid velocities
+//!   (no slip on the body).
+//!
+//! Gravity is counted once: the fluid reports only these contact forces. Buoyancy is their
+//! resultant (the pressure of the water's own weight acting on the body's surface); the body's
+//! weight is applied by the structure solver's `gravity`, never here.
 
-use crate::kernel::Kernel;
+use crate::emps_step::{COLLISION_DISTANCE, RESTITUTION};
+use crate::kernel::{weight, weight_grad, Kernel};
 use crate::kind::{Kind, FLUID};
 use crate::layout::BodyParticles;
 use crate::neighbour_search::CellGrid;
@@ -114,52 +130,13 @@ impl RigidBodies {
         p: &Particles,
         centres: &[f64],
     ) -> Vec<f64> {
-        let re = kernel.re_grad;
-        let re2 = re * re;
-        let reach = grid.reach(re);
-        // Particle volume m/ρ0 = Δs³ times S1-3's d/n0_grad.
-        let scale = kernel.spacing.powi(3) * kernel.gradient_factor();
-        let per_particle: Vec<(usize, [f64; 3], [f64; 3])> = (0..p.len())
-            .into_par_iter()
-            .with_min_len(1024)
-            .filter(|&j| p.kind[j] == Kind::Body.code())
-            .filter_map(|j| {
-                let &(_, b, _) = self.member(p.id[j])?;
-                let rj = p.position(j);
-                let mut f = [0.0; 3];
-                grid.for_each_range(j, reach, |s, e| {
-                    for i in (s..e).filter(|&i| p.kind[i] == FLUID) {
-                        let d = [rj[0] - p.x[i], rj[1] - p.y[i], rj[2] - p.z[i]];
-                        let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-                        if r2 < re2 && r2 > 0.0 {
-                            let r = r2.sqrt();
-                            let c = (p.pressure[i] + p.pressure[j]) * (re / r - r / re) / r2;
-                            for a in 0..3 {
-                                f[a] += scale * c * d[a];
-                            }
-                        }
-                    }
-                });
-                Some((b, rj, f))
-            })
-            .collect();
-        let mut loads = vec![0.0; 6 * self.names.len()];
-        for (b, r, f) in per_particle {
-            let c = [centres[7 * b], centres[7 * b + 1], centres[7 * b + 2]];
-            let m = cross([r[0] - c[0], r[1] - c[1], r[2] - c[2]], f);
-            for a in 0..3 {
-                loads[6 * b + a] += f[a];
-                loads[6 * b + 3 + a] += m[a];
-            }
-        }
-        loads
+        self.body_side_sum(grid, p, kernel.re_grad, centres, pressure_pair(kernel, p))
     }
 
     /// The reaction of [`RigidBodies::pressure_loads`] evaluated from the fluid's side: for each
-    /// fluid particle i, the S1-3 pair terms of its body neighbours j,
-    /// `f_i = −Δs³ d/n0_grad Σ_j (P_i + P_j) r_ij/|r_ij|² w_grad`, summed per body with their moment
-    /// about `centres` (6 per body). It equals minus the loads up to round-off when the pair
-    /// search is symmetric, which the coupler's action–reaction ledger checks.
+    /// fluid particle i, the S1-3 pair terms of its body neighbours j, reversed, summed per body
+    /// with their moment about `centres` (6 per body). It equals minus the loads up to round-off
+    /// when the pair search is symmetric, which the coupler's action–reaction ledger checks.
     pub fn pressure_reaction(
         &self,
         grid: &CellGrid,
@@ -167,10 +144,108 @@ impl RigidBodies {
         p: &Particles,
         centres: &[f64],
     ) -> Vec<f64> {
-        let re = kernel.re_grad;
-        let re2 = re * re;
-        let reach = grid.reach(re);
-        let scale = kernel.spacing.powi(3) * kernel.gradient_factor();
+        self.fluid_side_sum(grid, p, kernel.re_grad, centres, pressure_pair(kernel, p))
+    }
+
+    /// Force (impulse / Δt) and moment about `centres` of the collision stage on each body (6 per
+    /// body), read before the stage applies its velocity changes: for a fluid particle i closer
+    /// than `COLLISION_DISTANCE` Δs to body particle j and approaching it, the fluid gets
+    /// `Δu_i = (1+e) ((u_j − u_i)·r_ij) r_ij/|r_ij|²` (the body particle moves with its rigid
+    /// velocity, as a wall), and the body the opposite impulse `−m Δu_i`.
+    pub fn contact_loads(
+        &self,
+        grid: &CellGrid,
+        p: &Particles,
+        centres: &[f64],
+        scales: &ExchangeScales,
+    ) -> Vec<f64> {
+        self.body_side_sum(grid, p, scales.distance(), centres, contact_pair(scales, p))
+    }
+
+    /// The reaction of [`RigidBodies::contact_loads`] evaluated from the fluid's side (the
+    /// collision impulses the fluid took from each body, / Δt, with their moment).
+    pub fn contact_reaction(
+        &self,
+        grid: &CellGrid,
+        p: &Particles,
+        centres: &[f64],
+        scales: &ExchangeScales,
+    ) -> Vec<f64> {
+        self.fluid_side_sum(grid, p, scales.distance(), centres, contact_pair(scales, p))
+    }
+
+    /// Viscous force and moment about `centres` of the fluid on each body (6 per body), the
+    /// reaction of S1-4's pair terms: fluid particle i gets `m ν 2d/(λ0 n0) (u_j − u_i) w(|r_ij|)`
+    /// from body particle j (which moves with the body's rigid velocity), the body the opposite.
+    pub fn viscous_loads(
+        &self,
+        grid: &CellGrid,
+        kernel: &Kernel,
+        p: &Particles,
+        centres: &[f64],
+        scales: &ExchangeScales,
+    ) -> Vec<f64> {
+        self.body_side_sum(grid, p, kernel.re, centres, viscous_pair(kernel, scales, p))
+    }
+
+    /// The reaction of [`RigidBodies::viscous_loads`] evaluated from the fluid's side.
+    pub fn viscous_reaction(
+        &self,
+        grid: &CellGrid,
+        kernel: &Kernel,
+        p: &Particles,
+        centres: &[f64],
+        scales: &ExchangeScales,
+    ) -> Vec<f64> {
+        self.fluid_side_sum(grid, p, kernel.re, centres, viscous_pair(kernel, scales, p))
+    }
+
+    /// Σ over body particles j of `pair(i, j)` over fluid neighbours i within `radius`, per body,
+    /// with the moment about the body's centre at r_j (6 per body).
+    fn body_side_sum(
+        &self,
+        grid: &CellGrid,
+        p: &Particles,
+        radius: f64,
+        centres: &[f64],
+        pair: impl Fn(usize, usize) -> Option<[f64; 3]> + Sync,
+    ) -> Vec<f64> {
+        let reach = grid.reach(radius);
+        let per_particle: Vec<(usize, [f64; 3], [f64; 3])> = (0..p.len())
+            .into_par_iter()
+            .with_min_len(1024)
+            .filter(|&j| p.kind[j] == Kind::Body.code())
+            .filter_map(|j| {
+                let &(_, b, _) = self.member(p.id[j])?;
+                let mut f = [0.0; 3];
+                grid.for_each_range(j, reach, |s, e| {
+                    for i in (s..e).filter(|&i| p.kind[i] == FLUID) {
+                        if let Some(fij) = pair(i, j) {
+                            (0..3).for_each(|a| f[a] += fij[a]);
+                        }
+                    }
+                });
+                Some((b, p.position(j), f))
+            })
+            .collect();
+        let mut loads = vec![0.0; 6 * self.names.len()];
+        for (b, r, f) in per_particle {
+            add_with_moment(&mut loads[6 * b..6 * b + 6], r, &centres[7 * b..7 * b + 3], f);
+        }
+        loads
+    }
+
+    /// −Σ over fluid particles i of `pair(i, j)` over body neighbours j within `radius`, per body,
+    /// with the moment about the body's centre at r_i (6 per body).
+    fn fluid_side_sum(
+        &self,
+        grid: &CellGrid,
+        p: &Particles,
+        radius: f64,
+        centres: &[f64],
+        pair: impl Fn(usize, usize) -> Option<[f64; 3]> + Sync,
+    ) -> Vec<f64> {
+        let reach = grid.reach(radius);
         let bodies = self.names.len();
         let body = Kind::Body.code();
         (0..p.len())
@@ -183,21 +258,17 @@ impl RigidBodies {
                     let ri = p.position(i);
                     grid.for_each_range(i, reach, |s, e| {
                         for j in (s..e).filter(|&j| p.kind[j] == body) {
-                            let d = [p.x[j] - ri[0], p.y[j] - ri[1], p.z[j] - ri[2]];
-                            let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
                             let Some(&(_, b, _)) = self.member(p.id[j]) else {
                                 continue;
                             };
-                            if r2 < re2 && r2 > 0.0 {
-                                let r = r2.sqrt();
-                                let c = -scale * (p.pressure[i] + p.pressure[j]) * (re / r - r / re) / r2;
-                                let f = d.map(|v| c * v);
-                                let centre = [centres[7 * b], centres[7 * b + 1], centres[7 * b + 2]];
-                                let m = cross([ri[0] - centre[0], ri[1] - centre[1], ri[2] - centre[2]], f);
-                                for a in 0..3 {
-                                    acc[6 * b + a] += f[a];
-                                    acc[6 * b + 3 + a] += m[a];
-                                }
+                            if let Some(fij) = pair(i, j) {
+                                let f = fij.map(|v| -v);
+                                add_with_moment(
+                                    &mut acc[6 * b..6 * b + 6],
+                                    ri,
+                                    &centres[7 * b..7 * b + 3],
+                                    f,
+                                );
                             }
                         }
                     });
@@ -208,5 +279,99 @@ impl RigidBodies {
                 || vec![0.0; 6 * bodies],
                 |a, b| a.iter().zip(&b).map(|(x, y)| x + y).collect(),
             )
+    }
+}
+
+/// Adds force `f` acting at `r` and its moment about `centre` to `out` (fx fy fz mx my mz).
+fn add_with_moment(out: &mut [f64], r: [f64; 3], centre: &[f64], f: [f64; 3]) {
+    let m = cross([r[0] - centre[0], r[1] - centre[1], r[2] - centre[2]], f);
+    for a in 0..3 {
+        out[a] += f[a];
+        out[3 + a] += m[a];
+    }
+}
+
+/// S1-3's pressure pair force on body particle j from fluid particle i (r_ij = r_j − r_i):
+/// `Δs³ d/n0_grad (P_i + P_j) r_ij/|r_ij|² w_grad(|r_ij|)`, or `None` beyond r_e,grad.
+fn pressure_pair<'a>(
+    kernel: &Kernel,
+    p: &'a Particles,
+) -> impl Fn(usize, usize) -> Option<[f64; 3]> + Sync + 'a {
+    let re = kernel.re_grad;
+    // Particle volume m/ρ0 = Δs³ times S1-3's d/n0_grad.
+    let scale = kernel.spacing.powi(3) * kernel.gradient_factor();
+    move |i, j| {
+        let d = [p.x[j] - p.x[i], p.y[j] - p.y[i], p.z[j] - p.z[i]];
+        let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        if !(r2 < re * re && r2 > 0.0) {
+            return None;
+        }
+        let c = scale * (p.pressure[i] + p.pressure[j]) * weight_grad(r2.sqrt(), re) / r2;
+        Some(d.map(|v| c * v))
+    }
+}
+
+/// What turns the viscous and collision stages' velocity changes into forces: Δs, m = ρ0 Δs³,
+/// ν and the step Δt.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ExchangeScales {
+    pub spacing: f64,
+    pub particle_mass: f64,
+    pub viscosity: f64,
+    pub dt: f64,
+}
+
+impl ExchangeScales {
+    /// Pairs closer than this collide [m].
+    fn distance(&self) -> f64 {
+        COLLISION_DISTANCE * self.spacing
+    }
+}
+
+/// The collision stage's force on body particle j from fluid particle i, `−m Δu_i / Δt` with
+/// `Δu_i = (1+e) ((u_j − u_i)·r_ij) r_ij/|r_ij|²` when they are closer than the collision
+/// distance and approach each other, else `None`.
+fn contact_pair<'a>(
+    scales: &ExchangeScales,
+    p: &'a Particles,
+) -> impl Fn(usize, usize) -> Option<[f64; 3]> + Sync + 'a {
+    let distance = scales.distance();
+    let impulse_to_force = scales.particle_mass / scales.dt;
+    move |i, j| {
+        let d = [p.x[j] - p.x[i], p.y[j] - p.y[i], p.z[j] - p.z[i]];
+        let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        if !(r2 < distance * distance && r2 > 0.0) {
+            return None;
+        }
+        let closing = (p.vx[j] - p.vx[i]) * d[0] + (p.vy[j] - p.vy[i]) * d[1] + (p.vz[j] - p.vz[i]) * d[2];
+        if closing >= 0.0 || closing.is_nan() {
+            return None;
+        }
+        let c = -impulse_to_force * (1.0 + RESTITUTION) * closing / r2;
+        Some(d.map(|v| c * v))
+    }
+}
+
+/// S1-4's viscous pair force on body particle j from fluid particle i,
+/// `−m ν 2d/(λ0 n0) (u_j − u_i) w(|r_ij|)` (w of S1-6 with r_e), or `None` beyond r_e.
+fn viscous_pair<'a>(
+    kernel: &Kernel,
+    scales: &ExchangeScales,
+    p: &'a Particles,
+) -> impl Fn(usize, usize) -> Option<[f64; 3]> + Sync + 'a {
+    let re = kernel.re;
+    let scale = -scales.particle_mass * scales.viscosity * kernel.laplacian_factor();
+    move |i, j| {
+        let d = [p.x[j] - p.x[i], p.y[j] - p.y[i], p.z[j] - p.z[i]];
+        let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        if !(r2 < re * re && r2 > 0.0) {
+            return None;
+        }
+        let c = scale * weight(r2.sqrt(), re);
+        Some([
+            c * (p.vx[j] - p.vx[i]),
+            c * (p.vy[j] - p.vy[i]),
+            c * (p.vz[j] - p.vz[i]),
+        ])
     }
 }

@@ -43,6 +43,17 @@ pub struct StepTotals {
     pub candidates: u64,
 }
 
+/// The stage of the step at which the bodies read their share of an exchange with the fluid.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Exchange {
+    /// S1-4's viscous pair terms, at r^k (only when the viscous term is on).
+    Viscous,
+    /// S1-3's pressure pair forces, at r* with the pressures of S1-14.
+    Pressure,
+    /// The collision stage's impulses, before they are applied.
+    Collision,
+}
+
 /// The work buffers of the step (reused every step).
 #[derive(Debug, Clone)]
 pub struct EmpsStep {
@@ -65,21 +76,31 @@ impl EmpsStep {
         }
     }
 
-    /// Advances the particles by `dt`: the stages of S1-9 … S1-15 in order.
-    pub fn advance(&mut self, p: &mut Particles, dt: f64) -> StepTotals {
+    /// Advances the particles by `dt`: the stages of S1-9 … S1-15 in order. `bodies` is shown
+    /// the state each exchange with the bodies is computed from, before it is applied: the
+    /// velocities at r^k when the viscous term is on ([`Exchange::Viscous`]), the pressures at r*
+    /// ([`Exchange::Pressure`]) and the collision stage ([`Exchange::Collision`]).
+    pub fn advance(
+        &mut self,
+        p: &mut Particles,
+        dt: f64,
+        mut bodies: impl FnMut(Exchange, &CellGrid, &Particles),
+    ) -> StepTotals {
         let mut totals = StepTotals::default();
         let viscous = self.physics.viscosity_term && self.physics.viscosity > 0.0;
         if viscous {
             self.grid.sort(p, &mut self.scratch); // cell lists at r^k
             self.viscous_laplacian(p, &mut totals); // S1-4
+            bodies(Exchange::Viscous, &self.grid, p);
         }
         self.predict(p, dt, viscous); // S1-10, S1-11
         self.grid.sort(p, &mut self.scratch); // cell lists at r*
         totals.candidates += operators::number_density(&self.grid, &self.kernel, p); // S1-15
         self.equation_of_state(p); // S1-14
         self.pressure_gradient(p, &mut totals); // S1-3
+        bodies(Exchange::Pressure, &self.grid, p);
         self.correct(p, dt); // S1-12, S1-13
-        self.collide(p, dt, &mut totals);
+        self.collide(p, dt, &mut totals, |g, p| bodies(Exchange::Collision, g, p));
         totals
     }
 
@@ -109,9 +130,16 @@ impl EmpsStep {
     }
 
     /// Collisions of close approaching particles (see the module doc), applied like S1-13.
-    fn collide(&mut self, p: &mut Particles, dt: f64, totals: &mut StepTotals) {
+    fn collide(
+        &mut self,
+        p: &mut Particles,
+        dt: f64,
+        totals: &mut StepTotals,
+        body_contact: impl FnOnce(&CellGrid, &Particles),
+    ) {
         let distance = COLLISION_DISTANCE * self.kernel.spacing;
         let t = operators::collision(&self.grid, p, distance, RESTITUTION, &mut self.accel);
+        body_contact(&self.grid, p);
         let m = self.particle_mass();
         for a in 0..3 {
             totals.force_from_walls[a] += m * t.from_non_fluid[a] / dt;

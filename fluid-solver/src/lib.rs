@@ -1,7 +1,7 @@
 //! `fluid-solver`: a 3D explicit MPS (E-MPS) fluid with particle walls, after Saitoh & Akitomo
 //! (seed 000, equations S1-3 … S1-16 in `physics.md`).
 //!
-//! - [`particles`]: structure-of-arrays storage; [`kind`]: fluid / wall / dummy / body / gate.
+//! - [`particles`]: structure-of-arrays storage; [`kind`]: fluid / wall / dummy / body / gate / inflow.
 //! - [`layout`]: the initial lattice of a case; [`kernel`]: weights and lattice constants.
 //! - [`neighbour_search`]: cell lists with counting sort; [`operators`]: the particle operators.
 //! - [`bodies`]: rigid bodies of particles (kinematics in, loads out); [`emps_step`]: one time step; [`solver`]: the clock, save/restore, advance-to.

@@ -193,14 +193,10 @@ impl OpenBoundaries {
         self.balance
     }
 
-    /// The inflow level h(t) above the tank floor [m] (0 without an inflow).
-    pub fn level_at(&self, t: f64) -> f64 {
-        self.inflow.as_ref().map_or(0.0, |s| s.cfg.level_at(t))
-    }
-
-    /// The boundaries' part of a step from `t` to `t + dt`, done before the E-MPS stages: the
-    /// strip moves, crosses into fluid, gets its new back layers and rows for h(t + dt); fluid
-    /// behind the outflow plane is removed. The particle order changes (the step re-sorts).
+    /// The boundaries' part of a step from `t` to `t + dt`, done before the E-MPS stages: strip
+    /// particles past the inflow plane become fluid, the rest of the strip moves by u_in·dt and
+    /// gets its new back layers and the rows of h(t + dt); fluid behind the outflow plane is
+    /// removed. The particle order changes (the step re-sorts).
     pub fn apply(&mut self, p: &mut Particles, t: f64, dt: f64) {
         if let Some(strip) = &mut self.inflow {
             let (inserted, entered) = strip.advance(p, dt, &mut self.next_id);

@@ -69,7 +69,9 @@ impl FluidParticipant {
                     next: 1,
                     pending: None,
                     pending_time: 0.0,
-                    surfaces: cfg.surface_mesh.then(|| SurfaceFrames::new(dir, name, cfg.spacing)),
+                    surfaces: cfg
+                        .surface_mesh
+                        .then(|| SurfaceFrames::new(dir, name, cfg.spacing)),
                 };
                 f.write(0, 0.0, solver.particles())?;
                 Some(f)
@@ -215,6 +217,20 @@ impl Participant for FluidParticipant {
     }
 
     fn finish(&mut self) -> Result<(), String> {
+        if self.solver.open_boundaries().is_active() {
+            let (b, p) = (self.solver.open_boundaries().balance(), self.solver.particles());
+            eprintln!(
+                "fluid `{}`: open boundaries at t = {} s: {} inserted, {} entered, {} removed; {} fluid, {} inflow, {} particles",
+                self.name,
+                self.solver.time(),
+                b.inserted,
+                b.entered,
+                b.removed,
+                p.count(crate::Kind::Fluid),
+                p.count(crate::Kind::Inflow),
+                p.len()
+            );
+        }
         self.commit()
     }
 }

@@ -87,7 +87,9 @@ pub fn run_case(case: &Case, out: &Path, progress: bool) -> Result<RunSummary, R
     let end = case.info.end_time;
 
     let mut frames = 0usize;
-    let mut surfaces = cfg.surface_mesh.then(|| SurfaceFrames::new(out, name, cfg.spacing));
+    let mut surfaces = cfg
+        .surface_mesh
+        .then(|| SurfaceFrames::new(out, name, cfg.spacing));
     let mut write_frame = |solver: &FluidSolver, series: &mut TimeSeries| -> Result<(), RunError> {
         let file = format!("{name}_{frames:05}.vtu");
         let path = out.join(&file);

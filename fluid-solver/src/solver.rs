@@ -1,8 +1,8 @@
 //! The fluid solver of one `[fluid.NAME]` participant: the particles, the step, the clock and
 //! the stability monitor; advances to a given time and saves/restores its state in memory.
 
-use crate::bodies::RigidBodies;
-use crate::emps_step::{EmpsStep, Physics, StepTotals};
+use crate::bodies::{ExchangeScales, RigidBodies};
+use crate::emps_step::{EmpsStep, Exchange, Physics, StepTotals};
 use crate::kernel::Kernel;
 use crate::kind::Kind;
 use crate::layout::{self, Domain};
@@ -24,10 +24,20 @@ pub struct SavedState {
     grid: CellGrid,
     body_pose: Vec<f64>,
     body_velocity: Vec<f64>,
+    body_exchange: BodyExchange,
     time: f64,
     steps: u64,
     gates_removed: bool,
     open_boundaries: OpenBoundaries,
+}
+
+/// The forces between fluid and bodies in the last step (6 per body: force, moment about the
+/// centre), as the bodies took them and as the fluid gave them: S1-4's viscous pairs (when on),
+/// S1-3's pressure pairs at r* and the collision impulses / Δt (see [`crate::bodies`]).
+#[derive(Debug, Clone, Default, PartialEq)]
+struct BodyExchange {
+    loads: Vec<f64>,
+    reaction: Vec<f64>,
 }
 
 /// Running totals since the solver was made.
@@ -58,6 +68,7 @@ pub struct FluidSolver {
     /// Present pose (7 per body: centre, quaternion w x y z) and velocity (6 per body: V, ω).
     body_pose: Vec<f64>,
     body_velocity: Vec<f64>,
+    body_exchange: BodyExchange,
     totals: RunTotals,
     /// Inflow and outflow (inactive without `inflow` / `outflow` in the case).
     open_boundaries: OpenBoundaries,
@@ -84,17 +95,22 @@ impl FluidSolver {
                 [c[0], c[1], c[2], 1.0, 0.0, 0.0, 0.0]
             })
             .collect();
-        let solids: Vec<Aabb> = cfg
+        let body_boxes: Vec<Aabb> = cfg
             .body
             .iter()
             .map(|b| Aabb {
                 min: b.min,
                 max: b.max,
             })
-            .chain(cfg.wall.iter().copied())
             .collect();
-        let mut monitor =
-            StabilityMonitor::new(layout.domain, layout.tank, &solids, cfg.spacing, cfg.gravity);
+        let mut monitor = StabilityMonitor::new(
+            layout.domain,
+            layout.tank,
+            &cfg.wall,
+            &body_boxes,
+            cfg.spacing,
+            cfg.gravity,
+        );
         let mut particles = layout.particles;
         let open_boundaries = OpenBoundaries::new(cfg, &mut particles);
         if open_boundaries.has_inflow() {
@@ -102,7 +118,7 @@ impl FluidSolver {
         }
         let mut step = EmpsStep::new(kernel, physics, grid);
         step.refresh_pressure(&mut particles);
-        FluidSolver {
+        let mut solver = FluidSolver {
             particles,
             step,
             monitor,
@@ -114,11 +130,29 @@ impl FluidSolver {
             domain: layout.domain,
             tank: layout.tank,
             body_velocity: vec![0.0; 6 * boxes.len()],
+            body_exchange: BodyExchange::default(),
             body_pose,
             bodies,
             totals: RunTotals::default(),
             open_boundaries,
-        }
+        };
+        solver.refresh_body_exchange();
+        solver
+    }
+
+    /// Sets the body loads to the pressure pair forces of the present state (no collisions):
+    /// what the bodies feel before the first step.
+    fn refresh_body_exchange(&mut self) {
+        let (grid, kernel, p, pose) = (
+            &self.step.grid,
+            &self.step.kernel,
+            &self.particles,
+            &self.body_pose,
+        );
+        self.body_exchange = BodyExchange {
+            loads: self.bodies.pressure_loads(grid, kernel, p, pose),
+            reaction: self.bodies.pressure_reaction(grid, kernel, p, pose),
+        };
     }
 
     /// The inflow and outflow boundaries and their particle balance.
@@ -199,26 +233,18 @@ impl FluidSolver {
         Ok(())
     }
 
-    /// Force and moment the bodies exert on the fluid (6 per body), evaluated from the fluid's
-    /// side; minus [`FluidSolver::body_loads`] up to round-off.
+    /// Force and moment the bodies exerted on the fluid in the last step (6 per body), evaluated
+    /// from the fluid's side; minus [`FluidSolver::body_loads`] up to round-off.
     pub fn body_reactions(&self) -> Vec<f64> {
-        self.bodies.pressure_reaction(
-            &self.step.grid,
-            &self.step.kernel,
-            &self.particles,
-            &self.body_pose,
-        )
+        self.body_exchange.reaction.clone()
     }
 
-    /// Pressure force and moment of the fluid on each body about its present centre (6 per
-    /// body), from the last step's pressures.
+    /// Force and moment of the fluid on each body in the last step, about the body's centre at
+    /// the step's start (6 per body): S1-4's viscous pair forces (when the term is on), S1-3's
+    /// pressure pair forces at r* and the fluid–body collision impulses / Δt (see
+    /// [`crate::bodies`]), exactly the momentum the fluid gave up to the bodies. No gravity: the body's weight is the structure solver's.
     pub fn body_loads(&self) -> Vec<f64> {
-        self.bodies.pressure_loads(
-            &self.step.grid,
-            &self.step.kernel,
-            &self.particles,
-            &self.body_pose,
-        )
+        self.body_exchange.loads.clone()
     }
 
     /// Totals since the start.
@@ -239,6 +265,7 @@ impl FluidSolver {
         let removed = self.particles.remove_kind(Kind::Gate);
         if removed > 0 {
             self.step.refresh_pressure(&mut self.particles);
+            self.refresh_body_exchange();
         }
         removed
     }
@@ -253,7 +280,38 @@ impl FluidSolver {
             self.started = true;
         }
         self.open_boundaries.apply(&mut self.particles, self.time, dt);
-        let totals = self.step.advance(&mut self.particles, dt);
+        let scales = ExchangeScales {
+            spacing: self.step.kernel.spacing,
+            particle_mass: self.particle_mass(),
+            viscosity: self.step.physics.viscosity,
+            dt,
+        };
+        let kernel = self.step.kernel;
+        let (bodies, pose, exchange) = (&self.bodies, &self.body_pose, &mut self.body_exchange);
+        let zeros = vec![0.0; 6 * bodies.names().len()];
+        exchange.loads.clone_from(&zeros);
+        exchange.reaction.clone_from(&zeros);
+        let totals = self.step.advance(&mut self.particles, dt, |stage, grid, p| {
+            if bodies.names().is_empty() {
+                return;
+            }
+            let (loads, reaction) = match stage {
+                Exchange::Viscous => (
+                    bodies.viscous_loads(grid, &kernel, p, pose, &scales),
+                    bodies.viscous_reaction(grid, &kernel, p, pose, &scales),
+                ),
+                Exchange::Pressure => (
+                    bodies.pressure_loads(grid, &kernel, p, pose),
+                    bodies.pressure_reaction(grid, &kernel, p, pose),
+                ),
+                Exchange::Collision => (
+                    bodies.contact_loads(grid, p, pose, &scales),
+                    bodies.contact_reaction(grid, p, pose, &scales),
+                ),
+            };
+            add_to(&mut exchange.loads, &loads);
+            add_to(&mut exchange.reaction, &reaction);
+        });
         self.steps += 1;
         self.time += dt;
         for a in 0..3 {
@@ -261,7 +319,8 @@ impl FluidSolver {
         }
         self.totals.candidates += totals.candidates;
         self.totals.particle_steps += self.particles.len() as u64;
-        self.monitor.check(&self.particles, self.steps, self.time, dt)?;
+        self.monitor
+            .check(&self.particles, self.steps, self.time, dt, &self.body_pose)?;
         Ok(totals)
     }
 
@@ -301,6 +360,7 @@ impl FluidSolver {
             grid: self.step.grid.clone(),
             body_pose: self.body_pose.clone(),
             body_velocity: self.body_velocity.clone(),
+            body_exchange: self.body_exchange.clone(),
             time: self.time,
             steps: self.steps,
             gates_removed: self.gates_removed,
@@ -314,6 +374,7 @@ impl FluidSolver {
         self.step.grid.clone_from(&s.grid);
         self.body_pose.clone_from(&s.body_pose);
         self.body_velocity.clone_from(&s.body_velocity);
+        self.body_exchange.clone_from(&s.body_exchange);
         self.time = s.time;
         self.steps = s.steps;
         self.gates_removed = s.gates_removed;
@@ -337,4 +398,9 @@ impl FluidSolver {
     pub fn particle_mass(&self) -> f64 {
         self.step.physics.density * self.step.kernel.spacing.powi(3)
     }
+}
+
+/// `a += b`, element-wise.
+fn add_to(a: &mut [f64], b: &[f64]) {
+    a.iter_mut().zip(b).for_each(|(x, y)| *x += y);
 }

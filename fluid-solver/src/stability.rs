@@ -2,7 +2,12 @@
 //! particle moving more than half a spacing in one step, and mechanical energy growing without
 //! a source (checked until a body moves: moving bodies are a source). Each finding names the
 //! step, the particle and the quantity.
+//!
+//! A body is checked in its own frame at its present pose: a fluid particle is inside when
+//! `R(q)ᵀ (r − c)` lies within the body's box shrunk by half a spacing (i.e. behind the centres
+//! of its outer particle layer).
 
+use crate::bodies::rotate;
 use crate::kind::{Kind, FLUID};
 use crate::layout::Domain;
 use crate::particles::Particles;
@@ -49,9 +54,12 @@ impl std::error::Error for Instability {}
 pub struct StabilityMonitor {
     domain: Domain,
     /// Regions fluid must not enter: the tank's outside (beyond the first wall layer's centres)
-    /// is checked through `tank`; bodies through their boxes shrunk by half a spacing.
+    /// is checked through `tank`; fixed walls through their boxes shrunk by half a spacing.
     tank: Aabb,
     solids: Vec<Aabb>,
+    /// Each body's half extents less half a spacing, about its centre (checked at the pose given
+    /// to [`StabilityMonitor::check`]).
+    bodies: Vec<[f64; 3]>,
     spacing: f64,
     gravity: [f64; 3],
     /// Mechanical energy per unit particle mass at the start, and the allowed growth.
@@ -65,10 +73,22 @@ pub struct StabilityMonitor {
 type Finding = (u32, &'static str, String);
 
 impl StabilityMonitor {
-    /// A monitor for a tank with solid `bodies` (boxes), particles of `spacing`.
-    pub fn new(domain: Domain, tank: Aabb, bodies: &[Aabb], spacing: f64, gravity: [f64; 3]) -> Self {
+    /// A monitor for a tank with fixed `walls` and rigid `bodies` (boxes at their initial
+    /// placement), particles of `spacing`.
+    pub fn new(
+        domain: Domain,
+        tank: Aabb,
+        walls: &[Aabb],
+        bodies: &[Aabb],
+        spacing: f64,
+        gravity: [f64; 3],
+    ) -> Self {
         let h = 0.5 * spacing;
-        let solids = bodies
+        let bodies = bodies
+            .iter()
+            .map(|b| std::array::from_fn(|a| 0.5 * (b.max[a] - b.min[a]) - h))
+            .collect();
+        let solids = walls
             .iter()
             .map(|b| Aabb {
                 min: b.min.map(|v| v + h),
@@ -80,6 +100,7 @@ impl StabilityMonitor {
             domain,
             tank,
             solids,
+            bodies,
             spacing,
             gravity,
             initial_energy: None,
@@ -122,12 +143,20 @@ impl StabilityMonitor {
             ENERGY_GROWTH_FRACTION * (fluid * gmag * height + kinetic).max(f64::MIN_POSITIVE);
     }
 
-    /// Checks the state after step `step` of length `dt` ending at `time`.
-    pub fn check(&self, p: &Particles, step: u64, time: f64, dt: f64) -> Result<(), Instability> {
+    /// Checks the state after step `step` of length `dt` ending at `time`, with the bodies at
+    /// `body_pose` (7 per body: centre, quaternion w x y z relative to the initial placement).
+    pub fn check(
+        &self,
+        p: &Particles,
+        step: u64,
+        time: f64,
+        dt: f64,
+        body_pose: &[f64],
+    ) -> Result<(), Instability> {
         let found = (0..p.len())
             .into_par_iter()
             .with_min_len(4096)
-            .filter_map(|i| self.check_particle(p, i, dt))
+            .filter_map(|i| self.check_particle(p, i, dt, body_pose))
             .min_by_key(|f| f.0);
         if let Some((id, quantity, message)) = found {
             return Err(Instability {
@@ -160,7 +189,7 @@ impl StabilityMonitor {
         Ok(())
     }
 
-    fn check_particle(&self, p: &Particles, i: usize, dt: f64) -> Option<Finding> {
+    fn check_particle(&self, p: &Particles, i: usize, dt: f64, body_pose: &[f64]) -> Option<Finding> {
         let id = p.id[i];
         let r = p.position(i);
         let u = p.velocity(i);
@@ -209,8 +238,11 @@ impl StabilityMonitor {
             return Some((
                 id,
                 "position",
-                format!("inside a body {:?} … {:?}: r = {r:?}", b.min, b.max),
+                format!("inside a wall block {:?} … {:?}: r = {r:?}", b.min, b.max),
             ));
+        }
+        if let Some(finding) = self.inside_body(r, body_pose) {
+            return Some((id, "position", finding));
         }
         let step = speed(p, i) * dt;
         if step > MAX_STEP_DISPLACEMENT * self.spacing {
@@ -225,6 +257,24 @@ impl StabilityMonitor {
             ));
         }
         None
+    }
+}
+
+impl StabilityMonitor {
+    /// Whether `r` lies inside a body at its present pose; the message says which and where.
+    fn inside_body(&self, r: [f64; 3], body_pose: &[f64]) -> Option<String> {
+        self.bodies.iter().enumerate().find_map(|(b, half)| {
+            let pose = body_pose.get(7 * b..7 * b + 7)?;
+            let c = [pose[0], pose[1], pose[2]];
+            let inverse = [pose[3], -pose[4], -pose[5], -pose[6]];
+            let local = rotate(inverse, [r[0] - c[0], r[1] - c[1], r[2] - c[2]]);
+            (0..3).all(|a| local[a].abs() < half[a]).then(|| {
+                format!(
+                    "inside body {b} (centre {c:?}, quaternion {:?}): r = {r:?} is at {local:?} in the body's frame, within its half extents {half:?} less half a spacing",
+                    &pose[3..]
+                )
+            })
+        })
     }
 }
 

@@ -15,8 +15,16 @@ pub fn write_vtp(path: &Path, mesh: &TriangleMesh) -> io::Result<()> {
     let connectivity: Vec<i64> = mesh.triangles.iter().flatten().map(|&v| i64::from(v)).collect();
     let offsets: Vec<i64> = (1..=m as i64).map(|t| 3 * t).collect();
     let blocks: Vec<Vec<u8>> = vec![
-        mesh.normals.iter().flatten().flat_map(|v| v.to_le_bytes()).collect(),
-        mesh.vertices.iter().flatten().flat_map(|v| v.to_le_bytes()).collect(),
+        mesh.normals
+            .iter()
+            .flatten()
+            .flat_map(|v| v.to_le_bytes())
+            .collect(),
+        mesh.vertices
+            .iter()
+            .flatten()
+            .flat_map(|v| v.to_le_bytes())
+            .collect(),
         connectivity.iter().flat_map(|v| v.to_le_bytes()).collect(),
         offsets.iter().flat_map(|v| v.to_le_bytes()).collect(),
     ];
@@ -33,7 +41,9 @@ pub fn write_vtp(path: &Path, mesh: &TriangleMesh) -> io::Result<()> {
     };
     let mut xml = String::new();
     xml.push_str("<?xml version=\"1.0\"?>\n");
-    xml.push_str("<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n");
+    xml.push_str(
+        "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n",
+    );
     xml.push_str(&format!(
         "<PolyData>\n<Piece NumberOfPoints=\"{n}\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"{m}\">\n"
     ));

@@ -258,6 +258,12 @@ fn bad_boundaries_are_refused_naming_the_key() {
             "{to}: {e}"
         );
     }
+    let block = "[[fluid.river.block]]\nmin = [0.2, 0.0, 0.0]\nmax = [0.4, 0.5, 0.1]\n";
+    let e = error_of(&format!("{CHANNEL}{block}"));
+    assert!(
+        e.contains("`fluid.river.inflow`") && e.contains("overlaps `fluid.river.block[0]`"),
+        "{e}"
+    );
     let e = error_of(&CHANNEL.replace("[fluid.river.inflow]", "[fluid.river.inflow]\nspeed = 1.0"));
     assert!(e.contains("speed"), "{e}");
 }

@@ -75,7 +75,11 @@ fn area(mesh: &TriangleMesh) -> f64 {
         .map(|t| {
             let [a, b, c] = t.map(|i| v[i as usize]);
             let (u, w) = ([0, 1, 2].map(|k| b[k] - a[k]), [0, 1, 2].map(|k| c[k] - a[k]));
-            let n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]];
+            let n = [
+                u[1] * w[2] - u[2] * w[1],
+                u[2] * w[0] - u[0] * w[2],
+                u[0] * w[1] - u[1] * w[0],
+            ];
             0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt()
         })
         .sum()
@@ -94,7 +98,10 @@ fn lattice_sphere_gives_a_closed_surface_with_its_volume_and_radius() {
     let particles_volume = p.len() as f64 * SPACING.powi(3);
     let volume = enclosed_volume(&mesh);
     let rel = (volume - particles_volume) / particles_volume;
-    assert!(rel.abs() < 0.05, "volume {volume:.4e} vs N Δs³ {particles_volume:.4e} ({rel:+.3})");
+    assert!(
+        rel.abs() < 0.05,
+        "volume {volume:.4e} vs N Δs³ {particles_volume:.4e} ({rel:+.3})"
+    );
 
     let mean_radius = mesh
         .vertices
@@ -142,7 +149,11 @@ fn lattice_box_gives_the_box_area() {
     let [a, b, c] = sites.map(|n| f64::from(n) * SPACING);
     let box_area = 2.0 * (a * b + b * c + c * a);
     let rel = (area(&mesh) - box_area) / box_area;
-    assert!(rel.abs() < 0.05, "area {:.5} vs box {box_area:.5} ({rel:+.3})", area(&mesh));
+    assert!(
+        rel.abs() < 0.05,
+        "area {:.5} vs box {box_area:.5} ({rel:+.3})",
+        area(&mesh)
+    );
     let rel_volume = enclosed_volume(&mesh) / (a * b * c) - 1.0;
     assert!(rel_volume.abs() < 0.05, "volume {rel_volume:+.3}");
     println!("box: area {rel:+.4}, volume {rel_volume:+.4}");
@@ -164,7 +175,9 @@ fn read_vtp(path: &std::path::Path) -> ParsedVtp {
     let header = String::from_utf8_lossy(&bytes[..split]).into_owned();
     assert!(header.contains("type=\"PolyData\""), "{header}");
     let attr = |name: &str| -> usize {
-        let at = header.find(&format!("{name}=\"")).unwrap_or_else(|| panic!("no {name}"));
+        let at = header
+            .find(&format!("{name}=\""))
+            .unwrap_or_else(|| panic!("no {name}"));
         header[at + name.len() + 2..]
             .split('"')
             .next()
@@ -220,7 +233,11 @@ fn written_vtp_parses_back_to_the_mesh() {
     assert_eq!(back.points.len(), mesh.vertices.len());
     assert_eq!(back.triangles.len(), mesh.triangles.len());
     assert_eq!(back.points, mesh.vertices);
-    assert!(back.triangles.iter().zip(&mesh.triangles).all(|(b, t)| *b == t.map(i64::from)));
+    assert!(back
+        .triangles
+        .iter()
+        .zip(&mesh.triangles)
+        .all(|(b, t)| *b == t.map(i64::from)));
 }
 
 #[test]
@@ -229,7 +246,9 @@ fn empty_fluid_writes_an_empty_valid_file_and_series() {
     p.push([0.0; 3], Kind::Wall);
     let dir = scratch_dir("empty");
     let mut frames = SurfaceFrames::new(&dir, "tank", SPACING);
-    frames.write(0, 0.0, &p).unwrap_or_else(|(path, e)| panic!("{}: {e}", path.display()));
+    frames
+        .write(0, 0.0, &p)
+        .unwrap_or_else(|(path, e)| panic!("{}: {e}", path.display()));
     frames
         .write(1, 0.25, &Particles::default())
         .unwrap_or_else(|(path, e)| panic!("{}: {e}", path.display()));
@@ -286,7 +305,11 @@ fn standalone_run_and_participant_write_surface_frames() {
     assert_eq!(pvd.matches("<DataSet").count(), 3);
     for k in 0..3 {
         let back = read_vtp(&out.join(format!("water_surface_{k:05}.vtp")));
-        assert!(back.triangles.len() > 100, "frame {k}: {} triangles", back.triangles.len());
+        assert!(
+            back.triangles.len() > 100,
+            "frame {k}: {} triangles",
+            back.triangles.len()
+        );
     }
     // The first frame is the water column at rest: 8 × 8 × 10 particles, a closed box.
     let back = read_vtp(&out.join("water_surface_00000.vtp"));
@@ -301,5 +324,18 @@ fn standalone_run_and_participant_write_surface_frames() {
     let dir = scratch_dir("participant");
     fluid_solver::participant::FluidParticipant::from_case(&case, "water", Some(&dir))
         .unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(read_vtp(&dir.join("water_surface_00000.vtp")).triangles.len(), mesh.triangles.len());
+    assert_eq!(
+        read_vtp(&dir.join("water_surface_00000.vtp")).triangles.len(),
+        mesh.triangles.len()
+    );
+}
+
+#[test]
+fn particles_gone_astray_are_left_out() {
+    let mut p = lattice_sphere([0.2, 0.3, 0.4], 3.0 * SPACING);
+    let clean = fluid_surface(&p, SPACING);
+    p.push([f64::NAN, 0.0, 0.0], Kind::Fluid);
+    p.push([1.0e300, -1.0e300, 0.0], Kind::Fluid);
+    p.push([0.0, f64::INFINITY, 0.0], Kind::Fluid);
+    assert_eq!(fluid_surface(&p, SPACING), clean);
 }

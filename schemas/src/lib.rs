@@ -4,7 +4,6 @@
 //! ([`participant`]).
 
 pub mod case;
-pub mod codec;
 pub mod f64s;
 pub mod link;
 pub mod message;

@@ -5,7 +5,7 @@
 //! flushed when written, so a run that dies leaves a readable recording (a cut last frame is
 //! reported and ignored).
 
-use crate::codec;
+use crate::link::bincode_config;
 use crate::message::{FromParticipant, ToParticipant};
 use bincode::{Decode, Encode};
 use std::fs::File;
@@ -82,7 +82,7 @@ impl Recorder {
 
     fn write_frame<T: Encode>(&mut self, value: &T) -> io::Result<()> {
         self.scratch.clear();
-        bincode::encode_into_std_write(value, &mut self.scratch, codec::config())
+        bincode::encode_into_std_write(value, &mut self.scratch, bincode_config())
             .map_err(io::Error::other)?;
         let len = u32::try_from(self.scratch.len()).map_err(|_| {
             io::Error::other(format!(
@@ -177,7 +177,7 @@ fn read_frame<T: Decode<()>>(input: &mut impl Read) -> Result<Option<T>, String>
         .read_exact(&mut bytes)
         .map_err(|_| "cut inside a frame".to_string())?;
     let (value, _) =
-        bincode::decode_from_slice(&bytes, codec::config()).map_err(|e| format!("cannot decode: {e}"))?;
+        bincode::decode_from_slice(&bytes, bincode_config()).map_err(|e| format!("cannot decode: {e}"))?;
     Ok(Some(value))
 }
 

@@ -1,12 +1,13 @@
 //! Newmark steps per second of ASI-Gauss frames of about 1 000, 10 000 and 100 000 DOFs (cubic
-//! building grids, fixed at the base), elastic and with plastic hinges forming.
-//! Run: `cargo bench -p structure-solver --bench frame_steps`.
+//! building grids, fixed at the base), elastic and with plastic hinges forming, with ASI-Gauss's one
+//! solve per step (the default) and, for comparison, with equilibrium corrections in every step.
+//! Run: `cargo bench -p structure-solver --bench frame_steps [grid sizes, e.g. 3 7] [elastic|hinges]`.
 
 use schemas::case::frame::{
     FrameConfig, MaterialConfig, MemberConfig, NodeConfig, SectionConfig, SupportConfig,
 };
 use std::time::Instant;
-use structure_solver::frame::Frame;
+use structure_solver::frame::{Equilibrium, Frame};
 
 /// An n × n × n-bay grid of 3 m steel bays: columns and beams of 0.3 × 0.3 m.
 fn building(n: usize, yield_stress: f64) -> FrameConfig {
@@ -84,21 +85,41 @@ fn building(n: usize, yield_stress: f64) -> FrameConfig {
 /// Untimed steps at most while waiting for the first hinge.
 const WARM_UP_LIMIT: usize = 300;
 
+/// CPU time used by this process so far [s], from /proc/self/stat (utime + stime, in Linux's
+/// USER_HZ = 100 ticks per second); `None` where that file is not available. On a shared machine
+/// this is steadier than wall time (rayon's idle spinning counts in it, so it is an upper bound).
+fn process_cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // fields after the command name (which is in parentheses and may hold spaces)
+    let fields: Vec<&str> = stat.rsplit_once(')')?.1.split_whitespace().collect();
+    let ticks = |i: usize| fields.get(i)?.parse::<f64>().ok();
+    Some((ticks(11)? + ticks(12)?) / 100.0)
+}
+
 /// What one timed run measured.
 struct Measured {
     dofs: usize,
     steps_per_second: f64,
+    cpu_ms_per_step: Option<f64>,
     factorizations_per_step: f64,
     hinge_nodes: usize,
-    unconverged_steps: u64,
+    /// Largest unbalanced force left by a timed step, as a share of its first one.
+    worst_unbalance: f64,
 }
 
 /// Times `steps` steps under a lateral load of `lateral` N on every node (after the first hinges
 /// formed, in the plastic case).
-fn run(n: usize, steps: usize, yield_stress: f64, lateral: f64) -> Result<Measured, String> {
+fn run(
+    n: usize,
+    steps: usize,
+    yield_stress: f64,
+    lateral: f64,
+    equilibrium: Equilibrium,
+) -> Result<Measured, String> {
     let cfg = building(n, yield_stress);
     let mut frame =
         Frame::from_config(&cfg, "bench.frame").map_err(|e| format!("{}: {}", e.key, e.message))?;
+    frame.set_equilibrium(equilibrium)?;
     let mut loads = vec![0.0; 6 * frame.node_count()];
     for v in 0..frame.node_count() {
         loads[6 * v] = lateral;
@@ -112,40 +133,68 @@ fn run(n: usize, steps: usize, yield_stress: f64, lateral: f64) -> Result<Measur
         frame.step(frame.time_step(), &loads)?;
     }
     let solves0 = frame.factorization_count();
-    let unconverged0 = frame.unconverged_steps();
+    let mut worst_unbalance = 0.0_f64;
+    let cpu0 = process_cpu_seconds();
     let start = Instant::now();
     for _ in 0..steps {
         frame.step(frame.time_step(), &loads)?;
+        worst_unbalance = worst_unbalance.max(frame.last_unbalance());
     }
     let seconds = start.elapsed().as_secs_f64();
+    let cpu_ms_per_step = cpu0
+        .zip(process_cpu_seconds())
+        .map(|(a, b)| 1e3 * (b - a) / steps as f64);
     Ok(Measured {
         dofs: 6 * frame.node_count(),
         steps_per_second: steps as f64 / seconds,
+        cpu_ms_per_step,
         factorizations_per_step: (frame.factorization_count() - solves0) as f64 / steps as f64,
         hinge_nodes: frame.hinge_nodes().len(),
-        unconverged_steps: frame.unconverged_steps() - unconverged0,
+        worst_unbalance,
     })
 }
 
 fn main() {
+    // grid sizes and case names ("elastic", "hinges") from the command line (cargo bench adds
+    // `--bench`), by default all
+    let args: Vec<String> = std::env::args()
+        .skip(1)
+        .filter(|a| !a.starts_with("--"))
+        .collect();
+    let chosen: Vec<usize> = args.iter().filter_map(|a| a.parse().ok()).collect();
+    let cases: Vec<&String> = args.iter().filter(|a| a.parse::<usize>().is_err()).collect();
     println!(
-        "| grid | DOFs | case | steps/s | ms/step | factorisations/step | hinge nodes | unconverged steps |"
+        "| grid | DOFs | case | steps | steps/s | ms/step | CPU ms/step | factorisations/step | hinge nodes | \
+         worst unbalance |"
     );
-    println!("|---|---|---|---|---|---|---|---|");
-    for (n, steps) in [(3, 400), (7, 100), (15, 8)] {
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    let iterate = Equilibrium::Iterate { tolerance: 1e-6 };
+    for (n, steps) in [(3, 400), (7, 200), (15, 20)] {
+        if !chosen.is_empty() && !chosen.contains(&n) {
+            continue;
+        }
         // elastic: steel that never yields; hinges: σy = 20 MPa and 20 kN on every node sideways
         for (case, yield_stress, lateral) in [("elastic", 1e12, 1e3), ("hinges forming", 2e7, 2e4)] {
-            match run(n, steps, yield_stress, lateral) {
-                Ok(m) => println!(
-                    "| {n}×{n}×{n} | {} | {case} | {:.1} | {:.2} | {:.2} | {} | {} |",
-                    m.dofs,
-                    m.steps_per_second,
-                    1e3 / m.steps_per_second,
-                    m.factorizations_per_step,
-                    m.hinge_nodes,
-                    m.unconverged_steps
-                ),
-                Err(e) => println!("| {n}×{n}×{n} | – | {case} | failed: {e} | | | | |"),
+            if !cases.is_empty() && !cases.iter().any(|c| case.starts_with(c.as_str())) {
+                continue;
+            }
+            for (mode, equilibrium, steps) in [
+                ("one solve", Equilibrium::OneSolve, steps),
+                ("iterated", iterate, steps / 4),
+            ] {
+                match run(n, steps, yield_stress, lateral, equilibrium) {
+                    Ok(m) => println!(
+                        "| {n}×{n}×{n} | {} | {case} | {mode} | {:.1} | {:.2} | {} | {:.2} | {} | {:.1e} |",
+                        m.dofs,
+                        m.steps_per_second,
+                        1e3 / m.steps_per_second,
+                        m.cpu_ms_per_step.map_or("–".to_string(), |c| format!("{c:.2}")),
+                        m.factorizations_per_step,
+                        m.hinge_nodes,
+                        m.worst_unbalance
+                    ),
+                    Err(e) => println!("| {n}×{n}×{n} | – | {case} | {mode} | failed: {e} | | | | | |"),
+                }
             }
         }
     }

@@ -19,6 +19,10 @@
 //! name = "front"
 //! kind = "surge-front"
 //! ```
+//!
+//! Open channels add fixed solid boxes (`[[fluid.NAME.wall]]`, `min`/`max`: piers, levees) and
+//! inflow / outflow boundaries (`[fluid.NAME.inflow]`, `[fluid.NAME.outflow]`: see
+//! [`InflowConfig`], [`OutflowConfig`]); with an inflow, u_max = √(u_in² + 2gH) in S1-16.
 
 use super::error::check;
 use super::FieldError;

@@ -1,12 +1,17 @@
 //! Sparse assembly of the effective stiffness and its Cholesky factorisation with faer. The symbolic
-//! factorisation is made once per connectivity (it changes only when a member fractures); every step
-//! only scatters new values into the fixed pattern and redoes the numeric part.
+//! factorisation is made once per connectivity (it changes only when a member fractures); a
+//! refactorisation only scatters new values into the fixed pattern and redoes the numeric part, into
+//! the kept factor's storage and with a kept workspace (no allocation per step).
 
 use super::element::ELEMENT_DOFS;
-use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use super::supernodal_solve;
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymbolicCholeskyRaw,
+};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
-use faer::{MatMut, Side};
+use faer::{Conj, MatMut, Par, Side};
+use std::sync::Arc;
 
 /// Marks an entry that is not stored (a fixed DOF, or the upper triangle).
 const NOT_STORED: u32 = u32::MAX;
@@ -21,16 +26,51 @@ pub struct SparseSystem {
     /// Equation number of each global DOF (`6 node + k`), or `None` for fixed or unused DOFs.
     equation: Vec<Option<usize>>,
     pattern: SymbolicSparseColMat<usize>,
-    symbolic: Option<SymbolicLlt<usize>>,
+    symbolic: Option<Arc<SymbolicCholesky<usize>>>,
     /// Per element, the value slot of each of its 12 × 12 entries (row-major).
     element_slots: Vec<[u32; ELEMENT_DOFS * ELEMENT_DOFS]>,
     /// Per node, the value slot of each entry of its 6 × 6 diagonal block (row-major).
     node_slots: Vec<[u32; NODE_DOFS * NODE_DOFS]>,
     /// Matrix values, in the pattern's order.
     pub values: Vec<f64>,
-    /// The last numeric factor and the time step it was made for.
-    factor: Option<(Llt<usize, f64>, f64)>,
+    /// Values of the last numeric factor L, in the symbolic factorisation's layout.
+    factor: Vec<f64>,
+    /// The time step the kept factor was made for; `None` when there is none.
+    factor_time_step: Option<f64>,
+    workspace: Workspace,
+    /// The right-hand side in the factor's order, and room for one supernode's gathered values.
+    permuted: Vec<f64>,
+    gathered: Vec<f64>,
 }
+
+/// Scratch memory of the numeric factorisation and the solve, kept between steps.
+struct Workspace {
+    requirement: StackReq,
+    buffer: MemBuffer,
+}
+
+impl Workspace {
+    fn new(requirement: StackReq) -> Workspace {
+        Workspace {
+            requirement,
+            buffer: MemBuffer::new(requirement),
+        }
+    }
+}
+
+impl Clone for Workspace {
+    /// Scratch contents are never read before being written: a clone only needs the same size.
+    fn clone(&self) -> Workspace {
+        Workspace::new(self.requirement)
+    }
+}
+
+/// The numeric factorisation runs on one thread: a frame's factor is mostly small supernodes, and
+/// with rayon's pool (2 cores) it was no faster at 11 000 DOFs (10–17 ms either way) while its
+/// barriers kept the other core spinning.
+const FACTORIZATION_PARALLELISM: Par = Par::Seq;
+/// One right-hand side: the triangular solves are memory bound and faster on one thread.
+const SOLVE_PARALLELISM: Par = Par::Seq;
 
 impl SparseSystem {
     /// Builds the pattern for elements joining `element_nodes`; a DOF is an unknown when its node
@@ -86,13 +126,24 @@ impl SparseSystem {
         }
         let pattern = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
         let symbolic = if n > 0 {
-            Some(
-                SymbolicLlt::try_new(pattern.as_ref(), Side::Lower)
-                    .map_err(|e| format!("symbolic Cholesky factorisation failed: {e:?}"))?,
+            let symbolic = factorize_symbolic_cholesky(
+                pattern.as_ref(),
+                Side::Lower,
+                Default::default(),
+                Default::default(),
             )
+            .map_err(|e| format!("symbolic Cholesky factorisation failed: {e:?}"))?;
+            Some(Arc::new(symbolic))
         } else {
             None
         };
+        let workspace = Workspace::new(symbolic.as_ref().map_or(StackReq::EMPTY, |s| {
+            StackReq::any_of(&[
+                s.factorize_numeric_llt_scratch::<f64>(FACTORIZATION_PARALLELISM, Default::default()),
+                s.solve_in_place_scratch::<f64>(1, SOLVE_PARALLELISM),
+            ])
+        }));
+        let factor = vec![0.0; symbolic.as_ref().map_or(0, |s| s.len_val())];
         let slot = |r: Option<usize>, c: Option<usize>| -> u32 {
             match (r, c) {
                 (Some(r), Some(c)) if r >= c => {
@@ -136,7 +187,11 @@ impl SparseSystem {
             element_slots,
             node_slots,
             values: vec![0.0; nnz],
-            factor: None,
+            factor,
+            factor_time_step: None,
+            workspace,
+            permuted: vec![0.0; n],
+            gathered: Vec::new(),
         })
     }
 
@@ -192,41 +247,75 @@ impl SparseSystem {
     /// Factorises the current values (numeric part only, on the kept symbolic factorisation) and keeps
     /// the factor, labelled with the time step it was made for.
     pub fn factorize(&mut self, dt: f64) -> Result<(), String> {
-        self.factor = None;
+        self.factor_time_step = None;
         let Some(symbolic) = &self.symbolic else {
             return Ok(());
         };
         let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
-        let llt = Llt::try_new_with_symbolic(symbolic.clone(), matrix, Side::Lower).map_err(|e| {
-            format!(
-                "the frame's system matrix is not positive definite ({e:?}): a part of the frame is free \
-                 to move without resistance (a mechanism or a missing support) or the state is corrupt"
+        symbolic
+            .factorize_numeric_llt(
+                &mut self.factor,
+                matrix,
+                Side::Lower,
+                Default::default(),
+                FACTORIZATION_PARALLELISM,
+                MemStack::new(&mut self.workspace.buffer),
+                Default::default(),
             )
-        })?;
-        self.factor = Some((llt, dt));
+            .map_err(|e| {
+                format!(
+                    "the frame's system matrix is not positive definite ({e:?}): a part of the frame is free \
+                     to move without resistance (a mechanism or a missing support) or the state is corrupt"
+                )
+            })?;
+        self.factor_time_step = Some(dt);
         Ok(())
     }
 
     /// Whether a factor made for time step `dt` is kept.
     pub fn has_factor_for(&self, dt: f64) -> bool {
-        self.symbolic.is_none() || self.factor.as_ref().is_some_and(|(_, d)| *d == dt)
+        self.symbolic.is_none() || self.factor_time_step == Some(dt)
     }
 
     /// Forgets the kept factor (the matrix changed too much for it to be a good iteration matrix).
     pub fn drop_factor(&mut self) {
-        self.factor = None;
+        self.factor_time_step = None;
     }
 
     /// Solves in place with the kept factor.
-    pub fn solve_factored(&self, rhs: &mut [f64]) -> Result<(), String> {
-        if self.symbolic.is_none() {
+    pub fn solve_factored(&mut self, rhs: &mut [f64]) -> Result<(), String> {
+        let Some(symbolic) = &self.symbolic else {
             return Ok(());
-        }
-        let Some((llt, _)) = &self.factor else {
-            return Err("internal error: the frame's system was solved before it was factorised".into());
         };
-        let n = rhs.len();
-        llt.solve_in_place(MatMut::from_column_major_slice_mut(rhs, n, 1));
+        if self.factor_time_step.is_none() {
+            return Err("internal error: the frame's system was solved before it was factorised".into());
+        }
+        match (symbolic.raw(), symbolic.perm()) {
+            (SymbolicCholeskyRaw::Supernodal(supernodal), Some(perm)) => {
+                let (forward, inverse) = perm.arrays();
+                for (p, &f) in self.permuted.iter_mut().zip(forward) {
+                    *p = rhs[f];
+                }
+                supernodal_solve::solve_in_place(
+                    supernodal,
+                    &self.factor,
+                    &mut self.permuted,
+                    &mut self.gathered,
+                );
+                for (r, &i) in rhs.iter_mut().zip(inverse) {
+                    *r = self.permuted[i];
+                }
+            }
+            _ => {
+                let n = rhs.len();
+                LltRef::new(symbolic, &self.factor).solve_in_place_with_conj(
+                    Conj::No,
+                    MatMut::from_column_major_slice_mut(rhs, n, 1),
+                    SOLVE_PARALLELISM,
+                    MemStack::new(&mut self.workspace.buffer),
+                );
+            }
+        }
         Ok(())
     }
 }

@@ -69,6 +69,7 @@ impl Frame {
             let fixed: Vec<_> = self.nodes.iter().map(|n| n.fixed).collect();
             let pairs: Vec<_> = self.elements.iter().map(|e| e.nodes).collect();
             self.system = SparseSystem::new(self.nodes.len(), &fixed, &pairs)?;
+            self.end_of_step_forces = None;
             self.connectivity += 1;
         }
         Ok(())

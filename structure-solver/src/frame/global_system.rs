@@ -23,6 +23,22 @@ pub(super) struct Contribution {
     pub mass: f64,
 }
 
+/// Internal forces R and lumped masses gathered on the nodes, global axes.
+#[derive(Clone)]
+pub(super) struct NodalForces {
+    pub internal: Vec<[f64; NODE_DOFS]>,
+    pub mass: Vec<f64>,
+    pub rotary: Vec<Matrix3<f64>>,
+}
+
+/// Newmark terms of the unbalanced force: per global DOF the old motion's term
+/// `v/(βΔt) + (1/(2β) − 1) a`, the step's increment Δu, and `1/(βΔt²)`.
+pub(super) struct Motion<'a> {
+    pub inertia: &'a [f64],
+    pub increment: &'a [f64],
+    pub mass_factor: f64,
+}
+
 /// Stiffness and lumped mass over the unknowns, for eigen-analysis of small frames.
 pub struct DenseMatrices {
     pub stiffness: DMatrix<f64>,
@@ -39,8 +55,7 @@ impl Frame {
         let contributions = self.contributions(true);
         let mut system = self.system.clone();
         self.assemble(&mut system, &contributions, 1.0, 0.0);
-        let (mass, _) = self.lumped_masses(&contributions);
-        let mut rhs = self.external_minus_internal(&system, &contributions, &mass, loads);
+        let mut rhs = self.unbalanced_force(&self.gather(&contributions), loads, None);
         system.factorize(0.0)?;
         system.solve_factored(&mut rhs)?;
         Ok(self.increments(&system, &rhs))
@@ -137,27 +152,57 @@ impl Frame {
         }
     }
 
-    /// `F + M g − R` over the unknowns.
-    pub(super) fn external_minus_internal(
-        &self,
-        system: &SparseSystem,
-        contributions: &[Contribution],
-        mass: &[f64],
-        loads: &[f64],
-    ) -> Vec<f64> {
-        let mut rhs = vec![0.0; system.unknowns()];
-        for v in 0..self.nodes.len() {
-            for k in 0..NODE_DOFS {
-                if let Some(eq) = system.equation(v * NODE_DOFS + k) {
-                    rhs[eq] += loads[v * NODE_DOFS + k] + if k < 3 { mass[v] * self.gravity[k] } else { 0.0 };
+    /// Element forces and masses summed on the nodes.
+    pub(super) fn gather(&self, contributions: &[Contribution]) -> NodalForces {
+        let (mass, rotary) = self.lumped_masses(contributions);
+        let mut internal = vec![[0.0; NODE_DOFS]; self.nodes.len()];
+        for (e, c) in self.elements.iter().zip(contributions) {
+            for (end, &v) in e.nodes.iter().enumerate() {
+                for (r, f) in internal[v].iter_mut().zip(&c.force[end * NODE_DOFS..]) {
+                    *r += f;
                 }
             }
         }
-        for (e, c) in self.elements.iter().zip(contributions) {
-            for (i, f) in c.force.iter().enumerate() {
-                let dof = e.nodes[i / NODE_DOFS] * NODE_DOFS + i % NODE_DOFS;
-                if let Some(eq) = system.equation(dof) {
-                    rhs[eq] -= f;
+        NodalForces {
+            internal,
+            mass,
+            rotary,
+        }
+    }
+
+    /// `F + M g − R` over the unknowns, plus with `motion` the Newmark inertia
+    /// `M (v/(βΔt) + (1/(2β) − 1) a − Δu/(βΔt²))` (S2-14).
+    pub(super) fn unbalanced_force(
+        &self,
+        nodal: &NodalForces,
+        loads: &[f64],
+        motion: Option<Motion>,
+    ) -> Vec<f64> {
+        let mut rhs = vec![0.0; self.system.unknowns()];
+        for v in 0..self.nodes.len() {
+            let g = v * NODE_DOFS;
+            let mut f = [0.0; NODE_DOFS];
+            for (k, fk) in f.iter_mut().enumerate() {
+                *fk = loads[g + k] - nodal.internal[v][k]
+                    + if k < 3 {
+                        nodal.mass[v] * self.gravity[k]
+                    } else {
+                        0.0
+                    };
+            }
+            if let Some(m) = &motion {
+                let mut a = [0.0; NODE_DOFS];
+                for (k, ak) in a.iter_mut().enumerate() {
+                    *ak = m.inertia[g + k] - m.mass_factor * m.increment[g + k];
+                }
+                for k in 0..3 {
+                    f[k] += nodal.mass[v] * a[k];
+                    f[3 + k] += (0..3).map(|j| nodal.rotary[v][(k, j)] * a[3 + j]).sum::<f64>();
+                }
+            }
+            for (k, fk) in f.iter().enumerate() {
+                if let Some(eq) = self.system.equation(g + k) {
+                    rhs[eq] = *fk;
                 }
             }
         }

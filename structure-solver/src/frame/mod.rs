@@ -1,8 +1,9 @@
 //! ASI-Gauss framed structures (S2 §3, physics.md §5): members of two linear Timoshenko elements with
 //! one integration point each, plastic hinges by the full-plastic yield function, fracture by S2-17,
 //! co-rotational (updated-Lagrangian) large displacements and rotations, Newmark β = 4/9, δ = 5/6 with
-//! lumped mass and rotary inertia, sparse Cholesky (faer) with the symbolic factorisation kept until
-//! the connectivity changes, and penalty contact through particles along the members.
+//! lumped mass and rotary inertia and one linear solve per step (S2-14), sparse Cholesky (faer) with
+//! the symbolic factorisation kept until the connectivity changes and the numeric one kept while the
+//! effective matrix has not changed much, and penalty contact through particles along the members.
 //!
 //! Node order: the config's nodes in config order, then one mid node per member in member order,
 //! then nodes made by fracture. Loads, velocities and displacements have 6 entries per node
@@ -11,20 +12,26 @@
 pub mod assembly;
 pub mod contact;
 pub mod element;
+pub mod equilibrium;
+pub mod factor_age;
 pub mod fracture;
 pub mod global_system;
 pub mod hinge;
 pub mod newmark;
 pub mod section;
 pub mod stepping;
+pub mod supernodal_solve;
 pub mod topology;
 pub mod vtu;
 
+pub use equilibrium::MAX_CORRECTIONS;
 pub use global_system::DenseMatrices;
-pub use stepping::MAX_CORRECTIONS;
+pub use stepping::Equilibrium;
 
 use assembly::{SparseSystem, NODE_DOFS};
+use factor_age::FactorAge;
 use fracture::FractureCriterion;
+use global_system::NodalForces;
 use nalgebra::Vector3;
 use schemas::case::frame::FrameConfig;
 use schemas::case::FieldError;
@@ -48,6 +55,14 @@ pub struct Frame {
     connectivity: u64,
     factorizations: u64,
     unconverged: u64,
+    equilibrium: Equilibrium,
+    /// η of the refactorisation criterion (`factor_age.rs`).
+    stale_limit: f64,
+    factor_age: FactorAge,
+    /// Internal forces and masses at the end of the last step, for the next one's right-hand side.
+    end_of_step_forces: Option<NodalForces>,
+    /// Unbalanced force left by the last step over its first one.
+    unbalance: f64,
 }
 
 impl Frame {
@@ -98,6 +113,11 @@ impl Frame {
             connectivity: 0,
             factorizations: 0,
             unconverged: 0,
+            equilibrium: Equilibrium::OneSolve,
+            stale_limit: factor_age::DEFAULT_STALE_LIMIT,
+            factor_age: FactorAge::default(),
+            end_of_step_forces: None,
+            unbalance: 0.0,
         })
     }
 
@@ -198,9 +218,47 @@ impl Frame {
         self.factorizations
     }
 
-    /// Number of steps whose corrections did not reach the residual tolerance.
+    /// Number of steps whose corrections did not reach the residual tolerance (with
+    /// [`Equilibrium::Iterate`]; one-solve steps make no corrections).
     pub fn unconverged_steps(&self) -> u64 {
         self.unconverged
+    }
+
+    /// Unbalanced force left at the end of the last step, as a share of the one at its start.
+    pub fn last_unbalance(&self) -> f64 {
+        self.unbalance
+    }
+
+    /// How steps treat the unbalanced force; [`Equilibrium::OneSolve`] (ASI-Gauss) by default.
+    pub fn equilibrium(&self) -> Equilibrium {
+        self.equilibrium
+    }
+
+    /// Chooses how steps treat the unbalanced force; a tolerance must be finite and in (0, 1).
+    pub fn set_equilibrium(&mut self, equilibrium: Equilibrium) -> Result<(), String> {
+        if let Equilibrium::Iterate { tolerance } = equilibrium {
+            if !(tolerance > 0.0 && tolerance < 1.0) {
+                return Err(format!(
+                    "frame: the equilibrium tolerance must be a share of the first unbalanced force in (0, 1), \
+                     got {tolerance}"
+                ));
+            }
+        }
+        self.equilibrium = equilibrium;
+        Ok(())
+    }
+
+    /// Sets η of the refactorisation criterion (`factor_age.rs`, default
+    /// [`factor_age::DEFAULT_STALE_LIMIT`]): how far the kept effective matrix may drift from the
+    /// current one, as a share of the mass term; 0 refactorises every step. Must be finite and ≥ 0.
+    pub fn set_stale_limit(&mut self, limit: f64) -> Result<(), String> {
+        if !(limit.is_finite() && limit >= 0.0) {
+            return Err(format!(
+                "frame: the stale-matrix limit must be a finite number ≥ 0, got {limit}"
+            ));
+        }
+        self.stale_limit = limit;
+        Ok(())
     }
 
     fn check_per_node(&self, what: &str, values: &[f64]) -> Result<(), String> {
