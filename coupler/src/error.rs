@@ -11,9 +11,19 @@ pub enum CouplerError {
     /// A command-line value is wrong; nothing was started.
     Usage(String),
     /// A participant died, hung, failed or broke the protocol.
-    Participant { name: String, window: Option<u64>, message: String },
+    Participant {
+        name: String,
+        window: Option<u64>,
+        message: String,
+    },
     /// An implicit window did not converge.
-    NotConverged { window: u64, time: f64, iterations: u32, residual: f64, field: String },
+    NotConverged {
+        window: u64,
+        time: f64,
+        iterations: u32,
+        residual: f64,
+        field: String,
+    },
     /// Ctrl-C or SIGTERM.
     Interrupted { window: Option<u64> },
     /// Output could not be written.
@@ -32,7 +42,9 @@ impl CouplerError {
 }
 
 fn at(window: &Option<u64>) -> String {
-    window.map(|w| format!(" in window {w}")).unwrap_or_else(|| " before the first window".into())
+    window
+        .map(|w| format!(" in window {w}"))
+        .unwrap_or_else(|| " before the first window".into())
 }
 
 impl fmt::Display for CouplerError {

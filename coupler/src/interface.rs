@@ -59,7 +59,12 @@ impl Interface {
                 });
             }
         }
-        Ok(Interface { names: names.to_vec(), decls: decls.to_vec(), springs, bodies })
+        Ok(Interface {
+            names: names.to_vec(),
+            decls: decls.to_vec(),
+            springs,
+            bodies,
+        })
     }
 
     /// Inputs of participant `p` at one instant. Two-sided laws (springs) read `start`, the
@@ -95,7 +100,11 @@ impl Interface {
     fn spring_inputs(&self, p: usize, outputs: &[&Fields]) -> Fields {
         let mut inputs = Fields::default();
         let points = self.decls[p].points.len();
-        if self.springs.iter().any(|s| s.a.participant == p || s.b.participant == p) {
+        if self
+            .springs
+            .iter()
+            .any(|s| s.a.participant == p || s.b.participant == p)
+        {
             inputs.point_force = F64s::zeros(3 * points);
         }
         for s in &self.springs {
@@ -117,7 +126,10 @@ impl Interface {
     /// Checks that participant `p`'s outputs hold every array the laws read, at the declared sizes.
     pub fn check_outputs(&self, p: usize, outputs: &Fields) -> Result<(), String> {
         let decl = &self.decls[p];
-        let reads_points = self.springs.iter().any(|s| s.a.participant == p || s.b.participant == p);
+        let reads_points = self
+            .springs
+            .iter()
+            .any(|s| s.a.participant == p || s.b.participant == p);
         if reads_points && outputs.point_displacement.len() != 3 * decl.points.len() {
             return Err(format!(
                 "point_displacement has {} values; {} declared points need {}",
@@ -128,17 +140,40 @@ impl Interface {
         }
         let bodies = decl.bodies.len();
         let sizes = [
-            (self.bodies.iter().any(|b| b.fluid.participant == p), "body_force", outputs.body_force.len(), 6 * bodies),
-            (self.bodies.iter().any(|b| b.structure.participant == p), "body_pose", outputs.body_pose.len(), 7 * bodies),
-            (self.bodies.iter().any(|b| b.structure.participant == p), "body_velocity", outputs.body_velocity.len(), 6 * bodies),
+            (
+                self.bodies.iter().any(|b| b.fluid.participant == p),
+                "body_force",
+                outputs.body_force.len(),
+                6 * bodies,
+            ),
+            (
+                self.bodies.iter().any(|b| b.structure.participant == p),
+                "body_pose",
+                outputs.body_pose.len(),
+                7 * bodies,
+            ),
+            (
+                self.bodies.iter().any(|b| b.structure.participant == p),
+                "body_velocity",
+                outputs.body_velocity.len(),
+                6 * bodies,
+            ),
         ];
         for (read, name, len, wanted) in sizes {
             if read && len != wanted {
-                return Err(format!("{name} has {len} values; {bodies} declared bodies need {wanted}"));
+                return Err(format!(
+                    "{name} has {len} values; {bodies} declared bodies need {wanted}"
+                ));
             }
         }
-        if let Some((name, _)) = outputs.arrays().into_iter().find(|(_, a)| a.iter().any(|v| !v.is_finite())) {
-            return Err(format!("`{name}` holds a non-finite value (NaN or infinity): the solver went unstable"));
+        if let Some((name, _)) = outputs
+            .arrays()
+            .into_iter()
+            .find(|(_, a)| a.iter().any(|v| !v.is_finite()))
+        {
+            return Err(format!(
+                "`{name}` holds a non-finite value (NaN or infinity): the solver went unstable"
+            ));
         }
         Ok(())
     }
@@ -157,21 +192,34 @@ enum Item {
 }
 
 /// Finds `participant/name` among the running participants and what they declared.
-fn item_ref(names: &[String], decls: &[InterfaceDecl], text: &str, item: Item) -> Result<PointRef, CouplerError> {
+fn item_ref(
+    names: &[String],
+    decls: &[InterfaceDecl],
+    text: &str,
+    item: Item,
+) -> Result<PointRef, CouplerError> {
     let (participant, name) = text.split_once('/').unwrap_or((text, ""));
     let p = names.iter().position(|n| n == participant).ok_or_else(|| {
-        CouplerError::Usage(format!("coupling reference `{text}`: no participant `{participant}` is running"))
+        CouplerError::Usage(format!(
+            "coupling reference `{text}`: no participant `{participant}` is running"
+        ))
     })?;
     let (declared, what) = match item {
         Item::Point => (&decls[p].points, "points"),
         Item::Body => (&decls[p].bodies, "bodies"),
     };
-    let i = declared.iter().position(|n| n == name).ok_or_else(|| CouplerError::Participant {
-        name: participant.to_string(),
-        window: None,
-        message: format!("declared {what} {declared:?} at the handshake, but the case couples `{name}`"),
-    })?;
-    Ok(PointRef { participant: p, point: i })
+    let i = declared
+        .iter()
+        .position(|n| n == name)
+        .ok_or_else(|| CouplerError::Participant {
+            name: participant.to_string(),
+            window: None,
+            message: format!("declared {what} {declared:?} at the handshake, but the case couples `{name}`"),
+        })?;
+    Ok(PointRef {
+        participant: p,
+        point: i,
+    })
 }
 
 /// The force a participant took across the interface: the forces handed to it (point, body and
@@ -182,7 +230,11 @@ pub fn force_taken(inputs: &Fields, outputs: &Fields) -> [f64; 3] {
     for chunk in outputs.body_reaction.chunks_exact(6) {
         (0..3).for_each(|c| reaction[c] += chunk[c]);
     }
-    [given[0] + reaction[0], given[1] + reaction[1], given[2] + reaction[2]]
+    [
+        given[0] + reaction[0],
+        given[1] + reaction[1],
+        given[2] + reaction[2],
+    ]
 }
 
 /// Sum of the force vectors in a participant's inputs: point forces, body forces,
@@ -209,12 +261,28 @@ pub fn window_work(inputs: &[Fields], outputs: &[Fields]) -> f64 {
     let mut work = 0.0;
     for j in 0..inputs.len().saturating_sub(1) {
         let pairs = [
-            (&inputs[j].point_force, &inputs[j + 1].point_force, &outputs[j].point_displacement, &outputs[j + 1].point_displacement, 3, 3),
-            (&inputs[j].body_force, &inputs[j + 1].body_force, &outputs[j].body_pose, &outputs[j + 1].body_pose, 6, 7),
+            (
+                &inputs[j].point_force,
+                &inputs[j + 1].point_force,
+                &outputs[j].point_displacement,
+                &outputs[j + 1].point_displacement,
+                3,
+                3,
+            ),
+            (
+                &inputs[j].body_force,
+                &inputs[j + 1].body_force,
+                &outputs[j].body_pose,
+                &outputs[j + 1].body_pose,
+                6,
+                7,
+            ),
         ];
         for (f0, f1, x0, x1, fs, xs) in pairs {
             for (k, (a, b)) in f0.chunks_exact(fs).zip(f1.chunks_exact(fs)).enumerate() {
-                let (Some(p0), Some(p1)) = (x0.get(k * xs..k * xs + 3), x1.get(k * xs..k * xs + 3)) else { continue };
+                let (Some(p0), Some(p1)) = (x0.get(k * xs..k * xs + 3), x1.get(k * xs..k * xs + 3)) else {
+                    continue;
+                };
                 work += (0..3).map(|c| 0.5 * (a[c] + b[c]) * (p1[c] - p0[c])).sum::<f64>();
             }
         }

@@ -20,7 +20,10 @@ pub fn executable_for(
     let (path, source) = if let Some(p) = overrides.get(name) {
         (p.clone(), format!("--exe {name}=…"))
     } else if let Some(p) = case.info.executables.get(name) {
-        (case.resolve(p), format!("case.executables.{name} in {}", case.path.display()))
+        (
+            case.resolve(p),
+            format!("case.executables.{name} in {}", case.path.display()),
+        )
     } else {
         let here = std::env::current_exe()
             .map_err(|e| CouplerError::Io(format!("cannot locate the coupler's own executable: {e}")))?;
@@ -55,7 +58,13 @@ pub struct Children {
 impl Children {
     /// Starts `exe args…` in its own process group (so Ctrl-C reaches only the coupler),
     /// with stdout and stderr going to `log`.
-    pub fn spawn(&mut self, name: &str, exe: &Path, args: &[String], log: &Path) -> Result<u32, CouplerError> {
+    pub fn spawn(
+        &mut self,
+        name: &str,
+        exe: &Path,
+        args: &[String],
+        log: &Path,
+    ) -> Result<u32, CouplerError> {
         let io = |e: std::io::Error| CouplerError::Io(format!("cannot write {}: {e}", log.display()));
         let out = File::create(log).map_err(io)?;
         let err = out.try_clone().map_err(io)?;
@@ -72,7 +81,12 @@ impl Children {
                 message: format!("cannot start {}: {e}", exe.display()),
             })?;
         let pid = process.id();
-        self.list.push(Child { name: name.to_string(), pid, process, status: None });
+        self.list.push(Child {
+            name: name.to_string(),
+            pid,
+            process,
+            status: None,
+        });
         Ok(pid)
     }
 
@@ -85,7 +99,10 @@ impl Children {
                 }
             }
             if let Some(status) = child.status {
-                return Err((child.name.clone(), format!("process {} exited ({})", child.pid, describe(status))));
+                return Err((
+                    child.name.clone(),
+                    format!("process {} exited ({})", child.pid, describe(status)),
+                ));
             }
         }
         Ok(())

@@ -30,7 +30,13 @@ impl Ledger {
         }
         header.push_str(",net_fx,net_fy,net_fz,balance,status");
         writeln!(out, "{header}").map_err(io)?;
-        Ok(Ledger { out, path: path.to_path_buf(), tolerance, violations: 0, worst_balance: 0.0 })
+        Ok(Ledger {
+            out,
+            path: path.to_path_buf(),
+            tolerance,
+            violations: 0,
+            worst_balance: 0.0,
+        })
     }
 
     /// One window: forces at the window end, work over the window, and the balance
@@ -58,7 +64,11 @@ impl Ledger {
             magnitude += f.iter().map(|v| v * v).sum::<f64>().sqrt();
         }
         let net_norm = net.iter().map(|v| v * v).sum::<f64>().sqrt();
-        let balance = if magnitude > 0.0 { net_norm / magnitude } else { 0.0 };
+        let balance = if magnitude > 0.0 {
+            net_norm / magnitude
+        } else {
+            0.0
+        };
         self.worst_balance = self.worst_balance.max(balance);
         let ok = balance <= self.tolerance;
         if !ok {

@@ -54,14 +54,14 @@ enum Command {
         out: Option<PathBuf>,
     },
     /// Check a case file and list its participants, without starting anything.
-    Check {
-        case: PathBuf,
-    },
+    Check { case: PathBuf },
 }
 
 fn parse_exe(s: &str) -> Result<(String, PathBuf), String> {
     match s.split_once('=') {
-        Some((name, path)) if !name.is_empty() && !path.is_empty() => Ok((name.to_string(), PathBuf::from(path))),
+        Some((name, path)) if !name.is_empty() && !path.is_empty() => {
+            Ok((name.to_string(), PathBuf::from(path)))
+        }
         _ => Err(format!("expected NAME=PATH, got `{s}`")),
     }
 }
@@ -69,12 +69,27 @@ fn parse_exe(s: &str) -> Result<(String, PathBuf), String> {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Run { case, out, exe } => {
-            run(&RunOptions { case, out, exe: exe.into_iter().collect::<BTreeMap<_, _>>() })
-        }
-        Command::Replay { recording, participant, exe, case, tolerance, out } => {
-            replay(&ReplayOptions { recording, participant, exe, case, tolerance, out }).map(|_| ())
-        }
+        Command::Run { case, out, exe } => run(&RunOptions {
+            case,
+            out,
+            exe: exe.into_iter().collect::<BTreeMap<_, _>>(),
+        }),
+        Command::Replay {
+            recording,
+            participant,
+            exe,
+            case,
+            tolerance,
+            out,
+        } => replay(&ReplayOptions {
+            recording,
+            participant,
+            exe,
+            case,
+            tolerance,
+            out,
+        })
+        .map(|_| ()),
         Command::Check { case } => check(&case),
     };
     match result {
@@ -88,12 +103,20 @@ fn main() -> ExitCode {
 
 fn check(path: &std::path::Path) -> Result<(), CouplerError> {
     let case = Case::load(path)?;
-    println!("{}: case `{}`, end time {} s", path.display(), case.info.name, case.info.end_time);
+    println!(
+        "{}: case `{}`, end time {} s",
+        path.display(),
+        case.info.name,
+        case.info.end_time
+    );
     for (name, kind) in case.participants() {
         println!("  participant {name}: {}", kind.binary_name());
     }
     if let Some(c) = &case.coupling {
-        println!("  coupling: {:?}, window {} s, {} sample(s) per window", c.scheme, c.window, c.samples);
+        println!(
+            "  coupling: {:?}, window {} s, {} sample(s) per window",
+            c.scheme, c.window, c.samples
+        );
     }
     Ok(())
 }

@@ -12,12 +12,21 @@ pub struct Progress {
 impl Progress {
     /// Enabled when stderr is a terminal.
     pub fn new() -> Progress {
-        Progress { enabled: std::io::stderr().is_terminal(), started: Instant::now(), last: None }
+        Progress {
+            enabled: std::io::stderr().is_terminal(),
+            started: Instant::now(),
+            last: None,
+        }
     }
 
     /// After window `done` of `total` ended at simulated time `t` of `end`; redrawn at most 10 times a second.
     pub fn update(&mut self, t: f64, end: f64, done: u64, total: u64) {
-        if !self.enabled || self.last.is_some_and(|l| l.elapsed() < Duration::from_millis(100)) && done < total {
+        if !self.enabled
+            || self
+                .last
+                .is_some_and(|l| l.elapsed() < Duration::from_millis(100))
+                && done < total
+        {
             return;
         }
         self.last = Some(Instant::now());

@@ -6,7 +6,7 @@
 
 use crate::error::CouplerError;
 use crate::launch::executable_for;
-use crate::run::{output_folder, participant_args, new_run_id};
+use crate::run::{new_run_id, output_folder, participant_args};
 use crate::signals;
 use crate::stack::{variant, Launch, Stack};
 use schemas::case::{Case, Kind};
@@ -60,28 +60,45 @@ pub fn replay(opts: &ReplayOptions) -> Result<ReplayReport, CouplerError> {
     if recording.truncated {
         eprintln!("note: the recording ends inside a frame (the run died); replaying what is complete");
     }
-    let out = opts.out.clone().unwrap_or_else(|| PathBuf::from("out").join(format!("replay-{name}")));
+    let out = opts
+        .out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("out").join(format!("replay-{name}")));
     let case = replay_case(&recording, opts.case.as_deref(), &out)?;
     let out = output_folder(&case, Some(&out))?;
     if case.hash != recording.header.case_hash {
-        eprintln!("note: replaying against a case that differs from the recorded one ({})", case.path.display());
+        eprintln!(
+            "note: replaying against a case that differs from the recorded one ({})",
+            case.path.display()
+        );
     }
     let kind = case.kind_of(name).ok_or_else(|| {
-        CouplerError::Usage(format!("the case {} has no participant `{name}`", case.path.display()))
+        CouplerError::Usage(format!(
+            "the case {} has no participant `{name}`",
+            case.path.display()
+        ))
     })?;
     let exe = match &opts.exe {
         Some(p) => BTreeMap::from([(name.clone(), p.clone())]),
         None => BTreeMap::new(),
     };
     let exe = executable_for(&case, name, kind, &exe)?;
-    let mine: Vec<&Message> =
-        recording.frames.iter().filter(|f| &f.participant == name).map(|f| &f.message).collect();
+    let mine: Vec<&Message> = recording
+        .frames
+        .iter()
+        .filter(|f| &f.participant == name)
+        .map(|f| &f.message)
+        .collect();
     signals::install();
     let run_id = new_run_id();
     let case_path = std::fs::canonicalize(&case.path).unwrap_or_else(|_| case.path.clone());
     let launch = Launch {
         name: name.clone(),
-        role: if kind == Kind::Fluid { Role::Fluid } else { Role::Structure },
+        role: if kind == Kind::Fluid {
+            Role::Fluid
+        } else {
+            Role::Structure
+        },
         exe,
         args: participant_args(&case_path, name, &run_id, &out),
     };
@@ -124,7 +141,8 @@ fn replay_case(recording: &Recording, case: Option<&Path>, out: &Path) -> Result
             return Ok(c);
         }
     }
-    std::fs::create_dir_all(out).map_err(|e| CouplerError::Io(format!("cannot create {}: {e}", out.display())))?;
+    std::fs::create_dir_all(out)
+        .map_err(|e| CouplerError::Io(format!("cannot create {}: {e}", out.display())))?;
     let copy = out.join("case.toml");
     std::fs::write(&copy, &recording.header.case_text)
         .map_err(|e| CouplerError::Io(format!("cannot write {}: {e}", copy.display())))?;
@@ -148,11 +166,19 @@ fn drive(
     for m in messages {
         match m {
             Message::From(FromParticipant::Initial { outputs, .. }) => {
-                compare(&mut report, 0, std::slice::from_ref(outputs), std::slice::from_ref(&initial), tolerance);
+                compare(
+                    &mut report,
+                    0,
+                    std::slice::from_ref(outputs),
+                    std::slice::from_ref(&initial),
+                    tolerance,
+                );
             }
             Message::To(msg @ ToParticipant::Advance { header, .. }) => {
                 if signals::interrupted() {
-                    return Err(CouplerError::Interrupted { window: Some(header.window) });
+                    return Err(CouplerError::Interrupted {
+                        window: Some(header.window),
+                    });
                 }
                 sent_window = Some(header.window);
                 stack.send(0, msg.clone(), sent_window)?;
@@ -175,7 +201,14 @@ fn drive(
                         FromParticipant::Advanced { outputs: a, .. },
                     ) => compare(&mut report, window, &r.samples, &a.samples, tolerance),
                     _ => {
-                        report.departure.get_or_insert((window, format!("answer kind: recorded {}, now {}", variant(recorded), variant(&actual))));
+                        report.departure.get_or_insert((
+                            window,
+                            format!(
+                                "answer kind: recorded {}, now {}",
+                                variant(recorded),
+                                variant(&actual)
+                            ),
+                        ));
                     }
                 }
             }
@@ -196,7 +229,11 @@ fn compare(report: &mut ReplayReport, window: u64, recorded: &[Fields], actual: 
             let (abs, rel) = if rv.len() != av.len() {
                 (f64::INFINITY, f64::INFINITY)
             } else {
-                let abs = rv.iter().zip(av.iter()).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+                let abs = rv
+                    .iter()
+                    .zip(av.iter())
+                    .map(|(x, y)| (x - y).abs())
+                    .fold(0.0, f64::max);
                 let scale = rv.iter().map(|x| x.abs()).fold(0.0, f64::max);
                 (abs, if scale > 0.0 { abs / scale } else { abs })
             };
@@ -215,11 +252,23 @@ fn compare(report: &mut ReplayReport, window: u64, recorded: &[Fields], actual: 
 }
 
 fn print_report(report: &ReplayReport, tolerance: f64) {
-    println!("replayed {} answers; tolerance {tolerance:.1e} (relative to the recorded field's largest value)", report.messages);
-    println!("{:<22} {:>16} {:>16} {:>16}", "field", "largest abs", "largest rel", "first window over");
+    println!(
+        "replayed {} answers; tolerance {tolerance:.1e} (relative to the recorded field's largest value)",
+        report.messages
+    );
+    println!(
+        "{:<22} {:>16} {:>16} {:>16}",
+        "field", "largest abs", "largest rel", "first window over"
+    );
     for (name, d) in &report.fields {
-        let first = d.first_departure.map(|w| w.to_string()).unwrap_or_else(|| "-".into());
-        println!("{name:<22} {:>16.3e} {:>16.3e} {first:>16}", d.largest_absolute, d.largest_relative);
+        let first = d
+            .first_departure
+            .map(|w| w.to_string())
+            .unwrap_or_else(|| "-".into());
+        println!(
+            "{name:<22} {:>16.3e} {:>16.3e} {first:>16}",
+            d.largest_absolute, d.largest_relative
+        );
     }
     match &report.departure {
         Some((w, field)) => println!("DEPARTS in window {w} ({field})"),

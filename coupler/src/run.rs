@@ -26,7 +26,9 @@ pub struct RunOptions {
 
 /// The output folder: `--out`, or `out/<case name>`.
 pub fn output_folder(case: &Case, out: Option<&Path>) -> Result<PathBuf, CouplerError> {
-    let dir = out.map(Path::to_path_buf).unwrap_or_else(|| PathBuf::from("out").join(&case.info.name));
+    let dir = out
+        .map(Path::to_path_buf)
+        .unwrap_or_else(|| PathBuf::from("out").join(&case.info.name));
     std::fs::create_dir_all(&dir)
         .map_err(|e| CouplerError::Io(format!("cannot create the output folder {}: {e}", dir.display())))?;
     Ok(dir)
@@ -34,7 +36,10 @@ pub fn output_folder(case: &Case, out: Option<&Path>) -> Result<PathBuf, Coupler
 
 /// A run id unique on this machine: service names carry it, so concurrent runs never cross.
 pub fn new_run_id() -> String {
-    let nanos = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_nanos()).unwrap_or(0);
+    let nanos = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_nanos())
+        .unwrap_or(0);
     format!("{:x}-{:x}", std::process::id(), nanos & 0xffff_ffff_ffff)
 }
 
@@ -110,14 +115,23 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
         let decls: Vec<_> = stack.sessions.iter().map(|s| s.interface.clone()).collect();
         let interface = Interface::bind(&case, &order, &decls)?;
         for (p, fields) in initial.iter().enumerate() {
-            interface.check_outputs(p, fields).map_err(|message| CouplerError::Participant {
-                name: order[p].clone(),
-                window: None,
-                message: format!("initial outputs: {message}"),
-            })?;
+            interface
+                .check_outputs(p, fields)
+                .map_err(|message| CouplerError::Participant {
+                    name: order[p].clone(),
+                    window: None,
+                    message: format!("initial outputs: {message}"),
+                })?;
         }
         let ledger = Ledger::create(&out.join("ledger.csv"), &order, coupling.balance_tolerance)?;
-        let windows = Windows { stack: &mut stack, interface: &interface, config: coupling, ledger, progress: Progress::new(), reference: Default::default() };
+        let windows = Windows {
+            stack: &mut stack,
+            interface: &interface,
+            config: coupling,
+            ledger,
+            progress: Progress::new(),
+            reference: Default::default(),
+        };
         windows.run(case.info.end_time, initial)
     })();
     match result {
@@ -143,7 +157,10 @@ fn report(s: &Summary, wall: f64, out: &Path) {
         s.worst_balance,
         if s.balance_violations > 0 { format!(", {} windows above tolerance", s.balance_violations) } else { String::new() }
     );
-    eprintln!("output: {} (recording.rec, ledger.csv, one log and folder per participant)", out.display());
+    eprintln!(
+        "output: {} (recording.rec, ledger.csv, one log and folder per participant)",
+        out.display()
+    );
 }
 
 /// A case with one participant and no coupling: the solver runs alone (`SOLVER run CASE --out DIR`).

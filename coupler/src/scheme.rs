@@ -18,7 +18,9 @@ use crate::progress::Progress;
 use crate::stack::{variant, Stack};
 use crate::state;
 use schemas::case::coupling::{CouplingConfig, Predictor, Scheme};
-use schemas::message::{Checkpoint, Fields, FromParticipant, Header, ToParticipant, Waveform, PROTOCOL_VERSION};
+use schemas::message::{
+    Checkpoint, Fields, FromParticipant, Header, ToParticipant, Waveform, PROTOCOL_VERSION,
+};
 
 /// What a finished run did.
 #[derive(Debug, Clone, Default)]
@@ -47,25 +49,41 @@ impl Windows<'_> {
         let dt = self.config.window;
         let total = ((end_time / dt) - 1e-9).ceil().max(1.0) as u64;
         let mut accelerator = acceleration::from_config(self.config);
-        let mut last: Vec<Waveform> = initial.into_iter().map(|f| Waveform { times: vec![0.0], samples: vec![f] }).collect();
+        let mut last: Vec<Waveform> = initial
+            .into_iter()
+            .map(|f| Waveform {
+                times: vec![0.0],
+                samples: vec![f],
+            })
+            .collect();
         let mut summary = Summary::default();
         for w in 0..total {
             let t0 = w as f64 * dt;
-            let t1 = if w + 1 == total { end_time } else { (w + 1) as f64 * dt };
+            let t1 = if w + 1 == total {
+                end_time
+            } else {
+                (w + 1) as f64 * dt
+            };
             let times = Waveform::grid(t0, t1, self.config.samples);
             let mut estimate: Vec<Vec<Fields>> = last.iter().map(|w| self.predict(w, &times)).collect();
             let (inputs, iterations, residual) = match self.config.scheme {
                 Scheme::Explicit => (self.sweep(w, 0, Checkpoint::None, &times, &mut estimate)?, 1, 0.0),
                 Scheme::Implicit => self.implicit(w, &times, &mut estimate, accelerator.as_mut())?,
             };
-            self.ledger.window(w, t1, iterations, residual, &inputs, &estimate)?;
+            self.ledger
+                .window(w, t1, iterations, residual, &inputs, &estimate)?;
             self.reference.observe(&estimate);
-            last = estimate.into_iter().map(|samples| Waveform { times: times.clone(), samples }).collect();
+            last = estimate
+                .into_iter()
+                .map(|samples| Waveform {
+                    times: times.clone(),
+                    samples,
+                })
+                .collect();
             summary.windows += 1;
             summary.iterations += u64::from(iterations);
             summary.max_iterations = summary.max_iterations.max(iterations);
             self.progress.update(t1, end_time, w + 1, total);
-
         }
         self.progress.finish();
         summary.worst_balance = self.ledger.worst_balance;
@@ -97,7 +115,11 @@ impl Windows<'_> {
         let mut scales = Vec::new();
         for k in 0..self.config.max_iterations {
             let (x, blocks) = state::flatten(estimate);
-            let checkpoint = if k == 0 { Checkpoint::Save } else { Checkpoint::Restore };
+            let checkpoint = if k == 0 {
+                Checkpoint::Save
+            } else {
+                Checkpoint::Restore
+            };
             let inputs = self.sweep(w, k, checkpoint, times, estimate)?;
             let (h, after) = state::flatten(estimate);
             if h.len() != x.len() || after.len() != blocks.len() {
@@ -158,13 +180,37 @@ impl Windows<'_> {
                     self.interface.inputs(p, &at_start, &current)
                 })
                 .collect();
-            let header = Header { protocol: PROTOCOL_VERSION, window: w, iteration: k, time: t_end };
-            let waveform = Waveform { times: times.to_vec(), samples: inputs.clone() };
-            self.stack.send(p, ToParticipant::Advance { header, checkpoint, inputs: waveform }, Some(w))?;
+            let header = Header {
+                protocol: PROTOCOL_VERSION,
+                window: w,
+                iteration: k,
+                time: t_end,
+            };
+            let waveform = Waveform {
+                times: times.to_vec(),
+                samples: inputs.clone(),
+            };
+            self.stack.send(
+                p,
+                ToParticipant::Advance {
+                    header,
+                    checkpoint,
+                    inputs: waveform,
+                },
+                Some(w),
+            )?;
             let name = self.stack.sessions[p].name.clone();
-            let refuse = |message: String| CouplerError::Participant { name: name.clone(), window: Some(w), message };
+            let refuse = |message: String| CouplerError::Participant {
+                name: name.clone(),
+                window: Some(w),
+                message,
+            };
             match self.stack.recv(p, Some(w))? {
-                FromParticipant::Advanced { header: h, outputs, geometry } => {
+                FromParticipant::Advanced {
+                    header: h,
+                    outputs,
+                    geometry,
+                } => {
                     if h.window != w || h.iteration != k {
                         return Err(refuse(format!(
                             "answered window {} iteration {}, expected window {w} iteration {k}",
@@ -194,7 +240,12 @@ impl Windows<'_> {
                     }
                     estimate[p] = outputs.samples;
                 }
-                other => return Err(refuse(format!("protocol error: expected Advanced, got {}", variant(&other)))),
+                other => {
+                    return Err(refuse(format!(
+                        "protocol error: expected Advanced, got {}",
+                        variant(&other)
+                    )))
+                }
             }
             given.push(inputs);
         }

@@ -51,13 +51,19 @@ impl Stack {
         recorder: Option<Recorder>,
         timeout: Duration,
     ) -> Result<(Stack, Vec<schemas::message::Fields>), CouplerError> {
-        let mut stack =
-            Stack { sessions: Vec::new(), children: Children::default(), recorder, started: Instant::now(), timeout };
+        let mut stack = Stack {
+            sessions: Vec::new(),
+            children: Children::default(),
+            recorder,
+            started: Instant::now(),
+            timeout,
+        };
         for l in &launches {
             let log = out.join(format!("{}.log", l.name));
             let pid = stack.children.spawn(&l.name, &l.exe, &l.args, &log)?;
             eprintln!("started {} ({}, pid {pid})", l.name, l.exe.display());
-            let link = Link::open(run_id, &l.name, Side::Coupler).map_err(|e| link_error(&l.name, None, e))?;
+            let link =
+                Link::open(run_id, &l.name, Side::Coupler).map_err(|e| link_error(&l.name, None, e))?;
             stack.sessions.push(Session {
                 name: l.name.clone(),
                 role: l.role,
@@ -74,7 +80,12 @@ impl Stack {
         Ok((stack, initial))
     }
 
-    fn handshake(&mut self, i: usize, run_id: &str, case_hash: u64) -> Result<schemas::message::Fields, CouplerError> {
+    fn handshake(
+        &mut self,
+        i: usize,
+        run_id: &str,
+        case_hash: u64,
+    ) -> Result<schemas::message::Fields, CouplerError> {
         let name = self.sessions[i].name.clone();
         let expected_role = self.sessions[i].role;
         let deadline = Instant::now() + START_TIMEOUT;
@@ -92,7 +103,10 @@ impl Stack {
         } else if hello.name != name {
             Some(format!("it says its name is `{}`", hello.name))
         } else if hello.role != expected_role {
-            Some(format!("it is a {:?} solver, the case declares a {:?} participant", hello.role, expected_role))
+            Some(format!(
+                "it is a {:?} solver, the case declares a {:?} participant",
+                hello.role, expected_role
+            ))
         } else if hello.case_hash != case_hash {
             Some(format!(
                 "it loaded a different case file (hash {:016x}, the coupler's is {case_hash:016x})",
@@ -102,7 +116,13 @@ impl Stack {
             None
         };
         if let Some(reason) = refusal {
-            self.send(i, ToParticipant::Refused { reason: reason.clone() }, None)?;
+            self.send(
+                i,
+                ToParticipant::Refused {
+                    reason: reason.clone(),
+                },
+                None,
+            )?;
             return Err(CouplerError::Participant {
                 name,
                 window: None,
@@ -110,7 +130,13 @@ impl Stack {
             });
         }
         self.sessions[i].interface = hello.interface;
-        self.send(i, ToParticipant::Welcome { run_id: run_id.to_string() }, None)?;
+        self.send(
+            i,
+            ToParticipant::Welcome {
+                run_id: run_id.to_string(),
+            },
+            None,
+        )?;
         match self.recv(i, None)? {
             FromParticipant::Initial { outputs, geometry } => {
                 self.sessions[i].geometry = geometry;
@@ -123,7 +149,10 @@ impl Stack {
     /// Sends one message to participant `i` and records it.
     pub fn send(&mut self, i: usize, msg: ToParticipant, window: Option<u64>) -> Result<(), CouplerError> {
         let name = self.sessions[i].name.clone();
-        self.sessions[i].link.send(&msg).map_err(|e| link_error(&name, window, e))?;
+        self.sessions[i]
+            .link
+            .send(&msg)
+            .map_err(|e| link_error(&name, window, e))?;
         self.record(&name, Message::To(msg))
     }
 
@@ -139,7 +168,9 @@ impl Stack {
         window: Option<u64>,
         deadline: Option<Instant>,
     ) -> Result<FromParticipant, CouplerError> {
-        let msg = self.wait(i, window, |link, alive| link.recv::<FromParticipant>(deadline, alive))?;
+        let msg = self.wait(i, window, |link, alive| {
+            link.recv::<FromParticipant>(deadline, alive)
+        })?;
         let name = self.sessions[i].name.clone();
         self.record(&name, Message::From(msg.clone()))?;
         if let FromParticipant::Failed { header, diagnostic } = &msg {
@@ -168,14 +199,22 @@ impl Stack {
                 return Err("interrupted".to_string());
             }
             children.check().map_err(|(name, what)| {
-                let log = sessions.iter().find(|s| s.name == name).map(|s| s.log.clone()).unwrap_or_default();
+                let log = sessions
+                    .iter()
+                    .find(|s| s.name == name)
+                    .map(|s| s.log.clone())
+                    .unwrap_or_default();
                 let tail = log_tail(&log, 5);
                 let message = if tail.is_empty() {
                     what.clone()
                 } else {
                     format!("{what}; the end of {}:\n{tail}", log.display())
                 };
-                cause = Some(CouplerError::Participant { name, window, message });
+                cause = Some(CouplerError::Participant {
+                    name,
+                    window,
+                    message,
+                });
                 what
             })
         };
@@ -186,7 +225,10 @@ impl Stack {
             (Err(LinkError::Timeout), None) => Err(CouplerError::Participant {
                 name: self.sessions[i].name.clone(),
                 window,
-                message: format!("no answer within {:.1} s (hung?); raise coupling.timeout if it is only slow", self.timeout.as_secs_f64()),
+                message: format!(
+                    "no answer within {:.1} s (hung?); raise coupling.timeout if it is only slow",
+                    self.timeout.as_secs_f64()
+                ),
             }),
             (Err(e), None) => Err(link_error(&self.sessions[i].name, window, e)),
         }
@@ -195,14 +237,20 @@ impl Stack {
     fn record(&mut self, name: &str, msg: Message) -> Result<(), CouplerError> {
         let wall = self.started.elapsed().as_secs_f64();
         match &mut self.recorder {
-            Some(r) => r
-                .record(name, wall, msg)
-                .map_err(|e| CouplerError::Io(format!("cannot write the recording {}: {e}", r.path().display()))),
+            Some(r) => r.record(name, wall, msg).map_err(|e| {
+                CouplerError::Io(format!("cannot write the recording {}: {e}", r.path().display()))
+            }),
             None => Ok(()),
         }
     }
 
-    fn protocol_error(&self, i: usize, window: Option<u64>, expected: &str, got: &FromParticipant) -> CouplerError {
+    fn protocol_error(
+        &self,
+        i: usize,
+        window: Option<u64>,
+        expected: &str,
+        got: &FromParticipant,
+    ) -> CouplerError {
         CouplerError::Participant {
             name: self.sessions[i].name.clone(),
             window,
@@ -259,5 +307,9 @@ pub fn variant(m: &FromParticipant) -> &'static str {
 }
 
 fn link_error(name: &str, window: Option<u64>, e: LinkError) -> CouplerError {
-    CouplerError::Participant { name: name.to_string(), window, message: format!("link: {e}") }
+    CouplerError::Participant {
+        name: name.to_string(),
+        window,
+        message: format!("link: {e}"),
+    }
 }

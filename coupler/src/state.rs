@@ -29,7 +29,12 @@ pub fn flatten(outputs: &[Vec<Fields>]) -> (Vec<f64>, Vec<Block>) {
                 x.extend_from_slice(list[a].1);
             }
             if x.len() > start {
-                blocks.push(Block { participant: p, array: a, name, range: start..x.len() });
+                blocks.push(Block {
+                    participant: p,
+                    array: a,
+                    name,
+                    range: start..x.len(),
+                });
             }
         }
     }
@@ -70,7 +75,9 @@ pub fn block_scales(h: &[f64], blocks: &[Block]) -> Vec<f64> {
 pub fn scale(x: &[f64], blocks: &[Block], scales: &[f64], inverse: bool) -> Vec<f64> {
     let mut out = x.to_vec();
     for (b, s) in blocks.iter().zip(scales) {
-        out[b.range.clone()].iter_mut().for_each(|v| *v = if inverse { *v * s } else { *v / s });
+        out[b.range.clone()]
+            .iter_mut()
+            .for_each(|v| *v = if inverse { *v * s } else { *v / s });
     }
     out
 }
@@ -117,8 +124,20 @@ pub fn worst_residual<'a>(
     let mut worst: (f64, Option<&Block>) = (0.0, None);
     for b in blocks {
         let r: f64 = b.range.clone().map(|i| (h[i] - x[i]).powi(2)).sum::<f64>().sqrt();
-        let n: f64 = b.range.clone().map(|i| h[i] * h[i]).sum::<f64>().sqrt().max(magnitudes.floor(b));
-        let rel = if r == 0.0 { 0.0 } else if n > 0.0 { r / n } else { f64::INFINITY };
+        let n: f64 = b
+            .range
+            .clone()
+            .map(|i| h[i] * h[i])
+            .sum::<f64>()
+            .sqrt()
+            .max(magnitudes.floor(b));
+        let rel = if r == 0.0 {
+            0.0
+        } else if n > 0.0 {
+            r / n
+        } else {
+            f64::INFINITY
+        };
         if worst.1.is_none() || rel > worst.0 {
             worst = (rel, Some(b));
         }
@@ -133,7 +152,11 @@ mod tests {
 
     #[test]
     fn flatten_and_unflatten_are_inverse() {
-        let f = |a: f64| Fields { point_displacement: F64s(vec![a, a + 1.0]), body_force: F64s(vec![a * 2.0]), ..Fields::default() };
+        let f = |a: f64| Fields {
+            point_displacement: F64s(vec![a, a + 1.0]),
+            body_force: F64s(vec![a * 2.0]),
+            ..Fields::default()
+        };
         let outputs = vec![vec![f(0.0), f(1.0), f(2.0)], vec![f(10.0), f(11.0), f(12.0)]];
         let (x, blocks) = flatten(&outputs);
         assert_eq!(x.len(), 2 * 2 * 3);

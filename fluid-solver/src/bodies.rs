@@ -6,10 +6,11 @@
 //! (1, 0, 0, 0). Each body particle keeps its offset from the initial centre.
 //!
 //! What the fluid exchanges with a body, pair by pair between a fluid particle i and a body
-//! particle j (each pair force acts on the body and, reversed, on the fluid, so action = reaction
-//! holds to round-off and the moments balance too, the pair forces lying along r_ij):
+//! particle j (each pair force acts on the body and, reversed, on the fluid, with its moment taken
+//! at r_j on both sides, so action = reaction holds to round-off for forces and moments):
 //! - the pressure pair terms of S1-3 (body particles carry pressure like walls, S1-14, and fill
-//!   the fluid's number density, S1-15, as the seed's PMS does, S1-19 … S1-21);
+//!   the fluid's number density, S1-15; the seed's PMS, S1-19 … S1-21, moves them as fluid
+//!   instead and reads the body force from their velocity change);
 //! - the collision stage's impulses between close approaching fluid and body particles (see
 //!   [`crate::emps_step`]), with the body particle's rigid velocity, reported as impulse / Δt of
 //!   the last step;
@@ -236,7 +237,9 @@ impl RigidBodies {
     }
 
     /// −Σ over fluid particles i of `pair(i, j)` over body neighbours j within `radius`, per body,
-    /// with the moment about the body's centre at r_i (6 per body).
+    /// with the moment about the body's centre taken at the body particle r_j, as in
+    /// [`RigidBodies::body_side_sum`], so that the moments balance too (the viscous pair force is
+    /// not along r_ij) (6 per body).
     fn fluid_side_sum(
         &self,
         grid: &CellGrid,
@@ -255,7 +258,6 @@ impl RigidBodies {
             .fold(
                 || vec![0.0; 6 * bodies],
                 |mut acc, i| {
-                    let ri = p.position(i);
                     grid.for_each_range(i, reach, |s, e| {
                         for j in (s..e).filter(|&j| p.kind[j] == body) {
                             let Some(&(_, b, _)) = self.member(p.id[j]) else {
@@ -265,7 +267,7 @@ impl RigidBodies {
                                 let f = fij.map(|v| -v);
                                 add_with_moment(
                                     &mut acc[6 * b..6 * b + 6],
-                                    ri,
+                                    p.position(j),
                                     &centres[7 * b..7 * b + 3],
                                     f,
                                 );

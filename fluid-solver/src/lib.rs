@@ -24,6 +24,7 @@ pub mod run;
 pub mod solver;
 pub mod stability;
 pub mod surface_mesh;
+pub mod vtk_appended;
 pub mod vtp;
 pub mod vtu;
 

@@ -3,9 +3,9 @@
 
 use crate::particles::Particles;
 use crate::surface_mesh::{fluid_surface, TriangleMesh};
+use crate::vtk_appended::{self, le_bytes, Array, Section};
 use crate::vtu::TimeSeries;
-use std::fs;
-use std::io::{self, Write};
+use std::io;
 use std::path::{Path, PathBuf};
 
 /// Writes `mesh` to `path` as a VTP file (via a temporary file, so a frame is never half written):
@@ -14,60 +14,53 @@ pub fn write_vtp(path: &Path, mesh: &TriangleMesh) -> io::Result<()> {
     let (n, m) = (mesh.vertices.len(), mesh.triangles.len());
     let connectivity: Vec<i64> = mesh.triangles.iter().flatten().map(|&v| i64::from(v)).collect();
     let offsets: Vec<i64> = (1..=m as i64).map(|t| 3 * t).collect();
-    let blocks: Vec<Vec<u8>> = vec![
-        mesh.normals
-            .iter()
-            .flatten()
-            .flat_map(|v| v.to_le_bytes())
-            .collect(),
-        mesh.vertices
-            .iter()
-            .flatten()
-            .flat_map(|v| v.to_le_bytes())
-            .collect(),
-        connectivity.iter().flat_map(|v| v.to_le_bytes()).collect(),
-        offsets.iter().flat_map(|v| v.to_le_bytes()).collect(),
-    ];
-    let mut offs = Vec::with_capacity(blocks.len());
-    let mut at = 0usize;
-    for b in &blocks {
-        offs.push(at);
-        at += 8 + b.len();
-    }
-    let da = |ty: &str, name: &str, comps: usize, off: usize| {
-        format!(
-            "<DataArray type=\"{ty}\" Name=\"{name}\" NumberOfComponents=\"{comps}\" format=\"appended\" offset=\"{off}\"/>\n"
-        )
+    let normals: Vec<f32> = mesh.normals.iter().flatten().copied().collect();
+    let vertices: Vec<f64> = mesh.vertices.iter().flatten().copied().collect();
+    let array = |ty, name, components, bytes| Array {
+        ty,
+        name,
+        components,
+        bytes,
     };
-    let mut xml = String::new();
-    xml.push_str("<?xml version=\"1.0\"?>\n");
-    xml.push_str(
-        "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n",
+    let sections = [
+        Section {
+            element: "PointData",
+            attributes: "Normals=\"normals\"".into(),
+            arrays: vec![array(
+                "Float32",
+                "normals",
+                3,
+                le_bytes(&normals, f32::to_le_bytes),
+            )],
+        },
+        Section {
+            element: "Points",
+            attributes: String::new(),
+            arrays: vec![array(
+                "Float64",
+                "position",
+                3,
+                le_bytes(&vertices, f64::to_le_bytes),
+            )],
+        },
+        Section {
+            element: "Polys",
+            attributes: String::new(),
+            arrays: vec![
+                array(
+                    "Int64",
+                    "connectivity",
+                    1,
+                    le_bytes(&connectivity, i64::to_le_bytes),
+                ),
+                array("Int64", "offsets", 1, le_bytes(&offsets, i64::to_le_bytes)),
+            ],
+        },
+    ];
+    let piece = format!(
+        "NumberOfPoints=\"{n}\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"{m}\""
     );
-    xml.push_str(&format!(
-        "<PolyData>\n<Piece NumberOfPoints=\"{n}\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"{m}\">\n"
-    ));
-    xml.push_str("<PointData Normals=\"normals\">\n");
-    xml.push_str(&da("Float32", "normals", 3, offs[0]));
-    xml.push_str("</PointData>\n<Points>\n");
-    xml.push_str(&da("Float64", "position", 3, offs[1]));
-    xml.push_str("</Points>\n<Polys>\n");
-    xml.push_str(&da("Int64", "connectivity", 1, offs[2]));
-    xml.push_str(&da("Int64", "offsets", 1, offs[3]));
-    xml.push_str("</Polys>\n</Piece>\n</PolyData>\n<AppendedData encoding=\"raw\">\n_");
-
-    let tmp = path.with_extension("vtp.tmp");
-    {
-        let mut f = io::BufWriter::new(fs::File::create(&tmp)?);
-        f.write_all(xml.as_bytes())?;
-        for b in &blocks {
-            f.write_all(&(b.len() as u64).to_le_bytes())?;
-            f.write_all(b)?;
-        }
-        f.write_all(b"\n</AppendedData>\n</VTKFile>\n")?;
-        f.flush()?;
-    }
-    fs::rename(&tmp, path)
+    vtk_appended::write(path, "PolyData", &piece, &sections)
 }
 
 /// The surface-mesh frames of one fluid participant: `NAME_surface_00000.vtp`, … in `dir` and

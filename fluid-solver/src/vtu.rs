@@ -3,8 +3,9 @@
 
 use crate::kind::DUMMY;
 use crate::particles::Particles;
+use crate::vtk_appended::{self, le_bytes, Array, Section};
 use std::fs;
-use std::io::{self, Write};
+use std::io;
 use std::path::{Path, PathBuf};
 
 /// Writes `p` to `path` as a VTU file (via a temporary file, so a frame is never half written).
@@ -18,60 +19,54 @@ pub fn write_vtu(path: &Path, p: &Particles) -> io::Result<()> {
     let id: Vec<u32> = keep.iter().map(|&i| p.id[i]).collect();
     let connectivity: Vec<i64> = (0..n as i64).collect();
     let offsets: Vec<i64> = (1..=n as i64).collect();
-    let types = vec![1u8; n]; // VTK_VERTEX
-
-    let blocks: Vec<Vec<u8>> = vec![
-        velocity.iter().flat_map(|v| v.to_le_bytes()).collect(),
-        pressure.iter().flat_map(|v| v.to_le_bytes()).collect(),
-        kind,
-        id.iter().flat_map(|v| v.to_le_bytes()).collect(),
-        points.iter().flat_map(|v| v.to_le_bytes()).collect(),
-        connectivity.iter().flat_map(|v| v.to_le_bytes()).collect(),
-        offsets.iter().flat_map(|v| v.to_le_bytes()).collect(),
-        types,
-    ];
-    let mut offs = Vec::with_capacity(blocks.len());
-    let mut at = 0usize;
-    for b in &blocks {
-        offs.push(at);
-        at += 8 + b.len();
-    }
-    let mut xml = String::new();
-    xml.push_str("<?xml version=\"1.0\"?>\n");
-    xml.push_str("<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n");
-    xml.push_str(&format!(
-        "<UnstructuredGrid>\n<Piece NumberOfPoints=\"{n}\" NumberOfCells=\"{n}\">\n"
-    ));
-    xml.push_str("<PointData Scalars=\"pressure\" Vectors=\"velocity\">\n");
-    let da = |ty: &str, name: &str, comps: usize, off: usize| {
-        format!(
-            "<DataArray type=\"{ty}\" Name=\"{name}\" NumberOfComponents=\"{comps}\" format=\"appended\" offset=\"{off}\"/>\n"
-        )
+    let array = |ty, name, components, bytes| Array {
+        ty,
+        name,
+        components,
+        bytes,
     };
-    xml.push_str(&da("Float64", "velocity", 3, offs[0]));
-    xml.push_str(&da("Float64", "pressure", 1, offs[1]));
-    xml.push_str(&da("UInt8", "kind", 1, offs[2]));
-    xml.push_str(&da("UInt32", "id", 1, offs[3]));
-    xml.push_str("</PointData>\n<Points>\n");
-    xml.push_str(&da("Float64", "position", 3, offs[4]));
-    xml.push_str("</Points>\n<Cells>\n");
-    xml.push_str(&da("Int64", "connectivity", 1, offs[5]));
-    xml.push_str(&da("Int64", "offsets", 1, offs[6]));
-    xml.push_str(&da("UInt8", "types", 1, offs[7]));
-    xml.push_str("</Cells>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_");
-
-    let tmp = path.with_extension("vtu.tmp");
-    {
-        let mut f = io::BufWriter::new(fs::File::create(&tmp)?);
-        f.write_all(xml.as_bytes())?;
-        for b in &blocks {
-            f.write_all(&(b.len() as u64).to_le_bytes())?;
-            f.write_all(b)?;
-        }
-        f.write_all(b"\n</AppendedData>\n</VTKFile>\n")?;
-        f.flush()?;
-    }
-    fs::rename(&tmp, path)
+    let sections = [
+        Section {
+            element: "PointData",
+            attributes: "Scalars=\"pressure\" Vectors=\"velocity\"".into(),
+            arrays: vec![
+                array("Float64", "velocity", 3, le_bytes(&velocity, f64::to_le_bytes)),
+                array("Float64", "pressure", 1, le_bytes(&pressure, f64::to_le_bytes)),
+                array("UInt8", "kind", 1, kind),
+                array("UInt32", "id", 1, le_bytes(&id, u32::to_le_bytes)),
+            ],
+        },
+        Section {
+            element: "Points",
+            attributes: String::new(),
+            arrays: vec![array(
+                "Float64",
+                "position",
+                3,
+                le_bytes(&points, f64::to_le_bytes),
+            )],
+        },
+        Section {
+            element: "Cells",
+            attributes: String::new(),
+            arrays: vec![
+                array(
+                    "Int64",
+                    "connectivity",
+                    1,
+                    le_bytes(&connectivity, i64::to_le_bytes),
+                ),
+                array("Int64", "offsets", 1, le_bytes(&offsets, i64::to_le_bytes)),
+                array("UInt8", "types", 1, vec![1u8; n]), // VTK_VERTEX
+            ],
+        },
+    ];
+    vtk_appended::write(
+        path,
+        "UnstructuredGrid",
+        &format!("NumberOfPoints=\"{n}\" NumberOfCells=\"{n}\""),
+        &sections,
+    )
 }
 
 /// A PVD time series, rewritten whole after each frame so that it always lists the frames on disk.

@@ -1,7 +1,8 @@
 //! A block of water thrown down onto a box held fixed: the fluid's momentum change is gravity's
 //! impulse minus the impulse of the loads the fluid reports on the box (viscous and pressure
-//! pairs and collisions together), to round-off: every bit of momentum the fluid gives the body is in
-//! the loads. No water particle gets through the box's outer particle layer.
+//! pairs and collisions together), to round-off: every bit of momentum the fluid gives the body
+//! is in the loads, and the reaction the fluid reports balances them, forces and moments. No
+//! water particle gets through the box's outer particle layer.
 
 mod bodies_common;
 
@@ -41,7 +42,14 @@ fn the_loads_carry_all_the_momentum_the_fluid_gives_the_body() {
     let mut peak: f64 = 0.0;
     while let Some(dt) = solver.next_step_towards(0.1) {
         solver.step(dt).unwrap_or_else(|e| panic!("{e}"));
-        let loads = solver.body_loads();
+        let (loads, reaction) = (solver.body_loads(), solver.body_reactions());
+        let size = loads.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
+        for (a, (l, r)) in loads.iter().zip(&reaction).enumerate() {
+            assert!(
+                (l + r).abs() <= 1e-9 * size,
+                "component {a}: load {l}, reaction {r}"
+            );
+        }
         (0..3).for_each(|a| impulse_on_body[a] += loads[a] * dt);
         peak = peak.max(-loads[2]);
         let p = solver.particles();

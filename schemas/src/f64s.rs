@@ -42,11 +42,12 @@ impl Encode for F64s {
         (self.0.len() as u64).encode(encoder)?;
         if cfg!(target_endian = "little") {
             // SAFETY: an initialised `[f64]` is valid as `len * 8` initialised bytes.
-            let bytes =
-                unsafe { std::slice::from_raw_parts(self.0.as_ptr().cast::<u8>(), self.0.len() * 8) };
+            let bytes = unsafe { std::slice::from_raw_parts(self.0.as_ptr().cast::<u8>(), self.0.len() * 8) };
             encoder.writer().write(bytes)
         } else {
-            self.0.iter().try_for_each(|v| encoder.writer().write(&v.to_le_bytes()))
+            self.0
+                .iter()
+                .try_for_each(|v| encoder.writer().write(&v.to_le_bytes()))
         }
     }
 }
@@ -62,7 +63,9 @@ impl<Context> Decode<Context> for F64s {
             unsafe { std::slice::from_raw_parts_mut(values.as_mut_ptr().cast::<u8>(), values.len() * 8) };
         decoder.reader().read(bytes)?;
         if cfg!(target_endian = "big") {
-            values.iter_mut().for_each(|v| *v = f64::from_le_bytes(v.to_ne_bytes()));
+            values
+                .iter_mut()
+                .for_each(|v| *v = f64::from_le_bytes(v.to_ne_bytes()));
         }
         Ok(F64s(values))
     }

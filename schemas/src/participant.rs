@@ -6,8 +6,8 @@
 
 use crate::link::{process_alive, Link, LinkError, Side};
 use crate::message::{
-    Checkpoint, Fields, FromParticipant, Geometry, Header, Hello, InterfaceDecl, Role, ToParticipant, Waveform,
-    PROTOCOL_VERSION,
+    Checkpoint, Fields, FromParticipant, Geometry, Header, Hello, InterfaceDecl, Role, ToParticipant,
+    Waveform, PROTOCOL_VERSION,
 };
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -92,7 +92,11 @@ impl From<LinkError> for ServeError {
 const CONNECT_TIMEOUT: Duration = Duration::from_secs(30);
 
 /// Runs the participant protocol with this crate's protocol version.
-pub fn serve<P: Participant>(args: &ParticipantArgs, case_hash: u64, solver: &mut P) -> Result<(), ServeError> {
+pub fn serve<P: Participant>(
+    args: &ParticipantArgs,
+    case_hash: u64,
+    solver: &mut P,
+) -> Result<(), ServeError> {
     serve_announcing(args, case_hash, solver, PROTOCOL_VERSION)
 }
 
@@ -107,7 +111,8 @@ pub fn serve_announcing<P: Participant>(
     stop_with_parent();
     let link = Link::open(&args.run_id, &args.name, Side::Participant)?;
     let coupler = args.coupler_pid;
-    let mut alive = move || process_alive(coupler).map_err(|e| format!("the coupler (pid {coupler}) is gone: {e}"));
+    let mut alive =
+        move || process_alive(coupler).map_err(|e| format!("the coupler (pid {coupler}) is gone: {e}"));
     link.wait_for_peer(Instant::now() + CONNECT_TIMEOUT, &mut alive)?;
     let hello = Hello {
         protocol,
@@ -121,14 +126,23 @@ pub fn serve_announcing<P: Participant>(
     match link.recv::<ToParticipant>(None, &mut alive)? {
         ToParticipant::Welcome { .. } => {}
         ToParticipant::Refused { reason } => return Err(ServeError::Refused(reason)),
-        other => return Err(ServeError::Protocol(format!("expected Welcome, got {}", name_of(&other)))),
+        other => {
+            return Err(ServeError::Protocol(format!(
+                "expected Welcome, got {}",
+                name_of(&other)
+            )))
+        }
     }
     let outputs = solver.initial_outputs();
     let geometry = solver.geometry_update();
     link.send(&FromParticipant::Initial { outputs, geometry })?;
     loop {
         match link.recv::<ToParticipant>(None, &mut alive)? {
-            ToParticipant::Advance { header, checkpoint, inputs } => {
+            ToParticipant::Advance {
+                header,
+                checkpoint,
+                inputs,
+            } => {
                 let result = match checkpoint {
                     Checkpoint::None => Ok(()),
                     Checkpoint::Save => {
@@ -151,13 +165,26 @@ pub fn serve_announcing<P: Participant>(
                 });
                 match result {
                     Ok(samples) => {
-                        let outputs = Waveform { times: inputs.times.clone(), samples };
+                        let outputs = Waveform {
+                            times: inputs.times.clone(),
+                            samples,
+                        };
                         let geometry = solver.geometry_update();
-                        let reached = Header { time: solver.time(), ..header };
-                        link.send(&FromParticipant::Advanced { header: reached, outputs, geometry })?;
+                        let reached = Header {
+                            time: solver.time(),
+                            ..header
+                        };
+                        link.send(&FromParticipant::Advanced {
+                            header: reached,
+                            outputs,
+                            geometry,
+                        })?;
                     }
                     Err(diagnostic) => {
-                        link.send(&FromParticipant::Failed { header, diagnostic: diagnostic.clone() })?;
+                        link.send(&FromParticipant::Failed {
+                            header,
+                            diagnostic: diagnostic.clone(),
+                        })?;
                         return Err(ServeError::Solver(diagnostic));
                     }
                 }
@@ -167,7 +194,12 @@ pub fn serve_announcing<P: Participant>(
                 link.send(&FromParticipant::Finished)?;
                 return done.map_err(ServeError::Solver);
             }
-            other => return Err(ServeError::Protocol(format!("unexpected {} during the run", name_of(&other)))),
+            other => {
+                return Err(ServeError::Protocol(format!(
+                    "unexpected {} during the run",
+                    name_of(&other)
+                )))
+            }
         }
     }
 }

@@ -11,7 +11,15 @@ impl Waveform {
     /// Equally spaced times from `t0` to `t1`, `samples + 1` of them, ending exactly on `t1`.
     pub fn grid(t0: f64, t1: f64, samples: u32) -> Vec<f64> {
         let n = samples.max(1);
-        (0..=n).map(|j| if j == n { t1 } else { t0 + (t1 - t0) * f64::from(j) / f64::from(n) }).collect()
+        (0..=n)
+            .map(|j| {
+                if j == n {
+                    t1
+                } else {
+                    t0 + (t1 - t0) * f64::from(j) / f64::from(n)
+                }
+            })
+            .collect()
     }
 
     /// The same `fields` at every time of `times` (data held constant over the window).
@@ -68,7 +76,10 @@ impl Waveform {
         let t = t.clamp(self.times[0], self.times[n - 1]);
         let (first, count) = stencil(&self.times[..n], t);
         let weights = lagrange_weights(&self.times[first..first + count], t);
-        let sources: Vec<_> = self.samples[first..first + count].iter().map(Fields::arrays).collect();
+        let sources: Vec<_> = self.samples[first..first + count]
+            .iter()
+            .map(Fields::arrays)
+            .collect();
         let mut out = self.samples[first].clone();
         for (a, (_, array)) in out.arrays_mut().into_iter().enumerate() {
             for (k, value) in array.iter_mut().enumerate() {
@@ -86,7 +97,10 @@ impl Waveform {
 /// First index and length of the (up to 4) samples nearest to `t`.
 fn stencil(times: &[f64], t: f64) -> (usize, usize) {
     let count = times.len().min(4);
-    let interval = times.windows(2).position(|w| t <= w[1]).unwrap_or(times.len() - 2);
+    let interval = times
+        .windows(2)
+        .position(|w| t <= w[1])
+        .unwrap_or(times.len() - 2);
     let first = interval.saturating_sub((count - 1) / 2).min(times.len() - count);
     (first, count)
 }
@@ -94,7 +108,12 @@ fn stencil(times: &[f64], t: f64) -> (usize, usize) {
 /// Lagrange basis weights of the nodes `x` at `t`.
 fn lagrange_weights(x: &[f64], t: f64) -> Vec<f64> {
     (0..x.len())
-        .map(|i| (0..x.len()).filter(|&j| j != i).map(|j| (t - x[j]) / (x[i] - x[j])).product())
+        .map(|i| {
+            (0..x.len())
+                .filter(|&j| j != i)
+                .map(|j| (t - x[j]) / (x[i] - x[j]))
+                .product()
+        })
         .collect()
 }
 
@@ -104,8 +123,13 @@ mod tests {
     use crate::f64s::F64s;
 
     fn wave(times: Vec<f64>, f: impl Fn(f64) -> f64) -> Waveform {
-        let samples =
-            times.iter().map(|&t| Fields { point_force: F64s(vec![f(t), 2.0 * f(t)]), ..Fields::default() }).collect();
+        let samples = times
+            .iter()
+            .map(|&t| Fields {
+                point_force: F64s(vec![f(t), 2.0 * f(t)]),
+                ..Fields::default()
+            })
+            .collect();
         Waveform { times, samples }
     }
 
@@ -145,7 +169,10 @@ mod tests {
         // sin on [0, 1]: the max error with 8 and 16 samples should drop ~16× (order 4).
         let err = |n: u32| {
             let w = wave(Waveform::grid(0.0, 1.0, n), f64::sin);
-            (0..=200).map(|i| f64::from(i) / 200.0).map(|t| (w.at(t).point_force[0] - t.sin()).abs()).fold(0.0, f64::max)
+            (0..=200)
+                .map(|i| f64::from(i) / 200.0)
+                .map(|t| (w.at(t).point_force[0] - t.sin()).abs())
+                .fold(0.0, f64::max)
         };
         let ratio = err(8) / err(16);
         assert!(ratio > 12.0, "error ratio {ratio} shows less than 4th order");

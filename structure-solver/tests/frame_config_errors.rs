@@ -205,3 +205,32 @@ fn a_run_that_blows_up_is_stopped_with_a_diagnostic() {
     let err = outcome.expect_err("a 1e12 N load on a 1 cm bar must stop the run");
     assert!(err.contains("unstable"), "{err}");
 }
+
+#[test]
+fn the_equilibrium_choice_comes_from_the_case() {
+    use structure_solver::frame::Equilibrium;
+    let build = |text: String| {
+        let case = Case::parse(Path::new("frame.toml"), text).expect("valid case");
+        let cfg = case.structure["bridge"].frame.clone().expect("frame");
+        Frame::from_config(&cfg, "structure.bridge.frame")
+            .expect("frame builds")
+            .equilibrium()
+    };
+    assert_eq!(
+        build(GOOD.to_string()),
+        Equilibrium::OneSolve,
+        "ASI-Gauss's one solve per step by default"
+    );
+    let iterate = GOOD.replacen(
+        "time_step = 1e-4",
+        "time_step = 1e-4\nequilibrium_tolerance = 1e-8",
+        1,
+    );
+    assert_eq!(build(iterate), Equilibrium::Iterate { tolerance: 1e-8 });
+    let (key, msg) = error_of(
+        "time_step = 1e-4",
+        "time_step = 1e-4\nequilibrium_tolerance = 2.0",
+    );
+    assert_eq!(key, "structure.bridge.frame.equilibrium_tolerance");
+    assert!(msg.contains("[1e-14, 0.5]"), "{msg}");
+}

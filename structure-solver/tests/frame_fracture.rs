@@ -39,6 +39,7 @@ fn two_part_cantilever() -> FrameConfig {
         support: vec![support(1, &ALL)],
         contact: None,
         wall: Vec::new(),
+        equilibrium_tolerance: None,
     }
 }
 

@@ -6,7 +6,8 @@ mod frame_common;
 use frame_common::{rectangle, steel};
 use nalgebra::{Rotation3, Vector3};
 use structure_solver::frame::element::{
-    local_forces, local_stiffness, moments_at, move_integration_point, rotation_vector, S_GAUSS,
+    local_forces, local_stiffness, moments_at, move_integration_point, rotation_vector, strain_matrix,
+    strains, S_GAUSS,
 };
 use structure_solver::frame::newmark;
 use structure_solver::frame::section::Section;
@@ -105,4 +106,32 @@ fn newmark_update_is_exact_for_constant_acceleration() {
     let du = v * dt + 0.5 * a * dt * dt;
     let (v_new, a_new) = newmark::advance(du, v, a, dt);
     assert!((a_new - a).abs() < 1e-9 && (v_new - (v + a * dt)).abs() < 1e-12);
+}
+
+/// The written-out strains `B(s) d` and end forces `l Bᵀ σ` equal the products with the strain
+/// matrix, to round-off (1e-12 relative), for several integration points.
+#[test]
+fn written_out_strains_and_forces_match_the_strain_matrix() {
+    let l = 0.75;
+    let d: [f64; 12] = std::array::from_fn(|i| 1e-3 * ((i * 7 % 12) as f64 - 5.5));
+    let sigma = [3e5, -2e4, 1.5e4, 800.0, -4e3, 2.5e3];
+    for s in [-1.0, -S_GAUSS, 0.0, S_GAUSS, 1.0] {
+        let b = strain_matrix(l, s);
+        let e = strains(l, s, &d);
+        let f = local_forces(l, s, &sigma);
+        for (i, row) in b.iter().enumerate() {
+            let product: f64 = row.iter().zip(&d).map(|(x, y)| x * y).sum();
+            assert!(
+                (e[i] - product).abs() <= 1e-12 * product.abs().max(1e-3),
+                "strain {i} at s = {s}"
+            );
+        }
+        for (j, fj) in f.iter().enumerate() {
+            let product: f64 = l * (0..6).map(|m| b[m][j] * sigma[m]).sum::<f64>();
+            assert!(
+                (fj - product).abs() <= 1e-12 * product.abs().max(1.0),
+                "force {j} at s = {s}"
+            );
+        }
+    }
 }

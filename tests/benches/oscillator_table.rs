@@ -6,19 +6,51 @@
 //! implicit constant 0.21 (order 1), implicit linear 7.1e-3 (order 2), implicit cubic + substeps
 //! 1.6e-3 (order 2).
 
-use stack_tests::{advances, coupler, oscillator_case, oscillator_error, oscillator_max_error, out_dir, stderr};
+use stack_tests::{
+    advances, oscillator_error, oscillator_max_error, run_oscillator, stderr, OscillatorCoupling,
+};
 use std::time::Instant;
 
 const WINDOWS: [f64; 5] = [0.04, 0.02, 0.01, 0.005, 0.0025];
 
 /// (label, scheme, samples per window, predictor, acceleration)
 const SCHEMES: [(&str, &str, u32, &str, &str); 6] = [
-    ("explicit, constant predictor", "explicit", 1, "constant", "constant"),
+    (
+        "explicit, constant predictor",
+        "explicit",
+        1,
+        "constant",
+        "constant",
+    ),
     ("explicit, linear predictor", "explicit", 1, "linear", "constant"),
-    ("implicit, linear in window, Aitken", "implicit", 1, "linear", "aitken"),
-    ("implicit, linear in window, IQN-ILS", "implicit", 1, "linear", "iqn-ils"),
-    ("implicit, 4 samples (cubic), Aitken", "implicit", 4, "linear", "aitken"),
-    ("implicit, 4 samples (cubic), IQN-ILS", "implicit", 4, "linear", "iqn-ils"),
+    (
+        "implicit, linear in window, Aitken",
+        "implicit",
+        1,
+        "linear",
+        "aitken",
+    ),
+    (
+        "implicit, linear in window, IQN-ILS",
+        "implicit",
+        1,
+        "linear",
+        "iqn-ils",
+    ),
+    (
+        "implicit, 4 samples (cubic), Aitken",
+        "implicit",
+        4,
+        "linear",
+        "aitken",
+    ),
+    (
+        "implicit, 4 samples (cubic), IQN-ILS",
+        "implicit",
+        4,
+        "linear",
+        "iqn-ils",
+    ),
 ];
 
 fn main() {
@@ -30,23 +62,22 @@ fn main() {
     for (label, scheme, samples, predictor, acceleration) in SCHEMES {
         let mut previous: Option<(f64, f64)> = None;
         for window in WINDOWS {
-            let dir = out_dir(&format!("table-{scheme}-{samples}-{predictor}-{acceleration}-{window}"));
-            let case = oscillator_case(
-                &dir,
-                &[
-                    ("window", &window.to_string()),
-                    ("scheme", &format!("\"{scheme}\"")),
-                    ("samples", &samples.to_string()),
-                    ("predictor", &format!("\"{predictor}\"")),
-                    ("acceleration", &format!("\"{acceleration}\"")),
-                ],
-            );
-            let out = dir.join("out");
+            let test = format!("table-{scheme}-{samples}-{predictor}-{acceleration}-{window}");
+            let coupling = OscillatorCoupling {
+                window,
+                scheme,
+                samples,
+                predictor,
+                acceleration,
+            };
             let t0 = Instant::now();
-            let run = coupler(&["run", case.to_str().unwrap_or_default(), "--out", out.to_str().unwrap_or_default()]);
+            let (out, run) = run_oscillator(&test, &coupling);
             let wall = t0.elapsed().as_secs_f64();
             if !run.status.success() {
-                println!("{label:<38} {window:>7} failed: {}", stderr(&run).lines().last().unwrap_or_default());
+                println!(
+                    "{label:<38} {window:>7} failed: {}",
+                    stderr(&run).lines().last().unwrap_or_default()
+                );
                 continue;
             }
             let rec = out.join("recording.rec");

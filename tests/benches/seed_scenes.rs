@@ -9,7 +9,7 @@
 use stack_tests::{binary, out_dir, workspace};
 use std::collections::BTreeMap;
 use std::io::{BufRead, BufReader};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
@@ -18,13 +18,19 @@ struct Cost {
     wall: f64,
     /// Peak RSS [bytes] of each process.
     peaks: BTreeMap<String, u64>,
+    /// What it printed on stderr.
+    log: Vec<String>,
 }
 
 /// Peak resident set size of a process so far (VmHWM), if it is still there.
 fn peak_rss(pid: u32) -> Option<u64> {
     let status = std::fs::read_to_string(format!("/proc/{pid}/status")).ok()?;
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
-    line.split_whitespace().nth(1)?.parse::<u64>().ok().map(|kb| kb * 1024)
+    line.split_whitespace()
+        .nth(1)?
+        .parse::<u64>()
+        .ok()
+        .map(|kb| kb * 1024)
 }
 
 /// Runs `exe args…`, sampling the peak RSS of it and of every participant it reports starting.
@@ -50,8 +56,11 @@ fn measure(exe: &Path, args: &[&str]) -> Cost {
     loop {
         for line in rx.try_iter() {
             if let (Some(name), Some(pid)) = (
-                line.strip_prefix("started ").and_then(|r| r.split_whitespace().next()),
-                line.rsplit("pid ").next().and_then(|p| p.trim_end_matches(')').parse().ok()),
+                line.strip_prefix("started ")
+                    .and_then(|r| r.split_whitespace().next()),
+                line.rsplit("pid ")
+                    .next()
+                    .and_then(|p| p.trim_end_matches(')').parse().ok()),
             ) {
                 pids.insert(name.to_string(), pid);
             }
@@ -69,7 +78,12 @@ fn measure(exe: &Path, args: &[&str]) -> Cost {
         }
         std::thread::sleep(Duration::from_millis(100));
     }
-    Cost { wall: t0.elapsed().as_secs_f64(), peaks }
+    log.extend(rx.try_iter());
+    Cost {
+        wall: t0.elapsed().as_secs_f64(),
+        peaks,
+        log,
+    }
 }
 
 /// The case text without its structure and coupling sections (a fluid-only case: bodies held still).
@@ -96,21 +110,23 @@ fn with_end_time(text: &str, end_time: Option<&str>) -> String {
         None => text.to_string(),
         Some(t) => text
             .lines()
-            .map(|l| if l.starts_with("end_time =") { format!("end_time = {t}") } else { l.to_string() })
+            .map(|l| {
+                if l.starts_with("end_time =") {
+                    format!("end_time = {t}")
+                } else {
+                    l.to_string()
+                }
+            })
             .collect::<Vec<_>>()
             .join("\n"),
     }
 }
 
-/// Particles in the last VTU frame of a folder, and the number of frames.
-fn last_frame_particles(dir: &Path) -> Option<u64> {
-    let mut frames: Vec<PathBuf> = std::fs::read_dir(dir).ok()?.flatten().map(|e| e.path()).collect();
-    frames.retain(|p| p.extension().is_some_and(|e| e == "vtu"));
-    frames.sort();
-    let text = std::fs::read(frames.last()?).ok()?;
-    let head = String::from_utf8_lossy(&text[..text.len().min(4096)]).into_owned();
-    let at = head.find("NumberOfPoints=\"")? + "NumberOfPoints=\"".len();
-    head[at..].split('"').next()?.parse().ok()
+/// The particle count in the fluid solver's closing line "done: N steps, P particles …".
+fn particles_in(log: &[String]) -> Option<f64> {
+    let line = log.iter().find(|l| l.starts_with("done:"))?;
+    let before = line.split(" particles").next()?;
+    before.rsplit(' ').next()?.parse().ok()
 }
 
 fn bench(name: &str, end_time: Option<&str>) {
@@ -119,23 +135,40 @@ fn bench(name: &str, end_time: Option<&str>) {
     for entry in std::fs::read_dir(&source).into_iter().flatten().flatten() {
         let _ = std::fs::copy(entry.path(), dir.join(entry.file_name()));
     }
-    let text = with_end_time(&std::fs::read_to_string(source.join("case.toml")).unwrap_or_default(), end_time);
+    let text = with_end_time(
+        &std::fs::read_to_string(source.join("case.toml")).unwrap_or_default(),
+        end_time,
+    );
     let coupled = dir.join("case.toml");
     std::fs::write(&coupled, &text).unwrap_or_default();
     let alone = dir.join("fluid-only.toml");
     std::fs::write(&alone, fluid_only(&text)).unwrap_or_default();
 
     let out = dir.join("coupled");
-    let stack = measure(&binary("coupler"), &["run", coupled.to_str().unwrap_or_default(), "--out", out.to_str().unwrap_or_default()]);
+    let stack = measure(
+        &binary("coupler"),
+        &[
+            "run",
+            coupled.to_str().unwrap_or_default(),
+            "--out",
+            out.to_str().unwrap_or_default(),
+        ],
+    );
     let ledger = std::fs::read_to_string(out.join("ledger.csv")).unwrap_or_default();
     let windows = ledger.lines().count().saturating_sub(1) as f64;
-    let fluid_dir = std::fs::read_dir(&out).into_iter().flatten().flatten().map(|e| e.path()).find(|p| {
-        p.is_dir() && std::fs::read_dir(p).into_iter().flatten().flatten().any(|e| e.path().extension().is_some_and(|x| x == "vtu"))
-    });
-    let particles = fluid_dir.as_deref().and_then(last_frame_particles).unwrap_or(0) as f64;
     let total_peak: u64 = stack.peaks.values().sum();
     let solo_out = dir.join("alone");
-    let solo = measure(&binary("fluid-solver"), &["run", alone.to_str().unwrap_or_default(), "--out", solo_out.to_str().unwrap_or_default()]);
+    let solo = measure(
+        &binary("fluid-solver"),
+        &[
+            "run",
+            alone.to_str().unwrap_or_default(),
+            "--out",
+            solo_out.to_str().unwrap_or_default(),
+        ],
+    );
+    // Particles at the end of the run (inflow changes the count), from the fluid run alone.
+    let particles = particles_in(&solo.log).unwrap_or(0.0);
     println!(
         "{name:<24} {particles:>9.0} {windows:>7.0} {:>9.1} {:>12.3e} {:>10.1} {:>9.1} {:>9.1}",
         stack.wall,
@@ -145,7 +178,11 @@ fn bench(name: &str, end_time: Option<&str>) {
         100.0 * (stack.wall - solo.wall) / solo.wall,
     );
     for (process, peak) in &stack.peaks {
-        println!("{:<24}   peak RSS of {process}: {:.1} MB", "", *peak as f64 / 1048576.0);
+        println!(
+            "{:<24}   peak RSS of {process}: {:.1} MB",
+            "",
+            *peak as f64 / 1048576.0
+        );
     }
 }
 
@@ -158,7 +195,10 @@ fn main() {
         "{:<24} {:>9} {:>7} {:>9} {:>12} {:>10} {:>9} {:>9}",
         "case", "particles", "steps", "wall [s]", "p-steps/s", "peak [MB]", "alone [s]", "overhead%"
     );
-    for name in all.iter().filter(|n| wanted.is_empty() || wanted.iter().any(|w| w == *n)) {
+    for name in all
+        .iter()
+        .filter(|n| wanted.is_empty() || wanted.iter().any(|w| w == *n))
+    {
         if workspace().join("cases").join(name).join("case.toml").is_file() {
             bench(name, end_time.as_deref());
         }

@@ -17,7 +17,10 @@ pub fn workspace() -> PathBuf {
 pub fn bin_dir() -> PathBuf {
     let exe = std::env::current_exe().unwrap_or_default();
     // target/<profile>/deps/<test binary>
-    exe.parent().and_then(Path::parent).map(Path::to_path_buf).unwrap_or_default()
+    exe.parent()
+        .and_then(Path::parent)
+        .map(Path::to_path_buf)
+        .unwrap_or_default()
 }
 
 /// A workspace binary, built first (once per test process) so the tests never run a stale one:
@@ -27,11 +30,15 @@ pub fn binary(name: &str) -> PathBuf {
     BUILT.get_or_init(|| {
         let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
         let mut build = Command::new(cargo);
-        build.args(["build", "--bins", "--workspace"]).current_dir(workspace());
+        build
+            .args(["build", "--bins", "--workspace"])
+            .current_dir(workspace());
         if bin_dir().ends_with("release") {
             build.arg("--release");
         }
-        let status = build.status().unwrap_or_else(|e| panic!("cannot run cargo build: {e}"));
+        let status = build
+            .status()
+            .unwrap_or_else(|e| panic!("cannot run cargo build: {e}"));
         assert!(status.success(), "cargo build --bins --workspace failed");
     });
     let path = bin_dir().join(name);
@@ -45,7 +52,10 @@ pub fn binary(name: &str) -> PathBuf {
 
 /// A fresh, empty output folder for one test under `target/test-out/`.
 pub fn out_dir(test: &str) -> PathBuf {
-    let dir = bin_dir().join("..").join("test-out").join(format!("{test}-{}", std::process::id()));
+    let dir = bin_dir()
+        .join("..")
+        .join("test-out")
+        .join(format!("{test}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("cannot create {}: {e}", dir.display()));
     dir
@@ -53,12 +63,48 @@ pub fn out_dir(test: &str) -> PathBuf {
 
 /// Runs `coupler ARGS…` to completion.
 pub fn coupler(args: &[&str]) -> Output {
-    Command::new(binary("coupler")).args(args).output().unwrap_or_else(|e| panic!("cannot start the coupler: {e}"))
+    Command::new(binary("coupler"))
+        .args(args)
+        .output()
+        .unwrap_or_else(|e| panic!("cannot start the coupler: {e}"))
 }
 
 /// The oscillator case of `cases/oscillator` with `key = value` lines replaced, written to `dir/case.toml`.
 pub fn oscillator_case(dir: &Path, replace: &[(&str, &str)]) -> PathBuf {
     case_from("oscillator", dir, replace)
+}
+
+/// Coupling settings of an oscillator run.
+pub struct OscillatorCoupling<'a> {
+    pub window: f64,
+    pub scheme: &'a str,
+    pub samples: u32,
+    pub predictor: &'a str,
+    pub acceleration: &'a str,
+}
+
+/// Runs the oscillator with these settings in a fresh folder named after `test`; returns the
+/// run's output folder and the finished coupler.
+pub fn run_oscillator(test: &str, c: &OscillatorCoupling) -> (PathBuf, Output) {
+    let dir = out_dir(test);
+    let case = oscillator_case(
+        &dir,
+        &[
+            ("window", &c.window.to_string()),
+            ("scheme", &format!("\"{}\"", c.scheme)),
+            ("samples", &c.samples.to_string()),
+            ("predictor", &format!("\"{}\"", c.predictor)),
+            ("acceleration", &format!("\"{}\"", c.acceleration)),
+        ],
+    );
+    let out = dir.join("out");
+    let run = coupler(&[
+        "run",
+        case.to_str().unwrap_or_default(),
+        "--out",
+        out.to_str().unwrap_or_default(),
+    ]);
+    (out, run)
 }
 
 /// `cases/NAME/case.toml` with the first `key = …` line of each key replaced, written to `dir/case.toml`.
@@ -68,8 +114,13 @@ pub fn case_from(name: &str, dir: &Path, replace: &[(&str, &str)]) -> PathBuf {
         std::fs::read_to_string(&source).unwrap_or_else(|e| panic!("cannot read {}: {e}", source.display()));
     let mut text = template;
     for (key, value) in replace {
-        let start = text.find(&format!("\n{key} =")).unwrap_or_else(|| panic!("no `{key} =` line in the template"));
-        let line_end = text[start + 1..].find('\n').map(|i| start + 1 + i).unwrap_or(text.len());
+        let start = text
+            .find(&format!("\n{key} ="))
+            .unwrap_or_else(|| panic!("no `{key} =` line in the template"));
+        let line_end = text[start + 1..]
+            .find('\n')
+            .map(|i| start + 1 + i)
+            .unwrap_or(text.len());
         text.replace_range(start + 1..line_end, &format!("{key} = {value}"));
     }
     let path = dir.join("case.toml");
@@ -86,12 +137,19 @@ pub fn final_output(recording: &Path, participant: &str, array: &str) -> (f64, V
         .rev()
         .filter(|f| f.participant == participant)
         .find_map(|f| match &f.message {
-            Message::From(FromParticipant::Advanced { header, outputs, .. }) => Some((header.time, outputs.clone())),
+            Message::From(FromParticipant::Advanced { header, outputs, .. }) => {
+                Some((header.time, outputs.clone()))
+            }
             _ => None,
         })
         .unwrap_or_else(|| panic!("no answer of `{participant}` in {}", recording.display()));
     let fields = last.1.last().cloned().unwrap_or_default();
-    let values = fields.arrays().into_iter().find(|(n, _)| *n == array).map(|(_, a)| a.0.clone()).unwrap_or_default();
+    let values = fields
+        .arrays()
+        .into_iter()
+        .find(|(n, _)| *n == array)
+        .map(|(_, a)| a.0.clone())
+        .unwrap_or_default();
     (last.0, values)
 }
 
@@ -100,7 +158,9 @@ pub fn advances(recording: &Path, participant: &str) -> usize {
     let rec = Recording::read(recording).unwrap_or_else(|e| panic!("{e}"));
     rec.frames
         .iter()
-        .filter(|f| f.participant == participant && matches!(f.message, Message::To(ToParticipant::Advance { .. })))
+        .filter(|f| {
+            f.participant == participant && matches!(f.message, Message::To(ToParticipant::Advance { .. }))
+        })
         .count()
 }
 
@@ -127,7 +187,10 @@ pub fn oscillator_max_error(recording: &Path) -> f64 {
     let mut ends: std::collections::BTreeMap<(u64, bool), (f64, f64)> = std::collections::BTreeMap::new();
     for f in &rec.frames {
         if let Message::From(FromParticipant::Advanced { header, outputs, .. }) = &f.message {
-            let u = outputs.last().and_then(|o| o.point_displacement.first().copied()).unwrap_or(f64::NAN);
+            let u = outputs
+                .last()
+                .and_then(|o| o.point_displacement.first().copied())
+                .unwrap_or(f64::NAN);
             ends.insert((header.window, f.participant == "mass-left"), (header.time, u));
         }
     }

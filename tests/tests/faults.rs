@@ -12,7 +12,12 @@ use std::time::{Duration, Instant};
 /// Starts `coupler run CASE` with stderr streamed line by line.
 fn start(case: &Path, out: &Path, env: &[(&str, &str)]) -> (Child, mpsc::Receiver<String>) {
     let mut child = Command::new(binary("coupler"))
-        .args(["run", case.to_str().unwrap_or_default(), "--out", out.to_str().unwrap_or_default()])
+        .args([
+            "run",
+            case.to_str().unwrap_or_default(),
+            "--out",
+            out.to_str().unwrap_or_default(),
+        ])
         .envs(env.iter().copied())
         .stderr(Stdio::piped())
         .stdout(Stdio::null())
@@ -46,7 +51,10 @@ fn wait_line(rx: &mpsc::Receiver<String>, needle: &str, lines: &mut Vec<String>)
 
 /// The pid in "started NAME (EXE, pid N)".
 fn pid_of(line: &str) -> i32 {
-    line.rsplit("pid ").next().and_then(|s| s.trim_end_matches(')').parse().ok()).unwrap_or_else(|| panic!("no pid in `{line}`"))
+    line.rsplit("pid ")
+        .next()
+        .and_then(|s| s.trim_end_matches(')').parse().ok())
+        .unwrap_or_else(|| panic!("no pid in `{line}`"))
 }
 
 /// Waits for the child to exit; returns its status and how long it took.
@@ -71,7 +79,15 @@ fn alive(pid: i32) -> bool {
 
 /// A long explicit run (many small windows) so there is time to act mid-run.
 fn long_case(dir: &Path) -> std::path::PathBuf {
-    oscillator_case(dir, &[("end_time", "200.0"), ("window", "0.001"), ("scheme", "\"explicit\""), ("samples", "1 ")])
+    oscillator_case(
+        dir,
+        &[
+            ("end_time", "200.0"),
+            ("window", "0.001"),
+            ("scheme", "\"explicit\""),
+            ("samples", "1 "),
+        ],
+    )
 }
 
 #[test]
@@ -90,20 +106,38 @@ fn a_killed_participant_stops_the_run_within_two_seconds_and_is_named() {
     let text = lines.join("\n");
     println!("{text}\ncoupler exited {took:?} after the kill");
     assert!(!status.success(), "the coupler must fail when a participant dies");
-    assert!(took < Duration::from_secs(2), "the coupler took {took:?} to notice");
-    assert!(text.contains("participant `mass-right` in window"), "names who and when: {text}");
+    assert!(
+        took < Duration::from_secs(2),
+        "the coupler took {took:?} to notice"
+    );
+    assert!(
+        text.contains("participant `mass-right` in window"),
+        "names who and when: {text}"
+    );
     assert!(text.contains("SIGKILL"), "says how it died: {text}");
     std::thread::sleep(Duration::from_millis(300));
     assert!(!alive(left), "the other participant is stopped too");
     let ledger = std::fs::read_to_string(dir.join("out/ledger.csv")).unwrap_or_default();
-    assert!(ledger.lines().count() > 10, "output written so far stays: {} ledger lines", ledger.lines().count());
+    assert!(
+        ledger.lines().count() > 10,
+        "output written so far stays: {} ledger lines",
+        ledger.lines().count()
+    );
     let rec = schemas::recording::Recording::read(&dir.join("out/recording.rec"));
-    assert!(rec.is_ok_and(|r| r.frames.len() > 10), "the recording stays readable");
+    assert!(
+        rec.is_ok_and(|r| r.frames.len() > 10),
+        "the recording stays readable"
+    );
 
     // The next run on the same machine starts cleanly.
     let dir2 = out_dir("after-kill");
     let case2 = oscillator_case(&dir2, &[]);
-    let run = coupler(&["run", case2.to_str().unwrap_or_default(), "--out", dir2.join("out").to_str().unwrap_or_default()]);
+    let run = coupler(&[
+        "run",
+        case2.to_str().unwrap_or_default(),
+        "--out",
+        dir2.join("out").to_str().unwrap_or_default(),
+    ]);
     assert!(run.status.success(), "a run after the kill: {}", stderr(&run));
     assert!(oscillator_error(&dir2.join("out/recording.rec")) < 1e-4);
 }
@@ -116,7 +150,12 @@ fn a_hung_participant_is_stopped_after_the_case_timeout() {
     let out = dir.join("out");
     let t0 = Instant::now();
     let run = Command::new(binary("coupler"))
-        .args(["run", case.to_str().unwrap_or_default(), "--out", out.to_str().unwrap_or_default()])
+        .args([
+            "run",
+            case.to_str().unwrap_or_default(),
+            "--out",
+            out.to_str().unwrap_or_default(),
+        ])
         .arg(format!("--exe=mass-right={}", faulty.display()))
         .env("FAULTY_HANG_AT_WINDOW", "5")
         .output()
@@ -135,7 +174,12 @@ fn a_participant_with_another_protocol_version_is_refused_at_the_handshake() {
     let case = oscillator_case(&dir, &[]);
     let faulty = binary("faulty-participant");
     let run = Command::new(binary("coupler"))
-        .args(["run", case.to_str().unwrap_or_default(), "--out", dir.join("out").to_str().unwrap_or_default()])
+        .args([
+            "run",
+            case.to_str().unwrap_or_default(),
+            "--out",
+            dir.join("out").to_str().unwrap_or_default(),
+        ])
         .arg(format!("--exe=mass-left={}", faulty.display()))
         .env("FAULTY_PROTOCOL", "99")
         .output()
@@ -143,7 +187,10 @@ fn a_participant_with_another_protocol_version_is_refused_at_the_handshake() {
     let err = stderr(&run);
     println!("{err}");
     assert!(!run.status.success());
-    assert!(err.contains("participant `mass-left` before the first window: refused at the handshake"), "{err}");
+    assert!(
+        err.contains("participant `mass-left` before the first window: refused at the handshake"),
+        "{err}"
+    );
     assert!(err.contains("protocol version 99"), "{err}");
 }
 
@@ -179,7 +226,12 @@ fn two_runs_at_once_do_not_interfere() {
     let runs: Vec<Child> = (0..2)
         .map(|i| {
             Command::new(binary("coupler"))
-                .args(["run", cases[i].to_str().unwrap_or_default(), "--out", dirs[i].join("out").to_str().unwrap_or_default()])
+                .args([
+                    "run",
+                    cases[i].to_str().unwrap_or_default(),
+                    "--out",
+                    dirs[i].join("out").to_str().unwrap_or_default(),
+                ])
                 .stderr(Stdio::piped())
                 .spawn()
                 .unwrap_or_else(|e| panic!("{e}"))
@@ -191,7 +243,10 @@ fn two_runs_at_once_do_not_interfere() {
     }
     // Each run reproduces what it gives alone (runs alone are checked in oscillator.rs): both
     // accurate, and different from each other because their windows differ.
-    let e = [oscillator_error(&dirs[0].join("out/recording.rec")), oscillator_error(&dirs[1].join("out/recording.rec"))];
+    let e = [
+        oscillator_error(&dirs[0].join("out/recording.rec")),
+        oscillator_error(&dirs[1].join("out/recording.rec")),
+    ];
     println!("concurrent errors: {e:?}");
     assert!(e[0] < 1.6e-5 && e[1] < 1e-3, "{e:?}");
     assert_ne!(e[0], e[1]);

@@ -16,38 +16,77 @@ fn coupled_dam_break_runs_closes_the_ledger_and_replays() {
             ("end_time", "0.1"),
             ("spacing", "0.02"),
             ("output_interval", "0.05"),
-            ("tank", "{ min = [0.0, 0.0, 0.0], max = [0.6, 0.44, 0.4], lid = true }"),
+            (
+                "tank",
+                "{ min = [0.0, 0.0, 0.0], max = [0.6, 0.44, 0.4], lid = true }",
+            ),
         ],
     );
     let out = dir.join("out");
-    let run = coupler(&["run", case.to_str().unwrap_or_default(), "--out", out.to_str().unwrap_or_default()]);
+    let run = coupler(&[
+        "run",
+        case.to_str().unwrap_or_default(),
+        "--out",
+        out.to_str().unwrap_or_default(),
+    ]);
     let err = stderr(&run);
     println!("{err}");
     assert!(run.status.success(), "{err}");
-    assert!(err.contains("started tank") && err.contains("started floater"), "both solvers run as processes");
+    assert!(
+        err.contains("started tank") && err.contains("started floater"),
+        "both solvers run as processes"
+    );
 
     // Ledger: one row per window (Δt_c = 5e-4 s), the force given to the box against the
     // reaction the fluid took; both come from the same pair forces, so they cancel to round-off.
     let ledger = std::fs::read_to_string(out.join("ledger.csv")).unwrap_or_default();
     let rows: Vec<&str> = ledger.lines().skip(1).collect();
     assert_eq!(rows.len(), 200, "one row per window");
-    assert!(rows.iter().all(|r| r.ends_with(",ok")), "every window balances:\n{ledger}");
+    assert!(
+        rows.iter().all(|r| r.ends_with(",ok")),
+        "every window balances:\n{ledger}"
+    );
     let header: Vec<&str> = ledger.lines().next().unwrap_or_default().split(',').collect();
-    let col = |name: &str| header.iter().position(|h| *h == name).unwrap_or_else(|| panic!("no column {name}"));
-    let last: Vec<f64> = rows.last().unwrap_or(&"").split(',').map(|v| v.parse().unwrap_or(f64::NAN)).collect();
+    let col = |name: &str| {
+        header
+            .iter()
+            .position(|h| *h == name)
+            .unwrap_or_else(|| panic!("no column {name}"))
+    };
+    let last: Vec<f64> = rows
+        .last()
+        .unwrap_or(&"")
+        .split(',')
+        .map(|v| v.parse().unwrap_or(f64::NAN))
+        .collect();
     let (given, taken) = (last[col("floater_fz")], last[col("tank_fz")]);
     println!("last window: force on the box {given:.4} N, reaction taken by the fluid {taken:.4} N");
     assert!(given > 0.0, "the water pushes the box up");
-    assert!((given + taken).abs() <= 1e-12 * given.abs().max(1.0), "action = −reaction");
+    assert!(
+        (given + taken).abs() <= 1e-12 * given.abs().max(1.0),
+        "action = −reaction"
+    );
 
     // The box moved and stayed in the tank.
     let history = std::fs::read_to_string(out.join("floater/body-box.csv")).unwrap_or_default();
-    let z: Vec<f64> = history.lines().skip(1).filter_map(|l| l.split(',').nth(3)?.parse().ok()).collect();
-    assert!(z.len() > 5 && z.iter().all(|z| (0.0..0.4).contains(z)), "box heights {z:?}");
+    let z: Vec<f64> = history
+        .lines()
+        .skip(1)
+        .filter_map(|l| l.split(',').nth(3)?.parse().ok())
+        .collect();
+    assert!(
+        z.len() > 5 && z.iter().all(|z| (0.0..0.4).contains(z)),
+        "box heights {z:?}"
+    );
 
     // Replay the structure solver against the recorded fluid forces.
     let replay = Command::new(binary("coupler"))
-        .args(["replay", out.join("recording.rec").to_str().unwrap_or_default(), "--participant", "floater"])
+        .args([
+            "replay",
+            out.join("recording.rec").to_str().unwrap_or_default(),
+            "--participant",
+            "floater",
+        ])
         .args(["--out", dir.join("replay").to_str().unwrap_or_default()])
         .output()
         .unwrap_or_else(|e| panic!("{e}"));
@@ -69,15 +108,27 @@ fn light_box(scheme: &str, density: f64) -> (bool, String, Vec<Vec<f64>>) {
             ("end_time", "0.15"),
             ("spacing", "0.02"),
             ("output_interval", "0.05"),
-            ("tank", "{ min = [0.0, 0.0, 0.0], max = [0.6, 0.44, 0.4], lid = true }"),
+            (
+                "tank",
+                "{ min = [0.0, 0.0, 0.0], max = [0.6, 0.44, 0.4], lid = true }",
+            ),
             ("mass", &mass.to_string()),
             ("scheme", &format!("\"{scheme}\"")),
         ],
     );
     let out = dir.join("out");
-    let run = coupler(&["run", case.to_str().unwrap_or_default(), "--out", out.to_str().unwrap_or_default()]);
+    let run = coupler(&[
+        "run",
+        case.to_str().unwrap_or_default(),
+        "--out",
+        out.to_str().unwrap_or_default(),
+    ]);
     let history = std::fs::read_to_string(out.join("floater/body-box.csv")).unwrap_or_default();
-    let rows = history.lines().skip(1).map(|l| l.split(',').filter_map(|v| v.parse().ok()).collect()).collect();
+    let rows = history
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').filter_map(|v| v.parse().ok()).collect())
+        .collect();
     (run.status.success(), stderr(&run), rows)
 }
 
@@ -102,12 +153,18 @@ fn a_very_light_box_runs_stably_with_explicit_and_implicit_coupling() {
     // The collapsing column moves at most √(2 g H) ≈ 2.3 m/s in this time; a box faster than
     // that would be an instability, not physics.
     assert!(fastest < 2.5, "implicit: box speed {fastest} m/s");
-    assert!(implicit.iter().all(|r| (0.0..0.4).contains(&r[3])), "implicit: the box stays in the tank");
+    assert!(
+        implicit.iter().all(|r| (0.0..0.4).contains(&r[3])),
+        "implicit: the box stays in the tank"
+    );
     if ok_e {
         let last = |h: &Vec<Vec<f64>>| h.last().cloned().unwrap_or_default();
         let (a, b) = (last(&explicit), last(&implicit));
         let gap = a.iter().zip(&b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
         println!("explicit and implicit box states differ by {gap:.2e} at the end");
-        assert!(gap < 1e-9, "explicit and implicit reach the same trajectory: {gap}");
+        assert!(
+            gap < 1e-9,
+            "explicit and implicit reach the same trajectory: {gap}"
+        );
     }
 }

@@ -9,7 +9,12 @@ use std::process::Command;
 fn record(dir: &Path) -> PathBuf {
     let case = oscillator_case(dir, &[("window", "0.02")]);
     let out = dir.join("out");
-    let run = coupler(&["run", case.to_str().unwrap_or_default(), "--out", out.to_str().unwrap_or_default()]);
+    let run = coupler(&[
+        "run",
+        case.to_str().unwrap_or_default(),
+        "--out",
+        out.to_str().unwrap_or_default(),
+    ]);
     assert!(run.status.success(), "{}", stderr(&run));
     out.join("recording.rec")
 }
@@ -17,7 +22,12 @@ fn record(dir: &Path) -> PathBuf {
 fn replay(recording: &Path, participant: &str, extra: &[String], env: &[(&str, &str)]) -> (bool, String) {
     let out = recording.with_file_name(format!("replay-{participant}-{}", extra.len() + env.len()));
     let result = Command::new(binary("coupler"))
-        .args(["replay", recording.to_str().unwrap_or_default(), "--participant", participant])
+        .args([
+            "replay",
+            recording.to_str().unwrap_or_default(),
+            "--participant",
+            participant,
+        ])
         .args(["--out", out.to_str().unwrap_or_default()])
         .args(extra)
         .envs(env.iter().copied())
@@ -36,7 +46,10 @@ fn replay_of_each_participant_against_its_recording_passes() {
         let (ok, text) = replay(&rec, participant, &[], &[]);
         assert!(ok, "{participant}: {text}");
         assert!(text.contains("PASS"), "{text}");
-        assert!(text.contains("point_displacement"), "the table lists the compared fields: {text}");
+        assert!(
+            text.contains("point_displacement"),
+            "the table lists the compared fields: {text}"
+        );
     }
 }
 
@@ -67,7 +80,12 @@ fn a_changed_parameter_fails_the_replay_in_the_first_window() {
     // m2 = 1.001 kg instead of 1 kg: the answers differ from the first window on.
     let text = text.replacen("name = \"m2\"\nmass = 1.0", "name = \"m2\"\nmass = 1.001", 1);
     std::fs::write(&changed, text).unwrap_or_default();
-    let (ok, out) = replay(&rec, "mass-right", &[format!("--case={}", changed.display())], &[]);
+    let (ok, out) = replay(
+        &rec,
+        "mass-right",
+        &[format!("--case={}", changed.display())],
+        &[],
+    );
     assert!(!ok, "{out}");
     assert!(out.contains("DEPARTS in window 0"), "{out}");
 }

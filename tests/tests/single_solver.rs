@@ -6,15 +6,25 @@ use std::path::Path;
 
 /// Copies `cases/NAME/case.toml` into a test folder with `end_time` replaced.
 fn short_case(name: &str, end_time: &str, dir: &Path) -> std::path::PathBuf {
-    let text = std::fs::read_to_string(workspace().join("cases").join(name).join("case.toml")).unwrap_or_default();
-    let start = text.find("\nend_time =").unwrap_or_else(|| panic!("{name} has no end_time"));
-    let end = text[start + 1..].find('\n').map(|i| start + 1 + i).unwrap_or(text.len());
+    let text =
+        std::fs::read_to_string(workspace().join("cases").join(name).join("case.toml")).unwrap_or_default();
+    let start = text
+        .find("\nend_time =")
+        .unwrap_or_else(|| panic!("{name} has no end_time"));
+    let end = text[start + 1..]
+        .find('\n')
+        .map(|i| start + 1 + i)
+        .unwrap_or(text.len());
     let mut text = text;
     text.replace_range(start + 1..end, &format!("end_time = {end_time}"));
     let path = dir.join("case.toml");
     std::fs::write(&path, text).unwrap_or_default();
     // Relative paths in the case (load tables) are taken from its folder: copy its CSV files.
-    for entry in std::fs::read_dir(workspace().join("cases").join(name)).into_iter().flatten().flatten() {
+    for entry in std::fs::read_dir(workspace().join("cases").join(name))
+        .into_iter()
+        .flatten()
+        .flatten()
+    {
         if entry.path().extension().is_some_and(|e| e == "csv") {
             std::fs::copy(entry.path(), dir.join(entry.file_name())).unwrap_or_default();
         }
@@ -26,13 +36,24 @@ fn run_alone(name: &str, end_time: &str, solver: &str) -> std::path::PathBuf {
     let dir = out_dir(&format!("alone-{name}"));
     let case = short_case(name, end_time, &dir);
     let out = dir.join("out");
-    let run = coupler(&["run", case.to_str().unwrap_or_default(), "--out", out.to_str().unwrap_or_default()]);
+    let run = coupler(&[
+        "run",
+        case.to_str().unwrap_or_default(),
+        "--out",
+        out.to_str().unwrap_or_default(),
+    ]);
     let err = stderr(&run);
     println!("{err}");
     assert!(run.status.success(), "{err}");
     assert!(err.contains(&format!("{solver} solver alone")), "{err}");
-    assert!(!err.contains("started"), "no coupled participant is started: {err}");
-    assert!(!out.join("recording.rec").exists() && !out.join("ledger.csv").exists(), "no coupling traffic");
+    assert!(
+        !err.contains("started"),
+        "no coupled participant is started: {err}"
+    );
+    assert!(
+        !out.join("recording.rec").exists() && !out.join("ledger.csv").exists(),
+        "no coupling traffic"
+    );
     out
 }
 
@@ -40,14 +61,20 @@ fn run_alone(name: &str, end_time: &str, solver: &str) -> std::path::PathBuf {
 fn a_structure_only_case_starts_only_the_structure_solver() {
     let out = run_alone("rigid-washout", "3.0", "structure-solver");
     let files: Vec<_> = walk(&out);
-    assert!(files.iter().any(|f| f.ends_with(".csv")), "the solver's history is written: {files:?}");
+    assert!(
+        files.iter().any(|f| f.ends_with(".csv")),
+        "the solver's history is written: {files:?}"
+    );
 }
 
 #[test]
 fn a_fluid_only_case_starts_only_the_fluid_solver() {
     let out = run_alone("hydrostatic-tank", "0.02", "fluid-solver");
     let files: Vec<_> = walk(&out);
-    assert!(files.iter().any(|f| f.ends_with(".vtu")), "the solver's frames are written: {files:?}");
+    assert!(
+        files.iter().any(|f| f.ends_with(".vtu")),
+        "the solver's frames are written: {files:?}"
+    );
 }
 
 fn walk(dir: &Path) -> Vec<String> {

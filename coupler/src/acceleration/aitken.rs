@@ -12,7 +12,11 @@ pub struct Aitken {
 
 impl Aitken {
     pub fn new(initial: f64) -> Self {
-        Aitken { initial, omega: initial, last_residual: None }
+        Aitken {
+            initial,
+            omega: initial,
+            last_residual: None,
+        }
     }
 }
 

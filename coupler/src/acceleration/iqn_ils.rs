@@ -22,12 +22,23 @@ const FILTER: f64 = 1e-10;
 
 impl IqnIls {
     pub fn new(initial: f64, reuse: usize) -> Self {
-        IqnIls { initial, reuse, previous: None, columns: Vec::new(), old: Vec::new() }
+        IqnIls {
+            initial,
+            reuse,
+            previous: None,
+            columns: Vec::new(),
+            old: Vec::new(),
+        }
     }
 
     fn all_columns(&self, n: usize) -> Vec<&(Vec<f64>, Vec<f64>)> {
         let reused = self.old.iter().rev().flat_map(|w| w.iter().rev());
-        self.columns.iter().rev().chain(reused).filter(|(v, _)| v.len() == n).collect()
+        self.columns
+            .iter()
+            .rev()
+            .chain(reused)
+            .filter(|(v, _)| v.len() == n)
+            .collect()
     }
 }
 
@@ -53,7 +64,10 @@ impl Accelerator for IqnIls {
             let qr = v.qr();
             let rr = qr.r();
             let largest = (0..cols.len()).map(|j| rr[(j, j)].abs()).fold(0.0, f64::max);
-            if let Some(weak) = (0..cols.len()).rev().find(|&j| rr[(j, j)].abs() <= FILTER * largest) {
+            if let Some(weak) = (0..cols.len())
+                .rev()
+                .find(|&j| rr[(j, j)].abs() <= FILTER * largest)
+            {
                 cols.remove(weak);
                 if cols.is_empty() {
                     return relax(x, h, self.initial);

@@ -24,7 +24,9 @@ pub trait Accelerator {
 /// The accelerator the case asks for.
 pub fn from_config(c: &CouplingConfig) -> Box<dyn Accelerator> {
     match c.acceleration {
-        AccelerationKind::Constant => Box::new(ConstantRelaxation { omega: c.initial_relaxation }),
+        AccelerationKind::Constant => Box::new(ConstantRelaxation {
+            omega: c.initial_relaxation,
+        }),
         AccelerationKind::Aitken => Box::new(Aitken::new(c.initial_relaxation)),
         AccelerationKind::IqnIls => Box::new(IqnIls::new(c.initial_relaxation, c.reuse_windows as usize)),
     }

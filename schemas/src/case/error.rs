@@ -15,7 +15,10 @@ pub struct FieldError {
 impl FieldError {
     /// An error at `key` with `message`.
     pub fn new(key: impl Into<String>, message: impl Into<String>) -> Self {
-        Self { key: key.into(), message: message.into() }
+        Self {
+            key: key.into(),
+            message: message.into(),
+        }
     }
 }
 
@@ -30,7 +33,11 @@ pub struct CaseError {
 impl CaseError {
     /// Attaches the case file to a field error.
     pub fn at(file: &Path, e: FieldError) -> Self {
-        Self { file: file.to_path_buf(), key: e.key, message: e.message }
+        Self {
+            file: file.to_path_buf(),
+            key: e.key,
+            message: e.message,
+        }
     }
 }
 
@@ -55,7 +62,10 @@ pub mod check {
         if value.is_finite() && value > 0.0 {
             Ok(())
         } else {
-            Err(FieldError::new(key, format!("must be a finite number > 0, got {value}")))
+            Err(FieldError::new(
+                key,
+                format!("must be a finite number > 0, got {value}"),
+            ))
         }
     }
 
@@ -64,7 +74,10 @@ pub mod check {
         if value.is_finite() && value >= 0.0 {
             Ok(())
         } else {
-            Err(FieldError::new(key, format!("must be a finite number ≥ 0, got {value}")))
+            Err(FieldError::new(
+                key,
+                format!("must be a finite number ≥ 0, got {value}"),
+            ))
         }
     }
 
@@ -81,7 +94,10 @@ pub mod check {
         if value.is_finite() && (lo..=hi).contains(&value) {
             Ok(())
         } else {
-            Err(FieldError::new(key, format!("must be in [{}, {}], got {value}", short(lo), short(hi))))
+            Err(FieldError::new(
+                key,
+                format!("must be in [{}, {}], got {value}", short(lo), short(hi)),
+            ))
         }
     }
 

@@ -86,6 +86,12 @@ pub struct FrameConfig {
     pub contact: Option<ContactConfig>,
     #[serde(default)]
     pub wall: Vec<WallConfig>,
+    /// Absent: one linear solve per step, the unbalanced force carried into the next step
+    /// (ASI-Gauss as Isobe runs it; fast, needs a short Δt when hinges form or members spin).
+    /// Present: each step is corrected until the unbalanced force falls below this fraction of
+    /// its first value (slower; keeps energy in large, fast rotations).
+    #[serde(default)]
+    pub equilibrium_tolerance: Option<f64>,
 }
 
 /// `[structure.NAME.frame.contact]`: members and walls meet through particles along the members
@@ -310,6 +316,9 @@ impl FrameConfig {
     pub fn validate(&self, key: &str) -> Result<(), FieldError> {
         check::positive(&format!("{key}.time_step"), self.time_step)?;
         check::finite(&format!("{key}.gravity"), &self.gravity)?;
+        if let Some(tolerance) = self.equilibrium_tolerance {
+            check::within(&format!("{key}.equilibrium_tolerance"), tolerance, 1e-14, 0.5)?;
+        }
         self.material.validate(&format!("{key}.material"))?;
 
         let mut sections = BTreeSet::new();

@@ -41,6 +41,8 @@ pub struct SparseSystem {
     /// The right-hand side in the factor's order, and room for one supernode's gathered values.
     permuted: Vec<f64>,
     gathered: Vec<f64>,
+    /// Reciprocals of the supernodal factor's diagonal.
+    inverse_diagonal: Vec<f64>,
 }
 
 /// Scratch memory of the numeric factorisation and the solve, kept between steps.
@@ -192,6 +194,7 @@ impl SparseSystem {
             workspace,
             permuted: vec![0.0; n],
             gathered: Vec::new(),
+            inverse_diagonal: Vec::new(),
         })
     }
 
@@ -268,6 +271,9 @@ impl SparseSystem {
                      to move without resistance (a mechanism or a missing support) or the state is corrupt"
                 )
             })?;
+        if let SymbolicCholeskyRaw::Supernodal(supernodal) = symbolic.raw() {
+            supernodal_solve::inverse_diagonal(supernodal, &self.factor, &mut self.inverse_diagonal);
+        }
         self.factor_time_step = Some(dt);
         Ok(())
     }
@@ -299,6 +305,7 @@ impl SparseSystem {
                 supernodal_solve::solve_in_place(
                     supernodal,
                     &self.factor,
+                    &self.inverse_diagonal,
                     &mut self.permuted,
                     &mut self.gathered,
                 );

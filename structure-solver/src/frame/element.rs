@@ -38,13 +38,18 @@ pub fn strain_matrix(length: f64, s: f64) -> [[f64; ELEMENT_DOFS]; 6] {
     b
 }
 
-/// Generalised strain increment `B(s) d`.
-pub fn strains(b: &[[f64; ELEMENT_DOFS]; 6], d: &[f64; ELEMENT_DOFS]) -> Resultants {
-    let mut e = [0.0; 6];
-    for (ei, row) in e.iter_mut().zip(b) {
-        *ei = row.iter().zip(d).map(|(x, y)| x * y).sum();
-    }
-    e
+/// Generalised strain increment `B(s) d` (the rows of [`strain_matrix`] written out).
+pub fn strains(length: f64, s: f64, d: &[f64; ELEMENT_DOFS]) -> Resultants {
+    let (n1, n2) = ((1.0 - s) / 2.0, (1.0 + s) / 2.0);
+    let il = 1.0 / length;
+    [
+        (d[6] - d[0]) * il,
+        (d[7] - d[1]) * il - n1 * d[5] - n2 * d[11],
+        (d[8] - d[2]) * il + n1 * d[4] + n2 * d[10],
+        (d[9] - d[3]) * il,
+        (d[10] - d[4]) * il,
+        (d[11] - d[5]) * il,
+    ]
 }
 
 /// Local stiffness `K = l Bᵀ D B` for a one-point rule (weight 2 × l/2), D a 6 × 6 section stiffness.
@@ -82,14 +87,25 @@ pub fn add_axial_geometric_stiffness(
     }
 }
 
-/// Local end forces `f = l Bᵀ σ` of resultants σ read at the stress-evaluation point.
+/// Local end forces `f = l Bᵀ σ` of resultants σ read at the stress-evaluation point (the columns
+/// of [`strain_matrix`] written out).
 pub fn local_forces(length: f64, s: f64, sigma: &Resultants) -> [f64; ELEMENT_DOFS] {
-    let b = strain_matrix(length, s);
-    let mut f = [0.0; ELEMENT_DOFS];
-    for (j, fj) in f.iter_mut().enumerate() {
-        *fj = length * (0..6).map(|m| b[m][j] * sigma[m]).sum::<f64>();
-    }
-    f
+    let (n1, n2) = ((1.0 - s) / 2.0, (1.0 + s) / 2.0);
+    let [n, qy, qz, t, my, mz] = *sigma;
+    [
+        -n,
+        -qy,
+        -qz,
+        -t,
+        length * n1 * qz - my,
+        -length * n1 * qy - mz,
+        n,
+        qy,
+        qz,
+        t,
+        length * n2 * qz + my,
+        -length * n2 * qy + mz,
+    ]
 }
 
 /// Bending moments `(My, Mz)` at ξ of an element whose resultants σ are read at r = −s: the moment
@@ -120,27 +136,29 @@ pub struct Corotated {
 }
 
 /// Co-rotational frame and natural deformations from the end positions and nodal rotations.
-/// `reference` is the element frame at t = 0 (nodal rotations are measured from there); `length0`
-/// its length then.
+/// `reference` is the rotation to the element frame at t = 0 (nodal rotations are measured from
+/// there, see [`quaternion_of`]); `length0` its length then.
 pub fn corotate(
     xa: &Vector3<f64>,
     xb: &Vector3<f64>,
     qa: &UnitQuaternion<f64>,
     qb: &UnitQuaternion<f64>,
-    reference: &Matrix3<f64>,
+    reference: &UnitQuaternion<f64>,
     length0: f64,
 ) -> Corotated {
     let chord = xb - xa;
     let length = chord.norm();
     let e1 = chord / length;
-    let triad_a = qa.to_rotation_matrix().matrix() * reference;
-    let triad_b = qb.to_rotation_matrix().matrix() * reference;
-    let y_mean = (triad_a.column(1) + triad_b.column(1)) * 0.5;
+    // the end triads are R·reference; in quaternions, their rotations relative to the chord frame
+    // are q_frame⁻¹ q q_reference
+    let y_reference = reference.transform_vector(&Vector3::y());
+    let y_mean = (qa.transform_vector(&y_reference) + qb.transform_vector(&y_reference)) * 0.5;
     let e3 = e1.cross(&y_mean).normalize();
     let e2 = e3.cross(&e1);
     let frame = Matrix3::from_columns(&[e1, e2, e3]);
-    let theta_a = rotation_vector(&(frame.transpose() * triad_a));
-    let theta_b = rotation_vector(&(frame.transpose() * triad_b));
+    let to_frame = quaternion_of(&frame).inverse();
+    let theta_a = quaternion_log(&(to_frame * qa * reference));
+    let theta_b = quaternion_log(&(to_frame * qb * reference));
     let mut deformation = [0.0; ELEMENT_DOFS];
     deformation[3..6].copy_from_slice(theta_a.as_slice());
     deformation[6] = length - length0;
@@ -155,19 +173,37 @@ pub fn corotate(
 /// Rotation vector (axis × angle, |angle| ≤ π) of a rotation matrix, exact down to the smallest
 /// angles (through the quaternion: θ = 2 atan2(|v|, w) v/|v|).
 pub fn rotation_vector(r: &Matrix3<f64>) -> Vector3<f64> {
-    let q = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(*r));
+    quaternion_log(&quaternion_of(r))
+}
+
+/// The unit quaternion of a rotation matrix (e.g. an element frame, whose columns are its axes).
+pub fn quaternion_of(r: &Matrix3<f64>) -> UnitQuaternion<f64> {
+    UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(*r))
+}
+
+/// Rotation vector of a unit quaternion, θ = 2 atan2(|v|, w) v/|v| taken with w ≥ 0 (|angle| ≤ π).
+fn quaternion_log(q: &UnitQuaternion<f64>) -> Vector3<f64> {
     let (w, v) = if q.w < 0.0 {
         (-q.w, -q.imag())
     } else {
         (q.w, q.imag())
     };
     let s = v.norm();
-    if s > 0.0 {
-        v * (2.0 * s.atan2(w) / s)
-    } else {
+    if s == 0.0 {
         Vector3::zeros()
+    } else if s < SMALL_HALF_ANGLE * w {
+        // atan x = x − x³/3 + x⁵/5 − x⁷/7 + O(x⁹): below 0.01 the rest is under 1e-17 relative
+        let x = s / w;
+        let x2 = x * x;
+        v * (2.0 / w * (1.0 - x2 * (1.0 / 3.0 - x2 * (1.0 / 5.0 - x2 / 7.0))))
+    } else {
+        v * (2.0 * s.atan2(w) / s)
     }
 }
+
+/// tan(θ/2) below which [`quaternion_log`] takes the arc tangent from its series (the usual case:
+/// an element's end rotations relative to its chord are small).
+const SMALL_HALF_ANGLE: f64 = 0.01;
 
 /// Rotates a local 12 × 12 matrix to global axes, `T K Tᵀ` block by block with T = diag(E, E, E, E).
 pub fn to_global_matrix(

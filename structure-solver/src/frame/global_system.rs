@@ -7,6 +7,8 @@ use super::element::{
     add_axial_geometric_stiffness, local_forces, local_stiffness, to_global_matrix, to_global_vector,
     ELEMENT_DOFS,
 };
+use super::section::Section;
+use super::topology::Element;
 use super::Frame;
 use nalgebra::{DMatrix, Matrix3, Vector3};
 use rayon::prelude::*;
@@ -21,6 +23,29 @@ pub(super) struct Contribution {
     pub rotary: Matrix3<f64>,
     /// Lumped mass given to each end node.
     pub mass: f64,
+}
+
+impl Contribution {
+    /// What element `e` of `section` adds at its current state (with its tangent stiffness when
+    /// `with_stiffness`).
+    pub(super) fn of(e: &Element, section: &Section, density: f64, with_stiffness: bool) -> Contribution {
+        let frame = &e.current.frame;
+        let stiffness = with_stiffness.then(|| {
+            let mut k = local_stiffness(e.length0, e.stress.s, &e.stress.tangent(section));
+            add_axial_geometric_stiffness(&mut k, e.stress.sigma[0], e.current.length);
+            Box::new(to_global_matrix(frame, &k))
+        });
+        let f = local_forces(e.length0, e.stress.s, &e.stress.sigma);
+        let half = 0.5 * density * e.length0;
+        let local_inertia =
+            Matrix3::from_diagonal(&Vector3::new(section.iy + section.iz, section.iy, section.iz)) * half;
+        Contribution {
+            stiffness,
+            force: to_global_vector(frame, &f),
+            rotary: frame * local_inertia * frame.transpose(),
+            mass: half * section.area,
+        }
+    }
 }
 
 /// Internal forces R and lumped masses gathered on the nodes, global axes.
@@ -85,26 +110,7 @@ impl Frame {
     pub(super) fn contributions(&self, with_stiffness: bool) -> Vec<Contribution> {
         self.elements
             .par_iter()
-            .map(|e| {
-                let section = &self.sections[e.section];
-                let frame = &e.current.frame;
-                let stiffness = with_stiffness.then(|| {
-                    let mut k = local_stiffness(e.length0, e.stress.s, &e.stress.tangent(section));
-                    add_axial_geometric_stiffness(&mut k, e.stress.sigma[0], e.current.length);
-                    Box::new(to_global_matrix(frame, &k))
-                });
-                let f = local_forces(e.length0, e.stress.s, &e.stress.sigma);
-                let half = 0.5 * self.density * e.length0;
-                let local_inertia =
-                    Matrix3::from_diagonal(&Vector3::new(section.iy + section.iz, section.iy, section.iz))
-                        * half;
-                Contribution {
-                    stiffness,
-                    force: to_global_vector(frame, &f),
-                    rotary: frame * local_inertia * frame.transpose(),
-                    mass: half * section.area,
-                }
-            })
+            .map(|e| Contribution::of(e, &self.sections[e.section], self.density, with_stiffness))
             .collect()
     }
 

@@ -2,7 +2,7 @@
 //! yield surface becomes a hinge; the integration point moves so that the hinge sits on the node, the
 //! flow follows the normality rule, and the hinge closes again when it unloads.
 
-use super::element::{moments_at, move_integration_point, strain_matrix, strains, ELEMENT_DOFS};
+use super::element::{moments_at, move_integration_point, strains, ELEMENT_DOFS};
 use super::section::{Resultants, Section, YIELDING};
 
 /// The end of an element where a hinge sits.
@@ -131,7 +131,7 @@ impl StressState {
 
     /// Adds the elastic response `D B(s) dd` to the resultants and `B(s) dd` to the strains.
     fn elastic_trial(&mut self, section: &Section, length: f64, dd: &[f64; ELEMENT_DOFS]) {
-        let de = strains(&strain_matrix(length, self.s), dd);
+        let de = strains(length, self.s, dd);
         for (i, de) in de.iter().enumerate() {
             self.strain[i] += de;
             self.sigma[i] += section.stiffness[i] * de;

@@ -113,7 +113,10 @@ impl Frame {
             connectivity: 0,
             factorizations: 0,
             unconverged: 0,
-            equilibrium: Equilibrium::OneSolve,
+            equilibrium: match cfg.equilibrium_tolerance {
+                Some(tolerance) => Equilibrium::Iterate { tolerance },
+                None => Equilibrium::OneSolve,
+            },
             stale_limit: factor_age::DEFAULT_STALE_LIMIT,
             factor_age: FactorAge::default(),
             end_of_step_forces: None,
@@ -219,7 +222,8 @@ impl Frame {
     }
 
     /// Number of steps whose corrections did not reach the residual tolerance (with
-    /// [`Equilibrium::Iterate`]; one-solve steps make no corrections).
+    /// [`Equilibrium::Iterate`]), or that left more than [`stepping::ONE_SOLVE_UNBALANCE_LIMIT`] of
+    /// their unbalanced force (one solve per step: Δt is then too long for the method).
     pub fn unconverged_steps(&self) -> u64 {
         self.unconverged
     }

@@ -5,22 +5,29 @@
 
 use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
 
-/// Solves `L Lᵀ y = b` in place (`x` holds b, then y), L given by `symbolic` and its `values`;
-/// `scratch` is resized to hold the longest below-diagonal pattern.
+/// The reciprocals of L's diagonal, in column order (the solve multiplies by them: a division's
+/// latency would sit in the solve's dependency chain once per column).
+pub fn inverse_diagonal(symbolic: &SymbolicSupernodalCholesky<usize>, values: &[f64], out: &mut Vec<f64>) {
+    out.clear();
+    for s in 0..symbolic.n_supernodes() {
+        let (_, ncols, pattern, l) = block(symbolic, values, s);
+        let rows = ncols + pattern.len();
+        out.extend((0..ncols).map(|j| 1.0 / l[j * rows + j]));
+    }
+}
+
+/// Solves `L Lᵀ y = b` in place (`x` holds b, then y), L given by `symbolic` and its `values`,
+/// `inverse` its [`inverse_diagonal`]; `scratch` is resized to hold the longest below-diagonal
+/// pattern.
 pub fn solve_in_place(
     symbolic: &SymbolicSupernodalCholesky<usize>,
     values: &[f64],
+    inverse: &[f64],
     x: &mut [f64],
     scratch: &mut Vec<f64>,
 ) {
     let supernodes = symbolic.n_supernodes();
-    let block = |s: usize| {
-        let (start, end) = (symbolic.supernode_begin()[s], symbolic.supernode_end()[s]);
-        let first = symbolic.col_ptr_for_row_idx()[s];
-        let pattern = &symbolic.row_idx()[first..first + symbolic.nnz_per_super()[s]];
-        let l = &values[symbolic.col_ptr_for_val()[s]..symbolic.col_ptr_for_val()[s + 1]];
-        (start, end - start, pattern, l)
-    };
+    let block = |s: usize| block(symbolic, values, s);
     // forward: L z = b, column by column; the below-diagonal updates gather in `scratch` first
     for s in 0..supernodes {
         let (start, ncols, pattern, l) = block(s);
@@ -29,7 +36,7 @@ pub fn solve_in_place(
         scratch.resize(pattern.len(), 0.0);
         for j in 0..ncols {
             let column = &l[j * rows..(j + 1) * rows];
-            let xj = x[start + j] / column[j];
+            let xj = x[start + j] * inverse[start + j];
             x[start + j] = xj;
             for (i, lij) in column[j + 1..ncols].iter().enumerate() {
                 x[start + j + 1 + i] -= lij * xj;
@@ -52,9 +59,23 @@ pub fn solve_in_place(
             let column = &l[j * rows..(j + 1) * rows];
             let below = dot(&column[ncols..], scratch);
             let inside = dot(&column[j + 1..ncols], &x[start + j + 1..start + ncols]);
-            x[start + j] = (x[start + j] - below - inside) / column[j];
+            x[start + j] = (x[start + j] - below - inside) * inverse[start + j];
         }
     }
+}
+
+/// Supernode `s`: its first column, number of columns, below-diagonal row pattern and dense
+/// column-major block of L (the diagonal block's rows first, then the pattern's).
+fn block<'a>(
+    symbolic: &'a SymbolicSupernodalCholesky<usize>,
+    values: &'a [f64],
+    s: usize,
+) -> (usize, usize, &'a [usize], &'a [f64]) {
+    let (start, end) = (symbolic.supernode_begin()[s], symbolic.supernode_end()[s]);
+    let first = symbolic.col_ptr_for_row_idx()[s];
+    let pattern = &symbolic.row_idx()[first..first + symbolic.nnz_per_super()[s]];
+    let l = &values[symbolic.col_ptr_for_val()[s]..symbolic.col_ptr_for_val()[s + 1]];
+    (start, end - start, pattern, l)
 }
 
 /// Dot product with four independent sums (lets the compiler use vector registers).

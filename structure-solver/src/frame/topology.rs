@@ -1,9 +1,9 @@
 //! Nodes and elements of a frame, built from its config: each member becomes two ASI-Gauss elements
 //! joined at a new mid node.
 
-use super::element::{corotate, initial_frame, Corotated, S_GAUSS};
+use super::element::{corotate, initial_frame, quaternion_of, Corotated, S_GAUSS};
 use super::hinge::StressState;
-use nalgebra::{Matrix3, UnitQuaternion, Vector3};
+use nalgebra::{UnitQuaternion, Vector3};
 use schemas::case::frame::{FrameConfig, DOF_NAMES};
 use schemas::case::FieldError;
 use std::collections::BTreeMap;
@@ -46,8 +46,8 @@ pub struct Element {
     pub section: usize,
     /// Length at t = 0 (the strain reference).
     pub length0: f64,
-    /// Element frame at t = 0 (nodal rotations are measured from it).
-    pub reference: Matrix3<f64>,
+    /// Rotation to the element frame at t = 0 (nodal rotations are measured from it).
+    pub reference: UnitQuaternion<f64>,
     /// Current frame and natural deformations.
     pub current: Corotated,
     pub stress: StressState,
@@ -106,7 +106,7 @@ pub fn build(cfg: &FrameConfig, key: &str) -> Result<Topology, FieldError> {
         let mid = nodes.len();
         nodes.push(Node::new(None, (nodes[a].position + nodes[b].position) * 0.5));
         let axis = nodes[b].position - nodes[a].position;
-        let reference = initial_frame(&axis, member.orientation);
+        let reference = quaternion_of(&initial_frame(&axis, member.orientation));
         for (half, pair) in [[a, mid], [mid, b]].into_iter().enumerate() {
             let length0 = (nodes[pair[1]].position - nodes[pair[0]].position).norm();
             let q = UnitQuaternion::identity();

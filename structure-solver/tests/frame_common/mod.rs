@@ -63,6 +63,7 @@ pub fn beam(length: f64, members: usize, width: f64, depth: f64, material: Mater
         support: Vec::new(),
         contact: None,
         wall: Vec::new(),
+        equilibrium_tolerance: None,
     }
 }
 

@@ -92,7 +92,9 @@ fn main() -> ExitCode {
     let hang_at_window = env_number("FAULTY_HANG_AT_WINDOW");
     let loaded = schemas::case::Case::load(&args.case)
         .map_err(|e| e.to_string())
-        .and_then(|case| StructureParticipant::from_case(&case, &args.name, args.out.as_deref()).map(|p| (p, case.hash)));
+        .and_then(|case| {
+            StructureParticipant::from_case(&case, &args.name, args.out.as_deref()).map(|p| (p, case.hash))
+        });
     let (inner, hash) = match loaded {
         Ok(p) => p,
         Err(e) => {
@@ -100,7 +102,13 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let mut faulty = Faulty { inner, window: 0, window_end: 0.0, perturb_from: perturb_from_window, hang_at: hang_at_window };
+    let mut faulty = Faulty {
+        inner,
+        window: 0,
+        window_end: 0.0,
+        perturb_from: perturb_from_window,
+        hang_at: hang_at_window,
+    };
     match serve_announcing(&args, hash, &mut faulty, announce_protocol) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
