@@ -61,6 +61,16 @@ pub fn out_dir(test: &str) -> PathBuf {
     dir
 }
 
+/// Runs `coupler run CASE --out OUT` to completion.
+pub fn coupler_run(case: &Path, out: &Path) -> Output {
+    coupler(&[
+        "run",
+        case.to_str().unwrap_or_default(),
+        "--out",
+        out.to_str().unwrap_or_default(),
+    ])
+}
+
 /// Runs `coupler ARGS…` to completion.
 pub fn coupler(args: &[&str]) -> Output {
     Command::new(binary("coupler"))
@@ -98,12 +108,7 @@ pub fn run_oscillator(test: &str, c: &OscillatorCoupling) -> (PathBuf, Output) {
         ],
     );
     let out = dir.join("out");
-    let run = coupler(&[
-        "run",
-        case.to_str().unwrap_or_default(),
-        "--out",
-        out.to_str().unwrap_or_default(),
-    ]);
+    let run = coupler_run(&case, &out);
     (out, run)
 }
 

@@ -1,7 +1,7 @@
 //! Wrong case files: each is refused with its own message naming the file, the key and what is
 //! allowed, with exit code 2, and no participant process is started.
 
-use stack_tests::{coupler, out_dir, stderr, workspace};
+use stack_tests::{coupler, coupler_run, out_dir, stderr, workspace};
 
 /// (name, text to find in the oscillator case, replacement, fragments the error must contain).
 const BAD: &[(&str, &str, &str, &[&str])] = &[
@@ -105,12 +105,7 @@ fn each_bad_case_gets_its_own_clear_error_and_starts_nothing() {
         let case = dir.join("case.toml");
         std::fs::write(&case, template.replacen(find, replace, 1)).unwrap_or_default();
         let out = dir.join("out");
-        let run = coupler(&[
-            "run",
-            case.to_str().unwrap_or_default(),
-            "--out",
-            out.to_str().unwrap_or_default(),
-        ]);
+        let run = coupler_run(&case, &out);
         let err = stderr(&run);
         assert_eq!(
             run.status.code(),

@@ -4,7 +4,7 @@
 //! within 5 % (the bound) and its heave must die out. Gravity acts once on each side:
 //! the fluid reports pressure and contact forces only, the structure applies the box's weight.
 
-use stack_tests::{coupler, out_dir, stderr};
+use stack_tests::{coupler_run, out_dir, stderr};
 use std::path::Path;
 
 /// Δs = 0.02 m, a 0.4 × 0.4 m tank with water 0.2 m deep; a 16 × 16 × 8 cm box (8 × 8 × 4
@@ -134,12 +134,7 @@ fn a_box_floats_at_its_hydrostatic_draft_and_its_heave_settles() {
     let case = dir.join("case.toml");
     std::fs::write(&case, CASE).unwrap_or_else(|e| panic!("{e}"));
     let out = dir.join("out");
-    let run = coupler(&[
-        "run",
-        case.to_str().unwrap_or_default(),
-        "--out",
-        out.to_str().unwrap_or_default(),
-    ]);
+    let run = coupler_run(&case, &out);
     let err = stderr(&run);
     println!("{err}");
     assert!(run.status.success(), "{err}");

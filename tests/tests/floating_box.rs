@@ -3,7 +3,7 @@
 //! the action–reaction ledger closes every window, and the structure solver replays against the
 //! recording.
 
-use stack_tests::{binary, case_from, coupler, out_dir, stderr};
+use stack_tests::{binary, case_from, coupler_run, out_dir, stderr};
 use std::process::Command;
 
 #[test]
@@ -23,12 +23,7 @@ fn coupled_dam_break_runs_closes_the_ledger_and_replays() {
         ],
     );
     let out = dir.join("out");
-    let run = coupler(&[
-        "run",
-        case.to_str().unwrap_or_default(),
-        "--out",
-        out.to_str().unwrap_or_default(),
-    ]);
+    let run = coupler_run(&case, &out);
     let err = stderr(&run);
     println!("{err}");
     assert!(run.status.success(), "{err}");
@@ -117,12 +112,7 @@ fn light_box(scheme: &str, density: f64) -> (bool, String, Vec<Vec<f64>>) {
         ],
     );
     let out = dir.join("out");
-    let run = coupler(&[
-        "run",
-        case.to_str().unwrap_or_default(),
-        "--out",
-        out.to_str().unwrap_or_default(),
-    ]);
+    let run = coupler_run(&case, &out);
     let history = std::fs::read_to_string(out.join("floater/body-box.csv")).unwrap_or_default();
     let rows = history
         .lines()

@@ -1,7 +1,7 @@
 //! Record and replay: a recorded run replayed against each participant passes; a participant
 //! that departs from a known window on, or a changed parameter, fails the replay at that window.
 
-use stack_tests::{binary, coupler, oscillator_case, out_dir, stderr};
+use stack_tests::{binary, coupler_run, oscillator_case, out_dir, stderr};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -9,12 +9,7 @@ use std::process::Command;
 fn record(dir: &Path) -> PathBuf {
     let case = oscillator_case(dir, &[("window", "0.02")]);
     let out = dir.join("out");
-    let run = coupler(&[
-        "run",
-        case.to_str().unwrap_or_default(),
-        "--out",
-        out.to_str().unwrap_or_default(),
-    ]);
+    let run = coupler_run(&case, &out);
     assert!(run.status.success(), "{}", stderr(&run));
     out.join("recording.rec")
 }

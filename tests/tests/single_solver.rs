@@ -1,7 +1,7 @@
 //! A case with one participant and no coupling: `coupler run` starts only that solver, in its
 //! standalone mode, and no coupling traffic happens (no recording, no ledger).
 
-use stack_tests::{coupler, out_dir, stderr, workspace};
+use stack_tests::{coupler_run, out_dir, stderr, workspace};
 use std::path::Path;
 
 /// Copies `cases/NAME/case.toml` into a test folder with `end_time` replaced.
@@ -36,12 +36,7 @@ fn run_alone(name: &str, end_time: &str, solver: &str) -> std::path::PathBuf {
     let dir = out_dir(&format!("alone-{name}"));
     let case = short_case(name, end_time, &dir);
     let out = dir.join("out");
-    let run = coupler(&[
-        "run",
-        case.to_str().unwrap_or_default(),
-        "--out",
-        out.to_str().unwrap_or_default(),
-    ]);
+    let run = coupler_run(&case, &out);
     let err = stderr(&run);
     println!("{err}");
     assert!(run.status.success(), "{err}");
