@@ -1,6 +1,6 @@
 //! Dam break: the surge front of a column L × 2L against the experiments of Koshizuka & Oka
 //! (1996) and Martin & Moyce (1952, n² = 2, a = 2.25 in), in the dimensionless variables of the
-//! data: T = t √(2g/L), Z = z/L (data: /work/shared/data/fluid, copied from pysph's examples).
+//! data: T = t √(2g/L), Z = z/L (data: cases/dam-break-koshizuka/reference/, carried by pysph's examples).
 
 mod common;
 

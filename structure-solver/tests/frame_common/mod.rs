@@ -5,7 +5,7 @@ use schemas::case::frame::{
     FrameConfig, MaterialConfig, MemberConfig, NodeConfig, SectionConfig, SupportConfig,
 };
 
-/// Steel of the reference data (`/work/shared/data/structure/README.md`): E = 200 GPa, ν = 0.3,
+/// Steel of the reference data (`cases/structure-cantilever/reference/README.md`): E = 200 GPa, ν = 0.3,
 /// ρ = 7850 kg/m³; yield stress 235 MPa.
 pub fn steel() -> MaterialConfig {
     MaterialConfig {
