@@ -50,6 +50,7 @@ impl FactorAge {
         elements
             .par_iter()
             .zip(&self.at_factorization)
+            .with_min_len(super::PARALLEL_CHUNK)
             .any(|(e, (frame, axial))| {
                 let section = &sections[e.section];
                 // ‖R₁ − R₀‖ = 2√2 sin(θ/2) (Frobenius): θ to second order without an arc cosine

@@ -110,6 +110,7 @@ impl Frame {
     pub(super) fn contributions(&self, with_stiffness: bool) -> Vec<Contribution> {
         self.elements
             .par_iter()
+            .with_min_len(super::PARALLEL_CHUNK)
             .map(|e| Contribution::of(e, &self.sections[e.section], self.density, with_stiffness))
             .collect()
     }

@@ -9,7 +9,7 @@ use super::global_system::{Contribution, Motion, NodalForces};
 use super::newmark;
 use super::section::Section;
 use super::topology::{Element, Node};
-use super::Frame;
+use super::{Frame, PARALLEL_CHUNK};
 use nalgebra::{UnitQuaternion, Vector3};
 use rayon::prelude::*;
 
@@ -167,6 +167,7 @@ impl Frame {
         self.nodes
             .par_iter_mut()
             .zip(du.par_chunks_exact(NODE_DOFS))
+            .with_min_len(PARALLEL_CHUNK)
             .for_each(|(node, du)| {
                 node.position += Vector3::new(du[0], du[1], du[2]);
                 let spin = UnitQuaternion::from_scaled_axis(Vector3::new(du[3], du[4], du[5]));
@@ -181,6 +182,7 @@ impl Frame {
         let (nodes, sections) = (&self.nodes, &self.sections);
         self.elements
             .par_iter_mut()
+            .with_min_len(PARALLEL_CHUNK)
             .map(|e| update_element(e, nodes, sections))
             .reduce(|| false, |a, b| a || b)
     }
@@ -192,6 +194,7 @@ impl Frame {
         let (contributions, changed): (Vec<Contribution>, Vec<bool>) = self
             .elements
             .par_iter_mut()
+            .with_min_len(PARALLEL_CHUNK)
             .map(|e| {
                 let changed = update_element(e, nodes, sections);
                 (Contribution::of(e, &sections[e.section], density, false), changed)
@@ -202,15 +205,18 @@ impl Frame {
 
     /// Puts each elastic element's integration point where ASI-Gauss wants it given its member's hinges.
     pub(super) fn update_integration_points(&mut self) {
-        self.elements.par_chunks_exact_mut(2).for_each(|member| {
-            let hinged = [member[0].stress.hinge.is_some(), member[1].stress.hinge.is_some()];
-            for (half, e) in member.iter_mut().enumerate() {
-                if !hinged[half] {
-                    let s = e.elastic_integration_point(hinged[1 - half]);
-                    e.stress.move_to(e.length0, s);
+        self.elements
+            .par_chunks_exact_mut(2)
+            .with_min_len(PARALLEL_CHUNK / 2)
+            .for_each(|member| {
+                let hinged = [member[0].stress.hinge.is_some(), member[1].stress.hinge.is_some()];
+                for (half, e) in member.iter_mut().enumerate() {
+                    if !hinged[half] {
+                        let s = e.elastic_integration_point(hinged[1 - half]);
+                        e.stress.move_to(e.length0, s);
+                    }
                 }
-            }
-        });
+            });
     }
 
     /// Stops a run whose elements stretch or twist beyond what the formulation can represent.
