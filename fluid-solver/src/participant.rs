@@ -11,11 +11,14 @@
 //! the last substep before each exchange time. Sample points and point reactions (the
 //! unresolved drag coupling, S2) are not served by E-MPS: a window asking for them fails with
 //! a message. With an output folder, VTU frames (and surface meshes) are written at the first
-//! exchange time at or after each output time, once the window is accepted.
+//! exchange time at or after each output time, and the probe CSV (`NAME_probes.csv`) at the
+//! first exchange time at or after each probe time, once the window is accepted.
 
+use crate::probes::{self, ProbeFile};
 use crate::solver::{FluidSolver, SavedState};
 use crate::vtp::SurfaceFrames;
 use crate::vtu::{self, TimeSeries};
+use schemas::case::fluid::ProbeConfig;
 use schemas::case::Case;
 use schemas::f64s::F64s;
 use schemas::message::{Fields, InterfaceDecl, Role, Waveform};
@@ -39,12 +42,54 @@ struct Frames {
     surfaces: Option<SurfaceFrames>,
 }
 
+/// The probe CSV of a participant: rows sampled at the window times they fall due, written once
+/// the window is accepted (a repeated implicit iteration never writes twice).
+struct ProbeRows {
+    path: PathBuf,
+    file: ProbeFile,
+    probes: Vec<ProbeConfig>,
+    interval: f64,
+    written: u64,
+    pending: Vec<(f64, Vec<f64>)>,
+}
+
+impl ProbeRows {
+    /// Whether a row falls due at `t` (the next row's time reached).
+    fn due(&self, t: f64) -> bool {
+        let k = self.written + self.pending.len() as u64;
+        t >= (k as f64 - 1e-9) * self.interval
+    }
+
+    /// Samples every probe now and keeps the row until the window is accepted.
+    fn sample(&mut self, solver: &FluidSolver) {
+        let tank = solver.tank();
+        let values = self
+            .probes
+            .iter()
+            .map(|p| probes::sample(p, solver.particles(), solver.kernel(), &tank))
+            .collect();
+        self.pending.push((solver.time(), values));
+    }
+
+    /// Writes the rows kept back from the accepted window.
+    fn commit(&mut self) -> Result<(), String> {
+        for (t, values) in self.pending.drain(..) {
+            self.file
+                .row(t, &values)
+                .map_err(|e| format!("cannot write {}: {e}", self.path.display()))?;
+            self.written += 1;
+        }
+        Ok(())
+    }
+}
+
 /// One fluid participant of a case, with its checkpoint.
 pub struct FluidParticipant {
     name: String,
     solver: FluidSolver,
     checkpoint: Option<SavedState>,
     frames: Option<Frames>,
+    probes: Option<ProbeRows>,
 }
 
 impl FluidParticipant {
@@ -79,11 +124,31 @@ impl FluidParticipant {
             None => None,
         };
         solver.remove_gates();
+        let probes = match out {
+            Some(dir) if !cfg.probe.is_empty() => {
+                let path = dir.join(format!("{name}_probes.csv"));
+                let file = ProbeFile::create(&path, &cfg.probe)
+                    .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+                let mut rows = ProbeRows {
+                    path,
+                    file,
+                    probes: cfg.probe.clone(),
+                    interval: cfg.probe_interval.unwrap_or(cfg.output_interval),
+                    written: 0,
+                    pending: Vec::new(),
+                };
+                rows.sample(&solver);
+                rows.commit()?;
+                Some(rows)
+            }
+            _ => None,
+        };
         Ok(Self {
             name: name.to_string(),
             solver,
             checkpoint: None,
             frames,
+            probes,
         })
     }
 
@@ -101,8 +166,11 @@ impl FluidParticipant {
         }
     }
 
-    /// Writes the frame kept back from the last window: that window was accepted.
+    /// Writes the frame and probe rows kept back from the last window: that window was accepted.
     fn commit(&mut self) -> Result<(), String> {
+        if let Some(p) = &mut self.probes {
+            p.commit()?;
+        }
         if let Some(f) = &mut self.frames {
             if let Some(p) = f.pending.take() {
                 let k = f.next;
@@ -157,6 +225,9 @@ impl Participant for FluidParticipant {
         if let Some(f) = &mut self.frames {
             f.pending = None;
         }
+        if let Some(p) = &mut self.probes {
+            p.pending.clear();
+        }
         let saved = self.checkpoint.as_ref().ok_or_else(|| {
             format!(
                 "fluid `{}`: asked to restore a checkpoint, but none was saved",
@@ -205,6 +276,11 @@ impl Participant for FluidParticipant {
             }
             self.solver.land_on(t);
             outputs.push(self.outputs());
+            if let Some(p) = &mut self.probes {
+                if p.due(t) {
+                    p.sample(&self.solver);
+                }
+            }
             if let Some(f) = &mut self.frames {
                 let due = f.next as f64 * f.interval - 1e-9 * f.interval;
                 if f.pending.is_none() && t >= due {

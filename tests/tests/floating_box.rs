@@ -6,22 +6,25 @@
 use stack_tests::{binary, case_from, coupler_run, out_dir, stderr};
 use std::process::Command;
 
+/// The floating-box case at the CI size (Δs = 2 cm, a lower tank) with `changes` applied.
+fn ci_case(dir: &std::path::Path, end_time: &str, changes: &[(&str, &str)]) -> std::path::PathBuf {
+    let mut all = vec![
+        ("end_time", end_time),
+        ("spacing", "0.02"),
+        ("output_interval", "0.05"),
+        (
+            "tank",
+            "{ min = [0.0, 0.0, 0.0], max = [0.6, 0.44, 0.4], lid = true }",
+        ),
+    ];
+    all.extend_from_slice(changes);
+    case_from("dam-break-floating-box", dir, &all)
+}
+
 #[test]
 fn coupled_dam_break_runs_closes_the_ledger_and_replays() {
     let dir = out_dir("floating-box-ci");
-    let case = case_from(
-        "dam-break-floating-box",
-        &dir,
-        &[
-            ("end_time", "0.1"),
-            ("spacing", "0.02"),
-            ("output_interval", "0.05"),
-            (
-                "tank",
-                "{ min = [0.0, 0.0, 0.0], max = [0.6, 0.44, 0.4], lid = true }",
-            ),
-        ],
-    );
+    let case = ci_case(&dir, "0.1", &[]);
     let out = dir.join("out");
     let run = coupler_run(&case, &out);
     let err = stderr(&run);
@@ -96,20 +99,10 @@ fn coupled_dam_break_runs_closes_the_ledger_and_replays() {
 fn light_box(scheme: &str, density: f64) -> (bool, String, Vec<Vec<f64>>) {
     let dir = out_dir(&format!("light-box-{scheme}"));
     let mass = density * 0.14 * 0.14 * 0.04;
-    let case = case_from(
-        "dam-break-floating-box",
+    let case = ci_case(
         &dir,
-        &[
-            ("end_time", "0.15"),
-            ("spacing", "0.02"),
-            ("output_interval", "0.05"),
-            (
-                "tank",
-                "{ min = [0.0, 0.0, 0.0], max = [0.6, 0.44, 0.4], lid = true }",
-            ),
-            ("mass", &mass.to_string()),
-            ("scheme", &format!("\"{scheme}\"")),
-        ],
+        "0.15",
+        &[("mass", &mass.to_string()), ("scheme", &format!("\"{scheme}\""))],
     );
     let out = dir.join("out");
     let run = coupler_run(&case, &out);
@@ -156,5 +149,37 @@ fn a_very_light_box_runs_stably_with_explicit_and_implicit_coupling() {
             gap < 1e-9,
             "explicit and implicit reach the same trajectory: {gap}"
         );
+    }
+}
+
+/// The coupled fluid writes its probe CSV like a standalone run: one row at each probe time
+/// (every 0.01 s here), sampled after the window is accepted, never twice for an implicit window.
+#[test]
+fn the_coupled_fluid_writes_its_probes_once_per_probe_time() {
+    for scheme in ["explicit", "implicit"] {
+        let dir = out_dir(&format!("floating-box-probes-{scheme}"));
+        let case = ci_case(&dir, "0.05", &[("scheme", &format!("\"{scheme}\""))]);
+        let out = dir.join("out");
+        let run = coupler_run(&case, &out);
+        assert!(run.status.success(), "{}", stderr(&run));
+        let probes = std::fs::read_to_string(out.join("tank/tank_probes.csv")).unwrap_or_default();
+        let rows: Vec<Vec<f64>> = probes
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').map(|v| v.parse().unwrap_or(f64::NAN)).collect())
+            .collect();
+        let times: Vec<f64> = rows.iter().map(|r| r[0]).collect();
+        println!("{scheme}: probe times {times:?}");
+        assert_eq!(rows.len(), 6, "{scheme}: rows at 0, 0.01, …, 0.05 s:\n{probes}");
+        for (k, t) in times.iter().enumerate() {
+            assert!((t - 0.01 * k as f64).abs() < 1e-6, "{scheme}: row {k} at t = {t}");
+        }
+        // The surge front moves forward from the column's face (0.3 m) once the gate is gone.
+        let front: Vec<f64> = rows.iter().map(|r| r[1]).collect();
+        assert!(
+            front.windows(2).all(|w| w[1] >= w[0] - 1e-12),
+            "{scheme}: the front never retreats: {front:?}"
+        );
+        assert!(front[5] > front[0], "{scheme}: the front advances: {front:?}");
     }
 }
