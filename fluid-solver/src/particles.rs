@@ -86,9 +86,9 @@ impl Particles {
         self.kind.iter().filter(|&&k| k == kind.code()).count()
     }
 
-    /// Puts particle `perm[i]` at index `i` in every array, using `scratch` as the spare buffer.
-    pub fn permute(&mut self, perm: &[u32], scratch: &mut Vec<f64>) {
-        for v in [
+    /// Every `f64` array (positions, velocities, pressure, number density).
+    fn f64_arrays_mut(&mut self) -> [&mut Vec<f64>; 8] {
+        [
             &mut self.x,
             &mut self.y,
             &mut self.z,
@@ -97,7 +97,12 @@ impl Particles {
             &mut self.vz,
             &mut self.pressure,
             &mut self.number_density,
-        ] {
+        ]
+    }
+
+    /// Puts particle `perm[i]` at index `i` in every array, using `scratch` as the spare buffer.
+    pub fn permute(&mut self, perm: &[u32], scratch: &mut Vec<f64>) {
+        for v in self.f64_arrays_mut() {
             gather(v, perm, scratch);
         }
         let mut k = Vec::new();
@@ -108,16 +113,7 @@ impl Particles {
 
     /// Releases spare capacity (after building or removing particles).
     pub fn shrink_to_fit(&mut self) {
-        for v in [
-            &mut self.x,
-            &mut self.y,
-            &mut self.z,
-            &mut self.vx,
-            &mut self.vy,
-            &mut self.vz,
-            &mut self.pressure,
-            &mut self.number_density,
-        ] {
+        for v in self.f64_arrays_mut() {
             v.shrink_to_fit();
         }
         self.kind.shrink_to_fit();

@@ -15,6 +15,18 @@ pub struct Array {
     pub bytes: Vec<u8>,
 }
 
+impl Array {
+    /// An array of `components` values per item.
+    pub fn new(ty: &'static str, name: &'static str, components: usize, bytes: Vec<u8>) -> Array {
+        Array {
+            ty,
+            name,
+            components,
+            bytes,
+        }
+    }
+}
+
 /// A group of arrays under one XML element, e.g. `("PointData", "Scalars=\"pressure\"", …)`.
 pub struct Section {
     pub element: &'static str,

@@ -16,17 +16,11 @@ pub fn write_vtp(path: &Path, mesh: &TriangleMesh) -> io::Result<()> {
     let offsets: Vec<i64> = (1..=m as i64).map(|t| 3 * t).collect();
     let normals: Vec<f32> = mesh.normals.iter().flatten().copied().collect();
     let vertices: Vec<f64> = mesh.vertices.iter().flatten().copied().collect();
-    let array = |ty, name, components, bytes| Array {
-        ty,
-        name,
-        components,
-        bytes,
-    };
     let sections = [
         Section {
             element: "PointData",
             attributes: "Normals=\"normals\"".into(),
-            arrays: vec![array(
+            arrays: vec![Array::new(
                 "Float32",
                 "normals",
                 3,
@@ -36,7 +30,7 @@ pub fn write_vtp(path: &Path, mesh: &TriangleMesh) -> io::Result<()> {
         Section {
             element: "Points",
             attributes: String::new(),
-            arrays: vec![array(
+            arrays: vec![Array::new(
                 "Float64",
                 "position",
                 3,
@@ -47,13 +41,13 @@ pub fn write_vtp(path: &Path, mesh: &TriangleMesh) -> io::Result<()> {
             element: "Polys",
             attributes: String::new(),
             arrays: vec![
-                array(
+                Array::new(
                     "Int64",
                     "connectivity",
                     1,
                     le_bytes(&connectivity, i64::to_le_bytes),
                 ),
-                array("Int64", "offsets", 1, le_bytes(&offsets, i64::to_le_bytes)),
+                Array::new("Int64", "offsets", 1, le_bytes(&offsets, i64::to_le_bytes)),
             ],
         },
     ];

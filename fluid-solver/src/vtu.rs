@@ -19,27 +19,21 @@ pub fn write_vtu(path: &Path, p: &Particles) -> io::Result<()> {
     let id: Vec<u32> = keep.iter().map(|&i| p.id[i]).collect();
     let connectivity: Vec<i64> = (0..n as i64).collect();
     let offsets: Vec<i64> = (1..=n as i64).collect();
-    let array = |ty, name, components, bytes| Array {
-        ty,
-        name,
-        components,
-        bytes,
-    };
     let sections = [
         Section {
             element: "PointData",
             attributes: "Scalars=\"pressure\" Vectors=\"velocity\"".into(),
             arrays: vec![
-                array("Float64", "velocity", 3, le_bytes(&velocity, f64::to_le_bytes)),
-                array("Float64", "pressure", 1, le_bytes(&pressure, f64::to_le_bytes)),
-                array("UInt8", "kind", 1, kind),
-                array("UInt32", "id", 1, le_bytes(&id, u32::to_le_bytes)),
+                Array::new("Float64", "velocity", 3, le_bytes(&velocity, f64::to_le_bytes)),
+                Array::new("Float64", "pressure", 1, le_bytes(&pressure, f64::to_le_bytes)),
+                Array::new("UInt8", "kind", 1, kind),
+                Array::new("UInt32", "id", 1, le_bytes(&id, u32::to_le_bytes)),
             ],
         },
         Section {
             element: "Points",
             attributes: String::new(),
-            arrays: vec![array(
+            arrays: vec![Array::new(
                 "Float64",
                 "position",
                 3,
@@ -50,14 +44,14 @@ pub fn write_vtu(path: &Path, p: &Particles) -> io::Result<()> {
             element: "Cells",
             attributes: String::new(),
             arrays: vec![
-                array(
+                Array::new(
                     "Int64",
                     "connectivity",
                     1,
                     le_bytes(&connectivity, i64::to_le_bytes),
                 ),
-                array("Int64", "offsets", 1, le_bytes(&offsets, i64::to_le_bytes)),
-                array("UInt8", "types", 1, vec![1u8; n]), // VTK_VERTEX
+                Array::new("Int64", "offsets", 1, le_bytes(&offsets, i64::to_le_bytes)),
+                Array::new("UInt8", "types", 1, vec![1u8; n]), // VTK_VERTEX
             ],
         },
     ];
