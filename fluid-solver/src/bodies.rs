@@ -131,7 +131,14 @@ impl RigidBodies {
         p: &Particles,
         centres: &[f64],
     ) -> Vec<f64> {
-        self.body_side_sum(grid, p, kernel.re_grad, centres, pressure_pair(kernel, p))
+        self.body_side_sum(
+            grid,
+            p,
+            kernel.re_grad,
+            centres,
+            is_fluid,
+            pressure_pair(kernel, p),
+        )
     }
 
     /// The reaction of [`RigidBodies::pressure_loads`] evaluated from the fluid's side: for each
@@ -160,7 +167,14 @@ impl RigidBodies {
         centres: &[f64],
         scales: &ExchangeScales,
     ) -> Vec<f64> {
-        self.body_side_sum(grid, p, scales.distance(), centres, contact_pair(scales, p))
+        self.body_side_sum(
+            grid,
+            p,
+            scales.distance(),
+            centres,
+            is_fluid,
+            contact_pair(scales, p),
+        )
     }
 
     /// The reaction of [`RigidBodies::contact_loads`] evaluated from the fluid's side (the
@@ -186,7 +200,14 @@ impl RigidBodies {
         centres: &[f64],
         scales: &ExchangeScales,
     ) -> Vec<f64> {
-        self.body_side_sum(grid, p, kernel.re, centres, viscous_pair(kernel, scales, p))
+        self.body_side_sum(
+            grid,
+            p,
+            kernel.re,
+            centres,
+            is_fluid,
+            viscous_pair(kernel, scales, p),
+        )
     }
 
     /// The reaction of [`RigidBodies::viscous_loads`] evaluated from the fluid's side.
@@ -201,14 +222,15 @@ impl RigidBodies {
         self.fluid_side_sum(grid, p, kernel.re, centres, viscous_pair(kernel, scales, p))
     }
 
-    /// Σ over body particles j of `pair(i, j)` over fluid neighbours i within `radius`, per body,
-    /// with the moment about the body's centre at r_j (6 per body).
-    fn body_side_sum(
+    /// Σ over body particles j of `pair(i, j)` over neighbours i within `radius` whose kind byte
+    /// `partner` accepts, per body, with the moment about the body's centre at r_j (6 per body).
+    pub(crate) fn body_side_sum(
         &self,
         grid: &CellGrid,
         p: &Particles,
         radius: f64,
         centres: &[f64],
+        partner: impl Fn(u8) -> bool + Sync,
         pair: impl Fn(usize, usize) -> Option<[f64; 3]> + Sync,
     ) -> Vec<f64> {
         let reach = grid.reach(radius);
@@ -220,7 +242,7 @@ impl RigidBodies {
                 let &(_, b, _) = self.member(p.id[j])?;
                 let mut f = [0.0; 3];
                 grid.for_each_range(j, reach, |s, e| {
-                    for i in (s..e).filter(|&i| p.kind[i] == FLUID) {
+                    for i in (s..e).filter(|&i| partner(p.kind[i])) {
                         if let Some(fij) = pair(i, j) {
                             (0..3).for_each(|a| f[a] += fij[a]);
                         }
@@ -282,6 +304,11 @@ impl RigidBodies {
                 |a, b| a.iter().zip(&b).map(|(x, y)| x + y).collect(),
             )
     }
+}
+
+/// Whether a kind byte is fluid: the partners of the fluid–body exchanges.
+fn is_fluid(kind: u8) -> bool {
+    kind == FLUID
 }
 
 /// Adds force `f` acting at `r` and its moment about `centre` to `out` (fx fy fz mx my mz).

@@ -58,5 +58,7 @@ impl Kind {
 
 /// Stored byte of [`Kind::Fluid`], for branch-free masks in the pair loops.
 pub const FLUID: u8 = Kind::Fluid.code();
+/// Stored byte of [`Kind::Wall`].
+pub const WALL: u8 = Kind::Wall.code();
 /// Stored byte of [`Kind::Dummy`].
 pub const DUMMY: u8 = Kind::Dummy.code();

@@ -10,6 +10,7 @@
 //!   [`participant`]: the coupled-run side (`fluid-solver participant …`).
 
 pub mod bodies;
+pub mod body_wall_contact;
 pub mod emps_step;
 pub mod kernel;
 pub mod kind;

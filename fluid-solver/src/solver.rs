@@ -233,8 +233,9 @@ impl FluidSolver {
         Ok(())
     }
 
-    /// Force and moment the bodies exerted on the fluid in the last step (6 per body), evaluated
-    /// from the fluid's side; minus [`FluidSolver::body_loads`] up to round-off.
+    /// Force and moment the bodies exerted on the fluid and the walls in the last step (6 per
+    /// body), the fluid's share evaluated from the fluid's side; minus [`FluidSolver::body_loads`]
+    /// up to round-off.
     pub fn body_reactions(&self) -> Vec<f64> {
         self.body_exchange.reaction.clone()
     }
@@ -242,7 +243,9 @@ impl FluidSolver {
     /// Force and moment of the fluid on each body in the last step, about the body's centre at
     /// the step's start (6 per body): S1-4's viscous pair forces (when the term is on), S1-3's
     /// pressure pair forces at r* and the fluid–body collision impulses / Δt (see
-    /// [`crate::bodies`]), exactly the momentum the fluid gave up to the bodies. No gravity: the body's weight is the structure solver's.
+    /// [`crate::bodies`]), exactly the momentum the fluid gave up to the bodies, plus the walls'
+    /// contact ([`crate::body_wall_contact`]). No gravity: the body's weight is the structure
+    /// solver's.
     pub fn body_loads(&self) -> Vec<f64> {
         self.body_exchange.loads.clone()
     }
@@ -304,10 +307,16 @@ impl FluidSolver {
                     bodies.pressure_loads(grid, &kernel, p, pose),
                     bodies.pressure_reaction(grid, &kernel, p, pose),
                 ),
-                Exchange::Collision => (
-                    bodies.contact_loads(grid, p, pose, &scales),
-                    bodies.contact_reaction(grid, p, pose, &scales),
-                ),
+                Exchange::Collision => {
+                    // the walls' contact on the bodies; the walls take its reaction (see
+                    // `body_wall_contact.rs`)
+                    let walls = bodies.wall_contact_loads(grid, p, pose, &scales);
+                    let mut loads = bodies.contact_loads(grid, p, pose, &scales);
+                    let mut reaction = bodies.contact_reaction(grid, p, pose, &scales);
+                    add_to(&mut loads, &walls);
+                    reaction.iter_mut().zip(&walls).for_each(|(r, w)| *r -= w);
+                    (loads, reaction)
+                }
             };
             add_to(&mut exchange.loads, &loads);
             add_to(&mut exchange.reaction, &reaction);

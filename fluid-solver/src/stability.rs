@@ -1,5 +1,5 @@
-//! Instability detector: NaN, particles leaving the domain or entering a wall or body, a
-//! particle moving more than half a spacing in one step, and mechanical energy growing without
+//! Instability detector: NaN, fluid particles leaving the domain or entering a wall or body, body
+//! particles entering a wall, a fluid particle moving more than half a spacing in one step, and mechanical energy growing without
 //! a source (checked until a body moves: moving bodies are a source). Each finding names the
 //! step, the particle and the quantity.
 //!
@@ -207,7 +207,15 @@ impl StabilityMonitor {
                 format!("not a number: r = {r:?}, u = {u:?}, P = {}", p.pressure[i]),
             ));
         }
-        if p.kind[i] != FLUID {
+        let is_body = p.kind[i] == Kind::Body.code();
+        if p.kind[i] != FLUID && !is_body {
+            return None;
+        }
+        if let Some(wall) = self.inside_wall(r) {
+            let who = if is_body { "a body particle went " } else { "" };
+            return Some((id, "position", format!("{who}{wall}")));
+        }
+        if is_body {
             return None;
         }
         if (0..3).any(|a| r[a] < self.domain.lo[a] || r[a] > self.domain.hi[a]) {
@@ -218,27 +226,6 @@ impl StabilityMonitor {
                     "left the domain {:?} … {:?}: r = {r:?}",
                     self.domain.lo, self.domain.hi
                 ),
-            ));
-        }
-        let h = 0.5 * self.spacing;
-        let below_top = r[2] <= self.tank.max[2];
-        let outside = (0..2).any(|a| r[a] < self.tank.min[a] - h || r[a] > self.tank.max[a] + h)
-            || r[2] < self.tank.min[2] - h;
-        if outside && below_top {
-            return Some((
-                id,
-                "position",
-                format!(
-                    "inside a wall: r = {r:?} is more than half a spacing beyond the tank faces {:?} … {:?}",
-                    self.tank.min, self.tank.max
-                ),
-            ));
-        }
-        if let Some(b) = self.solids.iter().find(|b| b.contains_point(r)) {
-            return Some((
-                id,
-                "position",
-                format!("inside a wall block {:?} … {:?}: r = {r:?}", b.min, b.max),
             ));
         }
         if let Some(finding) = self.inside_body(r, body_pose) {
@@ -261,6 +248,25 @@ impl StabilityMonitor {
 }
 
 impl StabilityMonitor {
+    /// Whether `r` lies inside a wall: more than half a spacing beyond the tank's faces (below
+    /// its top), or inside a wall block; the message says which and where.
+    fn inside_wall(&self, r: [f64; 3]) -> Option<String> {
+        let h = 0.5 * self.spacing;
+        let below_top = r[2] <= self.tank.max[2];
+        let outside = (0..2).any(|a| r[a] < self.tank.min[a] - h || r[a] > self.tank.max[a] + h)
+            || r[2] < self.tank.min[2] - h;
+        if outside && below_top {
+            return Some(format!(
+                "inside a wall: r = {r:?} is more than half a spacing beyond the tank faces {:?} … {:?}",
+                self.tank.min, self.tank.max
+            ));
+        }
+        self.solids
+            .iter()
+            .find(|b| b.contains_point(r))
+            .map(|b| format!("inside a wall block {:?} … {:?}: r = {r:?}", b.min, b.max))
+    }
+
     /// Whether `r` lies inside a body at its present pose; the message says which and where.
     fn inside_body(&self, r: [f64; 3], body_pose: &[f64]) -> Option<String> {
         self.bodies.iter().enumerate().find_map(|(b, half)| {

@@ -60,3 +60,33 @@ fn a_particle_inside_the_moved_and_turned_box_stops_the_run() {
     assert_eq!(err.quantity, "position");
     assert!(err.message.contains("inside body 0"), "{err}");
 }
+
+#[test]
+fn a_body_pushed_through_a_wall_stops_the_run() {
+    // The body's centre put on the tank's x = 0.4 m face, above the pool: its outer particle
+    // layers are more than half a spacing beyond the face, inside the wall (the walls' contact
+    // keeps a body resting on a wall within a fraction of a spacing of it; this is what it would
+    // look like if that failed).
+    let body = Aabb {
+        min: [0.12, 0.28, 0.20],
+        max: [0.28, 0.32, 0.28],
+    };
+    let pool = Aabb {
+        min: [0.0; 3],
+        max: [0.4, 0.4, 0.08],
+    };
+    let mut solver = FluidSolver::new(&tank_with_body([0.4, 0.4, 0.4], 0.02, 8.0e-4, pool, body));
+    let pose = [0.4, 0.3, 0.24, 1.0, 0.0, 0.0, 0.0];
+    solver
+        .set_body_motion(&pose, &[0.0; 6])
+        .unwrap_or_else(|e| panic!("{e}"));
+    let err = solver
+        .step(8.0e-4)
+        .expect_err("a body inside a wall must stop the run");
+    println!("{err}");
+    assert_eq!(err.quantity, "position");
+    assert!(
+        err.to_string().contains("a body particle went inside a wall"),
+        "{err}"
+    );
+}
