@@ -6,8 +6,8 @@ mod frame_common;
 use frame_common::{rectangle, steel};
 use nalgebra::{Rotation3, Vector3};
 use structure_solver::frame::element::{
-    local_forces, local_stiffness, moments_at, move_integration_point, rotation_vector, strain_matrix,
-    strains, S_GAUSS,
+    add_axial_geometric_stiffness, global_stiffness, local_forces, moments_at, move_integration_point,
+    rotation_vector, strain_matrix, strains, S_GAUSS,
 };
 use structure_solver::frame::newmark;
 use structure_solver::frame::section::Section;
@@ -54,18 +54,41 @@ fn moments_are_carried_to_the_ends_and_survive_a_moved_integration_point() {
     }
 }
 
-/// The element stiffness is symmetric and leaves rigid translations unstressed.
+/// The element stiffness in global axes equals `T (l Bᵀ D B) Tᵀ` written with the strain matrix (to
+/// round-off, 1e-12 of its largest entry), for a hinge-like D with coupled N, My, Mz; it is symmetric
+/// and leaves rigid translations unstressed. The geometric stiffness of an axial force N resists a
+/// relative transverse translation δ of the ends with N δ / l and leaves an axial one free.
 #[test]
-fn element_stiffness_is_symmetric_with_rigid_translations_free() {
+fn element_stiffness_is_t_k_tt_symmetric_with_rigid_translations_free() {
     let section = Section::new(&rectangle("r", 0.1, 0.2), &steel());
     let mut d = [[0.0; 6]; 6];
     for (i, row) in d.iter_mut().enumerate() {
         row[i] = section.stiffness[i];
     }
-    let k = local_stiffness(0.3, -S_GAUSS, &d);
+    // D − D a aᵀ D / (aᵀ D a) with a = (1, 0, 0, 0, 0.5, −0.3) on N, My, Mz
+    let a = [1e-6, 0.0, 0.0, 0.0, 0.5e-5, -0.3e-5];
+    let ada: f64 = (0..6).map(|i| a[i] * d[i][i] * a[i]).sum();
+    let da: Vec<f64> = (0..6).map(|i| d[i][i] * a[i]).collect();
+    for i in 0..6 {
+        for j in 0..6 {
+            d[i][j] -= da[i] * da[j] / ada;
+        }
+    }
+    let frame = *Rotation3::from_scaled_axis(Vector3::new(0.3, -0.7, 1.1)).matrix();
+    let (length, s) = (0.3, -S_GAUSS);
+    let k = global_stiffness(&frame, length, s, &d);
+
+    let b = nalgebra::SMatrix::<f64, 6, 12>::from_fn(|i, j| strain_matrix(length, s)[i][j]);
+    let dm = nalgebra::Matrix6::from_fn(|i, j| d[i][j]);
+    let mut t = nalgebra::SMatrix::<f64, 12, 12>::zeros();
+    for block in 0..4 {
+        t.fixed_view_mut::<3, 3>(3 * block, 3 * block).copy_from(&frame);
+    }
+    let expected = t * (b.transpose() * dm * b * length) * t.transpose();
     let scale = k.iter().flatten().fold(0.0_f64, |m, x| m.max(x.abs()));
     for (i, row) in k.iter().enumerate() {
         for (j, kij) in row.iter().enumerate() {
+            assert!((kij - expected[(i, j)]).abs() < 1e-12 * scale, "entry ({i}, {j})");
             assert!((kij - k[j][i]).abs() < 1e-12 * scale);
         }
         for dir in 0..3 {
@@ -73,6 +96,18 @@ fn element_stiffness_is_symmetric_with_rigid_translations_free() {
             assert!(rigid.abs() < 1e-12 * scale, "row {i}, translation {dir}");
         }
     }
+
+    let (axial_force, current_length) = (2e5, 0.31);
+    let mut g = [[0.0; 12]; 12];
+    add_axial_geometric_stiffness(&mut g, &frame, axial_force, current_length);
+    let force_of = |delta: Vector3<f64>| {
+        // the second end moved by δ: the force on it
+        Vector3::from_fn(|i, _| (0..3).map(|j| g[6 + i][6 + j] * delta[j]).sum::<f64>())
+    };
+    let transverse = force_of(frame.column(1).into_owned() * 1e-3);
+    let expected = frame.column(1) * (axial_force * 1e-3 / current_length);
+    assert!((transverse - expected).norm() < 1e-12 * expected.norm());
+    assert!(force_of(frame.column(0).into_owned()).norm() < 1e-9 * axial_force);
 }
 
 /// The closest-point return lands on the yield surface with a plastic flow normal to it

@@ -1,7 +1,9 @@
-//! Sparse assembly of the effective stiffness and its Cholesky factorisation with faer. The symbolic
-//! factorisation is made once per connectivity (it changes only when a member fractures); a
-//! refactorisation only scatters new values into the fixed pattern and redoes the numeric part, into
-//! the kept factor's storage and with a kept workspace (no allocation per step).
+//! Sparse assembly of the (condensed) effective stiffness and its Cholesky factorisation with faer.
+//! The matrix is a sum of 12 × 12 blocks joining node pairs (elements, or members whose mid node is
+//! condensed out, see `condensation.rs`) and 6 × 6 node blocks. The symbolic factorisation is made
+//! once per connectivity (it changes only when a member fractures); a refactorisation only scatters
+//! new values into the fixed pattern and redoes the numeric part, into the kept factor's storage and
+//! with a kept workspace (no allocation per step).
 
 use super::element::ELEMENT_DOFS;
 use super::supernodal_solve;
@@ -27,16 +29,16 @@ pub struct SparseSystem {
     equation: Vec<Option<usize>>,
     pattern: SymbolicSparseColMat<usize>,
     symbolic: Option<Arc<SymbolicCholesky<usize>>>,
-    /// Per element, the value slot of each of its 12 × 12 entries (row-major).
-    element_slots: Vec<[u32; ELEMENT_DOFS * ELEMENT_DOFS]>,
+    /// Per block, the value slot of each of its 12 × 12 entries (row-major).
+    block_slots: Vec<[u32; ELEMENT_DOFS * ELEMENT_DOFS]>,
     /// Per node, the value slot of each entry of its 6 × 6 diagonal block (row-major).
     node_slots: Vec<[u32; NODE_DOFS * NODE_DOFS]>,
     /// Matrix values, in the pattern's order.
-    pub values: Vec<f64>,
+    values: Vec<f64>,
     /// Values of the last numeric factor L, in the symbolic factorisation's layout.
     factor: Vec<f64>,
-    /// The time step the kept factor was made for; `None` when there is none.
-    factor_time_step: Option<f64>,
+    /// Whether `factor` holds the factor of `values`.
+    factored: bool,
     workspace: Workspace,
     /// The right-hand side in the factor's order, and room for one supernode's gathered values.
     permuted: Vec<f64>,
@@ -75,15 +77,15 @@ const FACTORIZATION_PARALLELISM: Par = Par::Seq;
 const SOLVE_PARALLELISM: Par = Par::Seq;
 
 impl SparseSystem {
-    /// Builds the pattern for elements joining `element_nodes`; a DOF is an unknown when its node
-    /// belongs to an element and `fixed` does not hold it.
+    /// Builds the pattern for 12 × 12 blocks joining the node pairs `block_nodes`; a DOF is an
+    /// unknown when its node belongs to a block and `fixed` does not hold it.
     pub fn new(
         node_count: usize,
         fixed: &[[bool; NODE_DOFS]],
-        element_nodes: &[[usize; 2]],
+        block_nodes: &[[usize; 2]],
     ) -> Result<Self, String> {
         let mut used = vec![false; node_count];
-        for &[a, b] in element_nodes {
+        for &[a, b] in block_nodes {
             used[a] = true;
             used[b] = true;
         }
@@ -105,7 +107,7 @@ impl SparseSystem {
                 .collect()
         };
         let mut columns: Vec<Vec<usize>> = vec![Vec::new(); n];
-        for &[a, b] in element_nodes {
+        for &[a, b] in block_nodes {
             let eq = dofs(&[a, b]);
             for &c in eq.iter().flatten() {
                 columns[c].extend(eq.iter().flatten().filter(|&&r| r >= c));
@@ -156,7 +158,7 @@ impl SparseSystem {
                 _ => NOT_STORED,
             }
         };
-        let element_slots = element_nodes
+        let block_slots = block_nodes
             .iter()
             .map(|&[a, b]| {
                 let eq = dofs(&[a, b]);
@@ -186,11 +188,11 @@ impl SparseSystem {
             equation,
             pattern,
             symbolic,
-            element_slots,
+            block_slots,
             node_slots,
             values: vec![0.0; nnz],
             factor,
-            factor_time_step: None,
+            factored: false,
             workspace,
             permuted: vec![0.0; n],
             gathered: Vec::new(),
@@ -213,9 +215,9 @@ impl SparseSystem {
         self.values.iter_mut().for_each(|v| *v = 0.0);
     }
 
-    /// Adds the global 12 × 12 matrix of element `e` (only its lower-triangle entries land).
-    pub fn add_element(&mut self, e: usize, k: &[[f64; ELEMENT_DOFS]; ELEMENT_DOFS]) {
-        let slots = &self.element_slots[e];
+    /// Adds the 12 × 12 matrix of block `b` (only its lower-triangle entries land).
+    pub fn add_block(&mut self, b: usize, k: &[[f64; ELEMENT_DOFS]; ELEMENT_DOFS]) {
+        let slots = &self.block_slots[b];
         for (i, row) in k.iter().enumerate() {
             for (j, v) in row.iter().enumerate() {
                 let s = slots[i * ELEMENT_DOFS + j];
@@ -239,19 +241,33 @@ impl SparseSystem {
         }
     }
 
-    /// Value of entry (r, c) of the symmetric matrix.
-    pub fn get(&self, r: usize, c: usize) -> f64 {
-        let (r, c) = if r >= c { (r, c) } else { (c, r) };
-        let start = self.pattern.col_ptr()[c];
-        let rows = &self.pattern.row_idx()[start..self.pattern.col_ptr()[c + 1]];
-        rows.binary_search(&r).map_or(0.0, |i| self.values[start + i])
+    /// `y = A x`, A the symmetric matrix whose lower triangle is stored.
+    pub fn multiply(&self, x: &[f64], y: &mut [f64]) {
+        y.iter_mut().for_each(|v| *v = 0.0);
+        let (col_ptr, row_idx) = (self.pattern.col_ptr(), self.pattern.row_idx());
+        for (c, &xc) in x.iter().enumerate() {
+            let mut column = 0.0;
+            for (&r, &v) in row_idx[col_ptr[c]..col_ptr[c + 1]]
+                .iter()
+                .zip(&self.values[col_ptr[c]..col_ptr[c + 1]])
+            {
+                if r == c {
+                    column += v * xc;
+                } else {
+                    y[r] += v * xc;
+                    column += v * x[r];
+                }
+            }
+            y[c] += column;
+        }
     }
 
     /// Factorises the current values (numeric part only, on the kept symbolic factorisation) and keeps
-    /// the factor, labelled with the time step it was made for.
-    pub fn factorize(&mut self, dt: f64) -> Result<(), String> {
-        self.factor_time_step = None;
+    /// the factor; the error is faer's report (the matrix is not positive definite).
+    pub fn factorize(&mut self) -> Result<(), String> {
+        self.factored = false;
         let Some(symbolic) = &self.symbolic else {
+            self.factored = true;
             return Ok(());
         };
         let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
@@ -265,27 +281,12 @@ impl SparseSystem {
                 MemStack::new(&mut self.workspace.buffer),
                 Default::default(),
             )
-            .map_err(|e| {
-                format!(
-                    "the frame's system matrix is not positive definite ({e:?}): a part of the frame is free \
-                     to move without resistance (a mechanism or a missing support) or the state is corrupt"
-                )
-            })?;
+            .map_err(|e| format!("{e:?}"))?;
         if let SymbolicCholeskyRaw::Supernodal(supernodal) = symbolic.raw() {
             supernodal_solve::inverse_diagonal(supernodal, &self.factor, &mut self.inverse_diagonal);
         }
-        self.factor_time_step = Some(dt);
+        self.factored = true;
         Ok(())
-    }
-
-    /// Whether a factor made for time step `dt` is kept.
-    pub fn has_factor_for(&self, dt: f64) -> bool {
-        self.symbolic.is_none() || self.factor_time_step == Some(dt)
-    }
-
-    /// Forgets the kept factor (the matrix changed too much for it to be a good iteration matrix).
-    pub fn drop_factor(&mut self) {
-        self.factor_time_step = None;
     }
 
     /// Solves in place with the kept factor.
@@ -293,7 +294,7 @@ impl SparseSystem {
         let Some(symbolic) = &self.symbolic else {
             return Ok(());
         };
-        if self.factor_time_step.is_none() {
+        if !self.factored {
             return Err("internal error: the frame's system was solved before it was factorised".into());
         }
         match (symbolic.raw(), symbolic.perm()) {

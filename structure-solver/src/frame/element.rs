@@ -52,38 +52,70 @@ pub fn strains(length: f64, s: f64, d: &[f64; ELEMENT_DOFS]) -> Resultants {
     ]
 }
 
-/// Local stiffness `K = l Bᵀ D B` for a one-point rule (weight 2 × l/2), D a 6 × 6 section stiffness.
-pub fn local_stiffness(length: f64, s: f64, d: &[[f64; 6]; 6]) -> [[f64; ELEMENT_DOFS]; ELEMENT_DOFS] {
+/// Stiffness `K = l Bᵀ D B` of a one-point rule (weight 2 × l/2), D a 6 × 6 section stiffness, in
+/// global axes: `T K Tᵀ` with T = diag(E, E, E, E), E the element `frame`, computed as
+/// `l B_gᵀ D B_g` with `B_g = B Tᵀ` (each 3-block of a row of B, rotated by E).
+pub fn global_stiffness(
+    frame: &Matrix3<f64>,
+    length: f64,
+    s: f64,
+    d: &[[f64; 6]; 6],
+) -> [[f64; ELEMENT_DOFS]; ELEMENT_DOFS] {
     let b = strain_matrix(length, s);
-    let mut db = [[0.0; ELEMENT_DOFS]; 6];
-    for i in 0..6 {
-        for j in 0..ELEMENT_DOFS {
-            db[i][j] = (0..6).map(|k| d[i][k] * b[k][j]).sum();
+    let mut bg = [[0.0; ELEMENT_DOFS]; 6];
+    for (global, local) in bg.iter_mut().zip(&b) {
+        for block in 0..4 {
+            let v = Vector3::new(local[3 * block], local[3 * block + 1], local[3 * block + 2]);
+            if v != Vector3::zeros() {
+                global[3 * block..3 * block + 3].copy_from_slice((frame * v).as_slice());
+            }
         }
     }
+    // C = D B_g
+    let mut c = [[0.0; ELEMENT_DOFS]; 6];
+    for (c_row, d_row) in c.iter_mut().zip(d) {
+        for (&dmk, bk) in d_row.iter().zip(&bg) {
+            if dmk != 0.0 {
+                for (x, y) in c_row.iter_mut().zip(bk) {
+                    *x += dmk * y;
+                }
+            }
+        }
+    }
+    // K = l B_gᵀ C
     let mut k = [[0.0; ELEMENT_DOFS]; ELEMENT_DOFS];
-    for i in 0..ELEMENT_DOFS {
-        for j in 0..ELEMENT_DOFS {
-            k[i][j] = length * (0..6).map(|m| b[m][i] * db[m][j]).sum::<f64>();
+    for (bm, cm) in bg.iter().zip(&c) {
+        for (k_row, &bmi) in k.iter_mut().zip(bm) {
+            if bmi != 0.0 {
+                let scale = length * bmi;
+                for (x, y) in k_row.iter_mut().zip(cm) {
+                    *x += scale * y;
+                }
+            }
         }
     }
     k
 }
 
-/// Adds the geometric stiffness of the axial force N to a local stiffness: the string term
-/// `(N/l) [I⊥ −I⊥; −I⊥ I⊥]` on the transverse translations, which turns the force with the chord
-/// (without it, the one-solve-per-step update feeds energy into spinning members).
+/// Adds the geometric stiffness of the axial force N to a global stiffness: the string term
+/// `(N/l) [P −P; −P P]` on the two ends' translations, `P = e₂e₂ᵀ + e₃e₃ᵀ` (the element `frame`'s
+/// transverse axes), which turns the force with the chord (without it, the one-solve-per-step update
+/// feeds energy into spinning members).
 pub fn add_axial_geometric_stiffness(
     k: &mut [[f64; ELEMENT_DOFS]; ELEMENT_DOFS],
+    frame: &Matrix3<f64>,
     axial_force: f64,
     length: f64,
 ) {
-    let g = axial_force / length;
-    for dof in [1, 2] {
-        k[dof][dof] += g;
-        k[dof + 6][dof + 6] += g;
-        k[dof][dof + 6] -= g;
-        k[dof + 6][dof] -= g;
+    let (e2, e3) = (frame.column(1), frame.column(2));
+    let p = (e2 * e2.transpose() + e3 * e3.transpose()) * (axial_force / length);
+    for i in 0..3 {
+        for j in 0..3 {
+            k[i][j] += p[(i, j)];
+            k[6 + i][6 + j] += p[(i, j)];
+            k[i][6 + j] -= p[(i, j)];
+            k[6 + i][j] -= p[(i, j)];
+        }
     }
 }
 
@@ -204,26 +236,6 @@ fn quaternion_log(q: &UnitQuaternion<f64>) -> Vector3<f64> {
 /// tan(θ/2) below which [`quaternion_log`] takes the arc tangent from its series (the usual case:
 /// an element's end rotations relative to its chord are small).
 const SMALL_HALF_ANGLE: f64 = 0.01;
-
-/// Rotates a local 12 × 12 matrix to global axes, `T K Tᵀ` block by block with T = diag(E, E, E, E).
-pub fn to_global_matrix(
-    frame: &Matrix3<f64>,
-    k: &[[f64; ELEMENT_DOFS]; ELEMENT_DOFS],
-) -> [[f64; ELEMENT_DOFS]; ELEMENT_DOFS] {
-    let mut out = [[0.0; ELEMENT_DOFS]; ELEMENT_DOFS];
-    for bi in 0..4 {
-        for bj in 0..4 {
-            let block = Matrix3::from_fn(|i, j| k[3 * bi + i][3 * bj + j]);
-            let g = frame * block * frame.transpose();
-            for i in 0..3 {
-                for j in 0..3 {
-                    out[3 * bi + i][3 * bj + j] = g[(i, j)];
-                }
-            }
-        }
-    }
-    out
-}
 
 /// Rotates a local 12-vector to global axes.
 pub fn to_global_vector(frame: &Matrix3<f64>, f: &[f64; ELEMENT_DOFS]) -> [f64; ELEMENT_DOFS] {

@@ -21,15 +21,14 @@ const MAX_HALVINGS: usize = 3;
 const SLOW_CONVERGENCE: f64 = 0.25;
 
 impl Frame {
-    /// Solves the step's increment to equilibrium (relative `tolerance`); returns it and whether a
-    /// hinge formed or closed relative to the start of the step.
+    /// Solves the step's increment to equilibrium (relative `tolerance`); returns it.
     pub(super) fn solve_to_equilibrium(
         &mut self,
         dt: f64,
         loads: &[f64],
         inertia: &[f64],
         tolerance: f64,
-    ) -> Result<(Vec<f64>, bool), String> {
+    ) -> Result<Vec<f64>, String> {
         self.end_of_step_forces = None;
         let committed_nodes = self.nodes.clone();
         let committed_elements = self.elements.clone();
@@ -38,13 +37,12 @@ impl Frame {
         let mut first_residual = None;
         let mut last_residual = f64::INFINITY;
         let mut best = (f64::INFINITY, du.clone());
-        let mut hinges_changed = false;
         // the iterate the last correction started from, that correction and the halvings done on it
         let mut last_correction: Option<(Vec<f64>, Vec<f64>)> = None;
         let mut halvings = 0;
         for iteration in 0..=MAX_CORRECTIONS + 1 {
             let mut refactor = !self.system.has_factor_for(dt);
-            let mut contributions = self.contributions(refactor);
+            let contributions = self.contributions();
             let mut rhs = self.residual(&self.gather(&contributions), loads, inertia, &du, mass_factor);
             let residual = norm(&rhs);
             let first = *first_residual.get_or_insert(residual);
@@ -59,7 +57,7 @@ impl Frame {
                 self.unbalance = best.0 / first;
                 if best.1 != du {
                     du = best.1.clone();
-                    hinges_changed = self.set_trial(&committed_nodes, &committed_elements, &du);
+                    self.set_trial(&committed_nodes, &committed_elements, &du);
                 }
                 break;
             }
@@ -72,13 +70,12 @@ impl Frame {
                     halvings += 1;
                     delta.iter_mut().for_each(|d| *d *= 0.5);
                     du = from.iter().zip(delta.iter()).map(|(a, b)| a + b).collect();
-                    hinges_changed = self.set_trial(&committed_nodes, &committed_elements, &du);
+                    self.set_trial(&committed_nodes, &committed_elements, &du);
                     continue;
                 }
                 if residual > SLOW_CONVERGENCE * last_residual && !refactor {
                     // the kept factor is a poor iteration matrix now: redo it from the current tangent
                     refactor = true;
-                    contributions = self.contributions(true);
                 }
             }
             halvings = 0;
@@ -86,24 +83,23 @@ impl Frame {
             if refactor {
                 self.refactor(&contributions, dt, mass_factor)?;
             }
-            self.system.solve_factored(&mut rhs)?;
-            let delta = self.increments(&self.system, &rhs);
+            self.solve_with_current_tangent(&mut rhs, dt, mass_factor)?;
+            let delta = rhs;
             last_correction = Some((du.clone(), delta.clone()));
             for (d, x) in du.iter_mut().zip(&delta) {
                 *d += x;
             }
             check_finite(&du)?;
-            hinges_changed = self.set_trial(&committed_nodes, &committed_elements, &du);
+            self.set_trial(&committed_nodes, &committed_elements, &du);
         }
-        Ok((du, hinges_changed))
+        Ok(du)
     }
 
-    /// Puts the frame in the state the committed one reaches with the increment `du`; returns
-    /// whether a hinge formed or closed relative to the committed state.
-    fn set_trial(&mut self, committed_nodes: &[Node], committed_elements: &[Element], du: &[f64]) -> bool {
+    /// Puts the frame in the state the committed one reaches with the increment `du`.
+    fn set_trial(&mut self, committed_nodes: &[Node], committed_elements: &[Element], du: &[f64]) {
         self.nodes.clone_from_slice(committed_nodes);
         self.apply_increment(du);
         self.elements.clone_from_slice(committed_elements);
-        self.update_elements()
+        self.update_elements();
     }
 }

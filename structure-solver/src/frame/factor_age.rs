@@ -8,21 +8,42 @@
 //! the rotary inertia by `2θ` of itself) and from the change of its axial force N (the geometric
 //! stiffness `N/l`). The factor is redone when, for some element,
 //! `2θ k + |ΔN|/l > η m/(βΔt²)` or `2θ > η` (m: the element's lumped end mass, η: the limit).
-//! Hinges forming or closing and fractures change K outright: the step drops the factor then.
+//! Hinges forming or closing (and the integration points moving with them) change an element's K
+//! outright: such elements are found by their hinge and integration point and their members are
+//! re-condensed alone (`condensed_system.rs`); the steps then solve by conjugate gradients with the
+//! kept factor as preconditioner (`preconditioned_cg.rs`). The factor is also redone when those
+//! iterations have cost about one refactorisation since it was made ([`CG_PRODUCTS_LIMIT`]), or when
+//! so many elements changed that they would ([`CHANGED_ELEMENTS_LIMIT`]). A fracture changes the
+//! connectivity and the factor is redone.
 
+use super::hinge::End;
 use super::newmark;
 use super::section::Section;
 use super::topology::Element;
 use nalgebra::Matrix3;
-use rayon::prelude::*;
 
 /// Default η: the kept matrix may differ from the current one by 5 % of the mass term.
 pub const DEFAULT_STALE_LIMIT: f64 = 0.05;
 
-/// Each element's co-rotational frame and axial force when the kept factor was made.
+/// Products with the matrix in conjugate-gradient solves after which the factor is redone. At 10⁴
+/// DOFs (the benchmark's 7 × 7 × 7 grid, hinges forming) a product with its preconditioning solve
+/// took about 0.2 ms and a refactorisation 1.5–5 ms; with 25 (and [`CHANGED_ELEMENTS_LIMIT`] = 48)
+/// steps took 5–15 % less time than with 10 (and 20), the same as with 40 (and 96).
+pub const CG_PRODUCTS_LIMIT: usize = 25;
+
+/// Elements with a changed hinge or integration point above which the factor is redone rather than
+/// iterated with: on the benchmark's 7 × 7 × 7 grid a solve took about 5 + n/4 products for n
+/// changed elements, so 48 changed elements already cost about 17 of [`CG_PRODUCTS_LIMIT`].
+pub const CHANGED_ELEMENTS_LIMIT: usize = 48;
+
+/// Each element's co-rotational frame and axial force when the kept factor was made, and its hinge
+/// and integration point when its matrix was last made.
 #[derive(Clone, Default)]
 pub struct FactorAge {
     at_factorization: Vec<(Matrix3<f64>, f64)>,
+    tangents: Vec<(Option<End>, f64)>,
+    /// Products with the matrix in conjugate-gradient solves since the factorisation.
+    cg_products: usize,
 }
 
 impl FactorAge {
@@ -31,10 +52,38 @@ impl FactorAge {
         self.at_factorization.clear();
         self.at_factorization
             .extend(elements.iter().map(|e| (e.current.frame, e.stress.sigma[0])));
+        self.tangents.clear();
+        self.tangents.extend(elements.iter().map(tangent_of));
+        self.cg_products = 0;
     }
 
-    /// Whether the kept matrix differs too much from the current one for a step of `dt` (the
-    /// criterion above with η = `limit`).
+    /// Counts products with the matrix done in a conjugate-gradient solve.
+    pub fn add_cg_products(&mut self, products: usize) {
+        self.cg_products += products;
+    }
+
+    /// Elements whose hinge or integration point differs from when their matrix was made.
+    pub fn changed_tangents(&self, elements: &[Element]) -> Vec<usize> {
+        elements
+            .iter()
+            .zip(&self.tangents)
+            .enumerate()
+            .filter(|(_, (e, made))| tangent_of(e) != **made)
+            .map(|(i, _)| i)
+            .collect()
+    }
+
+    /// Remembers the hinge and integration point of `changed` elements, whose matrices were remade.
+    pub fn record_tangents(&mut self, elements: &[Element], changed: &[usize]) {
+        for &e in changed {
+            self.tangents[e] = tangent_of(&elements[e]);
+        }
+    }
+
+    /// Whether the kept factor should be redone before a step of `dt`: the kept matrix differs too
+    /// much from the current one (the criterion above with η = `limit`), or the conjugate-gradient
+    /// iterations with it cost (or would cost) more than a refactorisation. On one thread: a few
+    /// dozen operations per element, which rayon's tasks did not speed up.
     pub fn is_stale(
         &self,
         elements: &[Element],
@@ -43,14 +92,16 @@ impl FactorAge {
         dt: f64,
         limit: f64,
     ) -> bool {
-        if self.at_factorization.len() != elements.len() {
+        if self.at_factorization.len() != elements.len()
+            || self.cg_products > CG_PRODUCTS_LIMIT
+            || self.changed_tangents(elements).len() > CHANGED_ELEMENTS_LIMIT
+        {
             return true;
         }
         let mass_factor = newmark::mass_factor(dt);
         elements
-            .par_iter()
+            .iter()
             .zip(&self.at_factorization)
-            .with_min_len(super::PARALLEL_CHUNK)
             .any(|(e, (frame, axial))| {
                 let section = &sections[e.section];
                 // ‖R₁ − R₀‖ = 2√2 sin(θ/2) (Frobenius): θ to second order without an arc cosine
@@ -61,4 +112,9 @@ impl FactorAge {
                 2.0 * theta * stiffness + geometric > limit * mass * mass_factor || 2.0 * theta > limit
             })
     }
+}
+
+/// What an element's tangent stiffness is made with besides its state: its hinge and integration point.
+fn tangent_of(e: &Element) -> (Option<End>, f64) {
+    (e.stress.hinge, e.stress.s)
 }

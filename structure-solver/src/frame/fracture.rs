@@ -1,6 +1,6 @@
 //! Fracture of a fully plastic section (S2-17) and the split of the fractured element at its hinge.
 
-use super::assembly::{SparseSystem, NODE_DOFS};
+use super::assembly::NODE_DOFS;
 use super::hinge::StressState;
 use super::section::Resultants;
 use super::Frame;
@@ -40,7 +40,7 @@ impl FractureCriterion {
 
 impl Frame {
     /// S2-17 at every hinge; a fractured element is split off its hinge node onto a new node (same
-    /// position and motion), left unstressed, and the sparse pattern is rebuilt.
+    /// position and motion), left unstressed, and the condensation and the sparse pattern are rebuilt.
     pub(super) fn split_fractured(&mut self) -> Result<(), String> {
         let Some(criterion) = self.fracture else {
             return Ok(());
@@ -66,9 +66,7 @@ impl Frame {
         }
         if changed {
             self.update_integration_points();
-            let fixed: Vec<_> = self.nodes.iter().map(|n| n.fixed).collect();
-            let pairs: Vec<_> = self.elements.iter().map(|e| e.nodes).collect();
-            self.system = SparseSystem::new(self.nodes.len(), &fixed, &pairs)?;
+            self.system = super::condensed_system_of(&self.nodes, &self.elements)?;
             self.end_of_step_forces = None;
             self.connectivity += 1;
         }

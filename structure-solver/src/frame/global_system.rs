@@ -2,10 +2,11 @@
 //! stiffness of the axial force), internal forces R and lumped mass with rotary inertia; the linear
 //! static solve and dense matrices for eigen-analysis built from them.
 
-use super::assembly::{SparseSystem, NODE_DOFS};
+use super::assembly::NODE_DOFS;
+use super::condensation::Block;
+use super::condensed_system::NodeBlock;
 use super::element::{
-    add_axial_geometric_stiffness, local_forces, local_stiffness, to_global_matrix, to_global_vector,
-    ELEMENT_DOFS,
+    add_axial_geometric_stiffness, global_stiffness, local_forces, to_global_vector, ELEMENT_DOFS,
 };
 use super::section::Section;
 use super::topology::Element;
@@ -13,10 +14,9 @@ use super::Frame;
 use nalgebra::{DMatrix, Matrix3, Vector3};
 use rayon::prelude::*;
 
-/// What one element adds to the global system at the current state.
+/// What one element adds to the right-hand side and the mass of the global system at the current
+/// state (its stiffness is [`tangent_stiffness`]).
 pub(super) struct Contribution {
-    /// Tangent stiffness, global axes (only when asked for).
-    pub stiffness: Option<Box<[[f64; ELEMENT_DOFS]; ELEMENT_DOFS]>>,
     /// Internal end forces R, global axes.
     pub force: [f64; ELEMENT_DOFS],
     /// Lumped rotary inertia given to each end node, global axes.
@@ -26,26 +26,34 @@ pub(super) struct Contribution {
 }
 
 impl Contribution {
-    /// What element `e` of `section` adds at its current state (with its tangent stiffness when
-    /// `with_stiffness`).
-    pub(super) fn of(e: &Element, section: &Section, density: f64, with_stiffness: bool) -> Contribution {
-        let frame = &e.current.frame;
-        let stiffness = with_stiffness.then(|| {
-            let mut k = local_stiffness(e.length0, e.stress.s, &e.stress.tangent(section));
-            add_axial_geometric_stiffness(&mut k, e.stress.sigma[0], e.current.length);
-            Box::new(to_global_matrix(frame, &k))
-        });
+    /// What element `e` of `section` adds at its current state.
+    pub(super) fn of(e: &Element, section: &Section, density: f64) -> Contribution {
         let f = local_forces(e.length0, e.stress.s, &e.stress.sigma);
-        let half = 0.5 * density * e.length0;
-        let local_inertia =
-            Matrix3::from_diagonal(&Vector3::new(section.iy + section.iz, section.iy, section.iz)) * half;
+        let (mass, rotary) = end_mass(e, section, density);
         Contribution {
-            stiffness,
-            force: to_global_vector(frame, &f),
-            rotary: frame * local_inertia * frame.transpose(),
-            mass: half * section.area,
+            force: to_global_vector(&e.current.frame, &f),
+            rotary,
+            mass,
         }
     }
+}
+
+/// Tangent stiffness of element `e` at its current state (with the geometric stiffness of its axial
+/// force), global axes.
+pub(super) fn tangent_stiffness(e: &Element, section: &Section) -> Block {
+    let frame = &e.current.frame;
+    let mut k = global_stiffness(frame, e.length0, e.stress.s, &e.stress.tangent(section));
+    add_axial_geometric_stiffness(&mut k, frame, e.stress.sigma[0], e.current.length);
+    k
+}
+
+/// Lumped mass and rotary inertia (global axes) that element `e` gives each of its end nodes.
+pub(super) fn end_mass(e: &Element, section: &Section, density: f64) -> (f64, Matrix3<f64>) {
+    let frame = &e.current.frame;
+    let half = 0.5 * density * e.length0;
+    let local_inertia =
+        Matrix3::from_diagonal(&Vector3::new(section.iy + section.iz, section.iy, section.iz)) * half;
+    (half * section.area, frame * local_inertia * frame.transpose())
 }
 
 /// Internal forces R and lumped masses gathered on the nodes, global axes.
@@ -74,44 +82,76 @@ pub struct DenseMatrices {
 
 impl Frame {
     /// Linear static displacements about the current state, `K u = F − R` (F: `loads` plus gravity),
-    /// 6 per node; the state is unchanged. One solve: exact for a linear problem from rest.
+    /// 6 per node; the state is unchanged. One solve of the condensed system (exact for a linear
+    /// problem from rest).
     pub fn linear_static_displacements(&self, loads: &[f64]) -> Result<Vec<f64>, String> {
         self.check_per_node("loads", loads)?;
-        let contributions = self.contributions(true);
+        let contributions = self.contributions();
         let mut system = self.system.clone();
-        self.assemble(&mut system, &contributions, 1.0, 0.0);
-        let mut rhs = self.unbalanced_force(&self.gather(&contributions), loads, None);
+        system.assemble(
+            &|e| self.tangent_stiffness(e),
+            &self.node_blocks(&contributions, 0.0),
+        )?;
+        let mut u = self.unbalanced_force(&self.gather(&contributions), loads, None);
         system.factorize(0.0)?;
-        system.solve_factored(&mut rhs)?;
-        Ok(self.increments(&system, &rhs))
+        system.solve(&mut u, 0)?;
+        Ok(u)
     }
 
-    /// Tangent stiffness and lumped mass (with rotary inertia) as dense matrices over the unknowns.
+    /// Tangent stiffness and lumped mass (with rotary inertia) as dense matrices over all unknowns
+    /// (nothing condensed).
     pub fn dense_matrices(&self) -> DenseMatrices {
-        let contributions = self.contributions(true);
-        let n = self.system.unknowns();
+        let contributions = self.contributions();
         let dofs: Vec<usize> = (0..self.nodes.len() * NODE_DOFS)
-            .filter(|&g| self.system.equation(g).is_some())
+            .filter(|&g| self.system.is_unknown(g))
             .collect();
-        let dense = |stiffness: f64, mass: f64| {
-            let mut system = self.system.clone();
-            self.assemble(&mut system, &contributions, stiffness, mass);
-            DMatrix::from_fn(n, n, |r, c| system.get(r, c))
-        };
+        let mut column = vec![None; self.nodes.len() * NODE_DOFS];
+        for (i, &g) in dofs.iter().enumerate() {
+            column[g] = Some(i);
+        }
+        let n = dofs.len();
+        let mut stiffness = DMatrix::zeros(n, n);
+        for (index, e) in self.elements.iter().enumerate() {
+            let k = self.tangent_stiffness(index);
+            let at = |i: usize| column[NODE_DOFS * e.nodes[i / NODE_DOFS] + i % NODE_DOFS];
+            for (i, row) in k.iter().enumerate() {
+                for (j, x) in row.iter().enumerate() {
+                    if let (Some(r), Some(c)) = (at(i), at(j)) {
+                        stiffness[(r, c)] += x;
+                    }
+                }
+            }
+        }
+        let mut mass = DMatrix::zeros(n, n);
+        for (v, block) in self.node_blocks(&contributions, 1.0).iter().enumerate() {
+            let at = |i: usize| column[NODE_DOFS * v + i];
+            for (i, row) in block.iter().enumerate() {
+                for (j, x) in row.iter().enumerate() {
+                    if let (Some(r), Some(c)) = (at(i), at(j)) {
+                        mass[(r, c)] += x;
+                    }
+                }
+            }
+        }
         DenseMatrices {
-            stiffness: dense(1.0, 0.0),
-            mass: dense(0.0, 1.0),
+            stiffness,
+            mass,
             dofs,
         }
     }
 
-    /// Each element's tangent stiffness, internal forces and lumped masses, in parallel.
-    /// `with_stiffness = false` leaves the stiffness out (only forces and masses are needed).
-    pub(super) fn contributions(&self, with_stiffness: bool) -> Vec<Contribution> {
+    /// Tangent stiffness of element `e` at its current state, global axes.
+    pub(super) fn tangent_stiffness(&self, e: usize) -> Block {
+        let element = &self.elements[e];
+        tangent_stiffness(element, &self.sections[element.section])
+    }
+
+    /// Each element's internal forces and lumped masses, in parallel.
+    pub(super) fn contributions(&self) -> Vec<Contribution> {
         self.elements
             .par_iter()
             .with_min_len(super::PARALLEL_CHUNK)
-            .map(|e| Contribution::of(e, &self.sections[e.section], self.density, with_stiffness))
+            .map(|e| Contribution::of(e, &self.sections[e.section], self.density))
             .collect()
     }
 
@@ -128,35 +168,13 @@ impl Frame {
         (mass, rotary)
     }
 
-    /// Fills `system` with `stiffness · K + mass · M`.
-    pub(super) fn assemble(
-        &self,
-        system: &mut SparseSystem,
-        contributions: &[Contribution],
-        stiffness: f64,
-        mass: f64,
-    ) {
-        system.clear();
-        if stiffness != 0.0 {
-            for (e, c) in contributions.iter().enumerate() {
-                if let Some(k) = &c.stiffness {
-                    system.add_element(e, k);
-                }
-            }
-        }
-        if mass != 0.0 {
-            let (m, j) = self.lumped_masses(contributions);
-            for v in 0..self.nodes.len() {
-                let mut block = [[0.0; NODE_DOFS]; NODE_DOFS];
-                for k in 0..3 {
-                    block[k][k] = mass * m[v];
-                    for l in 0..3 {
-                        block[3 + k][3 + l] = mass * j[v][(k, l)];
-                    }
-                }
-                system.add_node(v, &block);
-            }
-        }
+    /// Each node's 6 × 6 block of `mass · M` (lumped mass and rotary inertia).
+    pub(super) fn node_blocks(&self, contributions: &[Contribution], mass: f64) -> Vec<NodeBlock> {
+        let (m, j) = self.lumped_masses(contributions);
+        m.iter()
+            .zip(&j)
+            .map(|(m, j)| mass_block(mass * m, &(j * mass)))
+            .collect()
     }
 
     /// Element forces and masses summed on the nodes.
@@ -177,7 +195,7 @@ impl Frame {
         }
     }
 
-    /// `F + M g − R` over the unknowns, plus with `motion` the Newmark inertia
+    /// `F + M g − R` over all global DOFs (zero where a DOF is not an unknown), plus with `motion` the Newmark inertia
     /// `M (v/(βΔt) + (1/(2β) − 1) a − Δu/(βΔt²))` (S2-14).
     pub(super) fn unbalanced_force(
         &self,
@@ -185,7 +203,7 @@ impl Frame {
         loads: &[f64],
         motion: Option<Motion>,
     ) -> Vec<f64> {
-        let mut rhs = vec![0.0; self.system.unknowns()];
+        let mut rhs = vec![0.0; self.nodes.len() * NODE_DOFS];
         for v in 0..self.nodes.len() {
             let g = v * NODE_DOFS;
             let mut f = [0.0; NODE_DOFS];
@@ -208,18 +226,23 @@ impl Frame {
                 }
             }
             for (k, fk) in f.iter().enumerate() {
-                if let Some(eq) = self.system.equation(g + k) {
-                    rhs[eq] = *fk;
+                if self.system.is_unknown(g + k) {
+                    rhs[g + k] = *fk;
                 }
             }
         }
         rhs
     }
+}
 
-    /// Solution over the unknowns spread to 6 entries per node (zero where fixed or unused).
-    pub(super) fn increments(&self, system: &SparseSystem, solution: &[f64]) -> Vec<f64> {
-        (0..self.nodes.len() * NODE_DOFS)
-            .map(|g| system.equation(g).map_or(0.0, |eq| solution[eq]))
-            .collect()
+/// The 6 × 6 block of a translational mass `m` and a rotary inertia `j`.
+pub(super) fn mass_block(m: f64, j: &Matrix3<f64>) -> NodeBlock {
+    let mut block = [[0.0; NODE_DOFS]; NODE_DOFS];
+    for k in 0..3 {
+        block[k][k] = m;
+        for l in 0..3 {
+            block[3 + k][3 + l] = j[(k, l)];
+        }
     }
+    block
 }

@@ -1,15 +1,19 @@
 //! ASI-Gauss framed structures (S2 §3, physics.md §5): members of two linear Timoshenko elements with
 //! one integration point each, plastic hinges by the full-plastic yield function, fracture by S2-17,
 //! co-rotational (updated-Lagrangian) large displacements and rotations, Newmark β = 4/9, δ = 5/6 with
-//! lumped mass and rotary inertia and one linear solve per step (S2-14), sparse Cholesky (faer) with
-//! the symbolic factorisation kept until the connectivity changes and the numeric one kept while the
-//! effective matrix has not changed much, and penalty contact through particles along the members.
+//! lumped mass and rotary inertia and one linear solve per step (S2-14), the member mid nodes
+//! condensed out of the effective matrix exactly, sparse Cholesky (faer) of the rest with the symbolic
+//! factorisation kept until the connectivity changes and the numeric one kept while the effective
+//! matrix has not changed much (members whose hinges changed are re-condensed and solved with it as
+//! a preconditioner), and penalty contact through particles along the members.
 //!
 //! Node order: the config's nodes in config order, then one mid node per member in member order,
 //! then nodes made by fracture. Loads, velocities and displacements have 6 entries per node
 //! (x, y, z, rx, ry, rz; global axes).
 
 pub mod assembly;
+pub mod condensation;
+pub mod condensed_system;
 pub mod contact;
 pub mod element;
 pub mod equilibrium;
@@ -18,6 +22,7 @@ pub mod fracture;
 pub mod global_system;
 pub mod hinge;
 pub mod newmark;
+pub mod preconditioned_cg;
 pub mod section;
 pub mod stepping;
 pub mod supernodal_solve;
@@ -33,7 +38,8 @@ pub use equilibrium::MAX_CORRECTIONS;
 pub use global_system::DenseMatrices;
 pub use stepping::Equilibrium;
 
-use assembly::{SparseSystem, NODE_DOFS};
+use assembly::NODE_DOFS;
+use condensed_system::CondensedSystem;
 use factor_age::FactorAge;
 use fracture::FractureCriterion;
 use global_system::NodalForces;
@@ -56,9 +62,10 @@ pub struct Frame {
     nodes: Vec<Node>,
     elements: Vec<Element>,
     ids: BTreeMap<u32, usize>,
-    system: SparseSystem,
+    system: CondensedSystem,
     connectivity: u64,
     factorizations: u64,
+    cg_iterations: u64,
     unconverged: u64,
     equilibrium: Equilibrium,
     /// η of the refactorisation criterion (`factor_age.rs`).
@@ -101,9 +108,7 @@ impl Frame {
             }
             None => None,
         };
-        let fixed: Vec<_> = nodes.iter().map(|n| n.fixed).collect();
-        let pairs: Vec<_> = elements.iter().map(|e| e.nodes).collect();
-        let system = SparseSystem::new(nodes.len(), &fixed, &pairs).map_err(|m| FieldError::new(key, m))?;
+        let system = condensed_system_of(&nodes, &elements).map_err(|m| FieldError::new(key, m))?;
         Ok(Frame {
             time_step: cfg.time_step,
             gravity: Vector3::from(cfg.gravity),
@@ -117,6 +122,7 @@ impl Frame {
             system,
             connectivity: 0,
             factorizations: 0,
+            cg_iterations: 0,
             unconverged: 0,
             equilibrium: match cfg.equilibrium_tolerance {
                 Some(tolerance) => Equilibrium::Iterate { tolerance },
@@ -226,6 +232,12 @@ impl Frame {
         self.factorizations
     }
 
+    /// Number of products with the effective matrix in conjugate-gradient solves so far (solves after
+    /// hinges formed or closed, preconditioned by the kept factor; see `preconditioned_cg.rs`).
+    pub fn cg_iteration_count(&self) -> u64 {
+        self.cg_iterations
+    }
+
     /// Number of steps whose corrections did not reach the residual tolerance (with
     /// [`Equilibrium::Iterate`]), or that left more than [`stepping::ONE_SOLVE_UNBALANCE_LIMIT`] of
     /// their unbalanced force (one solve per step: Δt is then too long for the method).
@@ -284,4 +296,13 @@ impl Frame {
             None => Ok(()),
         }
     }
+}
+
+/// The condensed effective system of these nodes and elements (mid and fracture nodes, which have no
+/// config id, are condensed first).
+fn condensed_system_of(nodes: &[Node], elements: &[Element]) -> Result<CondensedSystem, String> {
+    let fixed: Vec<_> = nodes.iter().map(|n| n.fixed).collect();
+    let loose: Vec<_> = nodes.iter().map(|n| n.id.is_none()).collect();
+    let pairs: Vec<_> = elements.iter().map(|e| e.nodes).collect();
+    CondensedSystem::new(&fixed, &loose, &pairs)
 }
