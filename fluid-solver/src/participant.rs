@@ -3,10 +3,10 @@
 //!
 //! Inputs: `body_pose` (7 per body) and `body_velocity` (6 per body), read at the start of each
 //! substep by the window's interpolation. Outputs at every exchange time: `body_force` (6 per
-//! body: the fluid's pressure force and moment about the body's centre) and `body_reaction`
-//! (the same pair forces summed from the fluid's side, for the action–reaction ledger). Both
-//! hold the pressure (S1-3) part only: the viscous and collision forces between body and fluid
-//! particles are not in them yet. Save/restore keep a copy of
+//! body: force and moment about the body's centre of the fluid's pressure, collision and, when
+//! on, viscous pair terms, and of the walls' contact; see [`FluidSolver::body_loads`]) and
+//! `body_reaction` (what the body exerted on the water and the walls: the fluid's pair terms
+//! summed from the fluid's side, for the action–reaction ledger). Save/restore keep a copy of
 //! the particle arrays. `advance` steps from the window start to exactly its end, shortening
 //! the last substep before each exchange time. Sample points and point reactions (the
 //! unresolved drag coupling, S2) are not served by E-MPS: a window asking for them fails with
