@@ -7,36 +7,68 @@ use std::fs;
 use std::io::{self, Write};
 use std::path::Path;
 
-/// One data array: its VTK type, name, components per item and little-endian bytes.
-pub struct Array {
+/// One data array: its VTK type, name, components per item, and its values, which are written
+/// straight into the file (a frame's arrays are never copied into byte buffers first: for the
+/// bridge case that was about 50 MB at each output).
+pub struct Array<'a> {
     pub ty: &'static str,
     pub name: &'static str,
     pub components: usize,
-    pub bytes: Vec<u8>,
+    /// Bytes the values take.
+    bytes: usize,
+    write_values: ValueWriter<'a>,
 }
 
-impl Array {
-    /// An array of `components` values per item.
-    pub fn new(ty: &'static str, name: &'static str, components: usize, bytes: Vec<u8>) -> Array {
+/// Writes an array's values as little-endian bytes.
+type ValueWriter<'a> = Box<dyn Fn(&mut dyn Write) -> io::Result<()> + 'a>;
+
+impl<'a> Array<'a> {
+    /// An array of the `count` values that `values()` yields, each written as the `N` bytes of
+    /// `to_le` (e.g. `f64::to_le_bytes`), `components` values per item.
+    pub fn new<T: 'a, I, const N: usize>(
+        ty: &'static str,
+        name: &'static str,
+        components: usize,
+        count: usize,
+        values: impl Fn() -> I + 'a,
+        to_le: fn(T) -> [u8; N],
+    ) -> Array<'a>
+    where
+        I: Iterator<Item = T>,
+    {
         Array {
             ty,
             name,
             components,
-            bytes,
+            bytes: count * N,
+            write_values: Box::new(move |out| values().try_for_each(|v| out.write_all(&to_le(v)))),
         }
     }
 }
 
 /// A group of arrays under one XML element, e.g. `("PointData", "Scalars=\"pressure\"", …)`.
-pub struct Section {
+pub struct Section<'a> {
     pub element: &'static str,
     pub attributes: String,
-    pub arrays: Vec<Array>,
+    pub arrays: Vec<Array<'a>>,
 }
 
-/// Little-endian bytes of a slice of numbers.
-pub fn le_bytes<T: Copy, const N: usize>(values: &[T], to_le: impl Fn(T) -> [u8; N]) -> Vec<u8> {
-    values.iter().flat_map(|&v| to_le(v)).collect()
+/// Counts the bytes written through it.
+struct Counting<W> {
+    inner: W,
+    written: usize,
+}
+
+impl<W: Write> Write for Counting<W> {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        let n = self.inner.write(buf)?;
+        self.written += n;
+        Ok(n)
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        self.inner.flush()
+    }
 }
 
 /// Writes a `dataset` file (`UnstructuredGrid`, `PolyData`) with one piece.
@@ -54,7 +86,7 @@ pub fn write(path: &Path, dataset: &str, piece: &str, sections: &[Section]) -> i
                 "<DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"appended\" offset=\"{offset}\"/>\n",
                 a.ty, a.name, a.components
             ));
-            offset += 8 + a.bytes.len();
+            offset += 8 + a.bytes;
         }
         xml.push_str(&format!("</{}>\n", s.element));
     }
@@ -67,11 +99,85 @@ pub fn write(path: &Path, dataset: &str, piece: &str, sections: &[Section]) -> i
         let mut f = io::BufWriter::new(fs::File::create(&tmp)?);
         f.write_all(xml.as_bytes())?;
         for a in sections.iter().flat_map(|s| &s.arrays) {
-            f.write_all(&(a.bytes.len() as u64).to_le_bytes())?;
-            f.write_all(&a.bytes)?;
+            f.write_all(&(a.bytes as u64).to_le_bytes())?;
+            let mut counting = Counting {
+                inner: &mut f,
+                written: 0,
+            };
+            (a.write_values)(&mut counting)?;
+            if counting.written != a.bytes {
+                return Err(io::Error::new(
+                    io::ErrorKind::InvalidData,
+                    format!(
+                        "array `{}` wrote {} bytes, its header says {}",
+                        a.name, counting.written, a.bytes
+                    ),
+                ));
+            }
         }
         f.write_all(b"\n</AppendedData>\n</VTKFile>\n")?;
         f.flush()?;
     }
     fs::rename(&tmp, path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn section(arrays: Vec<Array<'_>>) -> [Section<'_>; 1] {
+        [Section {
+            element: "PointData",
+            attributes: String::new(),
+            arrays,
+        }]
+    }
+
+    #[test]
+    fn arrays_are_written_with_their_length_after_the_header() {
+        let dir = std::env::temp_dir().join(format!("vtk-appended-{}", std::process::id()));
+        fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+        let path = dir.join("ok.vtu");
+        let values = [1.5f64, -2.0];
+        let arrays = vec![Array::new(
+            "Float64",
+            "a",
+            1,
+            2,
+            || values.iter().copied(),
+            f64::to_le_bytes,
+        )];
+        write(&path, "UnstructuredGrid", "", &section(arrays)).unwrap_or_else(|e| panic!("{e}"));
+        let bytes = fs::read(&path).unwrap_or_else(|e| panic!("{e}"));
+        let marker = b"encoding=\"raw\">\n_";
+        let data = bytes.windows(marker.len()).position(|w| w == marker).unwrap_or(0) + marker.len();
+        assert_eq!(bytes[data..data + 8], 16u64.to_le_bytes());
+        assert_eq!(bytes[data + 8..data + 16], 1.5f64.to_le_bytes());
+        assert_eq!(bytes[data + 16..data + 24], (-2.0f64).to_le_bytes());
+        let _ = fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn an_array_shorter_than_its_count_is_an_error_and_no_file_appears() {
+        let dir = std::env::temp_dir().join(format!("vtk-appended-short-{}", std::process::id()));
+        fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+        let path = dir.join("short.vtu");
+        let arrays = vec![Array::new(
+            "UInt8",
+            "a",
+            1,
+            3,
+            || [1u8, 2].into_iter(),
+            u8::to_le_bytes,
+        )];
+        let err = write(&path, "UnstructuredGrid", "", &section(arrays)).expect_err("2 values for 3");
+        assert_eq!(err.kind(), io::ErrorKind::InvalidData);
+        assert!(
+            err.to_string()
+                .contains("array `a` wrote 2 bytes, its header says 3"),
+            "{err}"
+        );
+        assert!(!path.exists());
+        let _ = fs::remove_dir_all(&dir);
+    }
 }

@@ -3,7 +3,7 @@
 
 use crate::particles::Particles;
 use crate::surface_mesh::{fluid_surface, TriangleMesh};
-use crate::vtk_appended::{self, le_bytes, Array, Section};
+use crate::vtk_appended::{self, Array, Section};
 use crate::vtu::TimeSeries;
 use std::io;
 use std::path::{Path, PathBuf};
@@ -12,10 +12,6 @@ use std::path::{Path, PathBuf};
 /// points, per-point `normals`, and the triangles as polys.
 pub fn write_vtp(path: &Path, mesh: &TriangleMesh) -> io::Result<()> {
     let (n, m) = (mesh.vertices.len(), mesh.triangles.len());
-    let connectivity: Vec<i64> = mesh.triangles.iter().flatten().map(|&v| i64::from(v)).collect();
-    let offsets: Vec<i64> = (1..=m as i64).map(|t| 3 * t).collect();
-    let normals: Vec<f32> = mesh.normals.iter().flatten().copied().collect();
-    let vertices: Vec<f64> = mesh.vertices.iter().flatten().copied().collect();
     let sections = [
         Section {
             element: "PointData",
@@ -24,7 +20,9 @@ pub fn write_vtp(path: &Path, mesh: &TriangleMesh) -> io::Result<()> {
                 "Float32",
                 "normals",
                 3,
-                le_bytes(&normals, f32::to_le_bytes),
+                3 * n,
+                || mesh.normals.iter().flatten().copied(),
+                f32::to_le_bytes,
             )],
         },
         Section {
@@ -34,7 +32,9 @@ pub fn write_vtp(path: &Path, mesh: &TriangleMesh) -> io::Result<()> {
                 "Float64",
                 "position",
                 3,
-                le_bytes(&vertices, f64::to_le_bytes),
+                3 * n,
+                || mesh.vertices.iter().flatten().copied(),
+                f64::to_le_bytes,
             )],
         },
         Section {
@@ -45,9 +45,18 @@ pub fn write_vtp(path: &Path, mesh: &TriangleMesh) -> io::Result<()> {
                     "Int64",
                     "connectivity",
                     1,
-                    le_bytes(&connectivity, i64::to_le_bytes),
+                    3 * m,
+                    || mesh.triangles.iter().flatten().map(|&v| i64::from(v)),
+                    i64::to_le_bytes,
                 ),
-                Array::new("Int64", "offsets", 1, le_bytes(&offsets, i64::to_le_bytes)),
+                Array::new(
+                    "Int64",
+                    "offsets",
+                    1,
+                    m,
+                    || (1..=m as i64).map(|t| 3 * t),
+                    i64::to_le_bytes,
+                ),
             ],
         },
     ];

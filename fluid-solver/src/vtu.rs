@@ -3,31 +3,55 @@
 
 use crate::kind::DUMMY;
 use crate::particles::Particles;
-use crate::vtk_appended::{self, le_bytes, Array, Section};
+use crate::vtk_appended::{self, Array, Section};
 use std::fs;
 use std::io;
 use std::path::{Path, PathBuf};
 
 /// Writes `p` to `path` as a VTU file (via a temporary file, so a frame is never half written).
 pub fn write_vtu(path: &Path, p: &Particles) -> io::Result<()> {
-    let keep: Vec<usize> = (0..p.len()).filter(|&i| p.kind[i] != DUMMY).collect();
+    let keep: Vec<u32> = (0..p.len() as u32)
+        .filter(|&i| p.kind[i as usize] != DUMMY)
+        .collect();
     let n = keep.len();
-    let points: Vec<f64> = keep.iter().flat_map(|&i| [p.x[i], p.y[i], p.z[i]]).collect();
-    let velocity: Vec<f64> = keep.iter().flat_map(|&i| [p.vx[i], p.vy[i], p.vz[i]]).collect();
-    let pressure: Vec<f64> = keep.iter().map(|&i| p.pressure[i]).collect();
-    let kind: Vec<u8> = keep.iter().map(|&i| p.kind[i]).collect();
-    let id: Vec<u32> = keep.iter().map(|&i| p.id[i]).collect();
-    let connectivity: Vec<i64> = (0..n as i64).collect();
-    let offsets: Vec<i64> = (1..=n as i64).collect();
+    let kept = || keep.iter().map(|&i| i as usize);
     let sections = [
         Section {
             element: "PointData",
             attributes: "Scalars=\"pressure\" Vectors=\"velocity\"".into(),
             arrays: vec![
-                Array::new("Float64", "velocity", 3, le_bytes(&velocity, f64::to_le_bytes)),
-                Array::new("Float64", "pressure", 1, le_bytes(&pressure, f64::to_le_bytes)),
-                Array::new("UInt8", "kind", 1, kind),
-                Array::new("UInt32", "id", 1, le_bytes(&id, u32::to_le_bytes)),
+                Array::new(
+                    "Float64",
+                    "velocity",
+                    3,
+                    3 * n,
+                    move || kept().flat_map(|i| [p.vx[i], p.vy[i], p.vz[i]]),
+                    f64::to_le_bytes,
+                ),
+                Array::new(
+                    "Float64",
+                    "pressure",
+                    1,
+                    n,
+                    move || kept().map(|i| p.pressure[i]),
+                    f64::to_le_bytes,
+                ),
+                Array::new(
+                    "UInt8",
+                    "kind",
+                    1,
+                    n,
+                    move || kept().map(|i| p.kind[i]),
+                    u8::to_le_bytes,
+                ),
+                Array::new(
+                    "UInt32",
+                    "id",
+                    1,
+                    n,
+                    move || kept().map(|i| p.id[i]),
+                    u32::to_le_bytes,
+                ),
             ],
         },
         Section {
@@ -37,21 +61,25 @@ pub fn write_vtu(path: &Path, p: &Particles) -> io::Result<()> {
                 "Float64",
                 "position",
                 3,
-                le_bytes(&points, f64::to_le_bytes),
+                3 * n,
+                move || kept().flat_map(|i| [p.x[i], p.y[i], p.z[i]]),
+                f64::to_le_bytes,
             )],
         },
         Section {
             element: "Cells",
             attributes: String::new(),
             arrays: vec![
+                Array::new("Int64", "connectivity", 1, n, || 0..n as i64, i64::to_le_bytes),
+                Array::new("Int64", "offsets", 1, n, || 1..=n as i64, i64::to_le_bytes),
                 Array::new(
-                    "Int64",
-                    "connectivity",
+                    "UInt8",
+                    "types",
                     1,
-                    le_bytes(&connectivity, i64::to_le_bytes),
-                ),
-                Array::new("Int64", "offsets", 1, le_bytes(&offsets, i64::to_le_bytes)),
-                Array::new("UInt8", "types", 1, vec![1u8; n]), // VTK_VERTEX
+                    n,
+                    || std::iter::repeat_n(1u8, n),
+                    u8::to_le_bytes,
+                ), // VTK_VERTEX
             ],
         },
     ];
