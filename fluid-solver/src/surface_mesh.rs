@@ -10,11 +10,12 @@
 //! corners: a box loses about 0.45 Δs² of area per Δs of edge.
 //!
 //! The grid is sparse: chunks of 16³ cells exist only where a fluid particle's kernel reaches,
-//! each is sampled and meshed on its own (in parallel), and the chunk meshes are welded by their
-//! global cell index. A lone particle (c ≤ 0.42 at its centre) is below the iso-level and is not
-//! drawn. The mesh has no holes; where two sheets of water touch across a grid face, Surface Nets
-//! joins them along edges shared by four triangles (not a manifold there: 373 such edges in the
-//! 129 k triangles of the dam break at t = 0.3 s, Δs = 1 cm).
+//! each is sampled and meshed on its own (in parallel, a batch of chunks at a time), and the chunk
+//! meshes are welded where they overlap (the cells on chunk borders) by their global cell index. A
+//! lone particle (c ≤ 0.42 at its centre) is below the iso-level and is not drawn. The mesh has no
+//! holes; where two sheets of water touch across a grid face, Surface Nets joins them along edges
+//! shared by four triangles (not a manifold there: 373 such edges in the 129 k triangles of the dam
+//! break at t = 0.3 s, Δs = 1 cm).
 
 use crate::kind::FLUID;
 use crate::particles::Particles;
@@ -37,6 +38,9 @@ type ChunkShape = ConstShape3u32<18, 18, 18>;
 const CHUNK_LAST_POINT: u32 = 17;
 // A particle reaches only the chunks next to its own (see `surface_of_points`).
 const _: () = assert!(RADIUS_IN_SPACINGS / CELL_IN_SPACINGS < (CHUNK_CELLS - 1) as f64);
+
+/// Chunks meshed in parallel before their meshes are welded and dropped.
+const CHUNKS_PER_BATCH: usize = 64;
 
 /// Particles farther than this many grid cells from the origin (a run gone astray) are left out,
 /// which keeps the integer cell indices far from overflow.
@@ -170,14 +174,21 @@ fn surface_of_points(points: &[[f64; 3]], spacing: f64) -> TriangleMesh {
         .collect();
     active.sort_unstable();
 
-    let chunks: Vec<ChunkMesh> = active
-        .par_iter()
-        .map_init(SurfaceNetsBuffer::default, |buffer, &chunk| {
-            mesh_chunk(&grid, chunk, points, &bins, buffer)
-        })
-        .flatten()
-        .collect();
-    weld(chunks)
+    // Meshed and welded a batch at a time, so that only one batch's chunk meshes are held at once.
+    let mut welded = Welded::default();
+    for batch in active.chunks(CHUNKS_PER_BATCH) {
+        let chunks: Vec<ChunkMesh> = batch
+            .par_iter()
+            .map_init(SurfaceNetsBuffer::default, |buffer, &chunk| {
+                mesh_chunk(&grid, chunk, points, &bins, buffer)
+            })
+            .flatten()
+            .collect();
+        for chunk in chunks {
+            welded.add(chunk);
+        }
+    }
+    welded.mesh
 }
 
 /// The 27 chunks around and including `c`.
@@ -247,28 +258,41 @@ fn unit(n: [f32; 3]) -> [f32; 3] {
     }
 }
 
-/// Joins the chunk meshes: a vertex of a cell on a chunk border is made by both chunks and kept
-/// once; vertices no triangle uses are dropped.
-fn weld(chunks: Vec<ChunkMesh>) -> TriangleMesh {
-    let mut mesh = TriangleMesh::default();
-    let mut index_of: HashMap<[i64; 3], u32> = HashMap::new();
-    for c in chunks {
+/// The chunk meshes joined so far. A vertex in a cell on a chunk's border (local cell 0 or
+/// `CHUNK_CELLS` along some axis: chunks overlap by one cell) is made by every chunk sharing that
+/// cell and kept once, found by its global cell; the others belong to one chunk only. Vertices no
+/// triangle uses are dropped.
+#[derive(Default)]
+struct Welded {
+    mesh: TriangleMesh,
+    /// Global cell → vertex index, for border vertices.
+    border: HashMap<[i64; 3], u32>,
+}
+
+impl Welded {
+    fn add(&mut self, c: ChunkMesh) {
         let mut global = vec![u32::MAX; c.cells.len()];
         for t in c.indices.chunks_exact(3) {
             let mut tri = [0u32; 3];
             for (corner, &local) in tri.iter_mut().zip(t) {
                 let l = local as usize;
                 if global[l] == u32::MAX {
-                    global[l] = *index_of.entry(c.cells[l]).or_insert_with(|| {
+                    let mesh = &mut self.mesh;
+                    let mut push = || {
                         mesh.vertices.push(c.vertices[l]);
                         mesh.normals.push(c.normals[l]);
                         (mesh.vertices.len() - 1) as u32
-                    });
+                    };
+                    let on_border = c.cells[l].iter().any(|&x| x.rem_euclid(CHUNK_CELLS) == 0);
+                    global[l] = if on_border {
+                        *self.border.entry(c.cells[l]).or_insert_with(push)
+                    } else {
+                        push()
+                    };
                 }
                 *corner = global[l];
             }
-            mesh.triangles.push(tri);
+            self.mesh.triangles.push(tri);
         }
     }
-    mesh
 }
