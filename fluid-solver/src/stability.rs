@@ -1,7 +1,7 @@
 //! Instability detector: NaN, fluid particles leaving the domain or entering a wall or body, body
-//! particles entering a wall, a fluid particle moving more than half a spacing in one step, and mechanical energy growing without
-//! a source (checked until a body moves: moving bodies are a source). Each finding names the
-//! step, the particle and the quantity.
+//! particles entering a wall, a fluid particle moving more than half a spacing in one step, and
+//! mechanical energy growing without a source (checked until a body moves: moving bodies are a
+//! source). Each finding names the step, the particle and the quantity.
 //!
 //! A body is checked in its own frame at its present pose: a fluid particle is inside when
 //! `R(q)ᵀ (r − c)` lies within the body's box shrunk by half a spacing (i.e. behind the centres

@@ -112,6 +112,17 @@ pub fn run_oscillator(test: &str, c: &OscillatorCoupling) -> (PathBuf, Output) {
     (out, run)
 }
 
+/// The rows of a CSV file with a header line, as numbers (a field that is not a number, e.g. an
+/// empty release time, as NaN); no rows when the file cannot be read.
+pub fn csv_rows(path: &Path) -> Vec<Vec<f64>> {
+    std::fs::read_to_string(path)
+        .unwrap_or_default()
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap_or(f64::NAN)).collect())
+        .collect()
+}
+
 /// `cases/NAME/case.toml` with the first `key = …` line of each key replaced, written to `dir/case.toml`.
 pub fn case_from(name: &str, dir: &Path, replace: &[(&str, &str)]) -> PathBuf {
     let source = workspace().join("cases").join(name).join("case.toml");

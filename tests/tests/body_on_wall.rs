@@ -6,7 +6,7 @@
 //! floor particle, so at rest the box's weight M g = 64 k δ: δ = (M / 64) g / (m ω²) =
 //! (ρ_b/ρ0) · 4 · g/ω² (4 particle layers) = 0.19 mm, about 1 % of Δs.
 
-use stack_tests::{coupler_run, out_dir, stderr};
+use stack_tests::{coupler_run, csv_rows, out_dir, stderr};
 
 const CASE: &str = r#"
 [case]
@@ -76,12 +76,7 @@ fn a_heavy_box_dropped_on_the_floor_rests_on_it_at_the_contact_springs_deflectio
     assert!(run.status.success(), "{err}");
 
     // columns t, x, y, z, qw, qx, qy, qz, vx, vy, vz, …
-    let history = std::fs::read_to_string(out.join("drop/body-box.csv")).unwrap_or_default();
-    let rows: Vec<Vec<f64>> = history
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').filter_map(|v| v.parse().ok()).collect())
-        .collect();
+    let rows = csv_rows(&out.join("drop/body-box.csv"));
     assert!(rows.len() > 90, "history rows: {}", rows.len());
     let omega = 2.0 * std::f64::consts::PI / (10.0 * TIME_STEP);
     let expected = DENSITY_RATIO * LAYERS * 9.8 / (omega * omega);

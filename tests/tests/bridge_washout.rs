@@ -9,7 +9,7 @@
 //! - F_d = 1000 MN as in the case file (Table II's value), above any force the bore reaches
 //!   here: never released.
 
-use stack_tests::{case_from, coupler_run, out_dir, stderr};
+use stack_tests::{case_from, coupler_run, csv_rows, out_dir, stderr};
 use std::path::Path;
 
 /// The case's coupling window [s] and particle spacing [m].
@@ -20,16 +20,6 @@ const DECK_X: f64 = 106.0;
 const DECK_Z: f64 = 14.0;
 const PIER_TOP: f64 = 12.0;
 const HALF_DEPTH: f64 = 2.0;
-
-/// The rows of a CSV file with a header, as numbers (empty fields as NaN).
-fn rows(path: &Path) -> Vec<Vec<f64>> {
-    let text =
-        std::fs::read_to_string(path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
-    text.lines()
-        .skip(1)
-        .map(|l| l.split(',').map(|v| v.parse().unwrap_or(f64::NAN)).collect())
-        .collect()
-}
 
 /// (window end time, upward force the structure received) per window of the ledger.
 fn uplift(out: &Path) -> Vec<(f64, f64)> {
@@ -71,7 +61,7 @@ fn the_deck_is_released_in_the_window_its_uplift_first_exceeds_f_d_and_carried_o
         .find(|(_, fz)| *fz > f_d)
         .copied()
         .unwrap_or_else(|| panic!("the uplift never exceeds F_d = {f_d} N"));
-    let releases = rows(&out.join("bridge/releases.csv"));
+    let releases = csv_rows(&out.join("bridge/releases.csv"));
     let released_at = releases.first().map(|r| r[1]).unwrap_or(f64::NAN);
     println!(
         "uplift first above F_d = 100 MN in the window ending at t = {first:.3} s ({:.0} MN); released at t = {released_at:.4} s",
@@ -83,7 +73,7 @@ fn the_deck_is_released_in_the_window_its_uplift_first_exceeds_f_d_and_carried_o
     );
 
     // columns t, x, y, z, qw, qx, qy, qz, vx, vy, vz, wx, wy, wz, held
-    let history = rows(&out.join("bridge/body-deck.csv"));
+    let history = csv_rows(&out.join("bridge/body-deck.csv"));
     for r in &history {
         let (t, x, z, held) = (r[0], r[1], r[3], r[14]);
         if t < released_at {
@@ -122,9 +112,9 @@ fn with_table_two_f_d_the_deck_is_never_released() {
     let peak = uplift(&out).iter().map(|w| w.1).fold(f64::MIN, f64::max);
     println!("largest uplift {:.0} MN, F_d = 1000 MN", peak / 1e6);
     assert!(peak > 0.0 && peak < 1.0e9, "largest uplift {peak} N");
-    let releases = rows(&out.join("bridge/releases.csv"));
+    let releases = csv_rows(&out.join("bridge/releases.csv"));
     assert!(releases.iter().all(|r| r[1].is_nan()), "released: {releases:?}");
-    let history = rows(&out.join("bridge/body-deck.csv"));
+    let history = csv_rows(&out.join("bridge/body-deck.csv"));
     assert!(history.len() > 20);
     assert!(
         history

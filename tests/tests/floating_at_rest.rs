@@ -4,7 +4,7 @@
 //! within 5 % (the bound) and its heave must die out. Gravity acts once on each side:
 //! the fluid reports pressure and contact forces only, the structure applies the box's weight.
 
-use stack_tests::{coupler_run, out_dir, stderr};
+use stack_tests::{coupler_run, csv_rows, out_dir, stderr};
 use std::path::Path;
 
 /// Δs = 0.02 m, a 0.4 × 0.4 m tank with water 0.2 m deep; a 16 × 16 × 8 cm box (8 × 8 × 4
@@ -140,12 +140,7 @@ fn a_box_floats_at_its_hydrostatic_draft_and_its_heave_settles() {
     assert!(run.status.success(), "{err}");
 
     // The box's height over the run (columns t, x, y, z, qw, …).
-    let history = std::fs::read_to_string(out.join("float/body-box.csv")).unwrap_or_default();
-    let rows: Vec<Vec<f64>> = history
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').filter_map(|v| v.parse().ok()).collect())
-        .collect();
+    let rows = csv_rows(&out.join("float/body-box.csv"));
     assert!(rows.len() > 150, "history rows: {}", rows.len());
     let late: Vec<&Vec<f64>> = rows.iter().filter(|r| r[0] >= 1.5).collect();
     let z_mean = late.iter().map(|r| r[3]).sum::<f64>() / late.len() as f64;

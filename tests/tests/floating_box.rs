@@ -3,7 +3,7 @@
 //! the action–reaction ledger closes every window, and the structure solver replays against the
 //! recording.
 
-use stack_tests::{binary, case_from, coupler_run, out_dir, stderr};
+use stack_tests::{binary, case_from, coupler_run, csv_rows, out_dir, stderr};
 use std::process::Command;
 
 /// The floating-box case at the CI size (Δs = 2 cm, a lower tank) with `changes` applied.
@@ -66,11 +66,9 @@ fn coupled_dam_break_runs_closes_the_ledger_and_replays() {
     );
 
     // The box moved and stayed in the tank.
-    let history = std::fs::read_to_string(out.join("floater/body-box.csv")).unwrap_or_default();
-    let z: Vec<f64> = history
-        .lines()
-        .skip(1)
-        .filter_map(|l| l.split(',').nth(3)?.parse().ok())
+    let z: Vec<f64> = csv_rows(&out.join("floater/body-box.csv"))
+        .iter()
+        .map(|r| r[3])
         .collect();
     assert!(
         z.len() > 5 && z.iter().all(|z| (0.0..0.4).contains(z)),
@@ -106,12 +104,7 @@ fn light_box(scheme: &str, density: f64) -> (bool, String, Vec<Vec<f64>>) {
     );
     let out = dir.join("out");
     let run = coupler_run(&case, &out);
-    let history = std::fs::read_to_string(out.join("floater/body-box.csv")).unwrap_or_default();
-    let rows = history
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').filter_map(|v| v.parse().ok()).collect())
-        .collect();
+    let rows = csv_rows(&out.join("floater/body-box.csv"));
     (run.status.success(), stderr(&run), rows)
 }
 
@@ -163,11 +156,7 @@ fn the_coupled_fluid_writes_its_probes_once_per_probe_time() {
         let run = coupler_run(&case, &out);
         assert!(run.status.success(), "{}", stderr(&run));
         let probes = std::fs::read_to_string(out.join("tank/tank_probes.csv")).unwrap_or_default();
-        let rows: Vec<Vec<f64>> = probes
-            .lines()
-            .skip(1)
-            .map(|l| l.split(',').map(|v| v.parse().unwrap_or(f64::NAN)).collect())
-            .collect();
+        let rows = csv_rows(&out.join("tank/tank_probes.csv"));
         let times: Vec<f64> = rows.iter().map(|r| r[0]).collect();
         println!("{scheme}: probe times {times:?}");
         assert_eq!(rows.len(), 6, "{scheme}: rows at 0, 0.01, …, 0.05 s:\n{probes}");

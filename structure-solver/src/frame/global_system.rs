@@ -112,26 +112,12 @@ impl Frame {
         let n = dofs.len();
         let mut stiffness = DMatrix::zeros(n, n);
         for (index, e) in self.elements.iter().enumerate() {
-            let k = self.tangent_stiffness(index);
             let at = |i: usize| column[NODE_DOFS * e.nodes[i / NODE_DOFS] + i % NODE_DOFS];
-            for (i, row) in k.iter().enumerate() {
-                for (j, x) in row.iter().enumerate() {
-                    if let (Some(r), Some(c)) = (at(i), at(j)) {
-                        stiffness[(r, c)] += x;
-                    }
-                }
-            }
+            add_block(&mut stiffness, &self.tangent_stiffness(index), at);
         }
         let mut mass = DMatrix::zeros(n, n);
         for (v, block) in self.node_blocks(&contributions, 1.0).iter().enumerate() {
-            let at = |i: usize| column[NODE_DOFS * v + i];
-            for (i, row) in block.iter().enumerate() {
-                for (j, x) in row.iter().enumerate() {
-                    if let (Some(r), Some(c)) = (at(i), at(j)) {
-                        mass[(r, c)] += x;
-                    }
-                }
-            }
+            add_block(&mut mass, block, |i| column[NODE_DOFS * v + i]);
         }
         DenseMatrices {
             stiffness,
@@ -245,4 +231,19 @@ pub(super) fn mass_block(m: f64, j: &Matrix3<f64>) -> NodeBlock {
         }
     }
     block
+}
+
+/// Adds the square `block` to the dense matrix `m`, its row and column i at `at(i)` (`None`: left out).
+fn add_block<const N: usize>(
+    m: &mut DMatrix<f64>,
+    block: &[[f64; N]; N],
+    at: impl Fn(usize) -> Option<usize>,
+) {
+    for (i, row) in block.iter().enumerate() {
+        for (j, x) in row.iter().enumerate() {
+            if let (Some(r), Some(c)) = (at(i), at(j)) {
+                m[(r, c)] += x;
+            }
+        }
+    }
 }
