@@ -17,12 +17,13 @@
 use crate::probes::{self, ProbeFile};
 use crate::solver::{FluidSolver, SavedState};
 use crate::vtp::SurfaceFrames;
-use crate::vtu::{self, TimeSeries};
+use crate::vtu;
 use schemas::case::fluid::ProbeConfig;
 use schemas::case::Case;
 use schemas::f64s::F64s;
 use schemas::message::{Fields, InterfaceDecl, Role, Waveform};
 use schemas::participant::Participant;
+use schemas::pvd::Collection;
 use std::path::{Path, PathBuf};
 
 /// A window may start this far (relative to max(1, t)) from the time the fluid is at.
@@ -33,7 +34,7 @@ struct Frames {
     dir: PathBuf,
     name: String,
     interval: f64,
-    series: TimeSeries,
+    series: Collection,
     next: u64,
     /// A state due for a frame in the last window, written once the window is accepted.
     pending: Option<crate::particles::Particles>,
@@ -110,7 +111,7 @@ impl FluidParticipant {
                     dir: dir.to_path_buf(),
                     name: name.to_string(),
                     interval: cfg.output_interval,
-                    series: TimeSeries::new(dir.join(format!("{name}.pvd"))),
+                    series: Collection::new(dir.join(format!("{name}.pvd"))),
                     next: 1,
                     pending: None,
                     pending_time: 0.0,

@@ -8,8 +8,9 @@ use crate::probes::{self, ProbeFile};
 use crate::solver::FluidSolver;
 use crate::stability::Instability;
 use crate::vtp::SurfaceFrames;
-use crate::vtu::{self, TimeSeries};
+use crate::vtu;
 use schemas::case::{Case, FluidConfig};
+use schemas::pvd::Collection;
 use std::fmt;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -80,7 +81,7 @@ pub fn run_case(case: &Case, out: &Path, progress: bool) -> Result<RunSummary, R
     let started = Instant::now();
     let mut solver = FluidSolver::new(cfg);
     let pvd_path = out.join(format!("{name}.pvd"));
-    let mut series = TimeSeries::new(pvd_path.clone());
+    let mut series = Collection::new(pvd_path.clone());
     let probe_path = out.join(format!("{name}_probes.csv"));
     let mut probe_file = ProbeFile::create(&probe_path, &cfg.probe).map_err(io_err(&probe_path))?;
     let probe_interval = cfg.probe_interval.unwrap_or(cfg.output_interval);
@@ -90,7 +91,7 @@ pub fn run_case(case: &Case, out: &Path, progress: bool) -> Result<RunSummary, R
     let mut surfaces = cfg
         .surface_mesh
         .then(|| SurfaceFrames::new(out, name, cfg.spacing));
-    let mut write_frame = |solver: &FluidSolver, series: &mut TimeSeries| -> Result<(), RunError> {
+    let mut write_frame = |solver: &FluidSolver, series: &mut Collection| -> Result<(), RunError> {
         let file = format!("{name}_{frames:05}.vtu");
         let path = out.join(&file);
         vtu::write_vtu(&path, solver.particles()).map_err(io_err(&path))?;

@@ -1,9 +1,7 @@
 //! The VTK XML layout with raw appended data, shared by the particle (VTU) and surface (VTP)
 //! writers: an XML header whose `DataArray`s point at offsets in the appended block, then each
-//! array as `[u64 length][bytes]`. Files are written through a temporary file and renamed, so a
-//! frame on disk is never half written.
+//! array as `[u64 length][bytes]`. Files are written whole or not at all (`schemas::atomic_file`).
 
-use std::fs;
 use std::io::{self, Write};
 use std::path::Path;
 
@@ -94,14 +92,12 @@ pub fn write(path: &Path, dataset: &str, piece: &str, sections: &[Section]) -> i
         "</Piece>\n</{dataset}>\n<AppendedData encoding=\"raw\">\n_"
     ));
 
-    let tmp = path.with_extension("tmp");
-    {
-        let mut f = io::BufWriter::new(fs::File::create(&tmp)?);
-        f.write_all(xml.as_bytes())?;
+    schemas::atomic_file::write_with(path, |out| {
+        out.write_all(xml.as_bytes())?;
         for a in sections.iter().flat_map(|s| &s.arrays) {
-            f.write_all(&(a.bytes as u64).to_le_bytes())?;
+            out.write_all(&(a.bytes as u64).to_le_bytes())?;
             let mut counting = Counting {
-                inner: &mut f,
+                inner: &mut *out,
                 written: 0,
             };
             (a.write_values)(&mut counting)?;
@@ -115,15 +111,14 @@ pub fn write(path: &Path, dataset: &str, piece: &str, sections: &[Section]) -> i
                 ));
             }
         }
-        f.write_all(b"\n</AppendedData>\n</VTKFile>\n")?;
-        f.flush()?;
-    }
-    fs::rename(&tmp, path)
+        out.write_all(b"\n</AppendedData>\n</VTKFile>\n")
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::fs;
 
     fn section(arrays: Vec<Array<'_>>) -> [Section<'_>; 1] {
         [Section {
@@ -158,7 +153,7 @@ mod tests {
     }
 
     #[test]
-    fn an_array_shorter_than_its_count_is_an_error_and_no_file_appears() {
+    fn an_array_shorter_than_its_count_is_an_error_and_no_file_is_left() {
         let dir = std::env::temp_dir().join(format!("vtk-appended-short-{}", std::process::id()));
         fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
         let path = dir.join("short.vtu");
@@ -178,6 +173,10 @@ mod tests {
             "{err}"
         );
         assert!(!path.exists());
+        assert!(
+            !dir.join("short.vtu.tmp").exists(),
+            "the temporary file is removed"
+        );
         let _ = fs::remove_dir_all(&dir);
     }
 }

@@ -4,7 +4,7 @@
 use crate::particles::Particles;
 use crate::surface_mesh::{fluid_surface, TriangleMesh};
 use crate::vtk_appended::{self, Array, Section};
-use crate::vtu::TimeSeries;
+use schemas::pvd::Collection;
 use std::io;
 use std::path::{Path, PathBuf};
 
@@ -73,7 +73,7 @@ pub struct SurfaceFrames {
     dir: PathBuf,
     name: String,
     spacing: f64,
-    series: TimeSeries,
+    series: Collection,
 }
 
 impl SurfaceFrames {
@@ -83,7 +83,7 @@ impl SurfaceFrames {
             dir: dir.to_path_buf(),
             name: name.to_string(),
             spacing,
-            series: TimeSeries::new(dir.join(format!("{name}_surface.pvd"))),
+            series: Collection::new(dir.join(format!("{name}_surface.pvd"))),
         }
     }
 

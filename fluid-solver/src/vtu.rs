@@ -1,12 +1,12 @@
-//! ParaView output: one VTU (XML unstructured grid, raw appended binary) per frame and a PVD
-//! time series. Frames hold every particle except dummies: position, velocity, pressure, kind, id.
+//! ParaView output: one VTU (XML unstructured grid, raw appended binary) per frame, listed in a PVD
+//! time series (`schemas::pvd`). Frames hold every particle except dummies: position, velocity,
+//! pressure, kind, id.
 
 use crate::kind::DUMMY;
 use crate::particles::Particles;
 use crate::vtk_appended::{self, Array, Section};
-use std::fs;
 use std::io;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Writes `p` to `path` as a VTU file (via a temporary file, so a frame is never half written).
 pub fn write_vtu(path: &Path, p: &Particles) -> io::Result<()> {
@@ -89,38 +89,4 @@ pub fn write_vtu(path: &Path, p: &Particles) -> io::Result<()> {
         &format!("NumberOfPoints=\"{n}\" NumberOfCells=\"{n}\""),
         &sections,
     )
-}
-
-/// A PVD time series, rewritten whole after each frame so that it always lists the frames on disk.
-#[derive(Debug, Clone)]
-pub struct TimeSeries {
-    path: PathBuf,
-    frames: Vec<(f64, String)>,
-}
-
-impl TimeSeries {
-    /// A series written to `path`; frame files are named relative to its folder.
-    pub fn new(path: PathBuf) -> TimeSeries {
-        TimeSeries {
-            path,
-            frames: Vec::new(),
-        }
-    }
-
-    /// Adds a frame file (relative to the PVD's folder) at `time` and rewrites the PVD.
-    pub fn add(&mut self, time: f64, file: &str) -> io::Result<()> {
-        self.frames.push((time, file.to_string()));
-        let mut s = String::from(
-            "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n<Collection>\n",
-        );
-        for (t, f) in &self.frames {
-            s.push_str(&format!(
-                "<DataSet timestep=\"{t}\" group=\"\" part=\"0\" file=\"{f}\"/>\n"
-            ));
-        }
-        s.push_str("</Collection>\n</VTKFile>\n");
-        let tmp = self.path.with_extension("pvd.tmp");
-        fs::write(&tmp, s)?;
-        fs::rename(&tmp, &self.path)
-    }
 }

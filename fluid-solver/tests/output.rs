@@ -2,9 +2,10 @@
 //! standalone run writes frames and a probe CSV with one column per probe.
 
 use fluid_solver::particles::Particles;
-use fluid_solver::vtu::{write_vtu, TimeSeries};
+use fluid_solver::vtu::write_vtu;
 use fluid_solver::Kind;
 use schemas::case::Case;
+use schemas::pvd::Collection;
 use std::path::{Path, PathBuf};
 
 fn scratch_dir(name: &str) -> PathBuf {
@@ -50,7 +51,7 @@ fn vtu_blocks_match_the_header() {
     assert_eq!(f64::from_le_bytes(pressure), 12.5);
     assert!(String::from_utf8_lossy(&bytes[bytes.len() - 30..]).contains("</VTKFile>"));
 
-    let mut series = TimeSeries::new(path.with_file_name("run.pvd"));
+    let mut series = Collection::new(path.with_file_name("run.pvd"));
     series.add(0.0, "frame.vtu").unwrap_or_else(|e| panic!("{e}"));
     series.add(0.5, "frame.vtu").unwrap_or_else(|e| panic!("{e}"));
     let pvd = std::fs::read_to_string(path.with_file_name("run.pvd")).unwrap_or_else(|e| panic!("{e}"));

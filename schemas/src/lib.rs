@@ -1,13 +1,16 @@
 //! The contract between the coupler and its participants: case files ([`case`]),
 //! interface messages ([`message`]) with their interpolation in a window ([`waveform`]),
 //! recordings ([`recording`]), the iceoryx2 link ([`link`]) and the participant loop
-//! ([`participant`]).
+//! ([`participant`]); and the output files every solver writes: ParaView's time series ([`pvd`]), each
+//! file written whole or not at all ([`atomic_file`]).
 
+pub mod atomic_file;
 pub mod case;
 pub mod f64s;
 pub mod link;
 pub mod message;
 pub mod participant;
+pub mod pvd;
 pub mod recording;
 pub mod waveform;
 

@@ -66,6 +66,6 @@ impl Frame {
             s.push_str("</DataArray>\n");
         }
         s.push_str("</CellData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n");
-        std::fs::write(path, s)
+        schemas::atomic_file::write(path, s)
     }
 }
