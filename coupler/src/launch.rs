@@ -166,9 +166,40 @@ fn signal_name(sig: i32) -> &'static str {
     }
 }
 
+/// The lines of a participant's log that warn the user (they start with `warning: `), without that
+/// prefix.
+pub fn log_warnings(log: &Path) -> Vec<String> {
+    let text = std::fs::read_to_string(log).unwrap_or_default();
+    text.lines()
+        .filter_map(|l| l.strip_prefix("warning: "))
+        .map(str::to_string)
+        .collect()
+}
+
 /// The last `n` lines of a participant's log, for error messages.
 pub fn log_tail(log: &Path, n: usize) -> String {
     let text = std::fs::read_to_string(log).unwrap_or_default();
     let lines: Vec<&str> = text.lines().collect();
     lines[lines.len().saturating_sub(n)..].join("\n")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn warnings_are_the_log_lines_that_start_with_the_prefix() {
+        let log = std::env::temp_dir().join(format!("coupler-log-warnings-{}.log", std::process::id()));
+        std::fs::write(
+            &log,
+            "started\nwarning: structure.b.frame: 3 of 9 frame steps …\nno warning: here\n  warning: indented\n",
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(
+            log_warnings(&log),
+            vec!["structure.b.frame: 3 of 9 frame steps …".to_string()]
+        );
+        let _ = std::fs::remove_file(&log);
+        assert!(log_warnings(&log).is_empty(), "a missing log has no warnings");
+    }
 }

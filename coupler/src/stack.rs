@@ -258,7 +258,8 @@ impl Stack {
         }
     }
 
-    /// Ends the run: `Finish` to everyone, their `Finished`, and their exit.
+    /// Ends the run: `Finish` to everyone, their `Finished`, and their exit; then the warnings in their
+    /// logs are passed on to the user.
     pub fn finish(mut self) -> Result<(), CouplerError> {
         for i in 0..self.sessions.len() {
             self.send(i, ToParticipant::Finish, None)?;
@@ -284,6 +285,11 @@ impl Stack {
                         message: "did not exit within 10 s after Finish".into(),
                     })
                 }
+            }
+        }
+        for s in &self.sessions {
+            for warning in crate::launch::log_warnings(&s.log) {
+                eprintln!("warning from {}: {warning}", s.name);
             }
         }
         Ok(())

@@ -7,85 +7,12 @@
 //! preconditioner).
 //! Run: `cargo bench -p structure-solver --bench frame_steps [grid sizes, e.g. 3 7] [elastic|hinges]`.
 
-use schemas::case::frame::{
-    FrameConfig, MaterialConfig, MemberConfig, NodeConfig, SectionConfig, SupportConfig,
-};
+#[path = "../tests/frame_common/mod.rs"]
+mod frame_common;
+
+use frame_common::building;
 use std::time::Instant;
 use structure_solver::frame::{Equilibrium, Frame};
-
-/// An n × n × n-bay grid of 3 m steel bays: columns and beams of 0.3 × 0.3 m.
-fn building(n: usize, yield_stress: f64) -> FrameConfig {
-    let id = |i: usize, j: usize, k: usize| (k * (n + 1) * (n + 1) + j * (n + 1) + i) as u32 + 1;
-    let mut node = Vec::new();
-    let mut member = Vec::new();
-    let mut support = Vec::new();
-    for k in 0..=n {
-        for j in 0..=n {
-            for i in 0..=n {
-                node.push(NodeConfig {
-                    id: id(i, j, k),
-                    position: [3.0 * i as f64, 3.0 * j as f64, 3.0 * k as f64],
-                });
-                if k == 0 {
-                    let fixed = ["x", "y", "z", "rx", "ry", "rz"].map(String::from).to_vec();
-                    support.push(SupportConfig {
-                        node: id(i, j, k),
-                        fixed,
-                    });
-                }
-                let mut add = |to: u32| {
-                    member.push(MemberConfig {
-                        nodes: [id(i, j, k), to],
-                        section: "s".into(),
-                        orientation: None,
-                    })
-                };
-                if i < n {
-                    add(id(i + 1, j, k));
-                }
-                if j < n {
-                    add(id(i, j + 1, k));
-                }
-                if k < n {
-                    add(id(i, j, k + 1));
-                }
-            }
-        }
-    }
-    FrameConfig {
-        time_step: 1e-3,
-        gravity: [0.0, 0.0, -9.81],
-        material: MaterialConfig {
-            young_modulus: 2e11,
-            poisson: 0.3,
-            density: 7850.0,
-            yield_stress,
-            fracture_curvature: None,
-            fracture_axial_strain: None,
-            fracture_shear_strain: None,
-        },
-        section: vec![SectionConfig {
-            name: "s".into(),
-            kind: "rectangle".into(),
-            width: Some(0.3),
-            depth: Some(0.3),
-            area: None,
-            iy: None,
-            iz: None,
-            j: None,
-            shear_area_y: None,
-            shear_area_z: None,
-            plastic_modulus_y: None,
-            plastic_modulus_z: None,
-        }],
-        node,
-        member,
-        support,
-        contact: None,
-        wall: Vec::new(),
-        equilibrium_tolerance: None,
-    }
-}
 
 /// Untimed steps at most while waiting for the first hinge.
 const WARM_UP_LIMIT: usize = 300;

@@ -34,6 +34,9 @@ enum Command {
 fn main() -> ExitCode {
     let result = match Cli::parse().command {
         Command::Run { case, out } => standalone::run(&case, out.as_deref()).map(|s| {
+            for w in &s.warnings {
+                eprintln!("warning: {w}");
+            }
             println!(
                 "done: t = {} s in {} substeps; releases: {}; output in {}",
                 s.end_time,

@@ -10,6 +10,7 @@
 //! (the next advance comes without a restore, or the run finishes), so an implicit iteration
 //! that is repeated never writes twice.
 
+use crate::frame::Frame;
 use crate::load_schedule::LoadSchedule;
 use crate::output::Output;
 use crate::structure::Structure;
@@ -217,6 +218,9 @@ impl Participant for StructureParticipant {
         self.commit()?;
         for (body, t) in self.structure.releases() {
             println!("{}: body `{body}` released at t = {t} s", self.name);
+        }
+        if let Some(w) = self.structure.frame().and_then(Frame::accuracy_warning) {
+            eprintln!("warning: structure.{}.frame: {w}", self.name);
         }
         match &mut self.output {
             Some(o) => o.finish(&self.structure),

@@ -2,8 +2,10 @@
 //! prescribed loads, from t = 0 to `case.end_time`. Writes the declared CSV histories every
 //! `history.interval` (and at the end), the frame's VTU series at the same times (at the start
 //! and end without a history section), and `releases.csv` when there are supports; prints every
-//! washout release when it happens.
+//! washout release when it happens, and at the end what the user should know about the frame
+//! steps' accuracy.
 
+use crate::frame::Frame;
 use crate::load_schedule::LoadSchedule;
 use crate::output::{output_times, Output};
 use crate::structure::Structure;
@@ -18,6 +20,8 @@ pub struct RunSummary {
     pub substeps: u64,
     /// Released bodies and their release times.
     pub releases: Vec<(String, f64)>,
+    /// What the user should know about the run's accuracy (see [`Frame::accuracy_warning`]).
+    pub warnings: Vec<String>,
 }
 
 /// Runs the structure-only case at `case_path`; output goes to `out` (default `out/<case name>`).
@@ -71,10 +75,17 @@ pub fn run(case_path: &Path, out: Option<&Path>) -> Result<RunSummary, String> {
         .into_iter()
         .map(|(b, t)| (b.to_string(), t))
         .collect();
+    let warnings = structure
+        .frame()
+        .and_then(Frame::accuracy_warning)
+        .map(|w| format!("{key}.frame: {w}"))
+        .into_iter()
+        .collect();
     Ok(RunSummary {
         out_dir,
         end_time,
         substeps: structure.substeps(),
         releases,
+        warnings,
     })
 }

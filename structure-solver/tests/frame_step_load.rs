@@ -112,3 +112,38 @@ fn kept_factor_and_one_solve_do_not_change_the_step_load_peak() {
         "one solve {fresh} vs iterated {iterated}"
     );
 }
+
+/// A window split into equal steps gives time steps that differ by rounding (`t0 + span (k + 1)/n −
+/// t`, as `Structure::advance` makes them); they must keep the factor as equal steps do (before, an
+/// exact comparison of the steps made most of them refactorise).
+#[test]
+fn steps_that_differ_by_rounding_keep_the_factor() {
+    let factorizations = |rounded: bool| {
+        let mut cfg = beam(3.0, 10, 0.1, 0.15, steel());
+        cfg.support.push(support(1, &["x", "y", "z", "rx"]));
+        cfg.support.push(support(11, &["y", "z"]));
+        let mut frame = Frame::from_config(&cfg, "structure.test.frame").expect("valid test config");
+        let mid = frame.node_index(6).expect("mid-span node");
+        let mut loads = vec![0.0; 6 * frame.node_count()];
+        loads[6 * mid + 2] = -1e3;
+        let (span, n) = (0.02, 150);
+        let mut t = 0.0;
+        let mut distinct = Vec::new();
+        for k in 0..n {
+            let t1 = span * (k + 1) as f64 / n as f64;
+            let dt: f64 = if rounded { t1 - t } else { span / n as f64 };
+            if !distinct.contains(&dt.to_bits()) {
+                distinct.push(dt.to_bits());
+            }
+            frame.step(dt, &loads).expect("stable step");
+            t = t1;
+        }
+        (frame.factorization_count(), distinct.len())
+    };
+    let (equal, one) = factorizations(false);
+    let (rounded, distinct) = factorizations(true);
+    assert_eq!(one, 1);
+    assert!(distinct > 1, "the rounded steps differ");
+    assert!(equal <= 2, "{equal} factorisations with equal steps");
+    assert_eq!(rounded, equal, "{distinct} distinct steps");
+}

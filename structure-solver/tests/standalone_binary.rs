@@ -148,3 +148,62 @@ fn frame_case_writes_node_history_and_vtu_series() {
     );
     assert!(out.join("frame-00020.vtu").exists());
 }
+
+/// The frame benchmark's n × n × n building (3 m bays of 0.3 × 0.3 m steel, σy = 20 MPa, fixed at
+/// the base) as a case, under `lateral` N sideways on every node, run for 0.1 s at time step `dt`.
+fn collapsing_building(n: usize, dt: f64, lateral: f64) -> String {
+    let id = |i: usize, j: usize, k: usize| k * (n + 1) * (n + 1) + j * (n + 1) + i + 1;
+    let mut s = format!(
+        "[case]\nname = \"building\"\nend_time = 0.1\n\n[structure.b]\nmax_step = {dt}\n\n\
+         [structure.b.frame]\ntime_step = {dt}\ngravity = [0.0, 0.0, -9.81]\n\n\
+         [structure.b.frame.material]\nyoung_modulus = 2e11\npoisson = 0.3\ndensity = 7850.0\nyield_stress = 2e7\n\n\
+         [[structure.b.frame.section]]\nname = \"s\"\nkind = \"rectangle\"\nwidth = 0.3\ndepth = 0.3\n"
+    );
+    for k in 0..=n {
+        for j in 0..=n {
+            for i in 0..=n {
+                let v = id(i, j, k);
+                let (x, y, z) = (3 * i, 3 * j, 3 * k);
+                s += &format!("\n[[structure.b.frame.node]]\nid = {v}\nposition = [{x}.0, {y}.0, {z}.0]\n");
+                if k == 0 {
+                    s += &format!(
+                        "\n[[structure.b.frame.support]]\nnode = {v}\nfixed = [\"x\", \"y\", \"z\", \"rx\", \"ry\", \"rz\"]\n"
+                    );
+                }
+                let ends = [
+                    (i < n, id(i + 1, j, k)),
+                    (j < n, id(i, j + 1, k)),
+                    (k < n, id(i, j, k + 1)),
+                ];
+                for (_, to) in ends.iter().filter(|(exists, _)| *exists) {
+                    s += &format!("\n[[structure.b.frame.member]]\nnodes = [{v}, {to}]\nsection = \"s\"\n");
+                }
+                s += &format!(
+                    "\n[[structure.b.load]]\nnode = {v}\nvalue = [{lateral}, 0.0, 0.0, 0.0, 0.0, 0.0]\n"
+                );
+            }
+        }
+    }
+    s
+}
+
+#[test]
+fn inaccurate_frame_steps_are_reported_on_stderr() {
+    // the collapse of tests/frame_accuracy_warning.rs, whose 20 kN act on the member mid nodes too:
+    // 208 nodes in all, so 65 kN on each of the 64 case nodes; one solve per step is too coarse for
+    // it at 1 ms and accurate at 0.5 ms
+    for (dt, warned) in [(1e-3, true), (5e-4, false)] {
+        let out = scratch(&format!("building-{dt}"));
+        std::fs::create_dir_all(&out).expect("scratch folder");
+        let path = out.join("case.toml");
+        std::fs::write(&path, collapsing_building(3, dt, 6.5e4)).expect("write the case");
+        let o = run(&[&path, Path::new("--out"), &out]);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "stderr: {stderr}");
+        assert_eq!(
+            stderr.contains("warning: structure.b.frame: ") && stderr.contains("halve time_step"),
+            warned,
+            "Δt = {dt}: stderr: {stderr}"
+        );
+    }
+}

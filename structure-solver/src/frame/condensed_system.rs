@@ -13,6 +13,12 @@ use super::preconditioned_cg::{self, Iterated};
 use super::PARALLEL_CHUNK;
 use rayon::prelude::*;
 
+/// Relative difference of time steps below which a factor made for one serves the other. A window
+/// split into equal steps gives steps that differ in their last bits (`t0 + span (k + 1)/n − t`); the
+/// mass term `M/(βΔt²)` then differs by 2e-9 at most, far below what the stale-matrix criterion
+/// allows (`factor_age.rs`, 5 %). Comparing exactly made such runs refactorise at most steps.
+pub const SAME_TIME_STEP: f64 = 1e-9;
+
 /// A node's 6 × 6 block (its lumped mass and rotary inertia term).
 pub type NodeBlock = [[f64; NODE_DOFS]; NODE_DOFS];
 
@@ -213,9 +219,11 @@ impl CondensedSystem {
         Ok(())
     }
 
-    /// Whether a factor made for time step `dt` is kept.
+    /// Whether a factor made for time step `dt` is kept: one made for a step that differs from `dt`
+    /// only by rounding ([`SAME_TIME_STEP`]) counts.
     pub fn has_factor_for(&self, dt: f64) -> bool {
-        self.factor_time_step == Some(dt)
+        self.factor_time_step
+            .is_some_and(|made| (dt - made).abs() <= SAME_TIME_STEP * made)
     }
 
     /// Forgets the kept factor.

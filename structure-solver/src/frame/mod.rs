@@ -67,6 +67,9 @@ pub struct Frame {
     factorizations: u64,
     cg_iterations: u64,
     unconverged: u64,
+    /// Steps taken, and the largest unbalanced force one left (as a share of its first one).
+    steps: u64,
+    worst_unbalance: f64,
     equilibrium: Equilibrium,
     /// η of the refactorisation criterion (`factor_age.rs`).
     stale_limit: f64,
@@ -124,6 +127,8 @@ impl Frame {
             factorizations: 0,
             cg_iterations: 0,
             unconverged: 0,
+            steps: 0,
+            worst_unbalance: 0.0,
             equilibrium: match cfg.equilibrium_tolerance {
                 Some(tolerance) => Equilibrium::Iterate { tolerance },
                 None => Equilibrium::OneSolve,
@@ -248,6 +253,29 @@ impl Frame {
     /// Unbalanced force left at the end of the last step, as a share of the one at its start.
     pub fn last_unbalance(&self) -> f64 {
         self.unbalance
+    }
+
+    /// What a user should know about the accuracy of the steps taken so far: `None` when every step
+    /// reached its tolerance, otherwise how many did not and what to change in the case.
+    pub fn accuracy_warning(&self) -> Option<String> {
+        if self.unconverged == 0 {
+            return None;
+        }
+        let (steps, worst) = (self.steps, self.worst_unbalance);
+        Some(match self.equilibrium {
+            Equilibrium::OneSolve => format!(
+                "{} of {steps} frame steps left more than {:.0} % of their unbalanced force (worst {worst:.2}): \
+                 time_step is too long for one solve per step, and hinges may form where they should not; \
+                 halve time_step or set equilibrium_tolerance",
+                self.unconverged,
+                100.0 * stepping::ONE_SOLVE_UNBALANCE_LIMIT
+            ),
+            Equilibrium::Iterate { tolerance } => format!(
+                "{} of {steps} frame steps did not reach equilibrium_tolerance = {tolerance} within {} \
+                 corrections (worst {worst:.2e}); reduce time_step",
+                self.unconverged, MAX_CORRECTIONS
+            ),
+        })
     }
 
     /// How steps treat the unbalanced force; [`Equilibrium::OneSolve`] (ASI-Gauss) by default.

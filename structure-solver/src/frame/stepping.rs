@@ -90,7 +90,10 @@ impl Frame {
         }
         self.update_integration_points();
         self.split_fractured()?;
-        self.check_stability()
+        self.check_stability()?;
+        self.steps += 1;
+        self.worst_unbalance = self.worst_unbalance.max(self.unbalance);
+        Ok(())
     }
 
     /// ASI's one solve: the increment from the unbalanced force at the start of the step, the state

@@ -76,3 +76,56 @@ pub fn support(id: u32, fixed: &[&str]) -> SupportConfig {
 }
 
 pub const ALL: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];
+
+/// An n × n × n-bay building grid of 3 m bays, fixed at the base: columns and beams of 0.3 × 0.3 m
+/// steel with the given yield stress, gravity along −z, Δt = 1 ms (the frame benchmark's building).
+pub fn building(n: usize, yield_stress: f64) -> FrameConfig {
+    let id = |i: usize, j: usize, k: usize| (k * (n + 1) * (n + 1) + j * (n + 1) + i) as u32 + 1;
+    let mut node = Vec::new();
+    let mut member = Vec::new();
+    let mut supports = Vec::new();
+    for k in 0..=n {
+        for j in 0..=n {
+            for i in 0..=n {
+                node.push(NodeConfig {
+                    id: id(i, j, k),
+                    position: [3.0 * i as f64, 3.0 * j as f64, 3.0 * k as f64],
+                });
+                if k == 0 {
+                    supports.push(support(id(i, j, k), &ALL));
+                }
+                let mut add = |to: u32| {
+                    member.push(MemberConfig {
+                        nodes: [id(i, j, k), to],
+                        section: "s".into(),
+                        orientation: None,
+                    })
+                };
+                if i < n {
+                    add(id(i + 1, j, k));
+                }
+                if j < n {
+                    add(id(i, j + 1, k));
+                }
+                if k < n {
+                    add(id(i, j, k + 1));
+                }
+            }
+        }
+    }
+    FrameConfig {
+        time_step: 1e-3,
+        gravity: [0.0, 0.0, -9.81],
+        material: MaterialConfig {
+            yield_stress,
+            ..steel()
+        },
+        section: vec![rectangle("s", 0.3, 0.3)],
+        node,
+        member,
+        support: supports,
+        contact: None,
+        wall: Vec::new(),
+        equilibrium_tolerance: None,
+    }
+}
