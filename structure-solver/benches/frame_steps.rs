@@ -2,9 +2,9 @@
 //! building grids, fixed at the base), elastic and with plastic hinges forming, with ASI-Gauss's one
 //! solve per step (the default) and, for comparison, with equilibrium corrections in every step; with
 //! hinges forming, one solve per step also at Δt = 0.5 ms, where it agrees with the iterated steps.
-//! Besides the numeric factorisations per step, the table gives the products with the effective matrix
-//! in the conjugate-gradient solves that follow hinges forming or closing (the kept factor as
-//! preconditioner).
+//! Besides the numeric factorisations per step (and those that assembled the matrix anew), the table
+//! gives the products with the effective matrix in the conjugate-gradient solves that follow hinges
+//! forming or closing (the kept factor as preconditioner).
 //! Run: `cargo bench -p structure-solver --bench frame_steps [grid sizes, e.g. 3 7] [elastic|hinges]`.
 
 #[path = "../tests/frame_common/mod.rs"]
@@ -34,6 +34,8 @@ struct Measured {
     steps_per_second: f64,
     cpu_ms_per_step: Option<f64>,
     factorizations_per_step: f64,
+    /// Those of them that assembled the matrix anew.
+    assemblies_per_step: f64,
     /// Products with the effective matrix in preconditioned conjugate gradients per step.
     cg_iterations_per_step: f64,
     hinge_nodes: usize,
@@ -72,6 +74,7 @@ fn run(
         frame.step(frame.time_step(), &loads)?;
     }
     let solves0 = frame.factorization_count();
+    let assemblies0 = frame.assembly_count();
     let cg0 = frame.cg_iteration_count();
     let unconverged0 = frame.unconverged_steps();
     let mut worst_unbalance = 0.0_f64;
@@ -90,6 +93,7 @@ fn run(
         steps_per_second: steps as f64 / seconds,
         cpu_ms_per_step,
         factorizations_per_step: (frame.factorization_count() - solves0) as f64 / steps as f64,
+        assemblies_per_step: (frame.assembly_count() - assemblies0) as f64 / steps as f64,
         cg_iterations_per_step: (frame.cg_iteration_count() - cg0) as f64 / steps as f64,
         hinge_nodes: frame.hinge_nodes().len(),
         worst_unbalance,
@@ -107,7 +111,7 @@ fn main() {
     let chosen: Vec<usize> = args.iter().filter_map(|a| a.parse().ok()).collect();
     let cases: Vec<&String> = args.iter().filter(|a| a.parse::<usize>().is_err()).collect();
     println!(
-        "| grid | DOFs | case | steps | steps/s | ms/step | CPU ms/step | factorisations/step | CG products/step \
+        "| grid | DOFs | case | steps | steps/s | ms/step | CPU ms/step | factorisations/step (assembled anew) | CG products/step \
          | hinge nodes | worst unbalance | unconverged steps |"
     );
     println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
@@ -139,12 +143,13 @@ fn main() {
                 }
                 match run(n, steps, dt, yield_stress, lateral, equilibrium) {
                     Ok(m) => println!(
-                        "| {n}×{n}×{n} | {} | {case} | {mode} | {:.1} | {:.2} | {} | {:.2} | {:.2} | {} | {:.1e} | {} |",
+                        "| {n}×{n}×{n} | {} | {case} | {mode} | {:.1} | {:.2} | {} | {:.2} ({:.2}) | {:.2} | {} | {:.1e} | {} |",
                         m.dofs,
                         m.steps_per_second,
                         1e3 / m.steps_per_second,
                         m.cpu_ms_per_step.map_or("–".to_string(), |c| format!("{c:.2}")),
                         m.factorizations_per_step,
+                        m.assemblies_per_step,
                         m.cg_iterations_per_step,
                         m.hinge_nodes,
                         m.worst_unbalance,

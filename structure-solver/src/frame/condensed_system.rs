@@ -19,6 +19,11 @@ use rayon::prelude::*;
 /// allows (`factor_age.rs`, 5 %). Comparing exactly made such runs refactorise at most steps.
 pub const SAME_TIME_STEP: f64 = 1e-9;
 
+/// Whether `made` is a time step equal to `dt` up to [`SAME_TIME_STEP`].
+fn same_time_step(made: Option<f64>, dt: f64) -> bool {
+    made.is_some_and(|made| (dt - made).abs() <= SAME_TIME_STEP * made)
+}
+
 /// A node's 6 × 6 block (its lumped mass and rotary inertia term).
 pub type NodeBlock = [[f64; NODE_DOFS]; NODE_DOFS];
 
@@ -39,6 +44,9 @@ pub struct CondensedSystem {
     is_internal: Vec<bool>,
     /// The time step the kept factor was made for; `None` when there is none.
     factor_time_step: Option<f64>,
+    /// The time step whose mass term the assembled values hold (kept when only the factor is
+    /// dropped); `None` when they must be assembled again.
+    values_time_step: Option<f64>,
     /// Right-hand side and solution over the sparse system's unknowns.
     reduced: Vec<f64>,
 }
@@ -92,6 +100,7 @@ impl CondensedSystem {
             modified: false,
             is_internal,
             factor_time_step: None,
+            values_time_step: None,
         })
     }
 
@@ -108,6 +117,7 @@ impl CondensedSystem {
         node_blocks: &[NodeBlock],
     ) -> Result<(), String> {
         self.factor_time_step = None;
+        self.values_time_step = None;
         self.modified = false;
         let count = self.internal.len();
         self.internal
@@ -210,25 +220,38 @@ impl CondensedSystem {
         self.modified = true;
     }
 
-    /// Factorises the assembled matrix and keeps the factor, labelled with the time step it was made
-    /// for.
+    /// Factorises the current values (as assembled, with the blocks re-condensed since) and keeps the
+    /// factor; factor and values are labelled with the time step `dt` whose mass term they hold.
     pub fn factorize(&mut self, dt: f64) -> Result<(), String> {
         self.factor_time_step = None;
         self.sparse.factorize().map_err(|e| not_positive_definite(&e))?;
         self.factor_time_step = Some(dt);
+        self.values_time_step = Some(dt);
+        self.modified = false;
         Ok(())
     }
 
     /// Whether a factor made for time step `dt` is kept: one made for a step that differs from `dt`
     /// only by rounding ([`SAME_TIME_STEP`]) counts.
     pub fn has_factor_for(&self, dt: f64) -> bool {
-        self.factor_time_step
-            .is_some_and(|made| (dt - made).abs() <= SAME_TIME_STEP * made)
+        same_time_step(self.factor_time_step, dt)
     }
 
-    /// Forgets the kept factor.
+    /// Whether the values hold the mass term of time step `dt`, so that refactorising them (after
+    /// re-condensing what changed) needs no new assembly.
+    pub fn has_values_for(&self, dt: f64) -> bool {
+        same_time_step(self.values_time_step, dt)
+    }
+
+    /// Forgets the kept factor; the values stay for a refactorisation.
     pub fn drop_factor(&mut self) {
         self.factor_time_step = None;
+    }
+
+    /// Forgets the kept factor and the values: the next factorisation assembles them anew.
+    pub fn drop_values(&mut self) {
+        self.factor_time_step = None;
+        self.values_time_step = None;
     }
 
     /// Solves in place: `x` holds the right-hand side over all global DOFs (6 per node), then the
@@ -307,7 +330,8 @@ mod tests {
 
     /// Re-condensing changed elements and solving by conjugate gradients with the old factor gives
     /// the solution of a fresh factorisation of the changed matrix, to the iteration's tolerance (the
-    /// matrices' condition number is below 1e3: 1e-6 relative).
+    /// matrices' condition number is below 1e3: 1e-6 relative); factorising the updated values
+    /// without a new assembly gives it to round-off (1e-12 relative).
     #[test]
     fn updated_members_solve_like_a_fresh_factorisation() {
         // config nodes 0 (clamped), 1, 2, 5; mid nodes 3 (0–1), 4 (1–2), 6 (1–5) and 7 (2–5, one DOF
@@ -379,6 +403,23 @@ mod tests {
             outcome.iterations, error
         );
         assert!(error < 1e-6 * scale, "error {error:e} of {scale:e}");
+        // the updated values factorised as they are (no new assembly) solve like the fresh factor,
+        // to round-off
+        kept.drop_factor();
+        assert!(kept.has_values_for(1.0) && !kept.has_factor_for(1.0));
+        kept.factorize(1.0).expect("positive definite");
+        let mut refactored: Vec<f64> = (0..NODE_DOFS * fixed.len())
+            .map(|g| (g as f64 * 0.61).cos())
+            .collect();
+        let refactored_outcome = kept.solve(&mut refactored, 0).expect("solved");
+        assert_eq!(refactored_outcome.iterations, 0, "the new factor solves directly");
+        let error = refactored
+            .iter()
+            .zip(&direct)
+            .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(error < 1e-12 * scale, "error {error:e} of {scale:e}");
+        kept.drop_values();
+        assert!(!kept.has_values_for(1.0));
         // and without the update the kept factor would have given a different answer
         let mut stale = CondensedSystem::new(&fixed, &loose, &elements).expect("system");
         stale.assemble(&|e| old[e], &node_blocks).expect("assembled");

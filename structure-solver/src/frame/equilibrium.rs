@@ -75,13 +75,14 @@ impl Frame {
                 }
                 if residual > SLOW_CONVERGENCE * last_residual && !refactor {
                     // the kept factor is a poor iteration matrix now: redo it from the current tangent
+                    self.system.drop_values();
                     refactor = true;
                 }
             }
             halvings = 0;
             last_residual = residual;
             if refactor {
-                self.refactor(&contributions, dt, mass_factor)?;
+                self.refactor(Some(&contributions), dt, mass_factor)?;
             }
             self.solve_with_current_tangent(&mut rhs, dt, mass_factor)?;
             let delta = rhs;

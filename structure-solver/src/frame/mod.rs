@@ -65,6 +65,8 @@ pub struct Frame {
     system: CondensedSystem,
     connectivity: u64,
     factorizations: u64,
+    /// Factorisations that assembled their values anew (the others reused the kept ones).
+    assemblies: u64,
     cg_iterations: u64,
     unconverged: u64,
     /// Steps taken, and the largest unbalanced force one left (as a share of its first one).
@@ -125,6 +127,7 @@ impl Frame {
             system,
             connectivity: 0,
             factorizations: 0,
+            assemblies: 0,
             cg_iterations: 0,
             unconverged: 0,
             steps: 0,
@@ -235,6 +238,13 @@ impl Frame {
     /// Number of numeric factorisations of the effective matrix so far.
     pub fn factorization_count(&self) -> u64 {
         self.factorizations
+    }
+
+    /// Number of those factorisations that assembled the effective matrix anew; the others
+    /// factorised the kept values with the members whose hinges changed re-condensed
+    /// (`factor_age.rs`).
+    pub fn assembly_count(&self) -> u64 {
+        self.assemblies
     }
 
     /// Number of products with the effective matrix in conjugate-gradient solves so far (solves after

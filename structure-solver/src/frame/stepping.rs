@@ -6,7 +6,7 @@
 
 use super::assembly::NODE_DOFS;
 use super::element::{corotate, ELEMENT_DOFS};
-use super::factor_age::CG_PRODUCTS_LIMIT;
+use super::factor_age::{Staleness, CG_PRODUCTS_LIMIT};
 use super::global_system::{end_mass, mass_block, tangent_stiffness, Contribution, Motion, NodalForces};
 use super::newmark;
 use super::section::Section;
@@ -66,12 +66,13 @@ impl Frame {
             .iter()
             .flat_map(|n| (0..NODE_DOFS).map(|k| newmark::inertia_term(n.velocity[k], n.acceleration[k], dt)))
             .collect();
-        if !self.system.has_factor_for(dt)
-            || self
-                .factor_age
-                .is_stale(&self.elements, &self.sections, self.density, dt, self.stale_limit)
-        {
-            self.system.drop_factor();
+        let staleness =
+            self.factor_age
+                .staleness(&self.elements, &self.sections, self.density, dt, self.stale_limit);
+        match staleness {
+            Staleness::Reassemble => self.system.drop_values(),
+            Staleness::Refactor => self.system.drop_factor(),
+            Staleness::Fresh => {}
         }
         let du = match self.equilibrium {
             Equilibrium::OneSolve => self.solve_once(dt, loads, &inertia)?,
@@ -100,17 +101,16 @@ impl Frame {
     /// moved by it, and the internal forces there kept for the next step. Returns the increment.
     fn solve_once(&mut self, dt: f64, loads: &[f64], inertia: &[f64]) -> Result<Vec<f64>, String> {
         let mass_factor = newmark::mass_factor(dt);
-        let refactor = !self.system.has_factor_for(dt);
-        let nodal = match self.end_of_step_forces.take() {
-            Some(nodal) if !refactor => nodal,
+        let (nodal, contributions) = match self.end_of_step_forces.take() {
+            Some(nodal) if self.system.has_values_for(dt) => (nodal, None),
             _ => {
                 let contributions = self.contributions();
-                if refactor {
-                    self.refactor(&contributions, dt, mass_factor)?;
-                }
-                self.gather(&contributions)
+                (self.gather(&contributions), Some(contributions))
             }
         };
+        if !self.system.has_factor_for(dt) {
+            self.refactor(contributions.as_deref(), dt, mass_factor)?;
+        }
         let zero = vec![0.0; self.nodes.len() * NODE_DOFS];
         let mut du = self.residual(&nodal, loads, inertia, &zero, mass_factor);
         let first = norm(&du);
@@ -132,7 +132,7 @@ impl Frame {
     /// current tangent of every element whose hinge or integration point changed since its matrix was
     /// made: those members are re-condensed and the system is solved by conjugate gradients with the
     /// kept factor as preconditioner; when they do not converge within [`CG_PRODUCTS_LIMIT`]
-    /// products, the factor is redone at the current state and the system solved directly.
+    /// products, those values are factorised and the system solved directly.
     pub(super) fn solve_with_current_tangent(
         &mut self,
         x: &mut [f64],
@@ -145,8 +145,7 @@ impl Frame {
         self.cg_iterations += outcome.iterations as u64;
         self.factor_age.add_cg_products(outcome.iterations);
         if !outcome.converged {
-            let contributions = self.contributions();
-            self.refactor(&contributions, dt, mass_factor)?;
+            self.refactor(None, dt, mass_factor)?;
             x.copy_from_slice(&rhs);
             self.system.solve(x, 0)?;
         }
@@ -177,19 +176,35 @@ impl Frame {
         Ok(())
     }
 
-    /// Assembles `K + M/(βΔt²)` (the masses from `contributions`), condenses and factorises it.
+    /// Factorises `K + M/(βΔt²)`: the kept values with the members whose tangent changed
+    /// re-condensed when they hold the mass term of `dt`, otherwise values assembled and condensed
+    /// at the current state (the masses from `contributions` when given).
     pub(super) fn refactor(
         &mut self,
-        contributions: &[Contribution],
+        contributions: Option<&[Contribution]>,
         dt: f64,
         mass_factor: f64,
     ) -> Result<(), String> {
-        let node_blocks = self.node_blocks(contributions, mass_factor);
-        let (elements, sections) = (&self.elements, &self.sections);
-        let stiffness = |e: usize| tangent_stiffness(&elements[e], &sections[elements[e].section]);
-        self.system.assemble(&stiffness, &node_blocks)?;
+        if self.system.has_values_for(dt) {
+            self.recondense_changed(mass_factor)?;
+            self.factor_age.factorized();
+        } else {
+            let computed;
+            let contributions = match contributions {
+                Some(c) => c,
+                None => {
+                    computed = self.contributions();
+                    &computed
+                }
+            };
+            let node_blocks = self.node_blocks(contributions, mass_factor);
+            let (elements, sections) = (&self.elements, &self.sections);
+            let stiffness = |e: usize| tangent_stiffness(&elements[e], &sections[elements[e].section]);
+            self.system.assemble(&stiffness, &node_blocks)?;
+            self.factor_age.record(&self.elements);
+            self.assemblies += 1;
+        }
         self.factorizations += 1;
-        self.factor_age.record(&self.elements);
         self.system.factorize(dt)
     }
 
