@@ -207,3 +207,71 @@ fn inaccurate_frame_steps_are_reported_on_stderr() {
         );
     }
 }
+
+/// `cases/structure-plastic-collapse` (see its README): elastic up to the collapse load 8 Mp/L, then a
+/// mechanism with hinges at both clamped ends and under the load.
+#[test]
+fn plastic_collapse_case_gives_eight_mp_over_l_and_three_hinges() {
+    let out = scratch("plastic-collapse");
+    let o = run(&[&case("structure-plastic-collapse"), Path::new("--out"), &out]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "stderr: {stderr}");
+    assert!(!stderr.contains("warning"), "stderr: {stderr}");
+    let collapse_load = 8.0 * (235e6 * 0.1 * 0.1 * 0.1 / 4.0) / 2.0;
+    // Timoshenko fixed–fixed beam under a centre load: L³/(192 EI) + L/(4 κ G A)
+    let (e, g, side, length) = (200e9, 200e9 / 2.6, 0.1_f64, 2.0_f64);
+    let elastic =
+        length.powi(3) / (192.0 * e * side.powi(4) / 12.0) + length / (4.0 * 5.0 / 6.0 * g * side * side);
+    // (load / Pc, deflection / elastic deflection) at each history row; the load ramps to 1.2 Pc
+    let curve: Vec<(f64, f64)> = rows(&out.join("node-3.csv"))
+        .iter()
+        .skip(1)
+        .map(|r| {
+            let load = 1.2 * collapse_load * r[0] / 0.76;
+            (load / collapse_load, -r[3] / (elastic * load))
+        })
+        .collect();
+    // below the collapse load the response is elastic (ramp over ~100 periods: overshoot ≪ 1 %)
+    for &(ratio, compliance) in curve.iter().filter(|(ratio, _)| (0.2..=0.99).contains(ratio)) {
+        assert!(
+            (compliance - 1.0).abs() < 0.01,
+            "{compliance} × elastic at {ratio} Pc"
+        );
+    }
+    // the knee: the first row 5 % softer than elastic is within 2 % of Pc (1 % for the load, the
+    // brief; the rows are 0.6 % of Pc apart)
+    let knee = curve.iter().find(|(_, c)| *c > 1.05).map(|(ratio, _)| *ratio);
+    assert!(
+        knee.is_some_and(|k| (1.0..1.02).contains(&k)),
+        "knee at {knee:?} Pc"
+    );
+    assert!(
+        curve.last().is_some_and(|(_, c)| *c > 3.0),
+        "a mechanism at 1.2 Pc: {:?}",
+        curve.last()
+    );
+    // hinges in the last frame: the node each sits on (0-based points; config nodes 1, 3, 5 are 0, 2, 4)
+    let vtu = std::fs::read_to_string(out.join("frame-00200.vtu")).expect("last frame");
+    let array = |name: &str| -> Vec<usize> {
+        let start = vtu
+            .find(&format!("Name=\"{name}\""))
+            .unwrap_or_else(|| panic!("no {name}"));
+        let body = &vtu[start..];
+        let body = &body[body.find('>').map_or(0, |i| i + 1)..body.find("</DataArray>").unwrap_or(0)];
+        body.split_whitespace().filter_map(|v| v.parse().ok()).collect()
+    };
+    let (connectivity, hinge) = (array("connectivity"), array("hinge"));
+    let mut hinge_points: Vec<usize> = hinge
+        .iter()
+        .enumerate()
+        .filter(|(_, &h)| h > 0)
+        .map(|(e, &h)| connectivity[2 * e + h - 1])
+        .collect();
+    hinge_points.sort_unstable();
+    hinge_points.dedup();
+    assert_eq!(
+        hinge_points,
+        vec![0, 2, 4],
+        "hinges at the ends and the centre only"
+    );
+}

@@ -72,6 +72,11 @@ pub struct Frame {
     /// Steps taken, and the largest unbalanced force one left (as a share of its first one).
     steps: u64,
     worst_unbalance: f64,
+    /// Which of the last [`stepping::PERSISTENCE_WINDOW`] steps were unconverged (bit 0: the last).
+    recent_unconverged: u32,
+    /// The step (counted from 1) that began the first persistent stretch of unconverged steps (see
+    /// [`stepping::PERSISTENT_UNCONVERGED`]).
+    persistent_from: Option<u64>,
     equilibrium: Equilibrium,
     /// η of the refactorisation criterion (`factor_age.rs`).
     stale_limit: f64,
@@ -132,6 +137,8 @@ impl Frame {
             unconverged: 0,
             steps: 0,
             worst_unbalance: 0.0,
+            recent_unconverged: 0,
+            persistent_from: None,
             equilibrium: match cfg.equilibrium_tolerance {
                 Some(tolerance) => Equilibrium::Iterate { tolerance },
                 None => Equilibrium::OneSolve,
@@ -265,24 +272,29 @@ impl Frame {
         self.unbalance
     }
 
-    /// What a user should know about the accuracy of the steps taken so far: `None` when every step
-    /// reached its tolerance, otherwise how many did not and what to change in the case.
+    /// What a user should know about the accuracy of the steps taken so far: `None` unless
+    /// unconverged steps became persistent (isolated ones, where hinges form or a mechanism runs
+    /// away, are the one-solve scheme working as designed: their unbalanced force carries into the
+    /// next step), otherwise how many there were, from when, and what to change in the case.
     pub fn accuracy_warning(&self) -> Option<String> {
-        if self.unconverged == 0 {
-            return None;
-        }
+        let from = self.persistent_from?;
         let (steps, worst) = (self.steps, self.worst_unbalance);
+        let persistent = format!(
+            "{} or more of every {} from step {from} on",
+            stepping::PERSISTENT_UNCONVERGED,
+            stepping::PERSISTENCE_WINDOW
+        );
         Some(match self.equilibrium {
             Equilibrium::OneSolve => format!(
-                "{} of {steps} frame steps left more than {:.0} % of their unbalanced force (worst {worst:.2}): \
-                 time_step is too long for one solve per step, and hinges may form where they should not; \
-                 halve time_step or set equilibrium_tolerance",
+                "{} of {steps} frame steps left more than {:.0} % of their unbalanced force ({persistent}; \
+                 worst {worst:.2}): time_step is too long for one solve per step, and hinges may form where \
+                 they should not; halve time_step or set equilibrium_tolerance",
                 self.unconverged,
                 100.0 * stepping::ONE_SOLVE_UNBALANCE_LIMIT
             ),
             Equilibrium::Iterate { tolerance } => format!(
                 "{} of {steps} frame steps did not reach equilibrium_tolerance = {tolerance} within {} \
-                 corrections (worst {worst:.2e}); reduce time_step",
+                 corrections ({persistent}; worst {worst:.2e}); reduce time_step",
                 self.unconverged, MAX_CORRECTIONS
             ),
         })
