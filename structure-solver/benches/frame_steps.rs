@@ -61,10 +61,7 @@ fn run(
     let mut frame =
         Frame::from_config(&cfg, "bench.frame").map_err(|e| format!("{}: {}", e.key, e.message))?;
     frame.set_equilibrium(equilibrium)?;
-    let mut loads = vec![0.0; 6 * frame.node_count()];
-    for v in 0..frame.node_count() {
-        loads[6 * v] = lateral;
-    }
+    let loads = frame_common::sideways_loads(frame.node_count(), lateral);
     // untimed: one step, and for the plastic case on until the first hinges have formed
     frame.step(frame.time_step(), &loads)?;
     for _ in 0..WARM_UP_LIMIT {

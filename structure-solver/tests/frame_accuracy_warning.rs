@@ -18,10 +18,7 @@ fn collapse(dt: f64, equilibrium: Equilibrium) -> Frame {
     frame
         .set_equilibrium(equilibrium)
         .unwrap_or_else(|e| panic!("{e}"));
-    let mut loads = vec![0.0; 6 * frame.node_count()];
-    for v in 0..frame.node_count() {
-        loads[6 * v] = 2e4;
-    }
+    let loads = frame_common::sideways_loads(frame.node_count(), 2e4);
     for _ in 0..(0.1 / dt).round() as usize {
         frame.step(dt, &loads).unwrap_or_else(|e| panic!("{e}"));
     }

@@ -19,10 +19,7 @@ fn collapse(stale_limit: f64) -> (f64, u64, u64) {
     frame
         .set_stale_limit(stale_limit)
         .unwrap_or_else(|e| panic!("{e}"));
-    let mut loads = vec![0.0; 6 * frame.node_count()];
-    for v in 0..frame.node_count() {
-        loads[6 * v] = 2e4;
-    }
+    let loads = frame_common::sideways_loads(frame.node_count(), 2e4);
     for _ in 0..200 {
         frame.step(5e-4, &loads).unwrap_or_else(|e| panic!("{e}"));
     }

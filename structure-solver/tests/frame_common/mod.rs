@@ -129,3 +129,11 @@ pub fn building(n: usize, yield_stress: f64) -> FrameConfig {
         equilibrium_tolerance: None,
     }
 }
+
+/// Loads of `force` N along +x on every one of `node_count` frame nodes (member mid nodes too), 6
+/// per node: the sideways push of the benchmark's building.
+pub fn sideways_loads(node_count: usize, force: f64) -> Vec<f64> {
+    let mut loads = vec![0.0; 6 * node_count];
+    loads.iter_mut().step_by(6).for_each(|f| *f = force);
+    loads
+}
