@@ -28,6 +28,8 @@ pub enum CouplerError {
     Interrupted { window: Option<u64> },
     /// Output could not be written.
     Io(String),
+    /// A replay that cannot pass: nothing or less than the recording compared, or a damaged recording.
+    Replay(String),
 }
 
 impl CouplerError {
@@ -37,6 +39,15 @@ impl CouplerError {
             CouplerError::Case(_) | CouplerError::Usage(_) => 2,
             CouplerError::Interrupted { .. } => 130,
             _ => 1,
+        }
+    }
+
+    /// The window the error happened in, when it is known.
+    pub fn window(&self) -> Option<u64> {
+        match self {
+            CouplerError::Participant { window, .. } | CouplerError::Interrupted { window } => *window,
+            CouplerError::NotConverged { window, .. } => Some(*window),
+            _ => None,
         }
     }
 }
@@ -62,7 +73,7 @@ impl fmt::Display for CouplerError {
                  coupling.acceleration"
             ),
             CouplerError::Interrupted { window } => write!(f, "interrupted{}; participants stopped", at(window)),
-            CouplerError::Io(m) => write!(f, "{m}"),
+            CouplerError::Io(m) | CouplerError::Replay(m) => write!(f, "{m}"),
         }
     }
 }

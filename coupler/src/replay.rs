@@ -11,7 +11,7 @@ use crate::signals;
 use crate::stack::{variant, Launch, Stack};
 use schemas::case::{Case, Kind};
 use schemas::message::{Fields, FromParticipant, Role, ToParticipant};
-use schemas::recording::{Message, Recording};
+use schemas::recording::{Message, Recording, RecordingEnd};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -40,13 +40,18 @@ pub struct FieldDifference {
 /// The comparison of a replay.
 #[derive(Debug, Default)]
 pub struct ReplayReport {
+    /// Answers of the solver compared with recorded ones.
     pub messages: usize,
+    /// Answers of this participant in the recording's complete frames.
+    pub recorded: usize,
     pub fields: BTreeMap<String, FieldDifference>,
     /// First window where the solver departed from the recording, and the field.
     pub departure: Option<(u64, String)>,
 }
 
-/// Replays `opts.participant` against its recording; `Err(Departed)` when it departs.
+/// Replays `opts.participant` against its recording. Fails (never passes) when the solver departs,
+/// when fewer answers were compared than the recording holds (none included), and when the
+/// recording is damaged.
 pub fn replay(opts: &ReplayOptions) -> Result<ReplayReport, CouplerError> {
     let recording = Recording::read(&opts.recording).map_err(|e| CouplerError::Usage(e.to_string()))?;
     let name = &opts.participant;
@@ -57,9 +62,40 @@ pub fn replay(opts: &ReplayOptions) -> Result<ReplayReport, CouplerError> {
             recording.header.participants.join(", ")
         )));
     }
-    if recording.truncated {
-        eprintln!("note: the recording ends inside a frame (the run died); replaying what is complete");
+    if recording.version == 1 {
+        eprintln!(
+            "note: a version-1 recording: its frames carry no checksums, so damage to it cannot be told from a \
+             departure of the solver"
+        );
     }
+    match &recording.end {
+        RecordingEnd::Whole => {}
+        RecordingEnd::Cut { .. } => {
+            eprintln!("note: {}; replaying the complete frames before it", recording.end)
+        }
+        RecordingEnd::Corrupt { .. } => eprintln!(
+            "error: {}: {}; replaying the frames before it, but the replay cannot pass",
+            opts.recording.display(),
+            recording.end
+        ),
+    }
+    let mine: Vec<&Message> = recording
+        .frames
+        .iter()
+        .filter(|f| &f.participant == name)
+        .map(|f| &f.message)
+        .collect();
+    let recorded = mine.iter().filter(|m| is_answer(m)).count();
+    if recorded == 0 {
+        return Err(CouplerError::Replay(format!(
+            "{}: the recording holds no answer of `{name}` to compare ({} complete frames; {}); nothing was \
+             replayed",
+            opts.recording.display(),
+            recording.frames.len(),
+            recording.end
+        )));
+    }
+    let ending = ending(&recording, name, &mine);
     let out = opts
         .out
         .clone()
@@ -83,12 +119,6 @@ pub fn replay(opts: &ReplayOptions) -> Result<ReplayReport, CouplerError> {
         None => BTreeMap::new(),
     };
     let exe = executable_for(&case, name, kind, &exe)?;
-    let mine: Vec<&Message> = recording
-        .frames
-        .iter()
-        .filter(|f| &f.participant == name)
-        .map(|f| &f.message)
-        .collect();
     signals::install();
     let run_id = new_run_id();
     let case_path = std::fs::canonicalize(&case.path).unwrap_or_else(|_| case.path.clone());
@@ -106,27 +136,89 @@ pub fn replay(opts: &ReplayOptions) -> Result<ReplayReport, CouplerError> {
     let (mut stack, initial) = Stack::launch(vec![launch], &run_id, case.hash, &out, None, timeout)?;
     let initial = initial.into_iter().next().unwrap_or_default();
     let result = drive(&mut stack, &mine, initial, opts.tolerance);
-    match result {
-        Ok(report) => {
-            stack.finish()?;
-            print_report(&report, opts.tolerance);
-            match &report.departure {
-                Some((window, field)) => Err(CouplerError::Participant {
-                    name: name.clone(),
-                    window: Some(*window),
-                    message: format!(
-                        "departs from the recording in `{field}` (relative difference above {:.1e})",
-                        opts.tolerance
-                    ),
-                }),
-                None => Ok(report),
-            }
-        }
+    let mut report = match result {
+        Ok(report) => report,
         Err(e) => {
-            stack.abort();
-            Err(e)
+            stack.abort(&e);
+            return Err(e);
         }
+    };
+    stack.finish()?;
+    report.recorded = recorded;
+    print_report(&report, opts.tolerance, ending.as_deref());
+    if let Some((window, field)) = &report.departure {
+        return Err(CouplerError::Participant {
+            name: name.clone(),
+            window: Some(*window),
+            message: format!(
+                "departs from the recording in `{field}` (relative difference above {:.1e})",
+                opts.tolerance
+            ),
+        });
     }
+    if report.messages < recorded {
+        return Err(CouplerError::Replay(format!(
+            "compared only {} of the {recorded} answers of `{name}` in the recording",
+            report.messages
+        )));
+    }
+    if let RecordingEnd::Corrupt { .. } = recording.end {
+        return Err(CouplerError::Replay(format!(
+            "{}: {}; the {} answers before it match",
+            opts.recording.display(),
+            recording.end,
+            report.messages
+        )));
+    }
+    println!(
+        "PASS: all {} recorded answers of `{name}` match the recording",
+        report.messages
+    );
+    Ok(report)
+}
+
+/// Whether a recorded message is a participant's answer to an `Advance`.
+fn is_answer(m: &Message) -> bool {
+    matches!(
+        m,
+        Message::From(FromParticipant::Advanced { .. } | FromParticipant::Failed { .. })
+    )
+}
+
+/// Where and why the recording of a run that did not finish ends, as seen by participant `name`;
+/// `None` for a run that finished, and for a damaged recording (reported as damage).
+fn ending(recording: &Recording, name: &str, mine: &[&Message]) -> Option<String> {
+    if let RecordingEnd::Corrupt { .. } = recording.end {
+        // The damage, not the run, ends what can be read; it is reported as such.
+        return None;
+    }
+    let stopped = recording.frames.iter().find_map(|f| match &f.message {
+        Message::RunEnded { window, reason } => Some((*window, reason.clone())),
+        _ => None,
+    });
+    if matches!(mine.last(), Some(Message::From(FromParticipant::Finished))) && stopped.is_none() {
+        return None;
+    }
+    let last_window = mine.iter().rev().find_map(|m| match m {
+        Message::To(ToParticipant::Advance { header, .. }) => Some(header.window),
+        _ => None,
+    });
+    let unanswered = matches!(mine.last(), Some(Message::To(ToParticipant::Advance { .. })));
+    let request = if unanswered {
+        format!(", with `{name}`'s request in that window unanswered")
+    } else {
+        String::new()
+    };
+    Some(match (stopped, last_window) {
+        (Some((Some(w), reason)), _) => format!("the run died in window {w}{request}: {reason}"),
+        (Some((None, reason)), _) => format!("the run died before the first window: {reason}"),
+        (None, Some(w)) => format!(
+            "the run died in window {w}{request}; the recording does not say why (the coupler itself was killed, \
+             or the file was cut: {})",
+            recording.end
+        ),
+        (None, None) => format!("the run died before the first window ({})", recording.end),
+    })
 }
 
 /// The case to replay against: `--case`, else the recorded file if unchanged, else the
@@ -163,7 +255,7 @@ fn drive(
 ) -> Result<ReplayReport, CouplerError> {
     let mut report = ReplayReport::default();
     let mut sent_window = None;
-    for m in messages {
+    for (i, m) in messages.iter().enumerate() {
         match m {
             Message::From(FromParticipant::Initial { outputs, .. }) => {
                 compare(
@@ -179,6 +271,10 @@ fn drive(
                     return Err(CouplerError::Interrupted {
                         window: Some(header.window),
                     });
+                }
+                if !messages.get(i + 1).is_some_and(|next| is_answer(next)) {
+                    // The recorded run died before this request was answered: nothing to compare.
+                    break;
                 }
                 sent_window = Some(header.window);
                 stack.send(0, msg.clone(), sent_window)?;
@@ -251,10 +347,11 @@ fn compare(report: &mut ReplayReport, window: u64, recorded: &[Fields], actual: 
     }
 }
 
-fn print_report(report: &ReplayReport, tolerance: f64) {
+fn print_report(report: &ReplayReport, tolerance: f64, ending: Option<&str>) {
     println!(
-        "replayed {} answers; tolerance {tolerance:.1e} (relative to the recorded field's largest value)",
-        report.messages
+        "compared {} of the recording's {} answers; tolerance {tolerance:.1e} (relative to the recorded field's \
+         largest value)",
+        report.messages, report.recorded
     );
     println!(
         "{:<22} {:>16} {:>16} {:>16}",
@@ -270,8 +367,15 @@ fn print_report(report: &ReplayReport, tolerance: f64) {
             d.largest_absolute, d.largest_relative
         );
     }
+    if let Some(ending) = ending {
+        println!("the recording ends early: {ending}");
+    }
     match &report.departure {
         Some((w, field)) => println!("DEPARTS in window {w} ({field})"),
-        None => println!("PASS: every answer matches the recording"),
+        None if report.messages < report.recorded => println!(
+            "FAIL: only {} of the {} recorded answers were compared",
+            report.messages, report.recorded
+        ),
+        None => {}
     }
 }

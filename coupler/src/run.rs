@@ -141,7 +141,7 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
             Ok(())
         }
         Err(e) => {
-            stack.abort();
+            stack.abort(&e);
             Err(e)
         }
     }

@@ -295,8 +295,15 @@ impl Stack {
         Ok(())
     }
 
-    /// Stops every participant now (after an error or Ctrl-C).
-    pub fn abort(&mut self) {
+    /// Stops every participant now (after an error or Ctrl-C), and records why the run ended.
+    pub fn abort(&mut self, why: &CouplerError) {
+        let ended = Message::RunEnded {
+            window: why.window(),
+            reason: why.to_string(),
+        };
+        // The run already failed with `why`; a recording that cannot take its last frame adds nothing
+        // the user must act on first.
+        let _ = self.record("", ended);
         self.children.stop_all(Duration::from_secs(1));
     }
 }

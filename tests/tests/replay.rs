@@ -84,3 +84,99 @@ fn a_changed_parameter_fails_the_replay_in_the_first_window() {
     assert!(!ok, "{out}");
     assert!(out.contains("DEPARTS in window 0"), "{out}");
 }
+
+/// Byte offsets of the frames of a version-2 recording (header first): `[len][crc][payload]`.
+fn frame_starts(bytes: &[u8]) -> Vec<usize> {
+    let mut at = schemas::recording::MAGIC_V2.len();
+    let mut starts = Vec::new();
+    while at + 8 <= bytes.len() {
+        starts.push(at);
+        at += 8 + u32::from_le_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]]) as usize;
+    }
+    starts
+}
+
+#[test]
+fn a_recording_whose_second_frame_claims_2_pow_31_bytes_fails_with_a_count_instead_of_passing() {
+    let dir = out_dir("replay-nothing");
+    let rec = record(&dir);
+    let mut bytes = std::fs::read(&rec).unwrap_or_default();
+    let second = frame_starts(&bytes)[2];
+    bytes[second..second + 4].copy_from_slice(&(1u32 << 31).to_le_bytes());
+    let damaged = dir.join("claims-2-31.rec");
+    std::fs::write(&damaged, bytes).unwrap_or_default();
+    let (ok, text) = replay(&damaged, "mass-right", &[], &[]);
+    assert!(!ok, "nothing compared must not pass: {text}");
+    assert!(!text.contains("PASS"), "{text}");
+    assert!(text.contains("no answer of `mass-right` to compare"), "{text}");
+    assert!(text.contains("1 complete frames"), "{text}");
+}
+
+#[test]
+fn a_flipped_bit_is_reported_as_corruption_not_as_a_departure() {
+    let dir = out_dir("replay-flip");
+    let rec = record(&dir);
+    let mut bytes = std::fs::read(&rec).unwrap_or_default();
+    let starts = frame_starts(&bytes);
+    let k = starts.len() / 2;
+    bytes[starts[k] + 8 + 30] ^= 0x10;
+    let damaged = dir.join("flipped.rec");
+    std::fs::write(&damaged, bytes).unwrap_or_default();
+    let (ok, text) = replay(&damaged, "mass-right", &[], &[]);
+    assert!(!ok, "{text}");
+    assert!(
+        text.contains(&format!("CORRUPT at frame {k} (byte offset {})", starts[k])),
+        "{text}"
+    );
+    assert!(text.contains("checksum mismatch"), "{text}");
+    assert!(!text.contains("DEPARTS") && !text.contains("PASS"), "{text}");
+}
+
+#[test]
+fn a_version_1_recording_still_replays_with_a_note() {
+    let dir = out_dir("replay-v1");
+    let rec = record(&dir);
+    let bytes = std::fs::read(&rec).unwrap_or_default();
+    let mut v1 = schemas::recording::MAGIC_V1.to_vec();
+    for start in frame_starts(&bytes) {
+        let len =
+            u32::from_le_bytes([bytes[start], bytes[start + 1], bytes[start + 2], bytes[start + 3]]) as usize;
+        v1.extend_from_slice(&bytes[start..start + 4]);
+        v1.extend_from_slice(&bytes[start + 8..start + 8 + len]);
+    }
+    let old = dir.join("v1.rec");
+    std::fs::write(&old, v1).unwrap_or_default();
+    let (ok, text) = replay(&old, "mass-left", &[], &[]);
+    assert!(ok, "{text}");
+    assert!(text.contains("version-1 recording"), "{text}");
+    assert!(text.contains("PASS"), "{text}");
+}
+
+#[test]
+fn a_recording_of_a_run_that_died_replays_everything_answered_and_says_where_it_ended() {
+    let dir = out_dir("replay-died");
+    let case = oscillator_case(&dir, &[("window", "0.02")]);
+    let out = dir.join("out");
+    let run = Command::new(binary("coupler"))
+        .args(["run", case.to_str().unwrap_or_default(), "--out"])
+        .arg(&out)
+        .arg(format!(
+            "--exe=mass-right={}",
+            binary("faulty-participant").display()
+        ))
+        .env("FAULTY_EXIT_AT_WINDOW", "12")
+        .output()
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(!run.status.success(), "the run must fail: {}", stderr(&run));
+    let rec = out.join("recording.rec");
+    for participant in ["mass-right", "mass-left"] {
+        let (ok, text) = replay(&rec, participant, &[], &[]);
+        assert!(ok, "{participant}: {text}");
+        assert!(text.contains("PASS"), "{text}");
+        assert!(
+            text.contains("the run died in window 12"),
+            "{participant}: {text}"
+        );
+        assert!(text.contains("exit code 3"), "says why: {text}");
+    }
+}

@@ -1,6 +1,6 @@
 //! A structure-solver participant with faults injected on request, for the stack's tests:
 //! a wrong protocol version at the handshake, answers perturbed from a given window on (so a
-//! replay must depart there), or a hang in a given window.
+//! replay must depart there), a hang in a given window, or an exit in a given window (a crash).
 
 use clap::{Parser, Subcommand};
 use schemas::message::{Fields, InterfaceDecl, Role, Waveform, PROTOCOL_VERSION};
@@ -19,7 +19,8 @@ enum Command {
     /// Take part in a coupled run, like `structure-solver participant`. Faults come from the
     /// environment (the coupler passes its own to its children): `FAULTY_PROTOCOL=N` announces
     /// protocol N, `FAULTY_PERTURB_FROM_WINDOW=W` multiplies every output by (1 + 1e-6) from
-    /// window W on, `FAULTY_HANG_AT_WINDOW=W` stops answering in window W.
+    /// window W on, `FAULTY_HANG_AT_WINDOW=W` stops answering in window W, `FAULTY_EXIT_AT_WINDOW=W`
+    /// exits with code 3 in window W without answering.
     Participant {
         #[command(flatten)]
         args: ParticipantArgs,
@@ -37,6 +38,7 @@ struct Faulty<P> {
     window_end: f64,
     perturb_from: Option<u64>,
     hang_at: Option<u64>,
+    exit_at: Option<u64>,
 }
 
 impl<P: Participant> Participant for Faulty<P> {
@@ -69,6 +71,10 @@ impl<P: Participant> Participant for Faulty<P> {
             loop {
                 std::thread::sleep(std::time::Duration::from_secs(3600));
             }
+        }
+        if self.exit_at == Some(self.window) {
+            eprintln!("faulty participant: exiting in window {} as asked", self.window);
+            std::process::exit(3);
         }
         let mut outputs = self.inner.advance(inputs)?;
         if self.perturb_from.is_some_and(|w| self.window >= w) {
@@ -108,6 +114,7 @@ fn main() -> ExitCode {
         window_end: 0.0,
         perturb_from: perturb_from_window,
         hang_at: hang_at_window,
+        exit_at: env_number("FAULTY_EXIT_AT_WINDOW"),
     };
     match serve_announcing(&args, hash, &mut faulty, announce_protocol) {
         Ok(()) => ExitCode::SUCCESS,

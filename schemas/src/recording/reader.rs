@@ -1,0 +1,153 @@
+//! Reading a recording back: every complete frame, checked (version 2: its CRC-32C), and how the
+//! file ends — whole, cut inside a frame, or damaged at a frame with its byte offset. Nothing read
+//! from the file is trusted for an allocation: a frame's bytes are allocated only when the file
+//! still holds them, and decoding is bounded by [`super::bounded_decode`].
+
+use super::bounded_decode::decode;
+use super::{Frame, Recording, RecordingEnd, RecordingError, RecordingHeader, MAGIC_V1, MAGIC_V2};
+use crate::link::MAX_MESSAGE_BYTES;
+use bincode::Decode;
+use std::fs::File;
+use std::io::{BufReader, Read};
+use std::path::Path;
+
+/// One attempt to read a frame.
+enum Next<T> {
+    Frame(T),
+    /// A clean end of file before the frame.
+    End,
+    /// The file ends inside the frame.
+    Cut,
+    /// The frame is damaged.
+    Corrupt(String),
+}
+
+/// A byte source that knows how many bytes it still holds.
+struct Source<R> {
+    input: R,
+    offset: u64,
+    total: u64,
+}
+
+impl<R: Read> Source<R> {
+    /// Reads exactly `buf.len()` bytes; false when the file ends first.
+    fn fill(&mut self, buf: &mut [u8]) -> bool {
+        let ok = self.input.read_exact(buf).is_ok();
+        self.offset += buf.len() as u64;
+        ok
+    }
+
+    fn remaining(&self) -> u64 {
+        self.total.saturating_sub(self.offset)
+    }
+
+    fn frame<T: Decode<()>>(&mut self, version: u32) -> Next<T> {
+        let mut first = [0u8; 1];
+        match self.input.read(&mut first) {
+            Ok(0) => return Next::End,
+            Ok(_) => self.offset += 1,
+            Err(_) => return Next::Cut,
+        }
+        let mut rest = [0u8; 3];
+        if !self.fill(&mut rest) {
+            return Next::Cut;
+        }
+        let len = u32::from_le_bytes([first[0], rest[0], rest[1], rest[2]]) as u64;
+        let mut stored = None;
+        if version >= 2 {
+            let mut crc = [0u8; 4];
+            if !self.fill(&mut crc) {
+                return Next::Cut;
+            }
+            stored = Some(u32::from_le_bytes(crc));
+        }
+        if len > MAX_MESSAGE_BYTES as u64 {
+            return Next::Corrupt(format!(
+                "its length field claims {len} bytes, more than any message ({MAX_MESSAGE_BYTES})"
+            ));
+        }
+        if len > self.remaining() {
+            return Next::Cut;
+        }
+        let mut bytes = vec![0u8; len as usize];
+        if !self.fill(&mut bytes) {
+            return Next::Cut;
+        }
+        if let Some(stored) = stored {
+            let computed = crc32c::crc32c(&bytes);
+            if computed != stored {
+                return Next::Corrupt(format!(
+                    "checksum mismatch (stored {stored:08x}, computed {computed:08x} over its {len} bytes)"
+                ));
+            }
+        }
+        match decode(&bytes) {
+            Ok(v) => Next::Frame(v),
+            Err(e) if version >= 2 => Next::Corrupt(format!("checksum matches but the message {e}")),
+            Err(e) => Next::Corrupt(format!(
+                "the message {e} (a version-1 recording has no checksums: this is damage or a cut)"
+            )),
+        }
+    }
+}
+
+impl Recording {
+    /// Reads a whole recording; an error only when not even its header can be read.
+    pub fn read(path: &Path) -> Result<Recording, RecordingError> {
+        let fail = |message: String| RecordingError {
+            path: path.to_path_buf(),
+            message,
+        };
+        let file = File::open(path).map_err(|e| fail(format!("cannot open: {e}")))?;
+        let total = file
+            .metadata()
+            .map_err(|e| fail(format!("cannot open: {e}")))?
+            .len();
+        Recording::from_reader(BufReader::new(file), total).map_err(fail)
+    }
+
+    /// Reads a recording held in memory.
+    pub fn from_bytes(bytes: &[u8]) -> Result<Recording, String> {
+        Recording::from_reader(bytes, bytes.len() as u64)
+    }
+
+    fn from_reader(input: impl Read, total: u64) -> Result<Recording, String> {
+        let mut src = Source {
+            input,
+            offset: 0,
+            total,
+        };
+        let mut magic = [0u8; MAGIC_V2.len()];
+        if !src.fill(&mut magic) {
+            return Err("not a recording (file too short)".into());
+        }
+        let version = match &magic[..] {
+            m if m == MAGIC_V2 => 2,
+            m if m == MAGIC_V1 => 1,
+            _ => return Err("not a recording of this project (wrong magic line)".into()),
+        };
+        let header: RecordingHeader = match src.frame(version) {
+            Next::Frame(h) => h,
+            Next::End => return Err("the recording has no header".into()),
+            Next::Cut => return Err("the file ends inside the header".into()),
+            Next::Corrupt(what) => return Err(format!("the header is damaged: {what}")),
+        };
+        let mut frames = Vec::new();
+        let end = loop {
+            let offset = src.offset;
+            let frame = frames.len() + 1;
+            match src.frame::<Frame>(version) {
+                Next::Frame(f) => frames.push(f),
+                Next::End => break RecordingEnd::Whole,
+                Next::Cut => break RecordingEnd::Cut { frame, offset },
+                Next::Corrupt(what) => break RecordingEnd::Corrupt { frame, offset, what },
+            }
+        };
+        Ok(Recording {
+            version,
+            header,
+            frames,
+            end,
+        })
+    }
+}
