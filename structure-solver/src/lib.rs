@@ -14,7 +14,6 @@ pub mod history;
 pub mod inertia;
 pub mod load_history;
 pub mod load_schedule;
-pub mod load_table;
 pub mod output;
 pub mod participant;
 pub mod point_mass;

@@ -1,6 +1,6 @@
 //! [`LoadHistory`]: how one prescribed load varies in time — constant, step, ramp or a table.
 
-use crate::load_table::LoadTable;
+use schemas::case::load_table::LoadTable;
 
 /// A load's time history; every variant adds its components at time `t` to a slice.
 #[derive(Debug, Clone, PartialEq)]

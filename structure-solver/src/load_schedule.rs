@@ -3,8 +3,8 @@
 
 use crate::external_loads::ExternalLoads;
 use crate::load_history::LoadHistory;
-use crate::load_table::LoadTable;
 use crate::structure::Structure;
+use schemas::case::load_table::LoadTable;
 use schemas::case::structure::{LoadConfig, LoadHistory as HistoryKind, LoadTarget, StructureConfig};
 use schemas::case::FieldError;
 use std::path::Path;

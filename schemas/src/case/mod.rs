@@ -9,6 +9,7 @@ pub mod coupling;
 pub mod error;
 pub mod fluid;
 pub mod frame;
+pub mod load_table;
 pub mod structure;
 
 use serde::Deserialize;

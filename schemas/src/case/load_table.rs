@@ -1,7 +1,7 @@
 //! [`LoadTable`]: a load history read from a CSV file — columns `t, c1, …, cn`, optional header
 //! line, `#` comments; linear interpolation between rows, the first/last row held outside.
 
-use schemas::case::FieldError;
+use super::FieldError;
 use std::path::Path;
 
 /// Rows of time and `n` components, times strictly increasing.
