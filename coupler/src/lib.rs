@@ -5,9 +5,11 @@
 
 pub mod acceleration;
 pub mod error;
+pub mod estimate;
 pub mod interface;
 pub mod launch;
 pub mod ledger;
+pub mod out_folder;
 pub mod progress;
 pub mod replay;
 pub mod run;

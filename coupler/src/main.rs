@@ -2,17 +2,32 @@
 
 use clap::{Parser, Subcommand};
 use coupler::error::CouplerError;
+use coupler::estimate::{parse_size, Estimate};
 use coupler::replay::{replay, ReplayOptions};
-use coupler::run::{run, RunOptions};
+use coupler::run::{default_output_folder, run, RunOptions};
+use schemas::case::error::check::short;
 use schemas::case::Case;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-/// Tsunami–structure simulations as cooperating processes: a particle fluid solver and a
-/// structure solver, coupled through shared memory.
+/// Where case keys are documented, and the exit codes: shown under every command's help.
+const AFTER_HELP: &str = "\
+Case files: every key is documented in schemas/README.md (section \"Case files\") and in the doc
+comments of schemas/src/case/{mod,fluid,structure,frame,coupling}.rs; cases/*/case.toml are
+commented examples.
+
+Exit codes: 0 success (replay: every recorded answer matches); 1 the run or replay failed (a
+participant died, hung or failed, no convergence, output could not be written, replay departed
+or compared less than the recording); 2 bad input, nothing was started (case file, command line,
+output folder in use or not empty, estimated output too large); 130 interrupted (Ctrl-C, SIGTERM).";
+
+/// Runs tsunami–structure simulations as cooperating processes: a particle fluid solver and a
+/// structure solver started by this coupler, which exchanges their interface data window by
+/// window through shared memory, records every message, and can replay a recording against one
+/// solver. Start with `coupler check CASE`, then `coupler run CASE`.
 #[derive(Parser)]
-#[command(version, about, long_about = None)]
+#[command(version, about, after_help = AFTER_HELP)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -22,18 +37,30 @@ struct Cli {
 enum Command {
     /// Run a case: starts only the solvers it needs, couples them window by window, and writes
     /// the recording, the action–reaction ledger and each solver's output to the output folder.
+    #[command(after_help = AFTER_HELP)]
     Run {
-        /// The case file (e.g. cases/oscillator/case.toml).
+        /// The case file (TOML), e.g. cases/oscillator/case.toml.
         case: PathBuf,
-        /// Output folder (default: out/<case name>).
+        /// Output folder (default: out/<case name>). It is locked for the run: a second run into it
+        /// is refused. A folder that holds an earlier run's files is refused unless --overwrite.
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Delete the earlier run's files in the output folder before starting (they are not kept).
+        #[arg(long)]
+        overwrite: bool,
+        /// Refuse a run whose estimated output (printed before it starts) is larger than this:
+        /// bytes or a number with k, M, G, T (powers of 1000). A run is also refused when the
+        /// estimate exceeds the free disk space.
+        #[arg(long, value_name = "SIZE", default_value = "20G", value_parser = parse_size)]
+        max_output: u64,
         /// Use another executable for a participant: --exe NAME=PATH (repeatable).
         #[arg(long, value_name = "NAME=PATH", value_parser = parse_exe)]
         exe: Vec<(String, PathBuf)>,
     },
     /// Drive one solver with its partners' recorded messages and compare its answers with the
-    /// recorded ones; exits non-zero when it departs.
+    /// recorded ones; exits non-zero when it departs, when it compared fewer answers than the
+    /// recording holds, or when the recording is damaged.
+    #[command(after_help = AFTER_HELP)]
     Replay {
         /// A recording written by `coupler run` (out/<case>/recording.rec).
         recording: PathBuf,
@@ -46,15 +73,27 @@ enum Command {
         /// Replay against this case file instead of the recorded one (e.g. a changed parameter).
         #[arg(long)]
         case: Option<PathBuf>,
-        /// Largest relative difference per field that still passes.
-        #[arg(long, default_value_t = 1e-9)]
+        /// Largest relative difference per field that still passes (relative to the recorded
+        /// field's largest value).
+        #[arg(long, default_value = "1e-9")]
         tolerance: f64,
-        /// Output folder (default: out/replay-<participant>).
+        /// Output folder (default: out/replay-<participant>); the replayed solver's own output.
         #[arg(long)]
         out: Option<PathBuf>,
     },
-    /// Check a case file and list its participants, without starting anything.
-    Check { case: PathBuf },
+    /// Check a case file, and every file it names (load tables), as `run` would before it starts:
+    /// list its participants, print the estimated windows and output size, start nothing.
+    #[command(after_help = AFTER_HELP)]
+    Check {
+        /// The case file (TOML) to check, e.g. cases/oscillator/case.toml.
+        case: PathBuf,
+        /// The output folder `run` would use (default: out/<case name>), for the free-space check.
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// The limit `run --max-output` would apply.
+        #[arg(long, value_name = "SIZE", default_value = "20G", value_parser = parse_size)]
+        max_output: u64,
+    },
 }
 
 fn parse_exe(s: &str) -> Result<(String, PathBuf), String> {
@@ -69,10 +108,18 @@ fn parse_exe(s: &str) -> Result<(String, PathBuf), String> {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Run { case, out, exe } => run(&RunOptions {
+        Command::Run {
+            case,
+            out,
+            overwrite,
+            max_output,
+            exe,
+        } => run(&RunOptions {
             case,
             out,
             exe: exe.into_iter().collect::<BTreeMap<_, _>>(),
+            overwrite,
+            max_output,
         }),
         Command::Replay {
             recording,
@@ -90,7 +137,11 @@ fn main() -> ExitCode {
             out,
         })
         .map(|_| ()),
-        Command::Check { case } => check(&case),
+        Command::Check {
+            case,
+            out,
+            max_output,
+        } => check(&case, out.as_deref(), max_output),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -101,13 +152,13 @@ fn main() -> ExitCode {
     }
 }
 
-fn check(path: &std::path::Path) -> Result<(), CouplerError> {
+fn check(path: &std::path::Path, out: Option<&std::path::Path>, max_output: u64) -> Result<(), CouplerError> {
     let case = Case::load(path)?;
     println!(
         "{}: case `{}`, end time {} s",
         path.display(),
         case.info.name,
-        case.info.end_time
+        short(case.info.end_time)
     );
     for (name, kind) in case.participants() {
         println!("  participant {name}: {}", kind.binary_name());
@@ -115,8 +166,12 @@ fn check(path: &std::path::Path) -> Result<(), CouplerError> {
     if let Some(c) = &case.coupling {
         println!(
             "  coupling: {:?}, window {} s, {} sample(s) per window",
-            c.scheme, c.window, c.samples
+            c.scheme,
+            short(c.window),
+            c.samples
         );
     }
-    Ok(())
+    let estimate = Estimate::of(&case);
+    println!("  estimate: {}", estimate.describe());
+    estimate.check(&default_output_folder(&case, out), max_output)
 }

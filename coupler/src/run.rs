@@ -1,9 +1,11 @@
 //! `coupler run`: load the case, start the participants it needs, run the windows, stop cleanly.
 
 use crate::error::CouplerError;
+use crate::estimate::{bytes_text, Estimate};
 use crate::interface::Interface;
 use crate::launch::{describe, executable_for};
 use crate::ledger::Ledger;
+use crate::out_folder::OutputFolder;
 use crate::progress::Progress;
 use crate::scheme::{Summary, Windows};
 use crate::signals;
@@ -22,13 +24,21 @@ pub struct RunOptions {
     pub out: Option<PathBuf>,
     /// Executables that replace a participant's default solver.
     pub exe: BTreeMap<String, PathBuf>,
+    /// Delete an earlier run's files in the output folder first (else such a folder is refused).
+    pub overwrite: bool,
+    /// Refuse a run estimated to write more bytes than this.
+    pub max_output: u64,
+}
+
+/// The output folder a run writes to: `--out`, or `out/<case name>`.
+pub fn default_output_folder(case: &Case, out: Option<&Path>) -> PathBuf {
+    out.map(Path::to_path_buf)
+        .unwrap_or_else(|| PathBuf::from("out").join(&case.info.name))
 }
 
 /// The output folder: `--out`, or `out/<case name>`.
 pub fn output_folder(case: &Case, out: Option<&Path>) -> Result<PathBuf, CouplerError> {
-    let dir = out
-        .map(Path::to_path_buf)
-        .unwrap_or_else(|| PathBuf::from("out").join(&case.info.name));
+    let dir = default_output_folder(case, out);
     std::fs::create_dir_all(&dir)
         .map_err(|e| CouplerError::Io(format!("cannot create the output folder {}: {e}", dir.display())))?;
     Ok(dir)
@@ -76,7 +86,12 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
         .iter()
         .map(|(name, kind)| executable_for(&case, name, *kind, &opts.exe).map(|exe| (name.clone(), exe)))
         .collect::<Result<BTreeMap<_, _>, _>>()?;
-    let out = output_folder(&case, opts.out.as_deref())?;
+    let out = default_output_folder(&case, opts.out.as_deref());
+    let estimate = Estimate::of(&case);
+    estimate.check(&out, opts.max_output)?;
+    eprintln!("estimate: {}", estimate.describe());
+    let folder = OutputFolder::take(&out, opts.overwrite)?;
+    let out = folder.dir.clone();
     signals::install();
     let Some(coupling) = &case.coupling else {
         let (name, kind) = &participants[0];
@@ -148,6 +163,7 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
 }
 
 fn report(s: &Summary, wall: f64, out: &Path) {
+    let written = folder_size(out);
     eprintln!(
         "done: {} windows, {} solver sweeps (at most {} in a window), {wall:.2} s wall; action–reaction balance \
          worst {:.1e}{}",
@@ -158,9 +174,25 @@ fn report(s: &Summary, wall: f64, out: &Path) {
         if s.balance_violations > 0 { format!(", {} windows above tolerance", s.balance_violations) } else { String::new() }
     );
     eprintln!(
-        "output: {} (recording.rec, ledger.csv, one log and folder per participant)",
-        out.display()
+        "output: {}, {} (recording.rec, ledger.csv, one log and folder per participant)",
+        out.display(),
+        bytes_text(written as f64)
     );
+}
+
+/// Bytes of every file under `dir`.
+pub fn folder_size(dir: &Path) -> u64 {
+    std::fs::read_dir(dir)
+        .map(|entries| {
+            entries
+                .filter_map(Result::ok)
+                .map(|e| match e.file_type() {
+                    Ok(t) if t.is_dir() => folder_size(&e.path()),
+                    _ => e.metadata().map(|m| m.len()).unwrap_or(0),
+                })
+                .sum()
+        })
+        .unwrap_or(0)
 }
 
 /// A case with one participant and no coupling: the solver runs alone (`SOLVER run CASE --out DIR`).
@@ -178,6 +210,11 @@ fn standalone(case: &Case, name: &str, kind: Kind, exe: &Path, out: &Path) -> Re
             message: format!("cannot start {}: {e}", exe.display()),
         })?;
     if status.success() {
+        eprintln!(
+            "output: {}, {}",
+            out.display(),
+            bytes_text(folder_size(out) as f64)
+        );
         Ok(())
     } else if signals::interrupted() {
         Err(CouplerError::Interrupted { window: None })

@@ -146,3 +146,234 @@ fn check_lists_participants_without_starting_them() {
         "{text}"
     );
 }
+
+/// `check` and `run` of `case`: both exit 2 with every fragment in the message, and `run`
+/// starts nothing and writes nothing.
+fn refused_by_check_and_run(case: &std::path::Path, fragments: &[&str]) -> String {
+    let check = coupler(&["check", case.to_str().unwrap_or_default()]);
+    let out = case.with_file_name("out");
+    let run = coupler_run(case, &out);
+    for (what, result) in [("check", &check), ("run", &run)] {
+        let err = stderr(result);
+        assert_eq!(
+            result.status.code(),
+            Some(2),
+            "{what}: exit 2, got {:?}: {err}",
+            result.status
+        );
+        for f in fragments {
+            assert!(err.contains(f), "{what}: the error should contain `{f}`: {err}");
+        }
+        assert!(!err.contains("started"), "{what}: nothing may start: {err}");
+    }
+    assert!(!out.exists(), "run must write nothing");
+    stderr(&run)
+}
+
+/// The rigid-washout case (a load from `lift.csv`) in `dir`, with `lift` as its table.
+fn washout_with_table(dir: &std::path::Path, table_name: &str, lift: Option<&str>) -> std::path::PathBuf {
+    let text = std::fs::read_to_string(workspace().join("cases/rigid-washout/case.toml")).unwrap_or_default();
+    std::fs::create_dir_all(dir).unwrap_or_default();
+    let case = dir.join("case.toml");
+    std::fs::write(
+        &case,
+        text.replace("table = \"lift.csv\"", &format!("table = \"{table_name}\"")),
+    )
+    .unwrap_or_default();
+    if let Some(lift) = lift {
+        std::fs::write(dir.join(table_name), lift).unwrap_or_default();
+    }
+    case
+}
+
+#[test]
+fn a_missing_or_malformed_load_table_is_refused_by_check_and_run_with_its_line() {
+    let root = out_dir("bad-tables");
+    let missing = washout_with_table(&root.join("missing"), "no-such-lift.csv", None);
+    refused_by_check_and_run(
+        &missing,
+        &[
+            "structure.bridge.load[0].table",
+            "no-such-lift.csv",
+            "cannot read the load table",
+        ],
+    );
+    let good = std::fs::read_to_string(workspace().join("cases/rigid-washout/lift.csv")).unwrap_or_default();
+    let short_row = good.replacen(
+        "2.0,4.0e8,0.0,8.0e8,0.0,0.0,0.0",
+        "2.0,4.0e8,0.0,8.0e8,0.0,0.0",
+        1,
+    );
+    assert_ne!(short_row, good);
+    let line = good
+        .lines()
+        .position(|l| l.starts_with("2.0,"))
+        .map(|i| i + 1)
+        .unwrap_or_default();
+    let malformed = washout_with_table(&root.join("short-row"), "lift.csv", Some(&short_row));
+    refused_by_check_and_run(
+        &malformed,
+        &["lift.csv", &format!("line {line}"), "expected 7 columns", "got 6"],
+    );
+}
+
+#[test]
+fn toml_errors_give_line_column_and_the_line_and_an_empty_file_says_it_is_empty() {
+    let root = out_dir("bad-toml");
+    let template =
+        std::fs::read_to_string(workspace().join("cases/oscillator/case.toml")).unwrap_or_default();
+    let write = |name: &str, text: &str| {
+        let dir = root.join(name);
+        std::fs::create_dir_all(&dir).unwrap_or_default();
+        let case = dir.join("case.toml");
+        std::fs::write(&case, text).unwrap_or_default();
+        case
+    };
+    let line_of = |text: &str, needle: &str| {
+        text.lines()
+            .position(|l| l.contains(needle))
+            .map(|i| i + 1)
+            .unwrap_or(0)
+    };
+
+    let text = template.replacen("end_time = 1.0", "end_time = 1.0.0", 1);
+    let err = refused_by_check_and_run(
+        &write("float", &text),
+        &["invalid float", "column 15", "| end_time = 1.0.0"],
+    );
+    assert!(
+        err.contains(&format!("line {}, column", line_of(&text, "end_time = 1.0.0"))),
+        "{err}"
+    );
+
+    let text = template.replacen("end_time = 1.0", "end_time", 1);
+    let err = refused_by_check_and_run(
+        &write("no-value", &text),
+        &["`case.end_time`", "expected `=`", "| end_time"],
+    );
+    assert!(
+        err.contains(&format!("line {}, column 9", line_of(&text, "end_time"))),
+        "{err}"
+    );
+
+    let text = format!("{template}\n[case]\nname = \"again\"\n");
+    let err = refused_by_check_and_run(&write("twice", &text), &["duplicate key", "| [case]"]);
+    assert!(
+        err.contains(&format!("line {}, column 2", text.lines().count() - 1)),
+        "{err}"
+    );
+
+    refused_by_check_and_run(&write("empty", "\n  \n"), &["the case file is empty"]);
+}
+
+#[test]
+fn absurd_sizes_are_refused_before_the_run_with_the_estimate() {
+    let root = out_dir("bad-sizes");
+    let dir = root.join("tiny-window");
+    std::fs::create_dir_all(&dir).unwrap_or_default();
+    let case = stack_tests::oscillator_case(&dir, &[("window", "1e-12")]);
+    refused_by_check_and_run(
+        &case,
+        &["1.0e12 windows", "PB of output", "above --max-output 20.0 GB"],
+    );
+
+    let dir = root.join("end-1e300");
+    std::fs::create_dir_all(&dir).unwrap_or_default();
+    let case = stack_tests::oscillator_case(&dir, &[("end_time", "1e300")]);
+    let err = refused_by_check_and_run(&case, &["1.0e302 windows", "e305 B of output"]);
+    assert!(!err.contains("000000000000"), "no 300-digit numbers: {err}");
+
+    // A run that fits is told its estimate; a limit below it refuses it, with the estimate.
+    let dir = root.join("limit");
+    std::fs::create_dir_all(&dir).unwrap_or_default();
+    let case = stack_tests::oscillator_case(&dir, &[]);
+    let out = dir.join("out");
+    let run = coupler(&[
+        "run",
+        case.to_str().unwrap_or_default(),
+        "--out",
+        out.to_str().unwrap_or_default(),
+        "--max-output",
+        "10k",
+    ]);
+    let err = stderr(&run);
+    assert_eq!(run.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("100 windows; at least") && err.contains("above --max-output 10.0 kB"),
+        "{err}"
+    );
+    assert!(!out.exists());
+    let run = coupler_run(&case, &out);
+    let err = stderr(&run);
+    assert!(run.status.success(), "{err}");
+    assert!(err.contains("estimate: 100 windows; at least"), "{err}");
+    assert!(
+        err.contains(&format!("output: {}, ", out.display())) && err.contains(" kB ("),
+        "the size written: {err}"
+    );
+}
+
+#[test]
+fn an_output_folder_in_use_or_holding_an_earlier_run_is_refused_and_overwrite_clears_it() {
+    let dir = out_dir("out-folder");
+    let case = stack_tests::oscillator_case(&dir, &[]);
+    let out = dir.join("out");
+    let first = coupler_run(&case, &out);
+    assert!(first.status.success(), "{}", stderr(&first));
+    std::fs::write(out.join("stale-frame.vtu"), "from an older run").unwrap_or_default();
+
+    let again = coupler_run(&case, &out);
+    let err = stderr(&again);
+    assert_eq!(again.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("already holds") && err.contains("--overwrite"),
+        "{err}"
+    );
+    assert!(
+        out.join("stale-frame.vtu").exists(),
+        "a refused run deletes nothing"
+    );
+
+    // A run still going on holds the folder: simulated by holding its lock as a run does.
+    let lock = std::fs::OpenOptions::new()
+        .read(true)
+        .write(true)
+        .open(out.join(".coupler.lock"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    // SAFETY: flock(2) on a file this test opened.
+    assert_eq!(
+        unsafe {
+            libc::flock(
+                std::os::unix::io::AsRawFd::as_raw_fd(&lock),
+                libc::LOCK_EX | libc::LOCK_NB,
+            )
+        },
+        0
+    );
+    std::fs::write(out.join(".coupler.lock"), "4242\n").unwrap_or_default();
+    let busy = coupler(&[
+        "run",
+        case.to_str().unwrap_or_default(),
+        "--out",
+        out.to_str().unwrap_or_default(),
+        "--overwrite",
+    ]);
+    let err = stderr(&busy);
+    assert_eq!(busy.status.code(), Some(2), "{err}");
+    assert!(err.contains("a run still going on (coupler pid 4242)"), "{err}");
+    drop(lock);
+
+    let overwritten = coupler(&[
+        "run",
+        case.to_str().unwrap_or_default(),
+        "--out",
+        out.to_str().unwrap_or_default(),
+        "--overwrite",
+    ]);
+    assert!(overwritten.status.success(), "{}", stderr(&overwritten));
+    assert!(
+        !out.join("stale-frame.vtu").exists(),
+        "--overwrite deletes the earlier run's files"
+    );
+    assert!(stack_tests::oscillator_error(&out.join("recording.rec")) < 1e-4);
+}

@@ -53,6 +53,22 @@ impl fmt::Display for CaseError {
 
 impl std::error::Error for CaseError {}
 
+/// `message` at byte `offset` of `text`: "line L, column C: message", then the line itself and a
+/// caret under the column.
+pub fn located(text: &str, offset: usize, message: &str) -> String {
+    let offset = offset.min(text.len());
+    let before = text.get(..offset).unwrap_or(text);
+    let line_no = before.matches('\n').count() + 1;
+    let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+    let line = text[line_start..].lines().next().unwrap_or("");
+    let column = before[line_start..].chars().count() + 1;
+    let gutter = line_no.to_string().len();
+    format!(
+        "line {line_no}, column {column}: {message}\n {line_no} | {line}\n {:gutter$} | {:>column$}",
+        "", "^"
+    )
+}
+
 /// Checks helpers shared by every section's `validate`.
 pub mod check {
     use super::FieldError;
@@ -64,7 +80,7 @@ pub mod check {
         } else {
             Err(FieldError::new(
                 key,
-                format!("must be a finite number > 0, got {value}"),
+                format!("must be a finite number > 0, got {}", short(value)),
             ))
         }
     }
@@ -76,7 +92,7 @@ pub mod check {
         } else {
             Err(FieldError::new(
                 key,
-                format!("must be a finite number ≥ 0, got {value}"),
+                format!("must be a finite number ≥ 0, got {}", short(value)),
             ))
         }
     }
@@ -96,13 +112,13 @@ pub mod check {
         } else {
             Err(FieldError::new(
                 key,
-                format!("must be in [{}, {}], got {value}", short(lo), short(hi)),
+                format!("must be in [{}, {}], got {}", short(lo), short(hi), short(value)),
             ))
         }
     }
 
-    /// A number as a person writes it: `1e-15`, `0.5`, `1000`.
-    fn short(v: f64) -> String {
+    /// A number as a person writes it: `1e-15`, `0.5`, `1000`, `1e300`.
+    pub fn short(v: f64) -> String {
         if v != 0.0 && (v.abs() < 1e-3 || v.abs() >= 1e6) {
             format!("{v:e}")
         } else {

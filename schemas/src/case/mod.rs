@@ -96,10 +96,23 @@ impl Case {
 
     /// Parses and validates case text that came from `path`.
     pub fn parse(path: &Path, text: String) -> Result<Case, CaseError> {
+        if text.trim().is_empty() {
+            return Err(CaseError {
+                file: path.to_path_buf(),
+                key: String::new(),
+                message:
+                    "the case file is empty: it needs at least a [case] section with `name` and `end_time`, \
+                          and one [fluid.NAME] or [structure.NAME] section"
+                        .into(),
+            });
+        }
         let file: CaseFile = toml::from_str(&text).map_err(|e| CaseError {
             file: path.to_path_buf(),
             key: e.span().map(|s| key_at(&text, s.start)).unwrap_or_default(),
-            message: e.message().trim().to_string(),
+            message: match e.span() {
+                Some(span) => error::located(&text, span.start, e.message().trim()),
+                None => e.message().trim().to_string(),
+            },
         })?;
         let case = Case {
             path: path.to_path_buf(),
@@ -182,6 +195,7 @@ impl Case {
         for (name, cfg) in &self.structure {
             cfg.validate(&format!("structure.{name}"))?;
         }
+        self.check_files()?;
         match (&self.coupling, names.len()) {
             (None, n) if n > 1 => Err(FieldError::new(
                 "coupling",
@@ -193,6 +207,23 @@ impl Case {
             (Some(c), _) => c.validate(self),
             _ => Ok(()),
         }
+    }
+}
+
+impl Case {
+    /// Reads and checks every file the case names (load tables), so that a bad one is refused
+    /// before anything starts, with its line and what is wrong.
+    fn check_files(&self) -> Result<(), FieldError> {
+        for (name, cfg) in &self.structure {
+            for (i, load) in cfg.load.iter().enumerate() {
+                if let Some(table) = &load.table {
+                    let key = format!("structure.{name}.load[{i}]");
+                    let components = load.target(&key)?.components();
+                    load_table::LoadTable::read(&self.resolve(table), components, &format!("{key}.table"))?;
+                }
+            }
+        }
+        Ok(())
     }
 }
 
@@ -233,6 +264,9 @@ fn key_at(text: &str, offset: usize) -> String {
             key.clear();
         } else if let Some((k, _)) = trimmed.split_once('=') {
             key = k.trim().to_string();
+        } else if !trimmed.is_empty() && !trimmed.starts_with('#') {
+            // a key without `= value`
+            key = trimmed.split_whitespace().next().unwrap_or_default().to_string();
         }
         pos += line.len() + 1;
         if pos > offset {
