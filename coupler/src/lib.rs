@@ -14,6 +14,5 @@ pub mod progress;
 pub mod replay;
 pub mod run;
 pub mod scheme;
-pub mod signals;
 pub mod stack;
 pub mod state;

@@ -7,11 +7,11 @@
 use crate::error::CouplerError;
 use crate::launch::executable_for;
 use crate::run::{new_run_id, output_folder, participant_args};
-use crate::signals;
 use crate::stack::{variant, Launch, Stack};
 use schemas::case::{Case, Kind};
 use schemas::message::{Fields, FromParticipant, Role, ToParticipant};
 use schemas::recording::{Message, Recording, RecordingEnd};
+use schemas::signals;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::Duration;

@@ -3,10 +3,10 @@
 
 use crate::error::CouplerError;
 use crate::launch::{log_tail, Children};
-use crate::signals;
 use schemas::link::{Link, LinkError, Side};
 use schemas::message::{FromParticipant, Geometry, InterfaceDecl, Role, ToParticipant, PROTOCOL_VERSION};
 use schemas::recording::{Message, Recorder};
+use schemas::signals;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 

@@ -1,7 +1,7 @@
 //! The contract between the coupler and its participants: case files ([`case`]),
 //! interface messages ([`message`]) with their interpolation in a window ([`waveform`]),
-//! recordings ([`recording`]), the iceoryx2 link ([`link`]) and the participant loop
-//! ([`participant`]); and the output files every solver writes: ParaView's time series ([`pvd`]), each
+//! recordings ([`recording`]), the iceoryx2 link ([`link`]), the participant loop
+//! ([`participant`]) and the stop signals both sides heed ([`signals`]); and the output files every solver writes: ParaView's time series ([`pvd`]), each
 //! file written whole or not at all ([`atomic_file`]).
 
 pub mod atomic_file;
@@ -12,6 +12,7 @@ pub mod message;
 pub mod participant;
 pub mod pvd;
 pub mod recording;
+pub mod signals;
 pub mod waveform;
 
 pub use f64s::F64s;

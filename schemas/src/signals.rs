@@ -1,4 +1,6 @@
-//! Ctrl-C and SIGTERM: noted in a flag that every wait checks, so the run stops cleanly.
+//! Ctrl-C (SIGINT) and SIGTERM: noted in a flag that every wait checks, so a process stops cleanly
+//! between two steps of its work — the coupler after the window it is in, a participant after the
+//! answer it is computing — instead of dying in the middle of writing an output file.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
