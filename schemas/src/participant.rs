@@ -3,6 +3,12 @@
 //! The loop: open the link, wait for the coupler, say [`Hello`], get `Welcome` (or `Refused`),
 //! send the initial outputs, then answer every `Advance` until `Finish`. The coupler's liveness
 //! is checked during every wait; a participant whose coupler is gone stops.
+//!
+//! SIGTERM and SIGINT (the coupler stopping the run, or the kernel when the coupler died) do not
+//! kill a participant in the middle of writing an output: they are noted ([`crate::signals`]), the
+//! answer being computed is finished, and the participant stops at its next wait, with every row
+//! and frame written so far whole. Rows of the last answered window that the coupler had not yet
+//! accepted (written at the next window's start or at `Finish`) are not written.
 
 use crate::link::{process_alive, Link, LinkError, Side};
 use crate::message::{
@@ -67,6 +73,8 @@ pub enum ServeError {
     Solver(String),
     /// The coupler sent something out of order.
     Protocol(String),
+    /// SIGTERM or SIGINT arrived; the participant stopped between two answers.
+    Stopped,
 }
 
 impl std::fmt::Display for ServeError {
@@ -76,6 +84,10 @@ impl std::fmt::Display for ServeError {
             ServeError::Refused(r) => write!(f, "the coupler refused this participant: {r}"),
             ServeError::Solver(m) => write!(f, "solver failed: {m}"),
             ServeError::Protocol(m) => write!(f, "protocol error: {m}"),
+            ServeError::Stopped => write!(
+                f,
+                "stopped by SIGTERM or SIGINT between two windows; every output written so far is whole"
+            ),
         }
     }
 }
@@ -108,11 +120,28 @@ pub fn serve_announcing<P: Participant>(
     solver: &mut P,
     protocol: u32,
 ) -> Result<(), ServeError> {
+    crate::signals::install();
     stop_with_parent();
+    match serve_until_stopped(args, case_hash, solver, protocol) {
+        Err(_) if crate::signals::interrupted() => Err(ServeError::Stopped),
+        other => other,
+    }
+}
+
+fn serve_until_stopped<P: Participant>(
+    args: &ParticipantArgs,
+    case_hash: u64,
+    solver: &mut P,
+    protocol: u32,
+) -> Result<(), ServeError> {
     let link = Link::open(&args.run_id, &args.name, Side::Participant)?;
     let coupler = args.coupler_pid;
-    let mut alive =
-        move || process_alive(coupler).map_err(|e| format!("the coupler (pid {coupler}) is gone: {e}"));
+    let mut alive = move || {
+        if crate::signals::interrupted() {
+            return Err("stopped by SIGTERM or SIGINT".to_string());
+        }
+        process_alive(coupler).map_err(|e| format!("the coupler (pid {coupler}) is gone: {e}"))
+    };
     link.wait_for_peer(Instant::now() + CONNECT_TIMEOUT, &mut alive)?;
     let hello = Hello {
         protocol,
@@ -137,6 +166,10 @@ pub fn serve_announcing<P: Participant>(
     let geometry = solver.geometry_update();
     link.send(&FromParticipant::Initial { outputs, geometry })?;
     loop {
+        if crate::signals::interrupted() {
+            // A request may already be waiting, so the wait below would not look at the flag.
+            return Err(ServeError::Stopped);
+        }
         match link.recv::<ToParticipant>(None, &mut alive)? {
             ToParticipant::Advance {
                 header,

@@ -89,13 +89,16 @@ impl HistoryWriter {
                     .copied()
                     .collect(),
             };
-            write!(w, "{t}")?;
+            let mut line = t.to_string();
             for v in row {
-                write!(w, ",{v}")?;
+                line.push_str(&format!(",{v}"));
             }
-            writeln!(w)?;
+            line.push('\n');
+            w.write_all(line.as_bytes())?;
         }
-        Ok(())
+        // Each row reaches the file whole as it is written, so a run that ends abnormally keeps
+        // every row before its end and never a partial one.
+        self.flush()
     }
 
     /// Flushes every file.
