@@ -27,7 +27,7 @@ output folder in use or not empty, estimated output too large); 130 interrupted 
 /// window through shared memory, records every message, and can replay a recording against one
 /// solver. Start with `coupler check CASE`, then `coupler run CASE`.
 #[derive(Parser)]
-#[command(version, about, after_help = AFTER_HELP)]
+#[command(version, after_help = AFTER_HELP)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

@@ -23,7 +23,7 @@ pub fn bin_dir() -> PathBuf {
         .unwrap_or_default()
 }
 
-/// A workspace binary, built first (once per test process) so the tests never run a stale one:
+/// A workspace binary or this crate's test helper (`faulty-participant`, an example), built first (once per test process) so the tests never run a stale one:
 /// `cargo test` builds a package's binaries only for that package's own integration tests.
 pub fn binary(name: &str) -> PathBuf {
     static BUILT: OnceLock<()> = OnceLock::new();
@@ -31,7 +31,13 @@ pub fn binary(name: &str) -> PathBuf {
         let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
         let mut build = Command::new(cargo);
         build
-            .args(["build", "--bins", "--workspace"])
+            .args([
+                "build",
+                "--bins",
+                "--workspace",
+                "--example",
+                "faulty-participant",
+            ])
             .current_dir(workspace());
         if bin_dir().ends_with("release") {
             build.arg("--release");
@@ -41,7 +47,13 @@ pub fn binary(name: &str) -> PathBuf {
             .unwrap_or_else(|e| panic!("cannot run cargo build: {e}"));
         assert!(status.success(), "cargo build --bins --workspace failed");
     });
-    let path = bin_dir().join(name);
+    // test helpers are examples of this crate (see Cargo.toml)
+    let helper = bin_dir().join("examples").join(name);
+    let path = if helper.is_file() {
+        helper
+    } else {
+        bin_dir().join(name)
+    };
     assert!(
         path.is_file(),
         "{} is missing: run the tests with `cargo test --workspace --release`, which builds every binary",

@@ -202,7 +202,16 @@ fn ctrl_c_stops_the_coupler_and_its_participants() {
     let mut lines = Vec::new();
     let left = pid_of(&wait_line(&rx, "started mass-left", &mut lines));
     let right = pid_of(&wait_line(&rx, "started mass-right", &mut lines));
-    std::thread::sleep(Duration::from_millis(500));
+    // Mid-run: once windows are done (on a loaded machine the handshake alone can take 0.5 s).
+    let t0 = Instant::now();
+    while std::fs::read_to_string(dir.join("out/ledger.csv"))
+        .map(|t| t.lines().count())
+        .unwrap_or(0)
+        < 10
+        && t0.elapsed() < Duration::from_secs(30)
+    {
+        std::thread::sleep(Duration::from_millis(20));
+    }
     // SAFETY: SIGINT to the coupler this test started, as Ctrl-C would.
     unsafe { libc::kill(child.id() as i32, libc::SIGINT) };
     let (status, took) = wait_exit(&mut child, Duration::from_secs(10));
