@@ -161,7 +161,8 @@ fn check(path: &std::path::Path, out: Option<&std::path::Path>, max_output: u64)
         short(case.info.end_time)
     );
     for (name, kind) in case.participants() {
-        println!("  participant {name}: {}", kind.binary_name());
+        let exe = coupler::launch::executable_for(&case, &name, kind, &BTreeMap::new())?;
+        println!("  participant {name}: {} ({})", kind.binary_name(), exe.display());
     }
     if let Some(c) = &case.coupling {
         println!(

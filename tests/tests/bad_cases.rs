@@ -377,3 +377,19 @@ fn an_output_folder_in_use_or_holding_an_earlier_run_is_refused_and_overwrite_cl
     );
     assert!(stack_tests::oscillator_error(&out.join("recording.rec")) < 1e-4);
 }
+
+#[test]
+fn a_missing_executable_is_refused_by_check_as_by_run() {
+    let dir = out_dir("bad-executable");
+    let case = stack_tests::oscillator_case(
+        &dir,
+        &[(
+            "end_time",
+            "1.0\nexecutables = { mass-left = \"no-such-solver\" }",
+        )],
+    );
+    refused_by_check_and_run(
+        &case,
+        &["participant `mass-left`: no executable at", "no-such-solver"],
+    );
+}
