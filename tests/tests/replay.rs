@@ -110,6 +110,10 @@ fn a_recording_whose_second_frame_claims_2_pow_31_bytes_fails_with_a_count_inste
     assert!(!text.contains("PASS"), "{text}");
     assert!(text.contains("no answer of `mass-right` to compare"), "{text}");
     assert!(text.contains("1 complete frames"), "{text}");
+    assert!(
+        text.contains("claims 2147483648 bytes but the file has"),
+        "{text}"
+    );
 }
 
 #[test]

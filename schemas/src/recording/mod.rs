@@ -66,8 +66,14 @@ pub enum RecordingEnd {
     /// At a frame boundary: every byte of the file was read.
     Whole,
     /// Inside frame `frame` (the header is frame 0), which starts at byte `offset`: the file
-    /// was cut there (the run died while writing it, or the file was truncated).
-    Cut { frame: usize, offset: u64 },
+    /// was cut there (the run died while writing it, or the file was truncated) — or, when the
+    /// frame claims more bytes than the file has left (`overrun`: claimed, left), its length
+    /// field is damaged; the two cannot be told apart.
+    Cut {
+        frame: usize,
+        offset: u64,
+        overrun: Option<(u64, u64)>,
+    },
     /// Frame `frame`, at byte `offset`, is damaged; nothing from it on was read.
     Corrupt { frame: usize, offset: u64, what: String },
 }
@@ -76,10 +82,23 @@ impl std::fmt::Display for RecordingEnd {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             RecordingEnd::Whole => write!(f, "the file ends at a frame boundary"),
-            RecordingEnd::Cut { frame, offset } => write!(
+            RecordingEnd::Cut {
+                frame,
+                offset,
+                overrun: None,
+            } => write!(
                 f,
                 "the file ends inside frame {frame} (byte offset {offset}): the run died while writing it, or the \
                  file was cut"
+            ),
+            RecordingEnd::Cut {
+                frame,
+                offset,
+                overrun: Some((claimed, left)),
+            } => write!(
+                f,
+                "frame {frame} (byte offset {offset}) claims {claimed} bytes but the file has {left} left: the run \
+                 died while writing it, the file was cut, or the frame's length field is damaged"
             ),
             RecordingEnd::Corrupt { frame, offset, what } => {
                 write!(f, "CORRUPT at frame {frame} (byte offset {offset}): {what}")

@@ -16,8 +16,9 @@ enum Next<T> {
     Frame(T),
     /// A clean end of file before the frame.
     End,
-    /// The file ends inside the frame.
-    Cut,
+    /// The file ends inside the frame; with what the frame claims and what the file has left
+    /// when its length field overruns the file.
+    Cut(Option<(u64, u64)>),
     /// The frame is damaged.
     Corrupt(String),
 }
@@ -46,18 +47,18 @@ impl<R: Read> Source<R> {
         match self.input.read(&mut first) {
             Ok(0) => return Next::End,
             Ok(_) => self.offset += 1,
-            Err(_) => return Next::Cut,
+            Err(_) => return Next::Cut(None),
         }
         let mut rest = [0u8; 3];
         if !self.fill(&mut rest) {
-            return Next::Cut;
+            return Next::Cut(None);
         }
         let len = u32::from_le_bytes([first[0], rest[0], rest[1], rest[2]]) as u64;
         let mut stored = None;
         if version >= 2 {
             let mut crc = [0u8; 4];
             if !self.fill(&mut crc) {
-                return Next::Cut;
+                return Next::Cut(None);
             }
             stored = Some(u32::from_le_bytes(crc));
         }
@@ -67,11 +68,11 @@ impl<R: Read> Source<R> {
             ));
         }
         if len > self.remaining() {
-            return Next::Cut;
+            return Next::Cut(Some((len, self.remaining())));
         }
         let mut bytes = vec![0u8; len as usize];
         if !self.fill(&mut bytes) {
-            return Next::Cut;
+            return Next::Cut(None);
         }
         if let Some(stored) = stored {
             let computed = crc32c::crc32c(&bytes);
@@ -129,7 +130,7 @@ impl Recording {
         let header: RecordingHeader = match src.frame(version) {
             Next::Frame(h) => h,
             Next::End => return Err("the recording has no header".into()),
-            Next::Cut => return Err("the file ends inside the header".into()),
+            Next::Cut(_) => return Err("the file ends inside the header".into()),
             Next::Corrupt(what) => return Err(format!("the header is damaged: {what}")),
         };
         let mut frames = Vec::new();
@@ -139,7 +140,13 @@ impl Recording {
             match src.frame::<Frame>(version) {
                 Next::Frame(f) => frames.push(f),
                 Next::End => break RecordingEnd::Whole,
-                Next::Cut => break RecordingEnd::Cut { frame, offset },
+                Next::Cut(overrun) => {
+                    break RecordingEnd::Cut {
+                        frame,
+                        offset,
+                        overrun,
+                    }
+                }
                 Next::Corrupt(what) => break RecordingEnd::Corrupt { frame, offset, what },
             }
         };
