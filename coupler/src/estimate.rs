@@ -12,7 +12,13 @@
 //!   plus, per sample, 8 bytes of time, 14 array lengths and 8 bytes per interface value (a fluid
 //!   body: 25 values; a structure body 19, point mass 9, frame node 15); implicit windows repeat
 //!   this per sweep (counted once);
-//! - the ledger: per window 20 bytes per number, 4 + 4 per participant + 4 numbers;
+//! - the ledger: per window about 30 bytes of window, time, iterations and residual, then 19 bytes
+//!   per `{:.12e}` number: 4 per participant and the net force's 3.
+//!
+//! Measured on the floating box at Δs = 2 cm, 0.2 s (400 windows): VTU frames 876 kB each against
+//! 875 kB estimated (11 215 particles; the first frame also holds the gate), ledger 97.5 kB against
+//! 95.6 kB, recording 418 kB against 240 kB (the lower bound leaves out the handshake and message
+//! framing).
 //! - structure histories: one row per interval per file, at least 10 bytes per value.
 
 use crate::error::CouplerError;
@@ -71,7 +77,7 @@ impl Estimate {
             let per_window = participants * 2.0 * (40.0 + samples * 22.0) + samples * 8.0 * values as f64;
             e.windows = Some(windows);
             e.recording = windows * per_window;
-            e.ledger = windows * 20.0 * (8.0 + 4.0 * participants);
+            e.ledger = windows * (30.0 + 19.0 * (4.0 * participants + 3.0));
         }
         e
     }
