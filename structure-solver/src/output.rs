@@ -69,7 +69,7 @@ impl Output {
 
 /// Output times of a history with `interval` up to `end`: interval, 2·interval, …, end.
 pub fn output_times(interval: f64, end: f64) -> Vec<f64> {
-    let n = (end / interval * (1.0 - 1e-12)).ceil().max(1.0) as u64;
+    let n = crate::structure::equal_steps(end, interval);
     (1..=n)
         .map(|k| if k == n { end } else { interval * k as f64 })
         .collect()
