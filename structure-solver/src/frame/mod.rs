@@ -272,32 +272,36 @@ impl Frame {
         self.unbalance
     }
 
-    /// What a user should know about the accuracy of the steps taken so far: `None` unless
-    /// unconverged steps became persistent (isolated ones, where hinges form or a mechanism runs
-    /// away, are the one-solve scheme working as designed: their unbalanced force carries into the
-    /// next step), otherwise how many there were, from when, and what to change in the case.
+    /// What a user should know about the accuracy of the steps taken so far. One solve per step:
+    /// `None` unless unconverged steps became persistent (isolated ones, where hinges form or a
+    /// mechanism runs away, are the one-solve scheme working as designed: their unbalanced force
+    /// carries into the next step), otherwise how many there were, from when, and what to change in
+    /// the case. Iterated steps: every step that kept an unconverged iterate (`equilibrium.rs`).
     pub fn accuracy_warning(&self) -> Option<String> {
-        let from = self.persistent_from?;
         let (steps, worst) = (self.steps, self.worst_unbalance);
-        let persistent = format!(
-            "{} or more of every {} from step {from} on",
-            stepping::PERSISTENT_UNCONVERGED,
-            stepping::PERSISTENCE_WINDOW
-        );
-        Some(match self.equilibrium {
-            Equilibrium::OneSolve => format!(
-                "{} of {steps} frame steps left more than {:.0} % of their unbalanced force ({persistent}; \
-                 worst {worst:.2}): time_step is too long for one solve per step, and hinges may form where \
-                 they should not; halve time_step or set equilibrium_tolerance",
-                self.unconverged,
-                100.0 * stepping::ONE_SOLVE_UNBALANCE_LIMIT
-            ),
-            Equilibrium::Iterate { tolerance } => format!(
-                "{} of {steps} frame steps did not reach equilibrium_tolerance = {tolerance} within {} \
-                 corrections ({persistent}; worst {worst:.2e}); reduce time_step",
-                self.unconverged, MAX_CORRECTIONS
-            ),
-        })
+        match self.equilibrium {
+            Equilibrium::OneSolve => {
+                let from = self.persistent_from?;
+                Some(format!(
+                    "{} of {steps} frame steps left more than {:.0} % of their unbalanced force ({} or more of \
+                     every {} from step {from} on; worst {worst:.2}): time_step is too long for one solve per \
+                     step, and hinges may form where they should not; halve time_step or set \
+                     equilibrium_tolerance",
+                    self.unconverged,
+                    100.0 * stepping::ONE_SOLVE_UNBALANCE_LIMIT,
+                    stepping::PERSISTENT_UNCONVERGED,
+                    stepping::PERSISTENCE_WINDOW
+                ))
+            }
+            Equilibrium::Iterate { tolerance } => (self.unconverged > 0).then(|| {
+                format!(
+                    "{} of {steps} frame steps did not reach equilibrium_tolerance = {tolerance} within {} \
+                     corrections and carried the unbalanced force left (worst {worst:.2e} of their first) into \
+                     the next step; halve time_step",
+                    self.unconverged, MAX_CORRECTIONS
+                )
+            }),
+        }
     }
 
     /// How steps treat the unbalanced force; [`Equilibrium::OneSolve`] (ASI-Gauss) by default.
