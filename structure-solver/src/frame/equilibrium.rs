@@ -27,13 +27,6 @@ pub const MAX_CORRECTIONS: usize = 12;
 const MAX_HALVINGS: usize = 3;
 /// A correction that reduces the unbalanced force by less than this factor makes the factor be redone.
 const SLOW_CONVERGENCE: f64 = 0.25;
-/// Multiple of the unbalanced force that the round-off of the node positions alone makes
-/// (ε · max |x| · max EA/L per element end) below which a step counts as converged whatever the
-/// tolerance: a tolerance of 1e-8 on a 1 kN step load of a 3 m beam of 0.15 m elements asks for
-/// 1e-5 N, where one ulp of a coordinate (6.7e-16 m) in one element's EA/L (2e10 N/m) is already
-/// 1.3e-5 N; summed over the nodes' residuals the norm is up to ~√n times that.
-const ROUND_OFF_MULTIPLE: f64 = 100.0;
-
 /// A correction: the iterate it started from, the correction and the hinges before it.
 type Correction = (Vec<f64>, Vec<f64>, Vec<Option<End>>);
 
@@ -122,16 +115,6 @@ impl Frame {
             self.set_trial(&committed_nodes, &committed_elements, &du);
         }
         Ok(du)
-    }
-
-    /// The unbalanced force that the round-off of the node positions makes, times
-    /// [`ROUND_OFF_MULTIPLE`]: ε · max |x| · max EA/L0 over the elements.
-    fn round_off_unbalance(&self) -> f64 {
-        let extent = self.nodes.iter().fold(0.0_f64, |m, n| m.max(n.position.amax()));
-        let axial = self.elements.iter().fold(0.0_f64, |m, e| {
-            m.max(self.sections[e.section].stiffness[0] / e.length0)
-        });
-        ROUND_OFF_MULTIPLE * f64::EPSILON * extent * axial
     }
 
     /// Puts the frame in the state the committed one reaches with the increment `du`.
