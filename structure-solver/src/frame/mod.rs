@@ -85,6 +85,8 @@ pub struct Frame {
     end_of_step_forces: Option<NodalForces>,
     /// Unbalanced force left by the last step over its first one.
     unbalance: f64,
+    /// Steps cut into parts after a step that left too much of its unbalanced force.
+    cut_steps: u64,
 }
 
 impl Frame {
@@ -147,6 +149,7 @@ impl Frame {
             factor_age: FactorAge::default(),
             end_of_step_forces: None,
             unbalance: 0.0,
+            cut_steps: 0,
         })
     }
 
@@ -265,6 +268,12 @@ impl Frame {
     /// their unbalanced force (one solve per step: Δt is then too long for the method).
     pub fn unconverged_steps(&self) -> u64 {
         self.unconverged
+    }
+
+    /// Steps taken in [`stepping::CUT_PARTS`] parts because the step before left more than
+    /// [`stepping::CUT_TRIGGER`] times its first unbalanced force (hinges changed within it).
+    pub fn cut_step_count(&self) -> u64 {
+        self.cut_steps
     }
 
     /// Unbalanced force left at the end of the last step, as a share of the one at its start.
