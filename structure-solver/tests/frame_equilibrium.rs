@@ -73,10 +73,12 @@ fn quasi_static_cantilever_follows_the_elastica() {
 /// change, instead of going on from an unconverged state: the fixed–fixed beam of
 /// `cases/structure-plastic-collapse` (2 m, 0.1 × 0.1 m, σy = 235 MPa, T1 = 7.7 ms) under twice its
 /// collapse load 8 Mp/L suddenly applied, Δt = 10 ms: the hinges switch between the corrections and
-/// after 12 of them the unbalanced force is 20 times the first.
+/// after 12 of them the unbalanced force is 20 times the first (the quadratic yield function; with
+/// the rectangle one the mechanism makes the effective matrix singular, also an error).
 #[test]
 fn diverging_corrections_are_an_error_naming_the_tolerance() {
     let mut cfg = beam(2.0, 4, 0.1, 0.1, steel());
+    cfg.section[0].yield_function = Some("quadratic".into());
     cfg.support.push(support(1, &ALL));
     cfg.support.push(support(5, &ALL));
     cfg.time_step = 0.01;

@@ -157,7 +157,7 @@ fn collapsing_building(n: usize, dt: f64, lateral: f64) -> String {
         "[case]\nname = \"building\"\nend_time = 0.1\n\n[structure.b]\nmax_step = {dt}\n\n\
          [structure.b.frame]\ntime_step = {dt}\ngravity = [0.0, 0.0, -9.81]\n\n\
          [structure.b.frame.material]\nyoung_modulus = 2e11\npoisson = 0.3\ndensity = 7850.0\nyield_stress = 2e7\n\n\
-         [[structure.b.frame.section]]\nname = \"s\"\nkind = \"rectangle\"\nwidth = 0.3\ndepth = 0.3\n"
+         [[structure.b.frame.section]]\nname = \"s\"\nkind = \"rectangle\"\nwidth = 0.3\ndepth = 0.3\nyield_function = \"quadratic\"\n"
     );
     for k in 0..=n {
         for j in 0..=n {

@@ -19,6 +19,7 @@
 //! kind = "rectangle"                 # width along local y, depth along local z
 //! width = 0.1
 //! depth = 0.15
+//! yield_function = "rectangle"       # optional: "rectangle" (default), "i_section", "quadratic"
 //!
 //! [[structure.bridge.frame.section]]
 //! name = "pipe"
@@ -183,7 +184,17 @@ pub struct SectionConfig {
     /// Plastic section modulus for bending about local z [m³] (general).
     #[serde(default)]
     pub plastic_modulus_z: Option<f64>,
+    /// Full-plastic interaction of N, My, Mz (one of [`YIELD_FUNCTIONS`]; default `"rectangle"`):
+    /// `"rectangle"`: the solid rectangle's exact `|M|/Mp + (N/Np)² = 1` about either axis, biaxial
+    /// `(|my|^1.7 + |mz|^1.7)^(1/1.7) + n² = 1`; `"i_section"`: wide-flange I section with its web
+    /// along local z, `My/Mpy ≤ 1.18 (1 − |n|)`, `Mz/Mpz ≤ 1.19 (1 − n²)`, biaxial with the
+    /// exponents 2 and max(1, 5|n|) of EN 1993-1-1 §6.2.9.1; `"quadratic"`: `n² + my² + mz² = 1`.
+    #[serde(default)]
+    pub yield_function: Option<String>,
 }
+
+/// The yield functions a section's `yield_function` may name.
+pub const YIELD_FUNCTIONS: [&str; 3] = ["rectangle", "i_section", "quadratic"];
 
 /// `[[structure.NAME.frame.node]]`.
 #[derive(Debug, Clone, Deserialize)]
@@ -225,6 +236,17 @@ impl SectionConfig {
     pub fn validate(&self, key: &str) -> Result<(), FieldError> {
         if self.name.trim().is_empty() {
             return Err(FieldError::new(format!("{key}.name"), "must not be empty"));
+        }
+        if let Some(f) = &self.yield_function {
+            if !YIELD_FUNCTIONS.contains(&f.as_str()) {
+                return Err(FieldError::new(
+                    format!("{key}.yield_function"),
+                    format!(
+                        "unknown yield function `{f}`; allowed: {}",
+                        YIELD_FUNCTIONS.join(", ")
+                    ),
+                ));
+            }
         }
         let general = [
             ("area", self.area),

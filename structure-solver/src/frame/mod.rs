@@ -28,6 +28,7 @@ pub mod stepping;
 pub mod supernodal_solve;
 pub mod topology;
 pub mod vtu;
+pub mod yield_function;
 
 /// Fewest elements or nodes per rayon task in the per-step passes: a step's passes take well
 /// under a millisecond at 10⁴ DOFs, and finer tasks cost more in scheduling than they save
