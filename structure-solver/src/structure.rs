@@ -78,7 +78,8 @@ impl Structure {
         }
         let mut s = Self {
             time: 0.0,
-            max_step: cfg.max_step,
+            // a frame alone: one (empty) substep per advance; the frame takes its own steps
+            max_step: cfg.max_step.unwrap_or(f64::INFINITY),
             gravity: V3::from(cfg.gravity),
             points,
             springs: Vec::new(),
@@ -137,7 +138,7 @@ impl Structure {
         self.time
     }
 
-    /// Largest substep [s].
+    /// Largest substep [s] (infinite for a frame alone).
     pub fn max_step(&self) -> f64 {
         self.max_step
     }
@@ -170,6 +171,13 @@ impl Structure {
     /// The ASI-Gauss frame, if the participant has one.
     pub fn frame(&self) -> Option<&Frame> {
         self.frame.as_ref()
+    }
+
+    /// Starts recording the frame's hinge events (for the output's `hinge-events.csv`).
+    pub fn record_hinge_events(&mut self) {
+        if let Some(f) = &mut self.frame {
+            f.record_hinge_events(true);
+        }
     }
 
     /// Number of frame nodes (0 without a frame).

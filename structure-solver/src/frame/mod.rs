@@ -21,9 +21,11 @@ pub mod factor_age;
 pub mod fracture;
 pub mod global_system;
 pub mod hinge;
+pub mod hinge_events;
 pub mod newmark;
 pub mod preconditioned_cg;
 pub mod section;
+pub mod section_forces;
 pub mod stepping;
 pub mod supernodal_solve;
 pub mod topology;
@@ -88,6 +90,10 @@ pub struct Frame {
     unbalance: f64,
     /// Steps cut into parts after a step that left too much of its unbalanced force.
     cut_steps: u64,
+    /// Time since the frame was built: the sum of its steps [s].
+    elapsed: f64,
+    /// Hinge events, when recorded (`hinge_events.rs`).
+    events: Option<Vec<hinge_events::HingeEvent>>,
 }
 
 impl Frame {
@@ -151,6 +157,8 @@ impl Frame {
             end_of_step_forces: None,
             unbalance: 0.0,
             cut_steps: 0,
+            elapsed: 0.0,
+            events: None,
         })
     }
 

@@ -123,6 +123,7 @@ impl Frame {
             Staleness::Fresh => {}
         }
         let unconverged = self.unconverged;
+        let hinges_before = self.hinges_if_recording();
         let du = match self.equilibrium {
             Equilibrium::OneSolve => self.solve_once(dt, loads, &inertia)?,
             Equilibrium::Iterate { tolerance } => {
@@ -137,6 +138,10 @@ impl Frame {
                     newmark::advance(*duk, node.velocity[k], node.acceleration[k], dt)
                 };
             }
+        }
+        self.elapsed += dt;
+        if let Some(before) = &hinges_before {
+            self.record_hinge_changes(before);
         }
         self.update_integration_points();
         self.split_fractured()?;
