@@ -88,7 +88,7 @@ pub struct Frame {
     end_of_step_forces: Option<NodalForces>,
     /// Unbalanced force left by the last step over its first one.
     unbalance: f64,
-    /// Steps cut into parts after a step that left too much of its unbalanced force.
+    /// Steps taken back and cut into parts because they left too much of their unbalanced force.
     cut_steps: u64,
     /// Time since the frame was built: the sum of its steps [s].
     elapsed: f64,
@@ -279,8 +279,8 @@ impl Frame {
         self.unconverged
     }
 
-    /// Steps taken in [`stepping::CUT_PARTS`] parts because the step before left more than
-    /// [`stepping::CUT_TRIGGER`] times its first unbalanced force (hinges changed within it).
+    /// Steps taken back and done again in [`stepping::CUT_PARTS`] parts because they left more than
+    /// [`stepping::CUT_TRIGGER`] times their first unbalanced force (hinges changed within them).
     pub fn cut_step_count(&self) -> u64 {
         self.cut_steps
     }

@@ -41,15 +41,18 @@ pub(super) const ROUND_OFF_MULTIPLE: f64 = 100.0;
 /// means nothing (a cantilever held under 1 kN counted 299 of 400 hold steps, ratios up to 2.4).
 pub const ONE_SOLVE_LOAD_FLOOR: f64 = 1e-6;
 
-/// Ratio of the unbalanced force a one-solve step leaves to its first one above which the next step
-/// is cut into [`CUT_PARTS`] parts: hinges that formed within a step at Δt ≳ T1/4 leave 10–16 times
-/// the first (a portal frame under a beam load and a sideways push, `tests/frame_one_solve_step.rs`),
-/// and two such steps in a row blew it up; at 0.01 s the same frame's hinge steps left 7–12 and it
-/// recovered. The benchmark's collapsing buildings leave at most 3.1 (3 × 3 × 3 at 1 ms).
+/// Ratio of the unbalanced force a one-solve step leaves to its first one above which the step is
+/// taken back and done again in [`CUT_PARTS`] parts: hinges that formed within a step at Δt ≳ T1/4
+/// leave 7–16 times the first (a portal frame under a beam load and a sideways push,
+/// `tests/frame_one_solve_step.rs`), and two such steps in a row blew it up at 0.02 s. The
+/// benchmark's collapsing buildings leave at most 3.1 (3 × 3 × 3 at 1 ms) and are never cut.
 pub const CUT_TRIGGER: f64 = 5.0;
 
-/// Parts a step is cut into after a step that left more than [`CUT_TRIGGER`].
+/// Parts a step that left more than [`CUT_TRIGGER`] is done again in.
 pub const CUT_PARTS: usize = 4;
+
+/// Times a step is cut at most (its shortest parts: Δt / 4³).
+pub const MAX_CUT_DEPTH: u32 = 3;
 
 /// Steps looked back over to tell persistent unconverged steps from isolated ones.
 pub const PERSISTENCE_WINDOW: u32 = 20;
@@ -85,21 +88,41 @@ impl Frame {
             ));
         }
         self.check_per_node("loads", loads)?;
-        if self.equilibrium != Equilibrium::OneSolve || self.unbalance <= CUT_TRIGGER {
-            return self.step_once(dt, loads);
+        self.step_or_cut(dt, loads, 0)
+    }
+
+    /// [`Frame::step`] at cut depth `depth`: a one-solve step that leaves more than [`CUT_TRIGGER`]
+    /// times the unbalanced force it began with (hinges changed within it) is taken back and done
+    /// again in [`CUT_PARTS`] parts, each of them cut again the same way, down to
+    /// [`MAX_CUT_DEPTH`].
+    fn step_or_cut(&mut self, dt: f64, loads: &[f64], depth: u32) -> Result<(), String> {
+        let may_cut = self.equilibrium == Equilibrium::OneSolve && depth < MAX_CUT_DEPTH;
+        if self.step_once(dt, loads, may_cut)? {
+            return Ok(());
         }
-        // the last step left several times the unbalanced force it began with (hinges changed
-        // within it): this one is taken in CUT_PARTS parts, and each part again while that lasts
-        let part = dt / CUT_PARTS as f64;
         self.cut_steps += 1;
+        let part = dt / CUT_PARTS as f64;
         for _ in 0..CUT_PARTS {
-            self.step_once(part, loads)?;
+            self.step_or_cut(part, loads, depth + 1)?;
         }
         Ok(())
     }
 
-    /// [`Frame::step`] without the cut.
-    fn step_once(&mut self, dt: f64, loads: &[f64]) -> Result<(), String> {
+    /// Puts the nodes and elements back where the last increment found them (a one-solve step that
+    /// has not been finished: velocities, accelerations and counters untouched).
+    fn take_back(&mut self) {
+        for n in &mut self.nodes {
+            (n.position, n.rotation) = n.previous;
+        }
+        for e in &mut self.elements {
+            (e.current, e.stress) = e.previous;
+        }
+        self.end_of_step_forces = None;
+    }
+
+    /// [`Frame::step`] without the cut; with `may_cut`, a one-solve step that leaves more than
+    /// [`CUT_TRIGGER`] times its first unbalanced force is taken back (returns false).
+    fn step_once(&mut self, dt: f64, loads: &[f64], may_cut: bool) -> Result<bool, String> {
         let with_contact: Vec<f64>;
         let loads = match &self.contact {
             Some(c) => {
@@ -130,6 +153,11 @@ impl Frame {
                 self.solve_to_equilibrium(dt, loads, &inertia, tolerance)?
             }
         };
+        if may_cut && self.unbalance > CUT_TRIGGER {
+            self.take_back();
+            self.unconverged = unconverged;
+            return Ok(false);
+        }
         for (node, du) in self.nodes.iter_mut().zip(du.chunks_exact(NODE_DOFS)) {
             for (k, duk) in du.iter().enumerate() {
                 (node.velocity[k], node.acceleration[k]) = if node.fixed[k] {
@@ -145,7 +173,7 @@ impl Frame {
         }
         self.update_integration_points();
         self.split_fractured()?;
-        self.check_stability()?;
+        self.check_stability(dt)?;
         self.steps += 1;
         self.worst_unbalance = self.worst_unbalance.max(self.unbalance);
         let window = (1u32 << PERSISTENCE_WINDOW) - 1;
@@ -156,7 +184,7 @@ impl Frame {
             let age = u64::from(31 - self.recent_unconverged.leading_zeros());
             self.persistent_from.get_or_insert(self.steps - age);
         }
-        Ok(())
+        Ok(true)
     }
 
     /// ASI's one solve: the increment from the unbalanced force at the start of the step, the state
@@ -324,6 +352,7 @@ impl Frame {
     /// the benchmark's 7 × 7 × 7 grid: 0.15 ms per step in rayon tasks, 0.03 ms on one thread).
     pub(super) fn apply_increment(&mut self, du: &[f64]) {
         for (node, du) in self.nodes.iter_mut().zip(du.chunks_exact(NODE_DOFS)) {
+            node.previous = (node.position, node.rotation);
             node.position += Vector3::new(du[0], du[1], du[2]);
             let spin = UnitQuaternion::from_scaled_axis(Vector3::new(du[3], du[4], du[5]));
             node.rotation = spin * node.rotation;
@@ -369,7 +398,8 @@ impl Frame {
     }
 
     /// Stops a run whose elements stretch or twist beyond what the formulation can represent.
-    fn check_stability(&self) -> Result<(), String> {
+    /// `dt`: the step just taken, for the diagnostic.
+    fn check_stability(&self, dt: f64) -> Result<(), String> {
         for (i, e) in self.elements.iter().enumerate() {
             let strain = e.current.length / e.length0 - 1.0;
             let rotation = e.current.deformation[3..6]
@@ -378,10 +408,23 @@ impl Frame {
                 .fold(0.0_f64, |m, x| m.max(x.abs()));
             let bad_values = !(strain.is_finite() && rotation.is_finite());
             if bad_values || strain.abs() > MAX_AXIAL_STRAIN || rotation > MAX_RELATIVE_ROTATION {
+                let advice = if self.equilibrium == Equilibrium::OneSolve
+                    && self.unbalance > ONE_SOLVE_UNBALANCE_LIMIT
+                {
+                    format!(
+                        "step {} (Δt = {dt} s) left {:.2} of its unbalanced force: one solve per step has lost \
+                         its accuracy; use time_step ≤ {:.3e} s or set equilibrium_tolerance",
+                        self.steps + 1,
+                        self.unbalance,
+                        0.5 * dt
+                    )
+                } else {
+                    "reduce the time step or the loads".to_string()
+                };
                 return Err(format!(
                     "frame: element {i} (member {}) has axial strain {strain:.3} and end rotation {rotation:.3} rad \
                      relative to its chord (limits {MAX_AXIAL_STRAIN} and {MAX_RELATIVE_ROTATION} rad): the run is \
-                     unstable; reduce the time step or the loads",
+                     unstable; {advice}",
                     e.member
                 ));
             }
@@ -406,6 +449,7 @@ fn update_element(e: &mut Element, nodes: &[Node], sections: &[Section]) {
         &e.reference,
         e.length0,
     );
+    e.previous = (e.current, e.stress);
     let mut dd = [0.0; ELEMENT_DOFS];
     for (i, d) in dd.iter_mut().enumerate() {
         *d = now.deformation[i] - e.current.deformation[i];
