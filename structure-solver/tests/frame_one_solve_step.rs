@@ -49,6 +49,7 @@ fn portal() -> FrameConfig {
         contact: None,
         wall: Vec::new(),
         equilibrium_tolerance: None,
+        damping: None,
     }
 }
 

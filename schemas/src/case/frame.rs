@@ -52,6 +52,10 @@
 //! damping_ratio = 0.2                # optional, share of critical (default 0)
 //! members = true                     # optional: members touch each other (default true)
 //!
+//! [structure.bridge.frame.damping]    # optional: Rayleigh C = a0 M + a1 K (tangent K)
+//! frequencies = [2.0, 20.0]          # [Hz] … with the damping ratios wanted there,
+//! ratios = [0.05, 0.05]              # or mass = a0 [1/s] and/or stiffness = a1 [s]
+//!
 //! [[structure.bridge.frame.wall]]     # optional, needs [contact]
 //! point = [0.0, 0.0, 0.0]
 //! normal = [0.0, 0.0, 1.0]
@@ -93,6 +97,79 @@ pub struct FrameConfig {
     /// its first value (slower; keeps energy in large, fast rotations).
     #[serde(default)]
     pub equilibrium_tolerance: Option<f64>,
+    /// Rayleigh damping `C = a0 M + a1 K` (K the tangent stiffness); absent: none.
+    #[serde(default)]
+    pub damping: Option<DampingConfig>,
+}
+
+/// `[structure.NAME.frame.damping]`: Rayleigh damping, by its coefficients (`mass` = a0 [1/s],
+/// `stiffness` = a1 [s], either may be left out) or by two frequencies [Hz] and the damping ratios
+/// wanted at them (`frequencies`, `ratios`).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DampingConfig {
+    #[serde(default)]
+    pub mass: Option<f64>,
+    #[serde(default)]
+    pub stiffness: Option<f64>,
+    #[serde(default)]
+    pub frequencies: Option<[f64; 2]>,
+    #[serde(default)]
+    pub ratios: Option<[f64; 2]>,
+}
+
+impl DampingConfig {
+    /// `(a0, a1)` from the coefficients or from ζᵢ = a0/(2ωᵢ) + a1 ωᵢ/2 at the two frequencies;
+    /// `key` is the table's path for errors.
+    pub fn coefficients(&self, key: &str) -> Result<(f64, f64), FieldError> {
+        match (self.frequencies, self.ratios) {
+            (Some(f), Some(z)) => {
+                if self.mass.is_some() || self.stiffness.is_some() {
+                    return Err(FieldError::new(
+                        key,
+                        "give either mass and stiffness, or frequencies and ratios, not both",
+                    ));
+                }
+                for (i, v) in f.iter().enumerate() {
+                    check::positive(&format!("{key}.frequencies[{i}]"), *v)?;
+                }
+                for (i, v) in z.iter().enumerate() {
+                    check::non_negative(&format!("{key}.ratios[{i}]"), *v)?;
+                }
+                if f[0] == f[1] {
+                    return Err(FieldError::new(
+                        format!("{key}.frequencies"),
+                        "the two frequencies must differ",
+                    ));
+                }
+                let w = f.map(|f| 2.0 * std::f64::consts::PI * f);
+                // ζ1 = a0/(2ω1) + a1 ω1/2, ζ2 = a0/(2ω2) + a1 ω2/2
+                let a1 = 2.0 * (z[1] * w[1] - z[0] * w[0]) / (w[1] * w[1] - w[0] * w[0]);
+                let a0 = 2.0 * z[0] * w[0] - a1 * w[0] * w[0];
+                if a0 < 0.0 || a1 < 0.0 {
+                    return Err(FieldError::new(
+                        format!("{key}.ratios"),
+                        format!(
+                            "these ratios at these frequencies need a negative coefficient (a0 = {a0:.4e}, \
+                             a1 = {a1:.4e}); choose ratios that Rayleigh damping can give"
+                        ),
+                    ));
+                }
+                Ok((a0, a1))
+            }
+            (None, None) => {
+                let a0 = self.mass.unwrap_or(0.0);
+                let a1 = self.stiffness.unwrap_or(0.0);
+                check::non_negative(&format!("{key}.mass"), a0)?;
+                check::non_negative(&format!("{key}.stiffness"), a1)?;
+                Ok((a0, a1))
+            }
+            _ => Err(FieldError::new(
+                key,
+                "frequencies and ratios go together: give both or neither",
+            )),
+        }
+    }
 }
 
 /// `[structure.NAME.frame.contact]`: members and walls meet through particles along the members
@@ -338,6 +415,9 @@ impl FrameConfig {
     pub fn validate(&self, key: &str) -> Result<(), FieldError> {
         check::positive(&format!("{key}.time_step"), self.time_step)?;
         check::finite(&format!("{key}.gravity"), &self.gravity)?;
+        if let Some(d) = &self.damping {
+            d.coefficients(&format!("{key}.damping"))?;
+        }
         if let Some(tolerance) = self.equilibrium_tolerance {
             check::within(&format!("{key}.equilibrium_tolerance"), tolerance, 1e-14, 0.5)?;
         }

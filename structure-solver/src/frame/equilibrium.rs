@@ -15,7 +15,6 @@
 
 use super::assembly::NODE_DOFS;
 use super::hinge::End;
-use super::newmark;
 use super::stepping::{check_finite, norm};
 use super::topology::{Element, Node};
 use super::Frame;
@@ -43,7 +42,7 @@ impl Frame {
         self.end_of_step_forces = None;
         let committed_nodes = self.nodes.clone();
         let committed_elements = self.elements.clone();
-        let mass_factor = newmark::mass_factor(dt);
+        let mass_factor = self.effective_mass_factor(dt);
         let mut du = vec![0.0; self.nodes.len() * NODE_DOFS];
         let mut first_residual = None;
         let mut last_residual = f64::INFINITY;
@@ -55,7 +54,7 @@ impl Frame {
         for iteration in 0..=MAX_CORRECTIONS + 1 {
             let mut refactor = !self.system.has_factor_for(dt);
             let contributions = self.contributions();
-            let mut rhs = self.residual(&self.gather(&contributions), loads, inertia, &du, mass_factor);
+            let mut rhs = self.residual(&self.gather(&contributions), loads, inertia, &du, mass_factor, dt);
             let residual = norm(&rhs);
             let first = *first_residual.get_or_insert(residual);
             if residual <= tolerance * first || residual <= round_off {

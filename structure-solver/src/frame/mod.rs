@@ -15,6 +15,7 @@ pub mod assembly;
 pub mod condensation;
 pub mod condensed_system;
 pub mod contact;
+pub mod damping;
 pub mod element;
 pub mod equilibrium;
 pub mod factor_age;
@@ -94,6 +95,11 @@ pub struct Frame {
     elapsed: f64,
     /// Hinge events, when recorded (`hinge_events.rs`).
     events: Option<Vec<hinge_events::HingeEvent>>,
+    /// Rayleigh damping coefficients `(a0, a1)` of `C = a0 M + a1 K` (`damping.rs`).
+    damping: (f64, f64),
+    /// The predicted part of the step's end velocity, `(1 − δ/β) v + Δt (1 − δ/(2β)) a`, 6 per
+    /// node, while the frame is damped.
+    predicted_velocity: Vec<f64>,
 }
 
 impl Frame {
@@ -159,6 +165,11 @@ impl Frame {
             cut_steps: 0,
             elapsed: 0.0,
             events: None,
+            damping: match &cfg.damping {
+                Some(d) => d.coefficients(&format!("{key}.damping"))?,
+                None => (0.0, 0.0),
+            },
+            predicted_velocity: Vec::new(),
         })
     }
 

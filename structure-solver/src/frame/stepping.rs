@@ -5,6 +5,7 @@
 //! into the next one; equilibrium corrections within the step are an option ([`Equilibrium::Iterate`]).
 
 use super::assembly::NODE_DOFS;
+use super::condensation::Block;
 use super::element::{corotate, ELEMENT_DOFS};
 use super::factor_age::{Staleness, CG_PRODUCTS_LIMIT};
 use super::global_system::{end_mass, mass_block, tangent_stiffness, Contribution, Motion, NodalForces};
@@ -132,11 +133,7 @@ impl Frame {
             }
             None => loads,
         };
-        let inertia: Vec<f64> = self
-            .nodes
-            .iter()
-            .flat_map(|n| (0..NODE_DOFS).map(|k| newmark::inertia_term(n.velocity[k], n.acceleration[k], dt)))
-            .collect();
+        let inertia = self.inertia_with_damping(dt);
         let staleness =
             self.factor_age
                 .staleness(&self.elements, &self.sections, self.density, dt, self.stale_limit);
@@ -190,7 +187,7 @@ impl Frame {
     /// ASI's one solve: the increment from the unbalanced force at the start of the step, the state
     /// moved by it, and the internal forces there kept for the next step. Returns the increment.
     fn solve_once(&mut self, dt: f64, loads: &[f64], inertia: &[f64]) -> Result<Vec<f64>, String> {
-        let mass_factor = newmark::mass_factor(dt);
+        let mass_factor = self.effective_mass_factor(dt);
         let (nodal, contributions) = match self.end_of_step_forces.take() {
             Some(nodal) if self.system.has_values_for(dt) => (nodal, None),
             _ => {
@@ -202,14 +199,14 @@ impl Frame {
             self.refactor(contributions.as_deref(), dt, mass_factor)?;
         }
         let zero = vec![0.0; self.nodes.len() * NODE_DOFS];
-        let mut du = self.residual(&nodal, loads, inertia, &zero, mass_factor);
+        let mut du = self.residual(&nodal, loads, inertia, &zero, mass_factor, dt);
         let first = norm(&du);
         self.solve_with_current_tangent(&mut du, dt, mass_factor)?;
         check_finite(&du)?;
         self.apply_increment(&du);
         let contributions = self.update_elements_with_forces();
         let nodal = self.gather(&contributions);
-        let last = norm(&self.residual(&nodal, loads, inertia, &du, mass_factor));
+        let last = norm(&self.residual(&nodal, loads, inertia, &du, mass_factor, dt));
         self.end_of_step_forces = Some(nodal);
         self.unbalance = if first > 0.0 { last / first } else { 0.0 };
         // the floor is only worked out for the rare steps above the limit
@@ -260,7 +257,7 @@ impl Frame {
         dt: f64,
         mass_factor: f64,
     ) -> Result<(), String> {
-        self.recondense_changed(mass_factor)?;
+        self.recondense_changed(dt, mass_factor)?;
         let rhs = x.to_vec();
         let outcome = self.system.solve(x, CG_PRODUCTS_LIMIT)?;
         self.cg_iterations += outcome.iterations as u64;
@@ -275,7 +272,8 @@ impl Frame {
 
     /// Re-condenses the members with an element whose hinge or integration point changed since its
     /// matrix was made, at the current state.
-    fn recondense_changed(&mut self, mass_factor: f64) -> Result<(), String> {
+    fn recondense_changed(&mut self, dt: f64, mass_factor: f64) -> Result<(), String> {
+        let scale = self.stiffness_factor(dt);
         let changed = self.factor_age.changed_tangents(&self.elements);
         if changed.is_empty() {
             return Ok(());
@@ -287,7 +285,7 @@ impl Frame {
                 let (element, section) = (&self.elements[e], &self.sections[self.elements[e].section]);
                 let (m, j) = end_mass(element, section, self.density);
                 (
-                    tangent_stiffness(element, section),
+                    scaled(tangent_stiffness(element, section), scale),
                     mass_block(mass_factor * m, &(j * mass_factor)),
                 )
             })
@@ -307,7 +305,7 @@ impl Frame {
         mass_factor: f64,
     ) -> Result<(), String> {
         if self.system.has_values_for(dt) {
-            self.recondense_changed(mass_factor)?;
+            self.recondense_changed(dt, mass_factor)?;
             self.factor_age.factorized();
         } else {
             let computed;
@@ -320,7 +318,13 @@ impl Frame {
             };
             let node_blocks = self.node_blocks(contributions, mass_factor);
             let (elements, sections) = (&self.elements, &self.sections);
-            let stiffness = |e: usize| tangent_stiffness(&elements[e], &sections[elements[e].section]);
+            let scale = self.stiffness_factor(dt);
+            let stiffness = |e: usize| {
+                scaled(
+                    tangent_stiffness(&elements[e], &sections[elements[e].section]),
+                    scale,
+                )
+            };
             self.system.assemble(&stiffness, &node_blocks)?;
             self.factor_age.record(&self.elements);
             self.assemblies += 1;
@@ -338,13 +342,19 @@ impl Frame {
         inertia: &[f64],
         du: &[f64],
         mass_factor: f64,
+        dt: f64,
     ) -> Vec<f64> {
         let motion = Motion {
             inertia,
             increment: du,
             mass_factor,
         };
-        self.unbalanced_force(nodal, loads, Some(motion))
+        if self.damping.1 == 0.0 {
+            return self.unbalanced_force(nodal, loads, Some(motion));
+        }
+        let mut damped = loads.to_vec();
+        self.add_stiffness_damping(&mut damped, du, dt);
+        self.unbalanced_force(nodal, &damped, Some(motion))
     }
 
     /// Moves the nodes by `du`; rotations compose as `exp(Δθ) R` (updated Lagrangian: Δθ is spatial).
@@ -456,6 +466,14 @@ fn update_element(e: &mut Element, nodes: &[Node], sections: &[Section]) {
     }
     e.stress.update(&sections[e.section], e.length0, &dd);
     e.current = now;
+}
+
+/// `k` times `scale` (unchanged when `scale` is 1: no stiffness-proportional damping).
+fn scaled(mut k: Block, scale: f64) -> Block {
+    if scale != 1.0 {
+        k.iter_mut().flatten().for_each(|x| *x *= scale);
+    }
+    k
 }
 
 /// Euclidean norm.

@@ -65,6 +65,7 @@ pub fn beam(length: f64, members: usize, width: f64, depth: f64, material: Mater
         contact: None,
         wall: Vec::new(),
         equilibrium_tolerance: None,
+        damping: None,
     }
 }
 
@@ -133,6 +134,7 @@ pub fn building(n: usize, yield_stress: f64) -> FrameConfig {
         contact: None,
         wall: Vec::new(),
         equilibrium_tolerance: None,
+        damping: None,
     }
 }
 
