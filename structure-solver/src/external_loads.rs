@@ -21,11 +21,20 @@ impl ExternalLoads {
         }
     }
 
-    /// Adds the coupler's input arrays; an empty array means no load, any other length must match.
+    /// Adds the coupler's input arrays; an empty array means no load. Point and body arrays must
+    /// match; node arrays may differ in length by nodes made by fracture (they come last and carry
+    /// no load where an array leaves them out), which [`crate::Structure::advance`] checks.
     pub fn add_fields(&mut self, f: &Fields) -> Result<(), String> {
         add(&mut self.point_force, &f.point_force, "point_force")?;
         add(&mut self.body_force, &f.body_force, "body_force")?;
-        add(&mut self.node_force, &f.node_force, "node_force")
+        if self.node_force.len() < f.node_force.len() {
+            self.node_force.resize(f.node_force.len(), 0.0);
+        }
+        self.node_force
+            .iter_mut()
+            .zip(f.node_force.iter())
+            .for_each(|(a, b)| *a += b);
+        Ok(())
     }
 }
 

@@ -1,7 +1,9 @@
 //! [`HistoryWriter`]: the CSV histories of standalone mode, one file per declared point mass
-//! (`point-NAME.csv`), body (`body-NAME.csv`) and frame node (`node-ID.csv`), one row per
-//! output time.
+//! (`point-NAME.csv`), body (`body-NAME.csv`) and frame node (`node-ID.csv`: position, velocity,
+//! angular velocity and the rotation vector from the initial orientation), one row per output
+//! time.
 
+use crate::frame::Frame;
 use crate::structure::Structure;
 use schemas::case::structure::HistoryConfig;
 use std::fs::File;
@@ -55,7 +57,7 @@ impl HistoryWriter {
                 .ok_or_else(|| format!("history: frame node {id} does not exist"))?;
             files.push((
                 Source::Node(i),
-                open(format!("node-{id}.csv"), "t,x,y,z,vx,vy,vz,wx,wy,wz")?,
+                open(format!("node-{id}.csv"), "t,x,y,z,vx,vy,vz,wx,wy,wz,rx,ry,rz")?,
             ));
         }
         Ok(Self { files })
@@ -67,6 +69,7 @@ impl HistoryWriter {
         let (pu, pv) = (s.point_displacement(), s.point_velocity());
         let (pose, vel) = (s.body_pose(), s.body_velocity());
         let (np, nv) = (s.node_position(), s.node_velocity());
+        let nr = s.frame().map(Frame::node_rotations).unwrap_or_default();
         for (source, w) in &mut self.files {
             let row: Vec<f64> = match *source {
                 Source::Point(i) => pu[3 * i..3 * i + 3]
@@ -86,6 +89,7 @@ impl HistoryWriter {
                 Source::Node(i) => np[3 * i..3 * i + 3]
                     .iter()
                     .chain(&nv[6 * i..6 * i + 6])
+                    .chain(&nr[3 * i..3 * i + 3])
                     .copied()
                     .collect(),
             };

@@ -10,6 +10,7 @@ pub mod anchor;
 pub mod error;
 pub mod external_loads;
 pub mod frame;
+pub mod frame_tables;
 pub mod history;
 pub mod inertia;
 pub mod load_history;

@@ -1,7 +1,10 @@
 //! [`Output`]: everything a structure run writes to its folder — the CSV histories
-//! ([`HistoryWriter`]), the frame's VTU series ([`VtuSeries`]) at the history times, and
-//! `releases.csv` (one row per support: body, release time or empty) at the end.
+//! ([`HistoryWriter`]), the frame's tables ([`FrameTables`]: section forces at the history times,
+//! hinge events), the frame's VTU series ([`VtuSeries`]) at the history times (or every
+//! `vtu_interval`, or none), and `releases.csv` (one row per support: body, release time or
+//! empty) at the end.
 
+use crate::frame_tables::FrameTables;
 use crate::history::HistoryWriter;
 use crate::structure::Structure;
 use crate::vtu_series::VtuSeries;
@@ -13,11 +16,16 @@ use std::path::{Path, PathBuf};
 pub struct Output {
     dir: PathBuf,
     history: Option<HistoryWriter>,
+    tables: Option<FrameTables>,
     vtu: Option<VtuSeries>,
+    /// VTU interval [s] (`None`: every record) and the next time a snapshot is due.
+    vtu_interval: Option<f64>,
+    vtu_due: f64,
 }
 
 impl Output {
-    /// Creates `dir` and the history files declared in `cfg`.
+    /// Creates `dir` and the history files declared in `cfg`. The frame tables need the frame's
+    /// hinge events recorded ([`Structure::record_hinge_events`]).
     pub fn create(dir: &Path, cfg: &StructureConfig, s: &Structure) -> Result<Self, String> {
         std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
         let history = cfg
@@ -25,11 +33,23 @@ impl Output {
             .as_ref()
             .map(|h| HistoryWriter::create(dir, h, s))
             .transpose()?;
-        let vtu = s.frame().map(|_| VtuSeries::new(dir));
+        let h = cfg.history.as_ref();
+        let tables = s
+            .frame()
+            .map(|_| FrameTables::create(dir, h.is_some_and(|h| h.section_forces)))
+            .transpose()
+            .map_err(|e| format!("cannot create the frame tables in {}: {e}", dir.display()))?;
+        let vtu = s
+            .frame()
+            .filter(|_| h.is_none_or(|h| h.vtu))
+            .map(|_| VtuSeries::new(dir));
         Ok(Self {
             dir: dir.to_path_buf(),
             history,
+            tables,
             vtu,
+            vtu_interval: h.and_then(|h| h.vtu_interval),
+            vtu_due: 0.0,
         })
     }
 
@@ -42,10 +62,20 @@ impl Output {
         if let Some(h) = &mut self.history {
             h.record(s).map_err(|e| self.error(e))?;
         }
-        if let (Some(series), Some(frame)) = (&mut self.vtu, s.frame()) {
-            series
-                .write(frame, s.time())
+        if let (Some(tables), Some(frame)) = (&mut self.tables, s.frame()) {
+            tables
+                .record(frame, s.time(), true)
                 .map_err(|e| format!("writing to {}: {e}", self.dir.display()))?;
+        }
+        let t = s.time();
+        let due = self.vtu_interval.is_none_or(|i| t >= self.vtu_due - 1e-9 * i);
+        if let (Some(series), Some(frame), true) = (&mut self.vtu, s.frame(), due) {
+            series
+                .write(frame, t)
+                .map_err(|e| format!("writing to {}: {e}", self.dir.display()))?;
+            if let Some(i) = self.vtu_interval {
+                self.vtu_due = ((t / i + 1e-9).floor() + 1.0) * i;
+            }
         }
         Ok(())
     }
@@ -54,6 +84,12 @@ impl Output {
     pub fn finish(&mut self, s: &Structure) -> Result<(), String> {
         if let Some(h) = &mut self.history {
             h.flush()
+                .map_err(|e| format!("writing to {}: {e}", self.dir.display()))?;
+        }
+        if let (Some(tables), Some(frame)) = (&mut self.tables, s.frame()) {
+            tables
+                .record(frame, s.time(), false)
+                .and_then(|()| tables.flush())
                 .map_err(|e| format!("writing to {}: {e}", self.dir.display()))?;
         }
         if !s.supports().is_empty() {
@@ -69,7 +105,7 @@ impl Output {
 
 /// Output times of a history with `interval` up to `end`: interval, 2·interval, …, end.
 pub fn output_times(interval: f64, end: f64) -> Vec<f64> {
-    let n = (end / interval * (1.0 - 1e-12)).ceil().max(1.0) as u64;
+    let n = crate::structure::equal_steps(end, interval);
     (1..=n)
         .map(|k| if k == n { end } else { interval * k as f64 })
         .collect()

@@ -50,7 +50,10 @@ impl StructureParticipant {
         })?;
         let key = format!("structure.{name}");
         let at_key = |e: schemas::case::FieldError| schemas::case::CaseError::at(&case.path, e).to_string();
-        let structure = Structure::from_config(cfg, &key).map_err(at_key)?;
+        let mut structure = Structure::from_config(cfg, &key).map_err(at_key)?;
+        if out.is_some() {
+            structure.record_hinge_events();
+        }
         let schedule = LoadSchedule::from_config(cfg, &key, &case.dir(), &structure).map_err(at_key)?;
         let mut output = out.map(|dir| Output::create(dir, cfg, &structure)).transpose()?;
         if let Some(o) = &mut output {

@@ -58,6 +58,7 @@ fn frame() -> FrameConfig {
         contact: None,
         wall: Vec::new(),
         equilibrium_tolerance: None,
+        damping: None,
     }
 }
 

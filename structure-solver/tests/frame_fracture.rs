@@ -40,6 +40,7 @@ fn two_part_cantilever() -> FrameConfig {
         contact: None,
         wall: Vec::new(),
         equilibrium_tolerance: None,
+        damping: None,
     }
 }
 

@@ -19,6 +19,7 @@
 //! kind = "rectangle"                 # width along local y, depth along local z
 //! width = 0.1
 //! depth = 0.15
+//! yield_function = "rectangle"       # optional: "rectangle" (default), "i_section", "quadratic"
 //!
 //! [[structure.bridge.frame.section]]
 //! name = "pipe"
@@ -50,6 +51,10 @@
 //! stiffness = 1.0e7                  # [N/m] per particle pair
 //! damping_ratio = 0.2                # optional, share of critical (default 0)
 //! members = true                     # optional: members touch each other (default true)
+//!
+//! [structure.bridge.frame.damping]    # optional: Rayleigh C = a0 M + a1 K (tangent K)
+//! frequencies = [2.0, 20.0]          # [Hz] … with the damping ratios wanted there,
+//! ratios = [0.05, 0.05]              # or mass = a0 [1/s] and/or stiffness = a1 [s]
 //!
 //! [[structure.bridge.frame.wall]]     # optional, needs [contact]
 //! point = [0.0, 0.0, 0.0]
@@ -92,6 +97,79 @@ pub struct FrameConfig {
     /// its first value (slower; keeps energy in large, fast rotations).
     #[serde(default)]
     pub equilibrium_tolerance: Option<f64>,
+    /// Rayleigh damping `C = a0 M + a1 K` (K the tangent stiffness); absent: none.
+    #[serde(default)]
+    pub damping: Option<DampingConfig>,
+}
+
+/// `[structure.NAME.frame.damping]`: Rayleigh damping, by its coefficients (`mass` = a0 [1/s],
+/// `stiffness` = a1 [s], either may be left out) or by two frequencies [Hz] and the damping ratios
+/// wanted at them (`frequencies`, `ratios`).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DampingConfig {
+    #[serde(default)]
+    pub mass: Option<f64>,
+    #[serde(default)]
+    pub stiffness: Option<f64>,
+    #[serde(default)]
+    pub frequencies: Option<[f64; 2]>,
+    #[serde(default)]
+    pub ratios: Option<[f64; 2]>,
+}
+
+impl DampingConfig {
+    /// `(a0, a1)` from the coefficients or from ζᵢ = a0/(2ωᵢ) + a1 ωᵢ/2 at the two frequencies;
+    /// `key` is the table's path for errors.
+    pub fn coefficients(&self, key: &str) -> Result<(f64, f64), FieldError> {
+        match (self.frequencies, self.ratios) {
+            (Some(f), Some(z)) => {
+                if self.mass.is_some() || self.stiffness.is_some() {
+                    return Err(FieldError::new(
+                        key,
+                        "give either mass and stiffness, or frequencies and ratios, not both",
+                    ));
+                }
+                for (i, v) in f.iter().enumerate() {
+                    check::positive(&format!("{key}.frequencies[{i}]"), *v)?;
+                }
+                for (i, v) in z.iter().enumerate() {
+                    check::non_negative(&format!("{key}.ratios[{i}]"), *v)?;
+                }
+                if f[0] == f[1] {
+                    return Err(FieldError::new(
+                        format!("{key}.frequencies"),
+                        "the two frequencies must differ",
+                    ));
+                }
+                let w = f.map(|f| 2.0 * std::f64::consts::PI * f);
+                // ζ1 = a0/(2ω1) + a1 ω1/2, ζ2 = a0/(2ω2) + a1 ω2/2
+                let a1 = 2.0 * (z[1] * w[1] - z[0] * w[0]) / (w[1] * w[1] - w[0] * w[0]);
+                let a0 = 2.0 * z[0] * w[0] - a1 * w[0] * w[0];
+                if a0 < 0.0 || a1 < 0.0 {
+                    return Err(FieldError::new(
+                        format!("{key}.ratios"),
+                        format!(
+                            "these ratios at these frequencies need a negative coefficient (a0 = {a0:.4e}, \
+                             a1 = {a1:.4e}); choose ratios that Rayleigh damping can give"
+                        ),
+                    ));
+                }
+                Ok((a0, a1))
+            }
+            (None, None) => {
+                let a0 = self.mass.unwrap_or(0.0);
+                let a1 = self.stiffness.unwrap_or(0.0);
+                check::non_negative(&format!("{key}.mass"), a0)?;
+                check::non_negative(&format!("{key}.stiffness"), a1)?;
+                Ok((a0, a1))
+            }
+            _ => Err(FieldError::new(
+                key,
+                "frequencies and ratios go together: give both or neither",
+            )),
+        }
+    }
 }
 
 /// `[structure.NAME.frame.contact]`: members and walls meet through particles along the members
@@ -183,7 +261,17 @@ pub struct SectionConfig {
     /// Plastic section modulus for bending about local z [m³] (general).
     #[serde(default)]
     pub plastic_modulus_z: Option<f64>,
+    /// Full-plastic interaction of N, My, Mz (one of [`YIELD_FUNCTIONS`]; default `"rectangle"`):
+    /// `"rectangle"`: the solid rectangle's exact `|M|/Mp + (N/Np)² = 1` about either axis, biaxial
+    /// `(|my|^1.7 + |mz|^1.7)^(1/1.7) + n² = 1`; `"i_section"`: wide-flange I section with its web
+    /// along local z, `My/Mpy ≤ 1.18 (1 − |n|)`, `Mz/Mpz ≤ 1.19 (1 − n²)`, biaxial with the
+    /// exponents 2 and max(1, 5|n|) of EN 1993-1-1 §6.2.9.1; `"quadratic"`: `n² + my² + mz² = 1`.
+    #[serde(default)]
+    pub yield_function: Option<String>,
 }
+
+/// The yield functions a section's `yield_function` may name.
+pub const YIELD_FUNCTIONS: [&str; 3] = ["rectangle", "i_section", "quadratic"];
 
 /// `[[structure.NAME.frame.node]]`.
 #[derive(Debug, Clone, Deserialize)]
@@ -225,6 +313,17 @@ impl SectionConfig {
     pub fn validate(&self, key: &str) -> Result<(), FieldError> {
         if self.name.trim().is_empty() {
             return Err(FieldError::new(format!("{key}.name"), "must not be empty"));
+        }
+        if let Some(f) = &self.yield_function {
+            if !YIELD_FUNCTIONS.contains(&f.as_str()) {
+                return Err(FieldError::new(
+                    format!("{key}.yield_function"),
+                    format!(
+                        "unknown yield function `{f}`; allowed: {}",
+                        YIELD_FUNCTIONS.join(", ")
+                    ),
+                ));
+            }
         }
         let general = [
             ("area", self.area),
@@ -316,6 +415,9 @@ impl FrameConfig {
     pub fn validate(&self, key: &str) -> Result<(), FieldError> {
         check::positive(&format!("{key}.time_step"), self.time_step)?;
         check::finite(&format!("{key}.gravity"), &self.gravity)?;
+        if let Some(d) = &self.damping {
+            d.coefficients(&format!("{key}.damping"))?;
+        }
         if let Some(tolerance) = self.equilibrium_tolerance {
             check::within(&format!("{key}.equilibrium_tolerance"), tolerance, 1e-14, 0.5)?;
         }

@@ -3,7 +3,7 @@
 //!
 //! ```toml
 //! [structure.tower]
-//! max_step = 1e-3                # largest integrator substep [s]
+//! max_step = 1e-3                # largest substep of point masses and bodies [s] (not needed for a frame alone)
 //! gravity = [0, 0, -9.8]         # default 0
 //!
 //! [[structure.tower.point_mass]]
@@ -40,6 +40,9 @@
 //! points = ["m1"]
 //! bodies = ["deck"]
 //! nodes = [12]                   # frame node ids
+//! vtu_interval = 0.1             # optional: frame snapshots this often (default: every row)
+//! vtu = true                     # optional: false writes no frame snapshots
+//! section_forces = true          # optional: false writes no section-forces.csv
 //!
 //! [structure.tower.frame]        # optional ASI-Gauss frame: see `frame.rs`
 //! ```
@@ -58,8 +61,10 @@ pub const GROUND: &str = "ground";
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StructureConfig {
-    /// Largest integrator substep [s]; each advance lands exactly on its end time.
-    pub max_step: f64,
+    /// Largest integrator substep of the point masses and bodies [s]; each advance lands exactly on
+    /// its end time. Required with point masses or bodies; a frame takes its own `time_step`.
+    #[serde(default)]
+    pub max_step: Option<f64>,
     /// Gravity acceleration [m/s²] on point masses and bodies (a frame takes `frame.gravity`;
     /// when both are given they must agree).
     #[serde(default)]
@@ -260,15 +265,40 @@ pub struct HistoryConfig {
     /// Bodies: centre, quaternion, velocity, angular velocity, held flag.
     #[serde(default)]
     pub bodies: Vec<String>,
-    /// Frame node ids: position and velocity.
+    /// Frame node ids: position, rotation vector, velocity and angular velocity.
     #[serde(default)]
     pub nodes: Vec<u32>,
+    /// Frame snapshots (VTU) at the first history time at or after every multiple of this [s];
+    /// absent: at every history time.
+    #[serde(default)]
+    pub vtu_interval: Option<f64>,
+    /// Whether frame snapshots are written at all (default true).
+    #[serde(default = "yes")]
+    pub vtu: bool,
+    /// Whether the frame's section forces (`section-forces.csv`) are written at the history times
+    /// (default true when there is a frame).
+    #[serde(default = "yes")]
+    pub section_forces: bool,
+}
+
+fn yes() -> bool {
+    true
 }
 
 impl StructureConfig {
     /// Checks every key; `key` is the section's dotted path, e.g. `structure.bridge`.
     pub fn validate(&self, key: &str) -> Result<(), FieldError> {
-        check::positive(&format!("{key}.max_step"), self.max_step)?;
+        match self.max_step {
+            Some(h) => check::positive(&format!("{key}.max_step"), h)?,
+            None if !(self.point_mass.is_empty() && self.body.is_empty()) => {
+                return Err(FieldError::new(
+                    format!("{key}.max_step"),
+                    "is required when the participant has point masses or bodies (a frame alone \
+                     steps by its own time_step)",
+                ))
+            }
+            None => {}
+        }
         check::finite(&format!("{key}.gravity"), &self.gravity)?;
         let mut names = BTreeSet::new();
         if let Some(f) = &self.frame {
@@ -328,6 +358,9 @@ impl StructureConfig {
         if let Some(h) = &self.history {
             let k = format!("{key}.history");
             check::positive(&format!("{k}.interval"), h.interval)?;
+            if let Some(v) = h.vtu_interval {
+                check::positive(&format!("{k}.vtu_interval"), v)?;
+            }
             for (i, p) in h.points.iter().enumerate() {
                 self.check_point(&format!("{k}.points[{i}]"), p)?;
             }

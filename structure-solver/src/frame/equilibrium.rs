@@ -1,27 +1,37 @@
 //! Equilibrium corrections within a step ([`Equilibrium::Iterate`]): after the first solve of S2-14,
 //! corrections δ of the step's increment, `(K + M/(βΔt²)) δ = F − R + M (v/(βΔt) + (1/(2β) − 1) a
 //! − Δu/(βΔt²))` with R at the trial state, until the unbalanced force is below a share of the first
-//! one. A correction that increases it is halved (hinges switching); when [`MAX_CORRECTIONS`] do not
-//! suffice, the best iterate is kept and its unbalanced force carries into the next step as in ASI's
-//! one-solve steps ([`Frame::unconverged_steps`] counts these).
+//! one. A correction that switched hinges and increased the unbalanced force is halved (a hinge
+//! flipping between elastic and plastic); any other correction is taken whole: a Newton correction
+//! of a rotating member stretches its chord to second order, so its first correction often raises
+//! the unbalanced force and the next ones bring it down. A step that does not reach the tolerance
+//! within [`MAX_CORRECTIONS`] keeps its last iterate when that left less unbalanced force than the
+//! step began with (the rest carries into the next step as in a one-solve step; such steps are
+//! counted and [`Frame::accuracy_warning`] reports them) and is an error otherwise. It never ends on
+//! an earlier iterate: keeping the best one kept the zero increment of a quasi-static cantilever,
+//! whose first correction always raised the unbalanced force, and froze it.
 //!
 //! [`Equilibrium::Iterate`]: super::stepping::Equilibrium::Iterate
 
 use super::assembly::NODE_DOFS;
-use super::newmark;
+use super::hinge::End;
 use super::stepping::{check_finite, norm};
 use super::topology::{Element, Node};
 use super::Frame;
 
 /// Corrections per step at most.
 pub const MAX_CORRECTIONS: usize = 12;
-/// Times a correction that increases the unbalanced force is halved before it is taken anyway.
+/// Times a correction that switched hinges and increased the unbalanced force is halved before it
+/// is taken anyway.
 const MAX_HALVINGS: usize = 3;
 /// A correction that reduces the unbalanced force by less than this factor makes the factor be redone.
 const SLOW_CONVERGENCE: f64 = 0.25;
+/// A correction: the iterate it started from, the correction and the hinges before it.
+type Correction = (Vec<f64>, Vec<f64>, Vec<Option<End>>);
 
 impl Frame {
-    /// Solves the step's increment to equilibrium (relative `tolerance`); returns it.
+    /// Solves the step's increment to equilibrium (relative `tolerance`); returns it, or an error
+    /// when [`MAX_CORRECTIONS`] do not reach the tolerance.
     pub(super) fn solve_to_equilibrium(
         &mut self,
         dt: f64,
@@ -32,40 +42,49 @@ impl Frame {
         self.end_of_step_forces = None;
         let committed_nodes = self.nodes.clone();
         let committed_elements = self.elements.clone();
-        let mass_factor = newmark::mass_factor(dt);
+        let mass_factor = self.effective_mass_factor(dt);
         let mut du = vec![0.0; self.nodes.len() * NODE_DOFS];
         let mut first_residual = None;
         let mut last_residual = f64::INFINITY;
-        let mut best = (f64::INFINITY, du.clone());
-        // the iterate the last correction started from, that correction and the halvings done on it
-        let mut last_correction: Option<(Vec<f64>, Vec<f64>)> = None;
+        // the iterate the last correction started from, that correction, the hinges before it and
+        // the halvings done on it
+        let mut last_correction: Option<Correction> = None;
         let mut halvings = 0;
+        let round_off = self.round_off_unbalance();
         for iteration in 0..=MAX_CORRECTIONS + 1 {
             let mut refactor = !self.system.has_factor_for(dt);
             let contributions = self.contributions();
-            let mut rhs = self.residual(&self.gather(&contributions), loads, inertia, &du, mass_factor);
+            let mut rhs = self.residual(&self.gather(&contributions), loads, inertia, &du, mass_factor, dt);
             let residual = norm(&rhs);
             let first = *first_residual.get_or_insert(residual);
-            if iteration > 0 && residual <= tolerance * first {
-                self.unbalance = residual / first;
+            if residual <= tolerance * first || residual <= round_off {
+                self.unbalance = if first > 0.0 { residual / first } else { 0.0 };
                 break;
             }
             if iteration > MAX_CORRECTIONS {
-                // as in ASI's one-solve steps, the unbalanced force of the best iterate carries into
-                // the next step's residual
                 self.unconverged += 1;
-                self.unbalance = best.0 / first;
-                if best.1 != du {
-                    du = best.1.clone();
-                    self.set_trial(&committed_nodes, &committed_elements, &du);
+                self.unbalance = residual / first;
+                if residual < first {
+                    // as in a one-solve step, the unbalanced force left carries into the next step;
+                    // counted, and reported by `accuracy_warning`
+                    break;
                 }
-                break;
+                return Err(format!(
+                    "frame step {}: {MAX_CORRECTIONS} equilibrium corrections left {:.2e} times the step's first \
+                     unbalanced force (equilibrium_tolerance = {tolerance}): the corrections diverge; halve \
+                     time_step",
+                    self.steps + 1,
+                    residual / first
+                ));
             }
-            if residual < best.0 {
-                best = (residual, du.clone());
-            }
-            if let Some((from, delta)) = &mut last_correction {
-                if residual > last_residual && halvings < MAX_HALVINGS {
+            if let Some((from, delta, hinges)) = &mut last_correction {
+                let switched = || {
+                    self.elements
+                        .iter()
+                        .zip(hinges.iter())
+                        .any(|(e, h)| e.stress.hinge != *h)
+                };
+                if residual > last_residual && halvings < MAX_HALVINGS && switched() {
                     // the correction overshot (hinges switching): try half of it
                     halvings += 1;
                     delta.iter_mut().for_each(|d| *d *= 0.5);
@@ -86,7 +105,8 @@ impl Frame {
             }
             self.solve_with_current_tangent(&mut rhs, dt, mass_factor)?;
             let delta = rhs;
-            last_correction = Some((du.clone(), delta.clone()));
+            let hinges = self.elements.iter().map(|e| e.stress.hinge).collect();
+            last_correction = Some((du.clone(), delta.clone(), hinges));
             for (d, x) in du.iter_mut().zip(&delta) {
                 *d += x;
             }

@@ -2,6 +2,7 @@
 
 use super::assembly::NODE_DOFS;
 use super::hinge::StressState;
+use super::hinge_events::{HingeEvent, HingeEventKind};
 use super::section::Resultants;
 use super::Frame;
 use schemas::case::frame::MaterialConfig;
@@ -29,12 +30,16 @@ impl FractureCriterion {
 
     /// S2-17: `(χy/χy_c)² + (χz/χz_c)² + (ε/ε_c)² + (γy/γy_c)² + (γz/γz_c)² ≥ 1`.
     pub fn is_reached(&self, strain: &Resultants) -> bool {
+        self.value(strain) >= 1.0
+    }
+
+    /// The left side of S2-17.
+    pub fn value(&self, strain: &Resultants) -> f64 {
         strain
             .iter()
             .zip(&self.critical)
             .map(|(e, c)| (e / c).powi(2))
             .sum::<f64>()
-            >= 1.0
     }
 }
 
@@ -53,6 +58,18 @@ impl Frame {
                 continue;
             }
             let old = e.nodes[end.node()];
+            if let Some(events) = &mut self.events {
+                let forces = super::section_forces::end_forces(e)[end.node()];
+                events.push(HingeEvent {
+                    time: self.elapsed,
+                    element: i,
+                    member: e.member,
+                    node: old,
+                    kind: HingeEventKind::Fracture,
+                    forces,
+                    function: criterion.value(&e.stress.strain),
+                });
+            }
             let mut node = self.nodes[old].clone();
             node.id = None;
             node.fixed = [false; NODE_DOFS];

@@ -15,19 +15,23 @@ pub mod assembly;
 pub mod condensation;
 pub mod condensed_system;
 pub mod contact;
+pub mod damping;
 pub mod element;
 pub mod equilibrium;
 pub mod factor_age;
 pub mod fracture;
 pub mod global_system;
 pub mod hinge;
+pub mod hinge_events;
 pub mod newmark;
 pub mod preconditioned_cg;
 pub mod section;
+pub mod section_forces;
 pub mod stepping;
 pub mod supernodal_solve;
 pub mod topology;
 pub mod vtu;
+pub mod yield_function;
 
 /// Fewest elements or nodes per rayon task in the per-step passes: a step's passes take well
 /// under a millisecond at 10⁴ DOFs, and finer tasks cost more in scheduling than they save
@@ -85,6 +89,17 @@ pub struct Frame {
     end_of_step_forces: Option<NodalForces>,
     /// Unbalanced force left by the last step over its first one.
     unbalance: f64,
+    /// Steps taken back and cut into parts because they left too much of their unbalanced force.
+    cut_steps: u64,
+    /// Time since the frame was built: the sum of its steps [s].
+    elapsed: f64,
+    /// Hinge events, when recorded (`hinge_events.rs`).
+    events: Option<Vec<hinge_events::HingeEvent>>,
+    /// Rayleigh damping coefficients `(a0, a1)` of `C = a0 M + a1 K` (`damping.rs`).
+    damping: (f64, f64),
+    /// The predicted part of the step's end velocity, `(1 − δ/β) v + Δt (1 − δ/(2β)) a`, 6 per
+    /// node, while the frame is damped.
+    predicted_velocity: Vec<f64>,
 }
 
 impl Frame {
@@ -147,6 +162,14 @@ impl Frame {
             factor_age: FactorAge::default(),
             end_of_step_forces: None,
             unbalance: 0.0,
+            cut_steps: 0,
+            elapsed: 0.0,
+            events: None,
+            damping: match &cfg.damping {
+                Some(d) => d.coefficients(&format!("{key}.damping"))?,
+                None => (0.0, 0.0),
+            },
+            predicted_velocity: Vec::new(),
         })
     }
 
@@ -267,37 +290,47 @@ impl Frame {
         self.unconverged
     }
 
+    /// Steps taken back and done again in [`stepping::CUT_PARTS`] parts because they left more than
+    /// [`stepping::CUT_TRIGGER`] times their first unbalanced force (hinges changed within them).
+    pub fn cut_step_count(&self) -> u64 {
+        self.cut_steps
+    }
+
     /// Unbalanced force left at the end of the last step, as a share of the one at its start.
     pub fn last_unbalance(&self) -> f64 {
         self.unbalance
     }
 
-    /// What a user should know about the accuracy of the steps taken so far: `None` unless
-    /// unconverged steps became persistent (isolated ones, where hinges form or a mechanism runs
-    /// away, are the one-solve scheme working as designed: their unbalanced force carries into the
-    /// next step), otherwise how many there were, from when, and what to change in the case.
+    /// What a user should know about the accuracy of the steps taken so far. One solve per step:
+    /// `None` unless unconverged steps became persistent (isolated ones, where hinges form or a
+    /// mechanism runs away, are the one-solve scheme working as designed: their unbalanced force
+    /// carries into the next step), otherwise how many there were, from when, and what to change in
+    /// the case. Iterated steps: every step that kept an unconverged iterate (`equilibrium.rs`).
     pub fn accuracy_warning(&self) -> Option<String> {
-        let from = self.persistent_from?;
         let (steps, worst) = (self.steps, self.worst_unbalance);
-        let persistent = format!(
-            "{} or more of every {} from step {from} on",
-            stepping::PERSISTENT_UNCONVERGED,
-            stepping::PERSISTENCE_WINDOW
-        );
-        Some(match self.equilibrium {
-            Equilibrium::OneSolve => format!(
-                "{} of {steps} frame steps left more than {:.0} % of their unbalanced force ({persistent}; \
-                 worst {worst:.2}): time_step is too long for one solve per step, and hinges may form where \
-                 they should not; halve time_step or set equilibrium_tolerance",
-                self.unconverged,
-                100.0 * stepping::ONE_SOLVE_UNBALANCE_LIMIT
-            ),
-            Equilibrium::Iterate { tolerance } => format!(
-                "{} of {steps} frame steps did not reach equilibrium_tolerance = {tolerance} within {} \
-                 corrections ({persistent}; worst {worst:.2e}); reduce time_step",
-                self.unconverged, MAX_CORRECTIONS
-            ),
-        })
+        match self.equilibrium {
+            Equilibrium::OneSolve => {
+                let from = self.persistent_from?;
+                Some(format!(
+                    "{} of {steps} frame steps left more than {:.0} % of their unbalanced force ({} or more of \
+                     every {} from step {from} on; worst {worst:.2}): time_step is too long for one solve per \
+                     step, and hinges may form where they should not; halve time_step or set \
+                     equilibrium_tolerance",
+                    self.unconverged,
+                    100.0 * stepping::ONE_SOLVE_UNBALANCE_LIMIT,
+                    stepping::PERSISTENT_UNCONVERGED,
+                    stepping::PERSISTENCE_WINDOW
+                ))
+            }
+            Equilibrium::Iterate { tolerance } => (self.unconverged > 0).then(|| {
+                format!(
+                    "{} of {steps} frame steps did not reach equilibrium_tolerance = {tolerance} within {} \
+                     corrections and carried the unbalanced force left (worst {worst:.2e} of their first) into \
+                     the next step; halve time_step",
+                    self.unconverged, MAX_CORRECTIONS
+                )
+            }),
+        }
     }
 
     /// How steps treat the unbalanced force; [`Equilibrium::OneSolve`] (ASI-Gauss) by default.

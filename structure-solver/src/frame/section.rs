@@ -1,5 +1,8 @@
-//! Cross-section properties, the elastic section stiffness and the full-plastic yield function (S2 §3).
+//! Cross-section properties, the elastic section stiffness and the return to the section's
+//! full-plastic yield surface (S2 §3; the surfaces are in `yield_function.rs`).
 
+use super::yield_function::YieldFunction;
+use nalgebra::{Matrix4, Vector4};
 use schemas::case::frame::{MaterialConfig, SectionConfig};
 
 /// Generalised strains and stress resultants are ordered
@@ -27,7 +30,18 @@ pub struct Section {
     pub width: f64,
     /// Radius of the contact particles: half the larger side (rectangle) or half the width [m].
     pub contact_radius: f64,
+    /// The interaction of N, My and Mz at full plasticity.
+    pub yield_kind: YieldFunction,
 }
+
+/// Largest iterations of each stage of the general return ([`Section::return_to_surface`]).
+const RETURN_ITERATIONS: usize = 50;
+/// Residual (scaled resultants, f) at which the general return stops.
+const RETURN_TOLERANCE: f64 = 1e-13;
+/// Bisections that put the trial state's ray on the surface (the start of the general return).
+const RADIAL_BISECTIONS: usize = 60;
+/// Step of the central differences of the yield function's Hessian, in scaled resultants.
+const HESSIAN_STEP: f64 = 1e-4;
 
 impl Section {
     /// Builds a validated section config into properties.
@@ -78,32 +92,32 @@ impl Section {
             plastic: [sy * area, sy * zy, sy * zz],
             width,
             contact_radius,
+            yield_kind: YieldFunction::from_name(cfg.yield_function.as_deref()),
         }
     }
 
-    /// Full-plastic interaction yield function `f = (N/N0)² + (My/My0)² + (Mz/Mz0)² − 1`
-    /// (physics.md §5; torsion does not enter).
+    /// The section's full-plastic yield function at these resultants ([`YieldFunction`]).
     pub fn yield_function(&self, n: f64, my: f64, mz: f64) -> f64 {
         let [n0, my0, mz0] = self.plastic;
-        (n / n0).powi(2) + (my / my0).powi(2) + (mz / mz0).powi(2) - 1.0
+        self.yield_kind.value(n / n0, my / my0, mz / mz0)
     }
 
     /// Gradient a = ∂f/∂σ of the yield function in [`Resultants`] order (zero for Q and T).
     pub fn yield_gradient(&self, sigma: &Resultants) -> Resultants {
         let [n0, my0, mz0] = self.plastic;
-        [
-            2.0 * sigma[0] / (n0 * n0),
-            0.0,
-            0.0,
-            0.0,
-            2.0 * sigma[4] / (my0 * my0),
-            2.0 * sigma[5] / (mz0 * mz0),
-        ]
+        let [gn, gy, gz] = self
+            .yield_kind
+            .gradient(sigma[0] / n0, sigma[4] / my0, sigma[5] / mz0);
+        [gn / n0, 0.0, 0.0, 0.0, gy / my0, gz / mz0]
     }
 
     /// Closest-point return of a trial state outside the yield surface (associated flow, backward
     /// Euler): `σᵢ = σᵢ,trial / (1 + 2 Dᵢ Δλ / σᵢ0²)` for N, My, Mz with Δλ ≥ 0 such that f(σ) = 0.
     pub fn return_to_surface(&self, sigma: &mut Resultants) {
+        if self.yield_kind != YieldFunction::Quadratic {
+            self.return_by_closest_point(sigma);
+            return;
+        }
         let trial = [sigma[0], sigma[4], sigma[5]];
         let d = [self.stiffness[0], self.stiffness[4], self.stiffness[5]];
         let c2 = self.plastic.map(|c| c * c);
@@ -132,6 +146,96 @@ impl Section {
         }
         for (k, i) in YIELDING.into_iter().enumerate() {
             sigma[i] = trial[k] / (1.0 + 2.0 * d[k] * lambda / c2[k]);
+        }
+    }
+}
+
+impl Section {
+    /// Closest-point return (associated flow, backward Euler) of a trial state outside one of the
+    /// other surfaces: `σ = σ_trial − Δλ D a(σ)`, `f(σ) = 0`, solved by Newton's method on (σ, Δλ)
+    /// in scaled resultants with the Hessian of f by central differences of its gradient, damped
+    /// (halved while the residual does not fall), from the trial state scaled onto the surface.
+    fn return_by_closest_point(&self, sigma: &mut Resultants) {
+        let kind = self.yield_kind;
+        let scale = self.plastic;
+        let trial = [sigma[0] / scale[0], sigma[4] / scale[1], sigma[5] / scale[2]];
+        if kind.value(trial[0], trial[1], trial[2]) <= 0.0 {
+            return;
+        }
+        // D in scaled resultants, and its largest entry, which scales Δλ to μ = Δλ · max D
+        let d = [0, 4, 5].map(|i| self.stiffness[i]);
+        let d = [0, 1, 2].map(|k| d[k] / (scale[k] * scale[k]));
+        let d_max = d.iter().fold(0.0_f64, |m, x| m.max(*x));
+        let d = d.map(|x| x / d_max);
+        // start: the trial state scaled onto the surface (bisection along the ray from the origin,
+        // inside every surface), with the Δλ that fits the flow there best
+        let (mut inside, mut outside) = (0.0, 1.0);
+        for _ in 0..RADIAL_BISECTIONS {
+            let t = 0.5 * (inside + outside);
+            if kind.value(t * trial[0], t * trial[1], t * trial[2]) < 0.0 {
+                inside = t;
+            } else {
+                outside = t;
+            }
+        }
+        let mut x = trial.map(|c| inside * c);
+        let g = kind.gradient(x[0], x[1], x[2]);
+        let flow = [0, 1, 2].map(|k| d[k] * g[k]);
+        let flow_norm: f64 = flow.iter().map(|c| c * c).sum();
+        let mut mu = if flow_norm > 0.0 {
+            (0..3).map(|k| (trial[k] - x[k]) * flow[k]).sum::<f64>() / flow_norm
+        } else {
+            0.0
+        };
+        let residual = |x: &[f64; 3], mu: f64| {
+            let g = kind.gradient(x[0], x[1], x[2]);
+            let mut r = Vector4::zeros();
+            for k in 0..3 {
+                r[k] = x[k] - trial[k] + mu * d[k] * g[k];
+            }
+            r[3] = kind.value(x[0], x[1], x[2]);
+            r
+        };
+        for _ in 0..RETURN_ITERATIONS {
+            let r = residual(&x, mu);
+            if r.amax() < RETURN_TOLERANCE {
+                break;
+            }
+            let g = kind.gradient(x[0], x[1], x[2]);
+            let mut j = Matrix4::zeros();
+            for c in 0..3 {
+                let mut up = x;
+                let mut down = x;
+                up[c] += HESSIAN_STEP;
+                down[c] -= HESSIAN_STEP;
+                let (gu, gd) = (
+                    kind.gradient(up[0], up[1], up[2]),
+                    kind.gradient(down[0], down[1], down[2]),
+                );
+                for k in 0..3 {
+                    j[(k, c)] = mu * d[k] * (gu[k] - gd[k]) / (2.0 * HESSIAN_STEP);
+                }
+                j[(c, c)] += 1.0;
+                j[(c, 3)] = d[c] * g[c];
+                j[(3, c)] = g[c];
+            }
+            let Some(dy) = j.lu().solve(&r) else {
+                break;
+            };
+            // damped: halve the Newton step while it does not reduce the residual
+            let mut step = 1.0;
+            loop {
+                let trial_x = [0, 1, 2].map(|k| x[k] - step * dy[k]);
+                let trial_mu = mu - step * dy[3];
+                if residual(&trial_x, trial_mu).norm() < r.norm() || step < 1e-6 {
+                    (x, mu) = (trial_x, trial_mu);
+                    break;
+                }
+                step *= 0.5;
+            }
+        }
+        for (k, i) in YIELDING.into_iter().enumerate() {
+            sigma[i] = x[k] * scale[k];
         }
     }
 }

@@ -21,6 +21,8 @@ pub struct Node {
     /// `[a, α]`, global.
     pub acceleration: [f64; 6],
     pub fixed: [bool; 6],
+    /// Position and rotation before the last increment, to take a step back (`stepping.rs`).
+    pub previous: (Vector3<f64>, UnitQuaternion<f64>),
 }
 
 impl Node {
@@ -32,6 +34,7 @@ impl Node {
             velocity: [0.0; 6],
             acceleration: [0.0; 6],
             fixed: [false; 6],
+            previous: (position, UnitQuaternion::identity()),
         }
     }
 }
@@ -53,6 +56,8 @@ pub struct Element {
     pub stress: StressState,
     /// Times this element has fractured (and been split off a node).
     pub fractures: u32,
+    /// `current` and `stress` before the last update, to take a step back (`stepping.rs`).
+    pub previous: (Corotated, StressState),
 }
 
 impl Element {
@@ -128,6 +133,7 @@ pub fn build(cfg: &FrameConfig, key: &str) -> Result<Topology, FieldError> {
                 current,
                 stress: StressState::elastic(0.0),
                 fractures: 0,
+                previous: (current, StressState::elastic(0.0)),
             };
             element.stress = StressState::elastic(element.elastic_integration_point(false));
             elements.push(element);

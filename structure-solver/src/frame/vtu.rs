@@ -1,4 +1,5 @@
-//! VTK unstructured-grid output of a frame: one line cell per element, with hinge and fracture flags.
+//! VTK unstructured-grid output of a frame: one line cell per element, with hinge and fracture flags
+//! and section forces.
 
 use super::Frame;
 use std::fmt::Write as _;
@@ -6,8 +7,9 @@ use std::path::Path;
 
 impl Frame {
     /// Writes the frame as an ASCII `.vtu`: points = nodes (with velocity and angular velocity),
-    /// cells = elements (with member, hinge: 0 none / 1 at the first node / 2 at the second, and
-    /// the number of fractures).
+    /// cells = elements (with member, hinge: 0 none / 1 at the first node / 2 at the second, the
+    /// number of fractures, and the section forces N, Vy, Vz, T and the moments My, Mz at the
+    /// element's first and second node, `section_forces.rs`).
     pub fn write_vtu(&self, path: &Path) -> std::io::Result<()> {
         let mut s = String::new();
         let (np, nc) = (self.nodes.len(), self.elements.len());
@@ -62,6 +64,24 @@ impl Frame {
             let _ = writeln!(s, "<DataArray type=\"Int64\" Name=\"{name}\" format=\"ascii\">");
             for v in values {
                 let _ = writeln!(s, "{v}");
+            }
+            s.push_str("</DataArray>\n");
+        }
+        let forces = self.section_forces();
+        let columns: [(&str, usize, usize); 8] = [
+            ("N", 0, 0),
+            ("Vy", 0, 1),
+            ("Vz", 0, 2),
+            ("T", 0, 3),
+            ("My_start", 0, 4),
+            ("My_end", 1, 4),
+            ("Mz_start", 0, 5),
+            ("Mz_end", 1, 5),
+        ];
+        for (name, end, k) in columns {
+            let _ = writeln!(s, "<DataArray type=\"Float64\" Name=\"{name}\" format=\"ascii\">");
+            for f in &forces {
+                let _ = writeln!(s, "{}", f[end][k]);
             }
             s.push_str("</DataArray>\n");
         }

@@ -1,0 +1,86 @@
+//! [`FrameTables`]: the frame's CSV tables of a structure run — `section-forces.csv` (one row per
+//! element end at every history time: `t, member, element, end, node, N, Vy, Vz, T, My, Mz`, local
+//! axes of the element, N in tension positive) and `hinge-events.csv` (one row per hinge forming or
+//! closing and per fracture, written as they are reached: `t, event, member, element, node, N, Vy,
+//! Vz, T, My, Mz, f`, f the yield function there or S2-17's left side for a fracture).
+
+use crate::frame::Frame;
+use std::fs::File;
+use std::io::{self, BufWriter, Write};
+use std::path::Path;
+
+/// The open frame tables.
+pub struct FrameTables {
+    section_forces: Option<BufWriter<File>>,
+    hinge_events: BufWriter<File>,
+    /// Hinge events written so far.
+    events_written: usize,
+}
+
+impl FrameTables {
+    /// Creates the tables in `dir` (`section-forces.csv` only with `section_forces`).
+    pub fn create(dir: &Path, section_forces: bool) -> io::Result<Self> {
+        let open = |name: &str, header: &str| -> io::Result<BufWriter<File>> {
+            let mut w = BufWriter::new(File::create(dir.join(name))?);
+            writeln!(w, "{header}")?;
+            Ok(w)
+        };
+        Ok(Self {
+            section_forces: section_forces
+                .then(|| open("section-forces.csv", "t,member,element,end,node,N,Vy,Vz,T,My,Mz"))
+                .transpose()?,
+            hinge_events: open(
+                "hinge-events.csv",
+                "t,event,member,element,node,N,Vy,Vz,T,My,Mz,f",
+            )?,
+            events_written: 0,
+        })
+    }
+
+    /// Writes the section forces of `frame` at time `t` (a history row) and its new hinge events.
+    pub fn record(&mut self, frame: &Frame, t: f64, history_row: bool) -> io::Result<()> {
+        let events = frame.hinge_events();
+        for e in events.iter().skip(self.events_written) {
+            write!(
+                self.hinge_events,
+                "{},{},{},{},{}",
+                e.time,
+                e.kind.name(),
+                e.member,
+                e.element,
+                e.node
+            )?;
+            for f in e.forces {
+                write!(self.hinge_events, ",{f}")?;
+            }
+            writeln!(self.hinge_events, ",{}", e.function)?;
+        }
+        self.events_written = events.len();
+        let Some(w) = self.section_forces.as_mut().filter(|_| history_row) else {
+            return Ok(());
+        };
+        let nodes = frame.element_nodes();
+        for (i, (forces, (member, _))) in frame
+            .section_forces()
+            .iter()
+            .zip(frame.element_members())
+            .enumerate()
+        {
+            for (end, f) in forces.iter().enumerate() {
+                write!(w, "{t},{member},{i},{end},{}", nodes[i][end])?;
+                for x in f {
+                    write!(w, ",{x}")?;
+                }
+                writeln!(w)?;
+            }
+        }
+        Ok(())
+    }
+
+    pub fn flush(&mut self) -> io::Result<()> {
+        if let Some(w) = &mut self.section_forces {
+            w.flush()?;
+        }
+        self.hinge_events.flush()
+    }
+}
