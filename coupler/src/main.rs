@@ -3,6 +3,7 @@
 use clap::{Parser, Subcommand};
 use coupler::error::CouplerError;
 use coupler::replay::{replay, ReplayOptions};
+use coupler::report::{report, ReportOptions};
 use coupler::run::{run, RunOptions};
 use schemas::case::Case;
 use std::collections::BTreeMap;
@@ -55,6 +56,28 @@ enum Command {
     },
     /// Check a case file and list its participants, without starting anything.
     Check { case: PathBuf },
+    /// Error against run time (work–precision) of each case's [report] ladders, or with
+    /// --stability its families of stiff and extreme runs; --readme puts the latest report into
+    /// the README.
+    Report {
+        /// Case files with [reference] and [report] sections.
+        cases: Vec<PathBuf>,
+        /// Report folder (default: out/report).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// The full ladders and families instead of the CI-sized ones.
+        #[arg(long)]
+        full: bool,
+        /// Run the stability families instead of the ladders.
+        #[arg(long)]
+        stability: bool,
+        /// Timed runs after the warm-up (default: each case's report.repeats).
+        #[arg(long)]
+        repeats: Option<u32>,
+        /// Put the latest report of --out into this README's marked sections; runs nothing.
+        #[arg(long, value_name = "README", num_args = 0..=1, default_missing_value = "README.md")]
+        readme: Option<PathBuf>,
+    },
 }
 
 fn parse_exe(s: &str) -> Result<(String, PathBuf), String> {
@@ -91,6 +114,21 @@ fn main() -> ExitCode {
         })
         .map(|_| ()),
         Command::Check { case } => check(&case),
+        Command::Report {
+            cases,
+            out,
+            full,
+            stability,
+            repeats,
+            readme,
+        } => report(&ReportOptions {
+            cases,
+            out,
+            full,
+            stability,
+            repeats,
+            readme,
+        }),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -116,6 +154,19 @@ fn check(path: &std::path::Path) -> Result<(), CouplerError> {
         println!(
             "  coupling: {:?}, window {} s, {} sample(s) per window",
             c.scheme, c.window, c.samples
+        );
+    }
+    if let Some(r) = &case.reference {
+        println!(
+            "  reference: {:?}, {:?} error ({})",
+            r.against, r.measure, r.source
+        );
+    }
+    if let Some(r) = &case.report {
+        println!(
+            "  report: {} ladder(s), {} stability family(ies)",
+            r.ladder.len(),
+            r.stability.len()
         );
     }
     Ok(())
