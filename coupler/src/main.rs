@@ -77,6 +77,9 @@ enum Command {
         /// Put the latest report of --out into this README's marked sections; runs nothing.
         #[arg(long, value_name = "README", num_args = 0..=1, default_missing_value = "README.md")]
         readme: Option<PathBuf>,
+        /// With --stability: only the family of this name (repeatable).
+        #[arg(long)]
+        family: Vec<String>,
     },
 }
 
@@ -121,6 +124,7 @@ fn main() -> ExitCode {
             stability,
             repeats,
             readme,
+            family,
         } => report(&ReportOptions {
             cases,
             out,
@@ -128,6 +132,7 @@ fn main() -> ExitCode {
             stability,
             repeats,
             readme,
+            families: family,
         }),
     };
     match result {

@@ -174,3 +174,85 @@ fn interrupted_report_keeps_its_rows_and_names_the_missing_ones() {
         "every rung is either a row or named missing: {missing}"
     );
 }
+
+/// The oscillator made to diverge: explicit coupling with a constant predictor, the middle
+/// spring 10 × stiffer and windows of 0.05 s. Energy bounds |u1| by √(1 + 40) = 6.4 m; the run
+/// grows past that within 1 s (and claims success: failed silently, which the suite must
+/// catch), and reaches a non-finite state at t ≈ 44 s, where the structure solver stops it.
+/// The implicit run of the same spring is stable.
+#[test]
+fn stability_runs_are_stable_stopped_or_caught_failing_silently() {
+    let out = out_dir("report-stability");
+    let source = std::fs::read_to_string(workspace().join("cases/oscillator/case.toml")).unwrap_or_default();
+    let plain = &source[..source.find("\n[reference]").unwrap_or(source.len())];
+    let text = format!(
+        r#"{plain}
+[report]
+target_error = 1.0
+
+[[report.limit]]
+participant = "mass-left"
+file = "point-m1.csv"
+column = "ux"
+max_abs = 6.5
+reason = "energy conservation: |u1| ≤ √(1 + k_middle/k_left) = √41 = 6.4 m"
+
+[[report.stability]]
+family = "made to diverge"
+set = {{ "coupling.window" = 0.05, "coupling.samples" = 1, "coupling.spring.0.stiffness" = 1579.1367041742973 }}
+[[report.stability.axis]]
+name = "coupling"
+labels = ["implicit", "explicit"]
+set = [{{}}, {{ "coupling.scheme" = "explicit", "coupling.predictor" = "constant" }}]
+[[report.stability.axis]]
+name = "end time"
+labels = ["1 s", "60 s"]
+set = [{{ "case.end_time" = 1.0 }}, {{ "case.end_time" = 60.0 }}]
+"#
+    );
+    let case = out.join("case.toml");
+    std::fs::write(&case, text).unwrap_or_else(|e| panic!("{e}"));
+    let run = Command::new(binary("coupler"))
+        .args([
+            "report",
+            "--stability",
+            case.to_str().unwrap_or_default(),
+            "--out",
+            out.to_str().unwrap_or_default(),
+        ])
+        .output()
+        .unwrap_or_else(|e| panic!("cannot start the coupler: {e}"));
+    assert!(run.status.success(), "{}", stderr(&run));
+    let outcomes = rows(&out.join("stability.csv"));
+    let state = |run: &str| {
+        outcomes
+            .iter()
+            .find(|r| r["run"] == run)
+            .unwrap_or_else(|| panic!("no run {run}: {outcomes:?}"))
+            .clone()
+    };
+    assert_eq!(state("implicit / 1 s")["state"], "stable");
+    assert_eq!(state("implicit / 60 s")["state"], "stable");
+    let silent = state("explicit / 1 s");
+    assert_eq!(silent["state"], "FAILED SILENTLY", "{silent:?}");
+    assert!(silent["diagnostic"].contains("point-m1.csv"), "{silent:?}");
+    let stopped = state("explicit / 60 s");
+    assert_eq!(stopped["state"], "stopped", "{stopped:?}");
+    assert!(
+        stopped["diagnostic"].contains("non-finite") && stopped["diagnostic"].contains("m1"),
+        "the diagnostic says what, where and when: {stopped:?}"
+    );
+    let md = std::fs::read_to_string(out.join("stability.md")).unwrap_or_default();
+    assert!(
+        md.contains("4 runs: 2 stable, 1 stopped, 0 refused by the case check, 1 failed silently."),
+        "{md}"
+    );
+    // The map: rows coupling × columns end time, one cell per run.
+    let map = out.join("oscillator-made-to-diverge-map.png");
+    assert!(png_size(&map).0 > 0);
+    let cells = rows(&map.with_extension("plot.csv"));
+    assert_eq!(cells.len(), 4, "{cells:?}");
+    assert!(cells
+        .iter()
+        .any(|c| c["row"] == "explicit" && c["column"] == "60 s" && c["state"] == "stopped"));
+}

@@ -44,6 +44,8 @@ pub struct ReportOptions {
     pub repeats: Option<u32>,
     /// Put the latest report into this README instead of running anything.
     pub readme: Option<PathBuf>,
+    /// Only the stability families of these names (all when empty).
+    pub families: Vec<String>,
 }
 
 /// The report folder.
@@ -172,7 +174,10 @@ fn run_stability(
     let mut skipped = Vec::new();
     for case in cases {
         let (families, lines) = stability::families(case, opts.full);
-        chosen.extend(families.into_iter().map(|f| (case, f)));
+        let wanted = |f: &&schemas::case::report::Family| {
+            opts.families.is_empty() || opts.families.contains(&f.family)
+        };
+        chosen.extend(families.into_iter().filter(wanted).map(|f| (case, f)));
         skipped.extend(lines);
     }
     if chosen.is_empty() {

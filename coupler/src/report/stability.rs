@@ -93,7 +93,7 @@ pub fn run_family(
                     continue;
                 }
                 let (state, diagnostic) = if m.success() {
-                    match scan_outputs(&run_out) {
+                    match beyond_limits(case, &run_out).or_else(|| scan_outputs(&run_out)) {
                         Some(problem) => (Cell::FailedSilently, problem),
                         None => (Cell::Stable, warnings(&m.stderr)),
                     }
@@ -180,6 +180,44 @@ pub fn scan_outputs(dir: &Path) -> Option<String> {
                         ));
                     }
                 }
+            }
+        }
+    }
+    None
+}
+
+/// The first value beyond one of the case's `[[report.limit]]` bounds: where, what and why.
+pub fn beyond_limits(case: &Case, out: &Path) -> Option<String> {
+    let report = case.report.as_ref()?;
+    for limit in &report.limit {
+        let path = match case.coupling {
+            Some(_) => out.join(&limit.participant).join(&limit.file),
+            None => out.join(&limit.file),
+        };
+        let Ok(text) = std::fs::read_to_string(&path) else {
+            return Some(format!("{} is missing", path.display()));
+        };
+        let mut lines = text.lines();
+        let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
+        let Some(col) = header.iter().position(|h| *h == limit.column) else {
+            return Some(format!("{} has no column `{}`", path.display(), limit.column));
+        };
+        for (n, line) in lines.enumerate() {
+            let v: f64 = line
+                .split(',')
+                .nth(col)
+                .and_then(|f| f.trim().parse().ok())
+                .unwrap_or(f64::NAN);
+            if v.is_nan() || v.abs() > limit.max_abs {
+                return Some(format!(
+                    "{}/{} row {}, `{}` = {v:.3e} beyond ±{} ({})",
+                    limit.participant,
+                    limit.file,
+                    n + 1,
+                    limit.column,
+                    limit.max_abs,
+                    limit.reason
+                ));
             }
         }
     }

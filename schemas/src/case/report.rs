@@ -15,6 +15,13 @@
 //! full = [0.04, 0.02, 0.01, 0.005]    # the ladder of `--full`
 //! order = 4                           # the order the scheme should have in the first key
 //!
+//! [[report.limit]]                   # a bound no sound run passes (else: failed silently)
+//! participant = "s"
+//! file = "point-m1.csv"
+//! column = "ux"
+//! max_abs = 2.0
+//! reason = "energy conservation bounds |u1| by 1 m"
+//!
 //! [[report.stability]]                # a family: every combination of its axes is one run
 //! family = "light bodies"
 //! full_only = false                   # true: only with `--full`
@@ -50,6 +57,21 @@ pub struct ReportConfig {
     /// Ladders or families this case would have but the solvers cannot run yet, each with why.
     #[serde(default)]
     pub left_out: Vec<String>,
+    /// Bounds no sound run passes: a run that claims success beyond one failed silently.
+    #[serde(default)]
+    pub limit: Vec<Limit>,
+}
+
+/// `[[report.limit]]`: `|column| ≤ max_abs` in a participant's output file, and why.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Limit {
+    pub participant: String,
+    pub file: String,
+    pub column: String,
+    pub max_abs: f64,
+    /// Why no sound run passes it (e.g. energy conservation bounds the displacement).
+    pub reason: String,
 }
 
 fn default_repeats() -> u32 {
@@ -198,6 +220,16 @@ impl ReportConfig {
                 for rung in rungs {
                     check_settings(case, &key, &rung.settings, true)?;
                 }
+            }
+        }
+        for (i, limit) in self.limit.iter().enumerate() {
+            let key = format!("report.limit[{i}]");
+            super::error::check::positive(&format!("{key}.max_abs"), limit.max_abs)?;
+            if case.kind_of(&limit.participant).is_none() {
+                return Err(FieldError::new(
+                    format!("{key}.participant"),
+                    format!("`{}` is not a participant of the case", limit.participant),
+                ));
             }
         }
         for (i, family) in self.stability.iter().enumerate() {
