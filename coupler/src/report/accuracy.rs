@@ -166,16 +166,18 @@ pub fn run_case(
     Ok(CaseReport { markdown, missing })
 }
 
-/// The last `error:` line of a run's messages (its diagnostic), or its last line.
+/// The run's `error:` lines joined (a solver's own message, then the coupler's), or its last line.
 pub fn last_error(stderr: &str) -> String {
     let lines: Vec<&str> = stderr.lines().map(str::trim).filter(|l| !l.is_empty()).collect();
-    lines
+    let errors: Vec<&str> = lines
         .iter()
-        .rev()
-        .find(|l| l.starts_with("error:"))
-        .or(lines.last())
-        .map(|l| l.trim_start_matches("error:").trim().to_string())
-        .unwrap_or_else(|| "no message".into())
+        .filter_map(|l| l.strip_prefix("error:").map(str::trim))
+        .collect();
+    match (errors.is_empty(), lines.last()) {
+        (false, _) => errors.join(" ← "),
+        (true, Some(l)) => l.to_string(),
+        (true, None) => "no message".into(),
+    }
 }
 
 /// The error measure in words, for table headers and plot axes.
@@ -209,7 +211,7 @@ fn case_markdown(
         Against::FinerRun => "finer run of the same case",
     };
     let mut s = format!(
-        "### {name}\n\nError: {} against the {against} ({}).\n\n",
+        "#### {name}\n\nError: {} against the {against} ({}).\n\n",
         error_name(reference),
         reference.source
     );

@@ -1,7 +1,7 @@
 //! `coupler report --stability`: the case's families of stiff and extreme runs, each run once to
 //! its end or until a detector stops it, and classified:
-//! - refused: the case check rejects the setting (e.g. a time step beyond a solver's stated
-//!   limit); nothing ran, the check's message is the diagnostic;
+//! - refused: the case check, or a solver's own check of the case, rejects the setting (e.g. a
+//!   time step beyond a solver's stated limit); nothing ran, the check's message is the diagnostic;
 //! - stopped: the run ended with an error; the diagnostic is its message (what, where, when);
 //! - stable: the run reached its end and every output passed: no NaN or absurd value in any
 //!   CSV it wrote, every ledger window balanced;
@@ -97,6 +97,8 @@ pub fn run_family(
                         Some(problem) => (Cell::FailedSilently, problem),
                         None => (Cell::Stable, warnings(&m.stderr)),
                     }
+                } else if refused_by_solver(&m.stderr) {
+                    (Cell::Refused, last_error(&m.stderr))
                 } else {
                     (Cell::Stopped, last_error(&m.stderr))
                 };
@@ -128,6 +130,14 @@ pub fn run_family(
         outcomes.push(o);
     }
     Ok((outcomes, missing))
+}
+
+/// Whether a solver refused the case file before anything ran (its message names a case key).
+fn refused_by_solver(stderr: &str) -> bool {
+    stderr.contains("before the first window")
+        && stderr
+            .lines()
+            .any(|l| l.starts_with("error:") && l.contains(".toml: `"))
 }
 
 /// The warnings a finished run printed (they do not make it unstable, but the table shows them).
