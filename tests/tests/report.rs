@@ -244,7 +244,7 @@ set = [{{ "case.end_time" = 1.0 }}, {{ "case.end_time" = 60.0 }}]
     );
     let md = std::fs::read_to_string(out.join("stability.md")).unwrap_or_default();
     assert!(
-        md.contains("4 runs: 2 stable, 1 stopped, 0 refused by the case check, 1 failed silently."),
+        md.contains("4 runs: 2 stable, 0 warned, 1 stopped, 0 refused by the case check, 1 failed silently."),
         "{md}"
     );
     // The map: rows coupling × columns end time, one cell per run.

@@ -138,6 +138,10 @@ pub fn run_case(
         } else {
             (f64::NAN, format!("run failed: {}", last_error(&t.last.stderr)))
         };
+        let warned = super::stability::warnings(&t.last.stderr);
+        if !warned.is_empty() {
+            notes.push(format!("Warning at {}, {what}: {warned}", job.ladder_label));
+        }
         let w = work(&changed, &run_out);
         let row = Row {
             case: name.clone(),
@@ -211,7 +215,7 @@ fn case_markdown(
         Against::FinerRun => "finer run of the same case",
     };
     let mut s = format!(
-        "#### {name}\n\nError: {} against the {against} ({}).\n\n",
+        "### {name}\n\nError: {} against the {against} ({}).\n\n",
         error_name(reference),
         reference.source
     );

@@ -4,8 +4,9 @@
 //! CPU time comes from `wait4`'s resource usage of the coupler process, which includes the
 //! children it waited for (the solvers). Memory: every 20 ms the process tree under the coupler
 //! is read from `/proc` and each process's peak resident set (`VmHWM`) kept; the run's peak is
-//! the sum of these per-process peaks (the processes of a coupled run live side by side), and at
-//! least the largest single peak `wait4` reports (a process too short-lived to be sampled).
+//! the sum of these per-process peaks (the processes of a coupled run live side by side).
+//! `wait4`'s `ru_maxrss` is not used: Linux carries a process's high-water mark across `exec`,
+//! so a child started from the report reports the report's own size.
 
 use crate::signals;
 use std::collections::BTreeMap;
@@ -74,7 +75,6 @@ pub fn run_case(case: &Path, out: &Path) -> Result<Measured, String> {
     let wall = started.elapsed().as_secs_f64();
     let seconds = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
     let cpu = seconds(usage.ru_utime) + seconds(usage.ru_stime);
-    let largest = usage.ru_maxrss.max(0) as u64 * 1024;
     let sum: u64 = peaks.values().sum();
     let code = if libc::WIFEXITED(status) {
         Some(libc::WEXITSTATUS(status))
@@ -85,7 +85,7 @@ pub fn run_case(case: &Path, out: &Path) -> Result<Measured, String> {
         code,
         wall,
         cpu,
-        peak_rss: sum.max(largest),
+        peak_rss: sum,
         stderr: std::fs::read_to_string(&log).unwrap_or_default(),
         interrupted: interrupted || signals::interrupted(),
     })

@@ -205,7 +205,7 @@ fn run_stability(
     bar.finish();
     let mut md = format!(
         "Stability report ({} families), {stamp}; made by `coupler report --stability`. Each run ends stable (reached its end, \
-         every output sound), stopped (the diagnostic of the solver or coupler that stopped it), refused (the case check \
+         every check passed), warned (reached its end, but a solver warned that a check failed), stopped (the diagnostic of the solver or coupler that stopped it), refused (the case check \
          rejects the setting; nothing ran) or failed silently (claimed success with NaN or absurd output: must never happen).\n\n",
         if opts.full { "full" } else { "CI-sized" }
     );

@@ -135,6 +135,8 @@ pub fn work_precision(path: &Path, title: &str, error_label: &str, series: &[Ser
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Cell {
     Stable,
+    /// Reached its end, but a solver warned that a check failed (e.g. accuracy of its steps).
+    Warned,
     Stopped,
     Refused,
     FailedSilently,
@@ -145,6 +147,7 @@ impl Cell {
     fn colour(self) -> RGBColor {
         match self {
             Cell::Stable => RGBColor(120, 200, 120),
+            Cell::Warned => RGBColor(240, 225, 90),
             Cell::Stopped => RGBColor(245, 170, 60),
             Cell::Refused => RGBColor(180, 180, 180),
             Cell::FailedSilently => RGBColor(220, 40, 40),
@@ -155,6 +158,7 @@ impl Cell {
     pub fn name(self) -> &'static str {
         match self {
             Cell::Stable => "stable",
+            Cell::Warned => "warned",
             Cell::Stopped => "stopped",
             Cell::Refused => "refused",
             Cell::FailedSilently => "FAILED SILENTLY",
@@ -194,7 +198,7 @@ pub fn stability_map(path: &Path, title: &str, panels: &[Panel]) -> Result<(), S
         }
     }
     std::fs::write(path.with_extension("plot.csv"), data).map_err(err(path))?;
-    let width = 120 + 420 * panels.len().max(1) as u32;
+    let width = (120 + 420 * panels.len().max(1) as u32).max(1000);
     let root = BitMapBackend::new(path, (width, 480)).into_drawing_area();
     root.fill(&WHITE).map_err(err(path))?;
     let root = root.titled(title, ("sans-serif", 20)).map_err(err(path))?;

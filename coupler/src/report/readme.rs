@@ -25,7 +25,7 @@ pub fn update(readme: &Path, report_dir: &Path, figures: &str) -> Result<Vec<Str
         let Ok(body) = std::fs::read_to_string(report_dir.join(file)) else {
             continue;
         };
-        let body = relink(&body, report_dir, &base.join(figures), figures)?;
+        let body = relink(&demote(&body), report_dir, &base.join(figures), figures)?;
         text = replace_between(&text, markers, &body).ok_or_else(|| {
             format!(
                 "{} has no `{}` … `{}` markers for {file}; add them where the section goes",
@@ -45,6 +45,20 @@ pub fn update(readme: &Path, report_dir: &Path, figures: &str) -> Result<Vec<Str
     }
     std::fs::write(readme, text).map_err(|e| format!("cannot write {}: {e}", readme.display()))?;
     Ok(done)
+}
+
+/// Headings one level deeper: the report's `###` sections sit under the README's `###` headings.
+fn demote(body: &str) -> String {
+    body.lines()
+        .map(|l| {
+            if l.starts_with('#') {
+                format!("#{l}")
+            } else {
+                l.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
 }
 
 /// Copies every `](NAME.png)` the Markdown shows from `from` to `to` and links it as `prefix/NAME.png`.

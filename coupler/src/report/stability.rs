@@ -3,8 +3,10 @@
 //! - refused: the case check, or a solver's own check of the case, rejects the setting (e.g. a
 //!   time step beyond a solver's stated limit); nothing ran, the check's message is the diagnostic;
 //! - stopped: the run ended with an error; the diagnostic is its message (what, where, when);
-//! - stable: the run reached its end and every output passed: no NaN or absurd value in any
-//!   CSV it wrote, every ledger window balanced;
+//! - stable: the run reached its end and every check passed: no warning from a solver, no NaN
+//!   or absurd value in any CSV it wrote, every ledger window balanced, within the case's limits;
+//! - warned: it reached its end with every output sound, but a solver warned that one of its
+//!   checks failed (e.g. frame steps that kept missing equilibrium); the warning is the diagnostic;
 //! - failed silently: the run claimed success but its output holds NaN or absurd values, or
 //!   windows out of balance. This must never happen; the report says where.
 
@@ -95,7 +97,10 @@ pub fn run_family(
                 let (state, diagnostic) = if m.success() {
                     match beyond_limits(case, &run_out).or_else(|| scan_outputs(&run_out)) {
                         Some(problem) => (Cell::FailedSilently, problem),
-                        None => (Cell::Stable, warnings(&m.stderr)),
+                        None => match warnings(&m.stderr) {
+                            w if w.is_empty() => (Cell::Stable, w),
+                            w => (Cell::Warned, w),
+                        },
                     }
                 } else if refused_by_solver(&m.stderr) {
                     (Cell::Refused, last_error(&m.stderr))
@@ -140,8 +145,8 @@ fn refused_by_solver(stderr: &str) -> bool {
             .any(|l| l.starts_with("error:") && l.contains(".toml: `"))
 }
 
-/// The warnings a finished run printed (they do not make it unstable, but the table shows them).
-fn warnings(stderr: &str) -> String {
+/// The warnings a finished run printed: a check that failed without stopping the run.
+pub fn warnings(stderr: &str) -> String {
     stderr
         .lines()
         .filter(|l| l.to_lowercase().contains("warning"))
@@ -258,9 +263,10 @@ pub fn markdown(outcomes: &[Outcome], families: &[(&Case, &Family)], out: &Path)
         .count();
     let _ = writeln!(
         s,
-        "\n{} runs: {} stable, {} stopped, {} refused by the case check, {silent} failed silently.",
+        "\n{} runs: {} stable, {} warned, {} stopped, {} refused by the case check, {silent} failed silently.",
         outcomes.len(),
         outcomes.iter().filter(|o| o.state == Cell::Stable).count(),
+        outcomes.iter().filter(|o| o.state == Cell::Warned).count(),
         outcomes.iter().filter(|o| o.state == Cell::Stopped).count(),
         outcomes.iter().filter(|o| o.state == Cell::Refused).count(),
     );
