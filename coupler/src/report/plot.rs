@@ -198,7 +198,7 @@ pub fn stability_map(path: &Path, title: &str, panels: &[Panel]) -> Result<(), S
         }
     }
     std::fs::write(path.with_extension("plot.csv"), data).map_err(err(path))?;
-    let width = (120 + 420 * panels.len().max(1) as u32).max(1000);
+    let width = (220 + 420 * panels.len().max(1) as u32).max(1000);
     let root = BitMapBackend::new(path, (width, 480)).into_drawing_area();
     root.fill(&WHITE).map_err(err(path))?;
     let root = root.titled(title, ("sans-serif", 20)).map_err(err(path))?;
@@ -206,11 +206,12 @@ pub fn stability_map(path: &Path, title: &str, panels: &[Panel]) -> Result<(), S
     let areas = body.split_evenly((1, panels.len().max(1)));
     for (p, area) in panels.iter().zip(&areas) {
         let (nr, nc) = (p.rows.len().max(1), p.columns.len().max(1));
+        let widest = p.rows.iter().map(|r| r.chars().count()).max().unwrap_or(0) as u32;
         let mut chart = ChartBuilder::on(area)
             .caption(&p.title, ("sans-serif", 16))
             .margin(10)
             .x_label_area_size(40)
-            .y_label_area_size(70)
+            .y_label_area_size((8 * widest + 40).max(70))
             .build_cartesian_2d(0.0..nc as f64, 0.0..nr as f64)
             .map_err(err(path))?;
         let (rows, columns) = (p.rows.clone(), p.columns.clone());
@@ -240,13 +241,14 @@ pub fn stability_map(path: &Path, title: &str, panels: &[Panel]) -> Result<(), S
     }
     let states = [
         Cell::Stable,
+        Cell::Warned,
         Cell::Stopped,
         Cell::Refused,
         Cell::FailedSilently,
         Cell::NotRun,
     ];
     for (i, s) in states.iter().enumerate() {
-        let x = 20 + 190 * i as i32;
+        let x = 20 + 160 * i as i32;
         legend
             .draw(&Rectangle::new([(x, 20), (x + 18, 38)], s.colour().filled()))
             .map_err(err(path))?;
