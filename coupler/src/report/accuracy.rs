@@ -223,8 +223,7 @@ fn case_markdown(
     s.push_str(&markdown(&refs));
     s.push_str("\n| ladder | expected order | observed order between rungs |\n|---|---|---|\n");
     let mut series = Vec::new();
-    for (i, l) in report.ladder.iter().enumerate() {
-        let _ = i;
+    for l in &report.ladder {
         let of: Vec<&Row> = rows.iter().filter(|r| r.ladder == l.label).collect();
         let orders = order::observed(&of);
         let _ = writeln!(
