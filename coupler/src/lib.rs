@@ -1,7 +1,7 @@
 //! The coupler: the user's entry point. It starts the participants a case needs, runs the
 //! coupling windows (explicit, or implicit with acceleration), computes the interface laws
 //! once for both sides, keeps the action–reaction ledger, records every message, and replays
-//! recordings against one solver.
+//! recordings against one solver, and reports error against run time and stability.
 
 pub mod acceleration;
 pub mod error;
@@ -12,6 +12,7 @@ pub mod ledger;
 pub mod out_folder;
 pub mod progress;
 pub mod replay;
+pub mod report;
 pub mod run;
 pub mod scheme;
 pub mod stack;

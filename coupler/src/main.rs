@@ -4,6 +4,7 @@ use clap::{Parser, Subcommand};
 use coupler::error::CouplerError;
 use coupler::estimate::{parse_size, Estimate};
 use coupler::replay::{replay, ReplayOptions};
+use coupler::report::{report, ReportOptions};
 use coupler::run::{default_output_folder, run, RunOptions};
 use schemas::case::error::check::short;
 use schemas::case::Case;
@@ -94,6 +95,32 @@ enum Command {
         #[arg(long, value_name = "SIZE", default_value = "20G", value_parser = parse_size)]
         max_output: u64,
     },
+    #[command(after_help = AFTER_HELP)]
+    /// Error against run time (work–precision) of each case's [report] ladders, or with
+    /// --stability its families of stiff and extreme runs; --readme puts the latest report into
+    /// the README.
+    Report {
+        /// Case files with [reference] and [report] sections.
+        cases: Vec<PathBuf>,
+        /// Report folder (default: out/report).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// The full ladders and families instead of the CI-sized ones.
+        #[arg(long)]
+        full: bool,
+        /// Run the stability families instead of the ladders.
+        #[arg(long)]
+        stability: bool,
+        /// Timed runs after the warm-up (default: each case's report.repeats).
+        #[arg(long)]
+        repeats: Option<u32>,
+        /// Put the latest report of --out into this README's marked sections; runs nothing.
+        #[arg(long, value_name = "README", num_args = 0..=1, default_missing_value = "README.md")]
+        readme: Option<PathBuf>,
+        /// With --stability: only the family of this name (repeatable).
+        #[arg(long)]
+        family: Vec<String>,
+    },
 }
 
 fn parse_exe(s: &str) -> Result<(String, PathBuf), String> {
@@ -142,6 +169,23 @@ fn main() -> ExitCode {
             out,
             max_output,
         } => check(&case, out.as_deref(), max_output),
+        Command::Report {
+            cases,
+            out,
+            full,
+            stability,
+            repeats,
+            readme,
+            family,
+        } => report(&ReportOptions {
+            cases,
+            out,
+            full,
+            stability,
+            repeats,
+            readme,
+            families: family,
+        }),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -170,6 +214,19 @@ fn check(path: &std::path::Path, out: Option<&std::path::Path>, max_output: u64)
             c.scheme,
             short(c.window),
             c.samples
+        );
+    }
+    if let Some(r) = &case.reference {
+        println!(
+            "  reference: {:?}, {:?} error ({})",
+            r.against, r.measure, r.source
+        );
+    }
+    if let Some(r) = &case.report {
+        println!(
+            "  report: {} ladder(s), {} stability family(ies)",
+            r.ladder.len(),
+            r.stability.len()
         );
     }
     let estimate = Estimate::of(&case);

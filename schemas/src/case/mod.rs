@@ -10,6 +10,8 @@ pub mod error;
 pub mod fluid;
 pub mod frame;
 pub mod load_table;
+pub mod reference;
+pub mod report;
 pub mod structure;
 
 use serde::Deserialize;
@@ -19,6 +21,8 @@ use std::path::{Path, PathBuf};
 pub use coupling::CouplingConfig;
 pub use error::{CaseError, FieldError};
 pub use fluid::FluidConfig;
+pub use reference::ReferenceConfig;
+pub use report::ReportConfig;
 pub use structure::StructureConfig;
 
 /// `[case]`: what the run is and how long it lasts.
@@ -49,6 +53,10 @@ struct CaseFile {
     structure: BTreeMap<String, StructureConfig>,
     #[serde(default)]
     coupling: Option<CouplingConfig>,
+    #[serde(default)]
+    reference: Option<ReferenceConfig>,
+    #[serde(default)]
+    report: Option<ReportConfig>,
 }
 
 /// Which solver a participant runs.
@@ -81,6 +89,10 @@ pub struct Case {
     pub fluid: BTreeMap<String, FluidConfig>,
     pub structure: BTreeMap<String, StructureConfig>,
     pub coupling: Option<CouplingConfig>,
+    /// What the result is compared against (`coupler report`).
+    pub reference: Option<ReferenceConfig>,
+    /// The ladders and stability families of `coupler report`.
+    pub report: Option<ReportConfig>,
 }
 
 impl Case {
@@ -122,6 +134,8 @@ impl Case {
             fluid: file.fluid,
             structure: file.structure,
             coupling: file.coupling,
+            reference: file.reference,
+            report: file.report,
         };
         case.validate().map_err(|e| CaseError::at(path, e))?;
         Ok(case)
@@ -197,15 +211,24 @@ impl Case {
         }
         self.check_files()?;
         match (&self.coupling, names.len()) {
-            (None, n) if n > 1 => Err(FieldError::new(
-                "coupling",
-                format!(
-                    "the case has {n} participants ({}) and needs a [coupling] section",
-                    list(&names)
-                ),
-            )),
-            (Some(c), _) => c.validate(self),
-            _ => Ok(()),
+            (None, n) if n > 1 => {
+                return Err(FieldError::new(
+                    "coupling",
+                    format!(
+                        "the case has {n} participants ({}) and needs a [coupling] section",
+                        list(&names)
+                    ),
+                ))
+            }
+            (Some(c), _) => c.validate(self)?,
+            _ => {}
+        }
+        if let Some(r) = &self.reference {
+            r.validate(self)?;
+        }
+        match &self.report {
+            Some(r) => r.validate(self),
+            None => Ok(()),
         }
     }
 }

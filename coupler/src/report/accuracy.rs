@@ -1,0 +1,270 @@
+//! The work–precision report of one case: every rung of its ladders run as `coupler run` with
+//! the rung's settings, timed, measured against the case's reference; the rows, the observed
+//! orders, the summary and the plot.
+
+use super::case_copy::write_changed_case;
+use super::error_measure;
+use super::measure::timed;
+use super::order;
+use super::plot::{self, Series};
+use super::progress::Bar;
+use super::summary;
+use super::table::{markdown, CsvRows, Row};
+use super::work::work;
+use schemas::case::reference::Against;
+use schemas::case::report::describe;
+use schemas::case::{Case, ReferenceConfig, ReportConfig};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// A run to do: which ladder and rung, its settings.
+pub struct Job {
+    pub ladder: usize,
+    pub ladder_label: String,
+    pub parameter: String,
+    pub value: f64,
+    pub settings: schemas::case::report::Settings,
+}
+
+/// The jobs of a case: its ladders' rungs (the full ladders with `full`).
+pub fn jobs(report: &ReportConfig, full: bool) -> Vec<Job> {
+    report
+        .ladder
+        .iter()
+        .enumerate()
+        .flat_map(|(i, l)| {
+            l.rungs(full).unwrap_or_default().into_iter().map(move |r| Job {
+                ladder: i,
+                ladder_label: l.label.clone(),
+                parameter: l.vary.first().cloned().unwrap_or_default(),
+                value: r.parameter,
+                settings: r.settings,
+            })
+        })
+        .collect()
+}
+
+/// The case's reference and report sections, or why it cannot be reported.
+pub fn sections(case: &Case) -> Result<(&ReferenceConfig, &ReportConfig), String> {
+    match (&case.reference, &case.report) {
+        (Some(r), Some(p)) => Ok((r, p)),
+        _ => Err(format!(
+            "{}: a report needs both a [reference] and a [report] section (see cases/oscillator/case.toml)",
+            case.path.display()
+        )),
+    }
+}
+
+/// What one case's report came to.
+pub struct CaseReport {
+    pub markdown: String,
+    /// Rungs that did not finish (interrupted).
+    pub missing: Vec<String>,
+}
+
+/// Runs the case's ladders; rows go to `csv` as they finish. Stops early when interrupted.
+pub fn run_case(
+    case: &Case,
+    out: &Path,
+    full: bool,
+    repeats: Option<u32>,
+    csv: &mut CsvRows,
+    bar: &Bar,
+) -> Result<CaseReport, String> {
+    let (reference, report) = sections(case)?;
+    let name = &case.info.name;
+    let dir = out.join(name);
+    let repeats = repeats.unwrap_or(report.repeats);
+    let mut rows: Vec<Row> = Vec::new();
+    let mut missing = Vec::new();
+    let mut notes: Vec<String> = Vec::new();
+    // The finer run a `finer-run` reference compares with.
+    let finer: Option<PathBuf> = match reference.against {
+        Against::FinerRun => {
+            bar.start(&format!(
+                "{name}: finer reference run ({})",
+                describe(&reference.set)
+            ));
+            let case_file = write_changed_case(case, &reference.set, &dir.join("finer").join("case"))?;
+            let run_out = dir.join("finer").join("out");
+            let m = super::measure::run_case(&case_file, &run_out)?;
+            bar.done();
+            if m.interrupted {
+                missing.push("the finer reference run".into());
+                None
+            } else if m.success() {
+                notes.push(format!(
+                    "Reference: the finer run ({}) took {:.2} s wall, {:.0} MB.",
+                    describe(&reference.set),
+                    m.wall,
+                    m.peak_rss as f64 / 1e6
+                ));
+                Some(run_out)
+            } else {
+                notes.push(format!(
+                    "The finer reference run failed: {}",
+                    last_error(&m.stderr)
+                ));
+                None
+            }
+        }
+        _ => None,
+    };
+    let all = jobs(report, full);
+    for (k, job) in all.iter().enumerate() {
+        let what = format!("{} = {}", job.parameter, job.value);
+        if crate::signals::interrupted()
+            || (reference.against == Against::FinerRun && finer.is_none() && !missing.is_empty())
+        {
+            missing.push(format!("{}: {what}", job.ladder_label));
+            continue;
+        }
+        bar.start(&format!("{name}: {}, {what}", job.ladder_label));
+        let run_dir = dir.join(format!("ladder{}-rung{k}", job.ladder));
+        let case_file = write_changed_case(case, &job.settings, &run_dir.join("case"))?;
+        let run_out = run_dir.join("out");
+        let t = timed(&case_file, &run_out, repeats)?;
+        bar.done();
+        if t.last.interrupted {
+            missing.push(format!("{}: {what}", job.ladder_label));
+            continue;
+        }
+        let changed = Case::load(&case_file).map_err(|e| e.to_string())?;
+        let (error, status) = if t.last.success() {
+            match error_measure::error(case, reference, &run_out, finer.as_deref()) {
+                Ok(e) => (e, "ok".to_string()),
+                Err(m) => (f64::NAN, format!("no error: {m}")),
+            }
+        } else {
+            (f64::NAN, format!("run failed: {}", last_error(&t.last.stderr)))
+        };
+        let warned = super::stability::warnings(&t.last.stderr);
+        if !warned.is_empty() {
+            notes.push(format!("Warning at {}, {what}: {warned}", job.ladder_label));
+        }
+        let w = work(&changed, &run_out);
+        let row = Row {
+            case: name.clone(),
+            ladder: job.ladder_label.clone(),
+            parameter: job.parameter.clone(),
+            value: job.value,
+            error,
+            wall: t.wall,
+            cpu: t.cpu,
+            runs: t.runs,
+            spread: t.spread,
+            steps: w.steps,
+            particle_steps: w.particle_steps,
+            peak_mb: t.peak_rss as f64 / 1e6,
+            sweeps: w.sweeps,
+            status,
+        };
+        csv.push(&row)?;
+        bar.note(&format!(
+            "{name}: {}, {what}: error {:.3e}, {:.3} s",
+            row.ladder, row.error, row.wall
+        ));
+        rows.push(row);
+    }
+    let markdown = case_markdown(case, reference, report, &rows, &missing, &notes, out)?;
+    Ok(CaseReport { markdown, missing })
+}
+
+/// The run's `error:` lines joined (a solver's own message, then the coupler's), or its last line.
+pub fn last_error(stderr: &str) -> String {
+    let lines: Vec<&str> = stderr.lines().map(str::trim).filter(|l| !l.is_empty()).collect();
+    let errors: Vec<&str> = lines
+        .iter()
+        .filter_map(|l| l.strip_prefix("error:").map(str::trim))
+        .collect();
+    match (errors.is_empty(), lines.last()) {
+        (false, _) => errors.join(" ← "),
+        (true, Some(l)) => l.to_string(),
+        (true, None) => "no message".into(),
+    }
+}
+
+/// The error measure in words, for table headers and plot axes.
+pub fn error_name(r: &ReferenceConfig) -> String {
+    let how = match r.measure {
+        schemas::case::reference::Measure::Max => "largest",
+        schemas::case::reference::Measure::Rms => "RMS",
+    };
+    let what = match (&r.column, r.solution) {
+        (_, Some(schemas::case::reference::Solution::TwoMassOscillator)) => "displacement error".to_string(),
+        (Some(c), _) => format!("`{c}` error"),
+        _ => "error".into(),
+    };
+    format!("{}{how} {what}", if r.relative { "relative " } else { "" })
+}
+
+/// The Markdown section of one case, and its plot.
+fn case_markdown(
+    case: &Case,
+    reference: &ReferenceConfig,
+    report: &ReportConfig,
+    rows: &[Row],
+    missing: &[String],
+    notes: &[String],
+    out: &Path,
+) -> Result<String, String> {
+    let name = &case.info.name;
+    let against = match reference.against {
+        Against::Exact => "exact solution",
+        Against::Experiment => "experiment",
+        Against::FinerRun => "finer run of the same case",
+    };
+    let mut s = format!(
+        "### {name}\n\nError: {} against the {against} ({}).\n\n",
+        error_name(reference),
+        reference.source
+    );
+    let refs: Vec<&Row> = rows.iter().collect();
+    s.push_str(&markdown(&refs));
+    s.push_str("\n| ladder | expected order | observed order between rungs |\n|---|---|---|\n");
+    let mut series = Vec::new();
+    for l in &report.ladder {
+        let of: Vec<&Row> = rows.iter().filter(|r| r.ladder == l.label).collect();
+        let orders = order::observed(&of);
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} |",
+            l.label,
+            l.order.map_or("–".into(), |o| format!("{o}")),
+            order::describe(&orders)
+        );
+        series.push(Series {
+            name: l.label.clone(),
+            points: of
+                .iter()
+                .map(|r| (r.wall, r.error, format!("{}", r.value)))
+                .collect(),
+        });
+    }
+    let png = out.join(format!("{name}-work-precision.png"));
+    plot::work_precision(
+        &png,
+        &format!("{name}: error against wall time"),
+        &error_name(reference),
+        &series,
+    )?;
+    let _ = write!(
+        s,
+        "\n{}\n\n![work–precision of {name}]({name}-work-precision.png)\n",
+        summary::paragraph(&refs, report.target_error, &error_name(reference))
+    );
+    for n in notes {
+        let _ = writeln!(s, "\n{n}");
+    }
+    for l in &report.left_out {
+        let _ = writeln!(s, "\nLeft out: {l}");
+    }
+    if !missing.is_empty() {
+        let _ = writeln!(
+            s,
+            "\n**Missing (the report was interrupted before they finished):** {}.",
+            missing.join("; ")
+        );
+    }
+    Ok(s)
+}
