@@ -44,7 +44,7 @@ pub fn run_case(case: &Path, out: &Path) -> Result<Measured, String> {
         std::fs::create_dir_all(parent).map_err(|e| format!("cannot create {}: {e}", parent.display()))?;
     }
     // beside the run's folder: `coupler run` refuses an output folder that already holds files
-    let log = out.with_extension("log");
+    let log = std::path::PathBuf::from(format!("{}.log", out.display()));
     let file = std::fs::File::create(&log).map_err(|e| format!("cannot create {}: {e}", log.display()))?;
     let err = file
         .try_clone()
