@@ -113,7 +113,7 @@ pub fn run_case(
     let all = jobs(report, full);
     for (k, job) in all.iter().enumerate() {
         let what = format!("{} = {}", job.parameter, job.value);
-        if crate::signals::interrupted()
+        if schemas::signals::interrupted()
             || (reference.against == Against::FinerRun && finer.is_none() && !missing.is_empty())
         {
             missing.push(format!("{}: {what}", job.ladder_label));

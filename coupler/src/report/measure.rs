@@ -8,7 +8,7 @@
 //! `wait4`'s `ru_maxrss` is not used: Linux carries a process's high-water mark across `exec`,
 //! so a child started from the report reports the report's own size.
 
-use crate::signals;
+use schemas::signals;
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::{Command, Stdio};

@@ -26,7 +26,7 @@ pub mod table;
 pub mod work;
 
 use crate::error::CouplerError;
-use crate::signals;
+use schemas::signals;
 use schemas::case::Case;
 use std::fmt::Write as _;
 use std::path::PathBuf;

@@ -72,7 +72,7 @@ pub fn run_family(
     let slug = slug(&family.family);
     for (k, (labels, settings)) in family.runs().into_iter().enumerate() {
         let what = format!("{} / {} / {}", case.info.name, family.family, labels.join(", "));
-        if crate::signals::interrupted() {
+        if schemas::signals::interrupted() {
             missing.push(what);
             continue;
         }

@@ -42,7 +42,7 @@ pub fn work(case: &Case, out: &Path) -> Work {
                 .chain(
                     case.structure
                         .values()
-                        .map(|s| s.frame.as_ref().map_or(s.max_step, |f| f.time_step)),
+                        .filter_map(|s| s.frame.as_ref().map(|f| f.time_step).or(s.max_step)),
                 )
                 .next()
                 .unwrap_or(end);
