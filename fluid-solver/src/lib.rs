@@ -1,7 +1,8 @@
 //! `fluid-solver`: a 3D particle fluid with particle walls for tsunami–structure scenes.
 //!
-//! Methods (one per folder, picked by the case): [`emps`], the explicit MPS of Saitoh &
-//! Akitomo (seed 000, S1-3 … S1-16). [`method`] is the seam the solver steps them through.
+//! Methods (one per folder, picked by the case's `method`): [`emps`], the explicit MPS of Saitoh &
+//! Akitomo (seed 000, S1-3 … S1-16), and [`isph`], the incompressible SPH of Ohinata et al.
+//! (seed 003, S2-3 … S2-13). [`method`] is the seam the solver steps them through.
 //!
 //! Shared services:
 //! - [`particles`]: structure-of-arrays storage; [`kind`]: fluid / wall / dummy / body / gate / inflow.
@@ -18,6 +19,7 @@ pub mod bodies;
 pub mod body_wall_contact;
 pub mod collision;
 pub mod emps;
+pub mod isph;
 pub mod kind;
 pub mod layout;
 pub mod method;

@@ -4,6 +4,7 @@
 use crate::bodies::RigidBodies;
 use crate::emps::kernel::Kernel;
 use crate::emps::step::EmpsStep;
+use crate::isph::step::{IsphState, IsphStep};
 use crate::kind::Kind;
 use crate::layout::{self, Domain};
 use crate::method::{FluidMethod, MethodState, StepTotals};
@@ -15,7 +16,7 @@ use crate::physics::Physics;
 use crate::stability::{Instability, StabilityMonitor};
 use crate::stage_timer::StageTimes;
 use crate::state::{BodyExchange, FluidState};
-use schemas::case::fluid::{Aabb, FluidConfig};
+use schemas::case::fluid::{Aabb, FluidConfig, FluidMethodName};
 
 /// Landing on a time: a remainder below this fraction of Δt is rounding, not a step; a step up to
 /// (1 + this) Δt is taken whole.
@@ -30,6 +31,8 @@ pub struct RunTotals {
     pub candidates: u64,
     /// Particle-steps done.
     pub particle_steps: u64,
+    /// Iterations of the pressure Poisson equation's solver (ISPH).
+    pub ppe_iterations: u64,
 }
 
 /// A particle fluid with walls, stepped by the case's method.
@@ -93,13 +96,31 @@ impl FluidSolver {
             monitor.set_driven(); // the inflow feeds energy in
         }
         let mut grid = grid;
-        let mut method = FluidMethod::Emps(EmpsStep::new(kernel, physics));
-        method.refresh_pressure(&mut particles, &mut grid);
+        let (mut method, mut method_state) = match cfg.method {
+            FluidMethodName::Emps => (
+                FluidMethod::Emps(Box::new(EmpsStep::new(kernel, physics))),
+                MethodState::Emps,
+            ),
+            FluidMethodName::Isph => {
+                let step = IsphStep::new(
+                    cfg.spacing,
+                    physics,
+                    cfg.isph_settings(),
+                    kernel.n0,
+                    cfg.time_step,
+                );
+                (
+                    FluidMethod::Isph(Box::new(step)),
+                    MethodState::Isph(IsphState::default()),
+                )
+            }
+        };
+        method.refresh_pressure(&mut particles, &mut grid, &mut method_state);
         let mut solver = FluidSolver {
             state: FluidState {
                 particles,
                 grid,
-                method: MethodState::Emps,
+                method: method_state,
                 body_velocity: vec![0.0; 6 * boxes.len()],
                 body_exchange: BodyExchange::default(),
                 body_pose,
@@ -245,8 +266,9 @@ impl FluidSolver {
         self.state.gates_removed = true;
         let removed = self.state.particles.remove_kind(Kind::Gate);
         if removed > 0 {
+            let st = &mut self.state;
             self.method
-                .refresh_pressure(&mut self.state.particles, &mut self.state.grid);
+                .refresh_pressure(&mut st.particles, &mut st.grid, &mut st.method);
             self.refresh_body_exchange();
         }
         removed
@@ -268,9 +290,13 @@ impl FluidSolver {
         let zeros = vec![0.0; 6 * bodies.names().len()];
         exchange.loads.clone_from(&zeros);
         exchange.reaction.clone_from(&zeros);
-        let totals = self
-            .method
-            .advance(&mut st.particles, &mut st.grid, dt, |stage, law, grid, p| {
+        let clock = (dt, st.steps + 1, st.time + dt);
+        let totals = self.method.advance(
+            &mut st.particles,
+            &mut st.grid,
+            &mut st.method,
+            clock,
+            |stage, law, grid, p| {
                 if bodies.names().is_empty() {
                     return;
                 }
@@ -284,13 +310,15 @@ impl FluidSolver {
                 }
                 add_to(&mut exchange.loads, &loads);
                 add_to(&mut exchange.reaction, &reaction);
-            });
+            },
+        )?;
         st.steps += 1;
         st.time += dt;
         for a in 0..3 {
             self.totals.wall_impulse[a] += totals.force_from_walls[a] * dt;
         }
         self.totals.candidates += totals.candidates;
+        self.totals.ppe_iterations += u64::from(totals.ppe_iterations);
         self.totals.particle_steps += st.particles.len() as u64;
         self.monitor
             .check(&st.particles, st.steps, st.time, dt, &st.body_pose)?;
@@ -335,6 +363,11 @@ impl FluidSolver {
     /// Puts back a state saved by [`FluidSolver::save_state`].
     pub fn restore_state(&mut self, s: &FluidState) {
         self.state.clone_from(s);
+    }
+
+    /// The method's own state (ISPH: surface flags, last PPE record).
+    pub fn method_state(&self) -> &MethodState {
+        &self.state.method
     }
 
     /// Wall time per stage of the method's step since the start.
