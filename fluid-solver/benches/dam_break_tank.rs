@@ -6,9 +6,10 @@
 //! when on, the viscous Laplacian) and memory per particle (the solver's arrays, and the
 //! process's peak resident set divided by the particle count).
 
-use fluid_solver::kernel::Kernel;
+use fluid_solver::emps::kernel::Kernel;
+use fluid_solver::emps::operators;
 use fluid_solver::neighbour_search::CellGrid;
-use fluid_solver::operators::{self, VectorField};
+use fluid_solver::vector_field::VectorField;
 use fluid_solver::{layout, FluidSolver};
 use schemas::case::fluid::FluidConfig;
 use schemas::case::Case;
@@ -64,7 +65,7 @@ fn stage_times(cfg: &FluidConfig, warm: f64, reps: u32) -> Vec<(&'static str, f6
         operators::gradient(&grid, &kernel, &p, &pressure, &mut out).candidates
     });
     time("collision", &mut || {
-        operators::collision(&grid, &p, 0.8 * cfg.spacing, 0.2, &mut out).candidates
+        fluid_solver::collision::collision(&grid, &p, 0.8 * cfg.spacing, 0.2, &mut out).candidates
     });
     time("laplacian (S1-4, off here)", &mut || {
         operators::laplacian(&grid, &kernel, &p, &mut out).candidates

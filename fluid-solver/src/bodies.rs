@@ -6,13 +6,15 @@
 //! (1, 0, 0, 0). Each body particle keeps its offset from the initial centre.
 //!
 //! What the fluid exchanges with a body, pair by pair between a fluid particle i and a body
-//! particle j (each pair force acts on the body and, reversed, on the fluid, with its moment taken
-//! at r_j on both sides, so action = reaction holds to round-off for forces and moments):
+//! particle j, comes from the fluid method's pair laws ([`crate::pair_law`]): each pair force
+//! acts on the body and, reversed, on the fluid, with its moment taken at r_j on both sides, so
+//! action = reaction holds to round-off for forces and moments. E-MPS hands over
+//! ([`crate::emps::pair_laws`]):
 //! - the pressure pair terms of S1-3 (body particles carry pressure like walls, S1-14, and fill
 //!   the fluid's number density, S1-15; the seed's PMS, S1-19 … S1-21, moves them as fluid
 //!   instead and reads the body force from their velocity change);
 //! - the collision stage's impulses between close approaching fluid and body particles (see
-//!   [`crate::emps_step`]), with the body particle's rigid velocity, reported as impulse / Δt of
+//!   [`crate::collision`]), with the body particle's rigid velocity, reported as impulse / Δt of
 //!   the last step;
 //! - when the viscous term is on, S1-4's pair terms with the body particles' rigid velocities
 //!   (no slip on the body).
@@ -21,11 +23,10 @@
 //! resultant (the pressure of the water's own weight acting on the body's surface); the body's
 //! weight is applied by the structure solver's `gravity`, never here.
 
-use crate::emps_step::{COLLISION_DISTANCE, RESTITUTION};
-use crate::kernel::{weight, weight_grad, Kernel};
 use crate::kind::{Kind, FLUID};
 use crate::layout::BodyParticles;
 use crate::neighbour_search::CellGrid;
+use crate::pair_law::PairLaw;
 use crate::particles::Particles;
 use rayon::prelude::*;
 
@@ -120,106 +121,22 @@ impl RigidBodies {
             });
     }
 
-    /// Pressure force of the fluid on each body and its moment about `centres` (6 per body):
-    /// the reaction of S1-3's pair terms, `f_j = m/ρ0 · d/n0_grad Σ_i (P_i + P_j) r_ij/|r_ij|² w_grad`
-    /// over fluid neighbours i of body particle j (r_ij = r_j − r_i), so that the pair forces
-    /// on fluid and body balance exactly.
-    pub fn pressure_loads(
-        &self,
-        grid: &CellGrid,
-        kernel: &Kernel,
-        p: &Particles,
-        centres: &[f64],
-    ) -> Vec<f64> {
-        self.body_side_sum(
-            grid,
-            p,
-            kernel.re_grad,
-            centres,
-            is_fluid,
-            pressure_pair(kernel, p),
-        )
-    }
-
-    /// The reaction of [`RigidBodies::pressure_loads`] evaluated from the fluid's side: for each
-    /// fluid particle i, the S1-3 pair terms of its body neighbours j, reversed, summed per body
-    /// with their moment about `centres` (6 per body). It equals minus the loads up to round-off
-    /// when the pair search is symmetric, which the coupler's action–reaction ledger checks.
-    pub fn pressure_reaction(
-        &self,
-        grid: &CellGrid,
-        kernel: &Kernel,
-        p: &Particles,
-        centres: &[f64],
-    ) -> Vec<f64> {
-        self.fluid_side_sum(grid, p, kernel.re_grad, centres, pressure_pair(kernel, p))
-    }
-
-    /// Force (impulse / Δt) and moment about `centres` of the collision stage on each body (6 per
-    /// body), read before the stage applies its velocity changes: for a fluid particle i closer
-    /// than `COLLISION_DISTANCE` Δs to body particle j and approaching it, the fluid gets
-    /// `Δu_i = (1+e) ((u_j − u_i)·r_ij) r_ij/|r_ij|²` (the body particle moves with its rigid
-    /// velocity, as a wall), and the body the opposite impulse `−m Δu_i`.
-    pub fn contact_loads(
+    /// The force and moment about `centres` of pair law `law` on each body, summed over the
+    /// body's particles (the loads), and the reaction on the fluid, summed over the fluid
+    /// particles (6 per body each). Both sums read the one law, so the reaction equals minus the
+    /// loads up to round-off when the pair search is symmetric, which the coupler's
+    /// action–reaction ledger checks.
+    pub fn exchange(
         &self,
         grid: &CellGrid,
         p: &Particles,
         centres: &[f64],
-        scales: &ExchangeScales,
-    ) -> Vec<f64> {
-        self.body_side_sum(
-            grid,
-            p,
-            scales.distance(),
-            centres,
-            is_fluid,
-            contact_pair(scales, p),
-        )
-    }
-
-    /// The reaction of [`RigidBodies::contact_loads`] evaluated from the fluid's side (the
-    /// collision impulses the fluid took from each body, / Δt, with their moment).
-    pub fn contact_reaction(
-        &self,
-        grid: &CellGrid,
-        p: &Particles,
-        centres: &[f64],
-        scales: &ExchangeScales,
-    ) -> Vec<f64> {
-        self.fluid_side_sum(grid, p, scales.distance(), centres, contact_pair(scales, p))
-    }
-
-    /// Viscous force and moment about `centres` of the fluid on each body (6 per body), the
-    /// reaction of S1-4's pair terms: fluid particle i gets `m ν 2d/(λ0 n0) (u_j − u_i) w(|r_ij|)`
-    /// from body particle j (which moves with the body's rigid velocity), the body the opposite.
-    pub fn viscous_loads(
-        &self,
-        grid: &CellGrid,
-        kernel: &Kernel,
-        p: &Particles,
-        centres: &[f64],
-        scales: &ExchangeScales,
-    ) -> Vec<f64> {
-        self.body_side_sum(
-            grid,
-            p,
-            kernel.re,
-            centres,
-            is_fluid,
-            viscous_pair(kernel, scales, p),
-        )
-    }
-
-    /// The reaction of [`RigidBodies::viscous_loads`] evaluated from the fluid's side.
-    pub fn viscous_reaction(
-        &self,
-        grid: &CellGrid,
-        kernel: &Kernel,
-        p: &Particles,
-        centres: &[f64],
-        scales: &ExchangeScales,
-    ) -> Vec<f64> {
-        self.fluid_side_sum(grid, p, kernel.re, centres, viscous_pair(kernel, scales, p))
+        law: &PairLaw,
+    ) -> (Vec<f64>, Vec<f64>) {
+        let pair = |i: usize, j: usize| law.force(i, j);
+        let loads = self.body_side_sum(grid, p, law.radius, centres, is_fluid, pair);
+        let reaction = self.fluid_side_sum(grid, p, law.radius, centres, pair);
+        (loads, reaction)
     }
 
     /// Σ over body particles j of `pair(i, j)` over neighbours i within `radius` whose kind byte
@@ -317,90 +234,5 @@ fn add_with_moment(out: &mut [f64], r: [f64; 3], centre: &[f64], f: [f64; 3]) {
     for a in 0..3 {
         out[a] += f[a];
         out[3 + a] += m[a];
-    }
-}
-
-/// S1-3's pressure pair force on body particle j from fluid particle i (r_ij = r_j − r_i):
-/// `Δs³ d/n0_grad (P_i + P_j) r_ij/|r_ij|² w_grad(|r_ij|)`, or `None` beyond r_e,grad.
-fn pressure_pair<'a>(
-    kernel: &Kernel,
-    p: &'a Particles,
-) -> impl Fn(usize, usize) -> Option<[f64; 3]> + Sync + 'a {
-    let re = kernel.re_grad;
-    // Particle volume m/ρ0 = Δs³ times S1-3's d/n0_grad.
-    let scale = kernel.spacing.powi(3) * kernel.gradient_factor();
-    move |i, j| {
-        let d = [p.x[j] - p.x[i], p.y[j] - p.y[i], p.z[j] - p.z[i]];
-        let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-        if !(r2 < re * re && r2 > 0.0) {
-            return None;
-        }
-        let c = scale * (p.pressure[i] + p.pressure[j]) * weight_grad(r2.sqrt(), re) / r2;
-        Some(d.map(|v| c * v))
-    }
-}
-
-/// What turns the viscous and collision stages' velocity changes into forces: Δs, m = ρ0 Δs³,
-/// ν and the step Δt.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ExchangeScales {
-    pub spacing: f64,
-    pub particle_mass: f64,
-    pub viscosity: f64,
-    pub dt: f64,
-}
-
-impl ExchangeScales {
-    /// Pairs closer than this collide [m].
-    fn distance(&self) -> f64 {
-        COLLISION_DISTANCE * self.spacing
-    }
-}
-
-/// The collision stage's force on body particle j from fluid particle i, `−m Δu_i / Δt` with
-/// `Δu_i = (1+e) ((u_j − u_i)·r_ij) r_ij/|r_ij|²` when they are closer than the collision
-/// distance and approach each other, else `None`.
-fn contact_pair<'a>(
-    scales: &ExchangeScales,
-    p: &'a Particles,
-) -> impl Fn(usize, usize) -> Option<[f64; 3]> + Sync + 'a {
-    let distance = scales.distance();
-    let impulse_to_force = scales.particle_mass / scales.dt;
-    move |i, j| {
-        let d = [p.x[j] - p.x[i], p.y[j] - p.y[i], p.z[j] - p.z[i]];
-        let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-        if !(r2 < distance * distance && r2 > 0.0) {
-            return None;
-        }
-        let closing = (p.vx[j] - p.vx[i]) * d[0] + (p.vy[j] - p.vy[i]) * d[1] + (p.vz[j] - p.vz[i]) * d[2];
-        if closing >= 0.0 || closing.is_nan() {
-            return None;
-        }
-        let c = -impulse_to_force * (1.0 + RESTITUTION) * closing / r2;
-        Some(d.map(|v| c * v))
-    }
-}
-
-/// S1-4's viscous pair force on body particle j from fluid particle i,
-/// `−m ν 2d/(λ0 n0) (u_j − u_i) w(|r_ij|)` (w of S1-6 with r_e), or `None` beyond r_e.
-fn viscous_pair<'a>(
-    kernel: &Kernel,
-    scales: &ExchangeScales,
-    p: &'a Particles,
-) -> impl Fn(usize, usize) -> Option<[f64; 3]> + Sync + 'a {
-    let re = kernel.re;
-    let scale = -scales.particle_mass * scales.viscosity * kernel.laplacian_factor();
-    move |i, j| {
-        let d = [p.x[j] - p.x[i], p.y[j] - p.y[i], p.z[j] - p.z[i]];
-        let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-        if !(r2 < re * re && r2 > 0.0) {
-            return None;
-        }
-        let c = scale * weight(r2.sqrt(), re);
-        Some([
-            c * (p.vx[j] - p.vx[i]),
-            c * (p.vy[j] - p.vy[i]),
-            c * (p.vz[j] - p.vz[i]),
-        ])
     }
 }

@@ -13,9 +13,10 @@
 //! The walls are fixed: the reaction goes into them (it is part of the fluid participant's
 //! reaction, which the coupler's ledger balances against the body's load).
 
-use crate::bodies::{ExchangeScales, RigidBodies};
+use crate::bodies::RigidBodies;
 use crate::kind::{DUMMY, WALL};
 use crate::neighbour_search::CellGrid;
+use crate::pair_law::ExchangeScales;
 use crate::particles::Particles;
 
 /// Steps per period of one water-mass particle on one contact spring.

@@ -1,34 +1,48 @@
-//! `fluid-solver`: a 3D explicit MPS (E-MPS) fluid with particle walls, after Saitoh & Akitomo
-//! (seed 000, equations S1-3 … S1-16 in `physics.md`).
+//! `fluid-solver`: a 3D particle fluid with particle walls for tsunami–structure scenes.
 //!
+//! Methods (one per folder, picked by the case's `method`): [`emps`], the explicit MPS of Saitoh &
+//! Akitomo (seed 000, S1-3 … S1-16), and [`isph`], the incompressible SPH of Ohinata et al.
+//! (seed 003, S2-3 … S2-13). [`method`] is the seam the solver steps them through.
+//!
+//! Shared services:
 //! - [`particles`]: structure-of-arrays storage; [`kind`]: fluid / wall / dummy / body / gate / inflow.
-//! - [`layout`]: the initial lattice of a case; [`kernel`]: weights and lattice constants.
-//! - [`neighbour_search`]: cell lists with counting sort; [`operators`]: the particle operators.
-//! - [`bodies`]: rigid bodies of particles (kinematics in, loads out); [`emps_step`]: one time step; [`solver`]: the clock, save/restore, advance-to.
+//! - [`layout`]: the initial lattice of a case; [`neighbour_search`]: cell lists with counting sort
+//!   and point queries; [`moments`]: the moment matrix and λ_min (S2-10 … S2-13).
+//! - [`bodies`] + [`body_wall_contact`]: rigid bodies of particles (kinematics in, loads out through
+//!   the method's [`pair_law`]s); [`collision`]: the collision stage both methods share.
+//! - [`solver`]: the clock, advance-to, checkpoints of [`state::FluidState`]; [`stage_timer`]: time per stage.
 //! - [`open_boundary`]: inflow and outflow boundaries (particles added and removed during a run).
 //! - [`stability`]: the instability detector; [`probes`], [`vtu`], [`surface_mesh`] + [`vtp`]: outputs; [`run`]: a standalone run;
 //!   [`participant`]: the coupled-run side (`fluid-solver participant …`).
 
 pub mod bodies;
 pub mod body_wall_contact;
-pub mod emps_step;
-pub mod kernel;
+pub mod collision;
+pub mod emps;
+pub mod isph;
 pub mod kind;
 pub mod layout;
+pub mod method;
+pub mod moments;
 pub mod neighbour_search;
 pub mod open_boundary;
-pub mod operators;
+pub mod pair_law;
 pub mod participant;
 pub mod particles;
+pub mod physics;
 pub mod probes;
 pub mod run;
 pub mod solver;
 pub mod stability;
+pub mod stage_timer;
+pub mod state;
 pub mod surface_mesh;
+pub mod vector_field;
 pub mod vtk_appended;
 pub mod vtp;
 pub mod vtu;
 
 pub use kind::Kind;
-pub use solver::{FluidSolver, SavedState};
+pub use solver::FluidSolver;
 pub use stability::Instability;
+pub use state::FluidState;

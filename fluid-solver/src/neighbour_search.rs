@@ -154,6 +154,51 @@ impl CellGrid {
         });
     }
 
+    /// Calls `f(j, |r_j − at|²)` for every particle j within `radius` of the point `at` (strictly
+    /// closer; valid after [`CellGrid::sort`], until particles are added or removed). `at` may be
+    /// any point: one outside the grid sees the particles of the border cells within `radius`
+    /// (spray above the grid is kept in its top layer, see [`crate::layout::GRID_HEADROOM`]).
+    /// Used for sampling the fluid at points that are not particles (probes, coupling samples).
+    pub fn for_each_near_point(
+        &self,
+        p: &Particles,
+        at: [f64; 3],
+        radius: f64,
+        mut f: impl FnMut(usize, f64),
+    ) {
+        let reach = self.reach(radius) as i64;
+        let centre = self.cell_index(at) as usize;
+        let nx = self.dims[0];
+        let nxy = nx * self.dims[1];
+        let c = [centre % nx, (centre / nx) % self.dims[1], centre / nxy];
+        let r2max = radius * radius;
+        let span = |a: usize| {
+            let lo = (c[a] as i64 - reach).max(0) as usize;
+            let hi = (c[a] as i64 + reach).min(self.dims[a] as i64 - 1) as usize;
+            (lo, hi)
+        };
+        let ((x0, x1), (y0, y1), (z0, z1)) = (span(0), span(1), span(2));
+        for cz in z0..=z1 {
+            for cy in y0..=y1 {
+                let row = cz * nxy + cy * nx;
+                for j in self.start[row + x0] as usize..self.start[row + x1 + 1] as usize {
+                    let d = [p.x[j] - at[0], p.y[j] - at[1], p.z[j] - at[2]];
+                    let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+                    if r2 < r2max {
+                        f(j, r2);
+                    }
+                }
+            }
+        }
+    }
+
+    /// The particles within `radius` of the point `at` (see [`CellGrid::for_each_near_point`]).
+    pub fn particles_near(&self, p: &Particles, at: [f64; 3], radius: f64) -> Vec<usize> {
+        let mut out = Vec::new();
+        self.for_each_near_point(p, at, radius, |j, _| out.push(j));
+        out
+    }
+
     /// Calls `f(first cell, one past the last cell)` for each run of cells along x within
     /// `reach` of particle `i`'s cell.
     #[inline(always)]

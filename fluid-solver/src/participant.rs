@@ -15,7 +15,8 @@
 //! first exchange time at or after each probe time, once the window is accepted.
 
 use crate::probes::{self, ProbeFile};
-use crate::solver::{FluidSolver, SavedState};
+use crate::solver::FluidSolver;
+use crate::state::FluidState;
 use crate::vtp::SurfaceFrames;
 use crate::vtu;
 use schemas::case::fluid::ProbeConfig;
@@ -88,7 +89,7 @@ impl ProbeRows {
 pub struct FluidParticipant {
     name: String,
     solver: FluidSolver,
-    checkpoint: Option<SavedState>,
+    checkpoint: Option<FluidState>,
     frames: Option<Frames>,
     probes: Option<ProbeRows>,
 }

@@ -4,7 +4,7 @@
 //! Droplets are left out of heights and fronts: a fluid particle counts only if its number
 //! density is at least [`MIN_DENSITY_FRACTION`] of n0 (a lone particle in the air has far less).
 
-use crate::kernel::{weight, Kernel};
+use crate::emps::kernel::{weight, Kernel};
 use crate::kind::{Kind, FLUID};
 use crate::particles::Particles;
 use schemas::case::fluid::{Aabb, ProbeConfig, ProbeKind};

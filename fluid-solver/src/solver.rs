@@ -1,44 +1,26 @@
 //! The fluid solver of one `[fluid.NAME]` participant: the particles, the step, the clock and
 //! the stability monitor; advances to a given time and saves/restores its state in memory.
 
-use crate::bodies::{ExchangeScales, RigidBodies};
-use crate::emps_step::{EmpsStep, Exchange, Physics, StepTotals};
-use crate::kernel::Kernel;
+use crate::bodies::RigidBodies;
+use crate::emps::kernel::Kernel;
+use crate::emps::step::EmpsStep;
+use crate::isph::step::{IsphState, IsphStep};
 use crate::kind::Kind;
 use crate::layout::{self, Domain};
+use crate::method::{FluidMethod, MethodState, StepTotals};
 use crate::neighbour_search::CellGrid;
 use crate::open_boundary::OpenBoundaries;
+use crate::pair_law::Exchange;
 use crate::particles::Particles;
+use crate::physics::Physics;
 use crate::stability::{Instability, StabilityMonitor};
-use schemas::case::fluid::{Aabb, FluidConfig};
+use crate::stage_timer::StageTimes;
+use crate::state::{BodyExchange, FluidState};
+use schemas::case::fluid::{Aabb, FluidConfig, FluidMethodName};
 
 /// Landing on a time: a remainder below this fraction of Δt is rounding, not a step; a step up to
 /// (1 + this) Δt is taken whole.
 const LANDING_SLACK: f64 = 1e-9;
-
-/// A copy of everything that changes during a step (for implicit coupling).
-#[derive(Debug, Clone, PartialEq)]
-pub struct SavedState {
-    particles: Particles,
-    /// The cell list matching the particles' order (loads are read through it).
-    grid: CellGrid,
-    body_pose: Vec<f64>,
-    body_velocity: Vec<f64>,
-    body_exchange: BodyExchange,
-    time: f64,
-    steps: u64,
-    gates_removed: bool,
-    open_boundaries: OpenBoundaries,
-}
-
-/// The forces between fluid and bodies in the last step (6 per body: force, moment about the
-/// centre), as the bodies took them and as the fluid gave them: S1-4's viscous pairs (when on),
-/// S1-3's pressure pairs at r* and the collision impulses / Δt (see [`crate::bodies`]).
-#[derive(Debug, Clone, Default, PartialEq)]
-struct BodyExchange {
-    loads: Vec<f64>,
-    reaction: Vec<f64>,
-}
 
 /// Running totals since the solver was made.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -49,29 +31,26 @@ pub struct RunTotals {
     pub candidates: u64,
     /// Particle-steps done.
     pub particle_steps: u64,
+    /// Iterations of the pressure Poisson equation's solver (ISPH).
+    pub ppe_iterations: u64,
 }
 
-/// An E-MPS fluid with walls.
+/// A particle fluid with walls, stepped by the case's method.
 #[derive(Debug, Clone)]
 pub struct FluidSolver {
-    particles: Particles,
-    step: EmpsStep,
+    /// Everything a step changes (a checkpoint is a clone of it).
+    state: FluidState,
+    method: FluidMethod,
+    /// The MPS lattice constants the shared services read (probes: radii, n0).
+    kernel: Kernel,
+    physics: Physics,
     monitor: StabilityMonitor,
     time_step: f64,
-    time: f64,
-    steps: u64,
-    gates_removed: bool,
     started: bool,
     domain: Domain,
     tank: Aabb,
     bodies: RigidBodies,
-    /// Present pose (7 per body: centre, quaternion w x y z) and velocity (6 per body: V, ω).
-    body_pose: Vec<f64>,
-    body_velocity: Vec<f64>,
-    body_exchange: BodyExchange,
     totals: RunTotals,
-    /// Inflow and outflow (inactive without `inflow` / `outflow` in the case).
-    open_boundaries: OpenBoundaries,
 }
 
 impl FluidSolver {
@@ -116,25 +95,50 @@ impl FluidSolver {
         if open_boundaries.has_inflow() {
             monitor.set_driven(); // the inflow feeds energy in
         }
-        let mut step = EmpsStep::new(kernel, physics, grid);
-        step.refresh_pressure(&mut particles);
+        let mut grid = grid;
+        let (mut method, mut method_state) = match cfg.method {
+            FluidMethodName::Emps => (
+                FluidMethod::Emps(Box::new(EmpsStep::new(kernel, physics))),
+                MethodState::Emps,
+            ),
+            FluidMethodName::Isph => {
+                let step = IsphStep::new(
+                    cfg.spacing,
+                    physics,
+                    cfg.isph_settings(),
+                    kernel.n0,
+                    cfg.time_step,
+                );
+                (
+                    FluidMethod::Isph(Box::new(step)),
+                    MethodState::Isph(IsphState::default()),
+                )
+            }
+        };
+        method.refresh_pressure(&mut particles, &mut grid, &mut method_state);
         let mut solver = FluidSolver {
-            particles,
-            step,
+            state: FluidState {
+                particles,
+                grid,
+                method: method_state,
+                body_velocity: vec![0.0; 6 * boxes.len()],
+                body_exchange: BodyExchange::default(),
+                body_pose,
+                time: 0.0,
+                steps: 0,
+                gates_removed: false,
+                open_boundaries,
+            },
+            method,
+            kernel,
+            physics,
             monitor,
             time_step: cfg.time_step,
-            time: 0.0,
-            steps: 0,
-            gates_removed: false,
             started: false,
             domain: layout.domain,
             tank: layout.tank,
-            body_velocity: vec![0.0; 6 * boxes.len()],
-            body_exchange: BodyExchange::default(),
-            body_pose,
             bodies,
             totals: RunTotals::default(),
-            open_boundaries,
         };
         solver.refresh_body_exchange();
         solver
@@ -143,41 +147,35 @@ impl FluidSolver {
     /// Sets the body loads to the pressure pair forces of the present state (no collisions):
     /// what the bodies feel before the first step.
     fn refresh_body_exchange(&mut self) {
-        let (grid, kernel, p, pose) = (
-            &self.step.grid,
-            &self.step.kernel,
-            &self.particles,
-            &self.body_pose,
-        );
-        self.body_exchange = BodyExchange {
-            loads: self.bodies.pressure_loads(grid, kernel, p, pose),
-            reaction: self.bodies.pressure_reaction(grid, kernel, p, pose),
-        };
+        let st = &mut self.state;
+        let law = self.method.pressure_law(&st.particles);
+        let (loads, reaction) = self.bodies.exchange(&st.grid, &st.particles, &st.body_pose, &law);
+        st.body_exchange = BodyExchange { loads, reaction };
     }
 
     /// The inflow and outflow boundaries and their particle balance.
     pub fn open_boundaries(&self) -> &OpenBoundaries {
-        &self.open_boundaries
+        &self.state.open_boundaries
     }
 
     /// The particles (in cell order; use `id` for identity).
     pub fn particles(&self) -> &Particles {
-        &self.particles
+        &self.state.particles
     }
 
     /// Mutable particles, e.g. to set initial velocities or body kinematics.
     pub fn particles_mut(&mut self) -> &mut Particles {
-        &mut self.particles
+        &mut self.state.particles
     }
 
     /// Simulated time [s].
     pub fn time(&self) -> f64 {
-        self.time
+        self.state.time
     }
 
     /// Steps taken.
     pub fn steps(&self) -> u64 {
-        self.steps
+        self.state.steps
     }
 
     /// Δt of the case [s].
@@ -187,12 +185,12 @@ impl FluidSolver {
 
     /// The operators' radii and lattice constants.
     pub fn kernel(&self) -> &Kernel {
-        &self.step.kernel
+        &self.kernel
     }
 
     /// The physical parameters.
     pub fn physics(&self) -> &Physics {
-        &self.step.physics
+        &self.physics
     }
 
     /// The box particles must stay in.
@@ -227,9 +225,10 @@ impl FluidSolver {
         if velocity.iter().any(|&v| v != 0.0) {
             self.monitor.set_driven();
         }
-        self.body_pose.copy_from_slice(pose);
-        self.body_velocity.copy_from_slice(velocity);
-        self.bodies.set_kinematics(&mut self.particles, pose, velocity);
+        self.state.body_pose.copy_from_slice(pose);
+        self.state.body_velocity.copy_from_slice(velocity);
+        self.bodies
+            .set_kinematics(&mut self.state.particles, pose, velocity);
         Ok(())
     }
 
@@ -237,7 +236,7 @@ impl FluidSolver {
     /// body), the fluid's share evaluated from the fluid's side; minus [`FluidSolver::body_loads`]
     /// up to round-off.
     pub fn body_reactions(&self) -> Vec<f64> {
-        self.body_exchange.reaction.clone()
+        self.state.body_exchange.reaction.clone()
     }
 
     /// Force and moment of the fluid on each body in the last step, about the body's centre at
@@ -247,7 +246,7 @@ impl FluidSolver {
     /// contact ([`crate::body_wall_contact`]). No gravity: the body's weight is the structure
     /// solver's.
     pub fn body_loads(&self) -> Vec<f64> {
-        self.body_exchange.loads.clone()
+        self.state.body_exchange.loads.clone()
     }
 
     /// Totals since the start.
@@ -257,17 +256,19 @@ impl FluidSolver {
 
     /// Bytes held by the particle arrays, the step's buffers and the cell grid.
     pub fn memory_bytes(&self) -> usize {
-        let n = self.particles.x.capacity();
-        n * (crate::particles::STATE_BYTES_PER_PARTICLE + 3 * 8 + 8) + self.step.grid.memory_bytes()
+        let n = self.state.particles.x.capacity();
+        n * (crate::particles::STATE_BYTES_PER_PARTICLE + 3 * 8 + 8) + self.state.grid.memory_bytes()
     }
 
     /// Removes the partition boards (done automatically before the first step, i.e. at t = 0).
     /// Returns how many particles were removed.
     pub fn remove_gates(&mut self) -> usize {
-        self.gates_removed = true;
-        let removed = self.particles.remove_kind(Kind::Gate);
+        self.state.gates_removed = true;
+        let removed = self.state.particles.remove_kind(Kind::Gate);
         if removed > 0 {
-            self.step.refresh_pressure(&mut self.particles);
+            let st = &mut self.state;
+            self.method
+                .refresh_pressure(&mut st.particles, &mut st.grid, &mut st.method);
             self.refresh_body_exchange();
         }
         removed
@@ -275,68 +276,59 @@ impl FluidSolver {
 
     /// One step of length `dt` (≤ Δt); stops with a diagnostic if the state became unstable.
     pub fn step(&mut self, dt: f64) -> Result<StepTotals, Instability> {
-        if !self.gates_removed {
+        if !self.state.gates_removed {
             self.remove_gates();
         }
+        let st = &mut self.state;
         if !self.started {
-            self.monitor.start(&self.particles);
+            self.monitor.start(&st.particles);
             self.started = true;
         }
-        self.open_boundaries.apply(&mut self.particles, self.time, dt);
-        let scales = ExchangeScales {
-            spacing: self.step.kernel.spacing,
-            particle_mass: self.particle_mass(),
-            viscosity: self.step.physics.viscosity,
-            dt,
-        };
-        let kernel = self.step.kernel;
-        let (bodies, pose, exchange) = (&self.bodies, &self.body_pose, &mut self.body_exchange);
+        st.open_boundaries.apply(&mut st.particles, st.time, dt);
+        let scales = self.method.scales(dt);
+        let (bodies, pose, exchange) = (&self.bodies, &st.body_pose, &mut st.body_exchange);
         let zeros = vec![0.0; 6 * bodies.names().len()];
         exchange.loads.clone_from(&zeros);
         exchange.reaction.clone_from(&zeros);
-        let totals = self.step.advance(&mut self.particles, dt, |stage, grid, p| {
-            if bodies.names().is_empty() {
-                return;
-            }
-            let (loads, reaction) = match stage {
-                Exchange::Viscous => (
-                    bodies.viscous_loads(grid, &kernel, p, pose, &scales),
-                    bodies.viscous_reaction(grid, &kernel, p, pose, &scales),
-                ),
-                Exchange::Pressure => (
-                    bodies.pressure_loads(grid, &kernel, p, pose),
-                    bodies.pressure_reaction(grid, &kernel, p, pose),
-                ),
-                Exchange::Collision => {
+        let clock = (dt, st.steps + 1, st.time + dt);
+        let totals = self.method.advance(
+            &mut st.particles,
+            &mut st.grid,
+            &mut st.method,
+            clock,
+            |stage, law, grid, p| {
+                if bodies.names().is_empty() {
+                    return;
+                }
+                let (mut loads, mut reaction) = bodies.exchange(grid, p, pose, law);
+                if stage == Exchange::Collision {
                     // the walls' contact on the bodies; the walls take its reaction (see
                     // `body_wall_contact.rs`)
                     let walls = bodies.wall_contact_loads(grid, p, pose, &scales);
-                    let mut loads = bodies.contact_loads(grid, p, pose, &scales);
-                    let mut reaction = bodies.contact_reaction(grid, p, pose, &scales);
                     add_to(&mut loads, &walls);
                     reaction.iter_mut().zip(&walls).for_each(|(r, w)| *r -= w);
-                    (loads, reaction)
                 }
-            };
-            add_to(&mut exchange.loads, &loads);
-            add_to(&mut exchange.reaction, &reaction);
-        });
-        self.steps += 1;
-        self.time += dt;
+                add_to(&mut exchange.loads, &loads);
+                add_to(&mut exchange.reaction, &reaction);
+            },
+        )?;
+        st.steps += 1;
+        st.time += dt;
         for a in 0..3 {
             self.totals.wall_impulse[a] += totals.force_from_walls[a] * dt;
         }
         self.totals.candidates += totals.candidates;
-        self.totals.particle_steps += self.particles.len() as u64;
+        self.totals.ppe_iterations += u64::from(totals.ppe_iterations);
+        self.totals.particle_steps += st.particles.len() as u64;
         self.monitor
-            .check(&self.particles, self.steps, self.time, dt, &self.body_pose)?;
+            .check(&st.particles, st.steps, st.time, dt, &st.body_pose)?;
         Ok(totals)
     }
 
     /// The next step's length towards `t_end`: Δt, or the remainder when it is at most Δt
     /// (the last step lands exactly); `None` when `t_end` is reached (up to rounding).
     pub fn next_step_towards(&self, t_end: f64) -> Option<f64> {
-        let left = t_end - self.time;
+        let left = t_end - self.state.time;
         if left <= self.time_step * LANDING_SLACK {
             None
         } else if left <= self.time_step * (1.0 + LANDING_SLACK) {
@@ -357,43 +349,36 @@ impl FluidSolver {
 
     /// Sets the clock to `t_end` when the steps have reached it up to rounding.
     pub fn land_on(&mut self, t_end: f64) {
-        if (self.time - t_end).abs() <= self.time_step * LANDING_SLACK {
-            self.time = t_end;
+        if (self.state.time - t_end).abs() <= self.time_step * LANDING_SLACK {
+            self.state.time = t_end;
         }
     }
 
-    /// A copy of the state (particles, clock) for implicit coupling.
-    pub fn save_state(&self) -> SavedState {
-        SavedState {
-            particles: self.particles.clone(),
-            grid: self.step.grid.clone(),
-            body_pose: self.body_pose.clone(),
-            body_velocity: self.body_velocity.clone(),
-            body_exchange: self.body_exchange.clone(),
-            time: self.time,
-            steps: self.steps,
-            gates_removed: self.gates_removed,
-            open_boundaries: self.open_boundaries.clone(),
-        }
+    /// A copy of the state (particles, cell list, the method's own state, bodies, clock,
+    /// open boundaries) for implicit coupling.
+    pub fn save_state(&self) -> FluidState {
+        self.state.clone()
     }
 
     /// Puts back a state saved by [`FluidSolver::save_state`].
-    pub fn restore_state(&mut self, s: &SavedState) {
-        self.particles.clone_from(&s.particles);
-        self.step.grid.clone_from(&s.grid);
-        self.body_pose.clone_from(&s.body_pose);
-        self.body_velocity.clone_from(&s.body_velocity);
-        self.body_exchange.clone_from(&s.body_exchange);
-        self.time = s.time;
-        self.steps = s.steps;
-        self.gates_removed = s.gates_removed;
-        self.open_boundaries.clone_from(&s.open_boundaries);
+    pub fn restore_state(&mut self, s: &FluidState) {
+        self.state.clone_from(s);
+    }
+
+    /// The method's own state (ISPH: surface flags, last PPE record).
+    pub fn method_state(&self) -> &MethodState {
+        &self.state.method
+    }
+
+    /// Wall time per stage of the method's step since the start.
+    pub fn stage_times(&self) -> &StageTimes {
+        self.method.stage_times()
     }
 
     /// Total momentum of the fluid [kg m/s].
     pub fn fluid_momentum(&self) -> [f64; 3] {
-        let m = self.step.physics.density * self.step.kernel.spacing.powi(3);
-        let p = &self.particles;
+        let m = self.physics.density * self.kernel.spacing.powi(3);
+        let p = &self.state.particles;
         let mut sum = [0.0; 3];
         for i in (0..p.len()).filter(|&i| p.kind[i] == Kind::Fluid.code()) {
             sum[0] += m * p.vx[i];
@@ -405,7 +390,7 @@ impl FluidSolver {
 
     /// Mass of one particle ρ0 Δs³ [kg].
     pub fn particle_mass(&self) -> f64 {
-        self.step.physics.density * self.step.kernel.spacing.powi(3)
+        self.physics.density * self.kernel.spacing.powi(3)
     }
 }
 

@@ -3,10 +3,11 @@
 //! computed on that lattice, so the truncation terms cancel by symmetry); on a jittered lattice
 //! the MPS operators are only zero-order consistent and the error grows with the jitter.
 
-use fluid_solver::kernel::{weight, weight_grad, Kernel};
+use fluid_solver::emps::kernel::{weight, weight_grad, Kernel};
+use fluid_solver::emps::operators;
 use fluid_solver::neighbour_search::CellGrid;
-use fluid_solver::operators::{self, VectorField};
 use fluid_solver::particles::Particles;
+use fluid_solver::vector_field::VectorField;
 use fluid_solver::Kind;
 
 const DS: f64 = 0.01;

@@ -1,7 +1,9 @@
-//! `[fluid.NAME]`: a fluid participant solved by E-MPS (Saitoh & Akitomo, S1-3 … S1-16).
+//! `[fluid.NAME]`: a fluid participant solved by E-MPS (Saitoh & Akitomo, S1-3 … S1-16) or by
+//! ISPH (Ohinata et al., S2-3 … S2-13), picked by `method`.
 //!
 //! ```toml
 //! [fluid.tank]
+//! method = "emps"           # or "isph" (then optionally [fluid.tank.isph], see IsphConfig)
 //! spacing = 0.01            # Δs [m]
 //! time_step = 5e-4          # Δt [s], checked against the acoustic and viscous limits
 //! sound_speed = 12.1        # c [m/s]; default u_max / 0.2 with u_max = √(2gH) (S1-16)
@@ -164,10 +166,144 @@ impl ProbeConfig {
     }
 }
 
-/// Configuration of one fluid participant (E-MPS).
+/// Which fluid method steps a participant.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum FluidMethodName {
+    /// Explicit MPS (seed 000): weakly compressible, Δt limited by the sound speed.
+    #[default]
+    Emps,
+    /// Incompressible SPH (seed 003): a pressure Poisson equation every step, Δt free of c.
+    Isph,
+}
+
+/// Largest advective Courant number `u_max Δt / Δs` of ISPH: a particle at u_max moves at most
+/// 0.4 Δs per step, so a step's neighbour lists stay valid for its whole length and the
+/// instability detector's 0.5 Δs per step is not reached by the predicted flow itself.
+pub const MAX_ADVECTIVE_COURANT: f64 = 0.4;
+
+/// How ISPH walls act on the velocity tangential to them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum WallSlip {
+    /// Slip rate 1.0 (S2, Table 1): walls take no part in the viscous term.
+    #[default]
+    FreeSlip,
+    /// Walls and bodies enter the viscous term with their own velocity.
+    NoSlip,
+}
+
+/// Which solver the ISPH pressure Poisson equation uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PpeSolver {
+    /// Jacobi-preconditioned conjugate gradient on the neighbour list, warm-started from the last
+    /// pressure (the faster one measured, see the README).
+    #[default]
+    JacobiPcg,
+    /// faer's sparse Cholesky factorisation of the assembled matrix, every step.
+    FaerCholesky,
+}
+
+/// `[fluid.NAME.isph]`: settings of the ISPH method (all optional).
+///
+/// ```toml
+/// [fluid.tank.isph]
+/// alpha_d = 5e-3            # α_d of S2-5 (density relaxation)
+/// influence_radius = 2.4    # kernel support in spacings (S2, Table 1)
+/// ppe_tolerance = 1e-6      # relative residual |r|/|b| the PPE must reach every step
+/// ppe_max_iterations = 1000 # beyond this the run stops with the residual
+/// ppe_solver = "jacobi-pcg" # or "faer-cholesky"
+/// wall_slip = "free-slip"   # or "no-slip"
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IsphConfig {
+    #[serde(default = "default_alpha_d")]
+    pub alpha_d: f64,
+    #[serde(default = "default_influence_radius")]
+    pub influence_radius: f64,
+    #[serde(default = "default_ppe_tolerance")]
+    pub ppe_tolerance: f64,
+    #[serde(default = "default_ppe_max_iterations")]
+    pub ppe_max_iterations: u32,
+    #[serde(default)]
+    pub ppe_solver: PpeSolver,
+    #[serde(default)]
+    pub wall_slip: WallSlip,
+}
+
+impl Default for IsphConfig {
+    fn default() -> IsphConfig {
+        IsphConfig {
+            alpha_d: default_alpha_d(),
+            influence_radius: default_influence_radius(),
+            ppe_tolerance: default_ppe_tolerance(),
+            ppe_max_iterations: default_ppe_max_iterations(),
+            ppe_solver: PpeSolver::default(),
+            wall_slip: WallSlip::default(),
+        }
+    }
+}
+
+fn default_alpha_d() -> f64 {
+    5.0e-3
+}
+fn default_influence_radius() -> f64 {
+    2.4
+}
+fn default_ppe_tolerance() -> f64 {
+    1.0e-6
+}
+fn default_ppe_max_iterations() -> u32 {
+    1000
+}
+
+impl IsphConfig {
+    /// Checks every key; `key` is the section's dotted path.
+    pub fn validate(&self, key: &str, wall_layers: u32) -> Result<(), FieldError> {
+        let k = |s: &str| format!("{key}.{s}");
+        check::non_negative(&k("alpha_d"), self.alpha_d)?;
+        if self.alpha_d > 1.0 {
+            return Err(FieldError::new(
+                k("alpha_d"),
+                format!("must be in [0, 1], got {}", self.alpha_d),
+            ));
+        }
+        let layers = f64::from(wall_layers);
+        if !(self.influence_radius >= 1.5 && self.influence_radius <= layers - 0.5) {
+            return Err(FieldError::new(
+                k("influence_radius"),
+                format!(
+                    "must be in [1.5, wall_layers − 0.5 = {}] spacings (a fluid particle half a spacing off a wall must see only wall particles behind it), got {}",
+                    layers - 0.5,
+                    self.influence_radius
+                ),
+            ));
+        }
+        if !(self.ppe_tolerance > 0.0 && self.ppe_tolerance < 1.0) {
+            return Err(FieldError::new(
+                k("ppe_tolerance"),
+                format!("must be in (0, 1), got {}", self.ppe_tolerance),
+            ));
+        }
+        if self.ppe_max_iterations == 0 {
+            return Err(FieldError::new(k("ppe_max_iterations"), "must be at least 1"));
+        }
+        Ok(())
+    }
+}
+
+/// Configuration of one fluid participant.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FluidConfig {
+    /// The method: "emps" (default) or "isph".
+    #[serde(default)]
+    pub method: FluidMethodName,
+    /// ISPH settings (`[fluid.NAME.isph]`, only with `method = "isph"`; defaults when absent).
+    #[serde(default)]
+    pub isph: Option<IsphConfig>,
     /// Particle spacing Δs [m].
     pub spacing: f64,
     /// Fixed time step Δt [s].
@@ -184,7 +320,7 @@ pub struct FluidConfig {
     /// Gravity g [m/s²].
     #[serde(default = "default_gravity")]
     pub gravity: [f64; 3],
-    /// Sound speed c [m/s]; default `u_max / 0.2` (S1-16).
+    /// Sound speed c [m/s]; default `u_max / 0.2` (S1-16). E-MPS only.
     #[serde(default)]
     pub sound_speed: Option<f64>,
     /// Predicted largest fluid speed u_max [m/s] for S1-16; default `√(2 g H)` with H the height
@@ -371,7 +507,50 @@ impl FluidConfig {
         }
         self.validate_probes(key)?;
         self.validate_open_boundaries(key, &named)?;
-        self.validate_time_step(key)
+        match self.method {
+            FluidMethodName::Emps => {
+                if self.isph.is_some() {
+                    return Err(FieldError::new(
+                        k("isph"),
+                        "an [isph] table needs method = \"isph\" (the method is \"emps\")",
+                    ));
+                }
+                self.validate_time_step(key)
+            }
+            FluidMethodName::Isph => {
+                if self.sound_speed.is_some() {
+                    return Err(FieldError::new(
+                        k("sound_speed"),
+                        "ISPH has no sound speed (the PPE makes the flow incompressible): remove sound_speed or use method = \"emps\"",
+                    ));
+                }
+                self.isph_settings().validate(&k("isph"), self.wall_layers)?;
+                self.validate_isph_time_step(key)
+            }
+        }
+    }
+
+    /// The ISPH settings: the `[isph]` table or its defaults.
+    pub fn isph_settings(&self) -> IsphConfig {
+        self.isph.unwrap_or_default()
+    }
+
+    /// ISPH: refuses a Δt above the advective (u_max Δt/Δs ≤ 0.4) or viscous (ν Δt/Δs² ≤ 1/6)
+    /// limit; there is no acoustic limit.
+    fn validate_isph_time_step(&self, key: &str) -> Result<(), FieldError> {
+        let u = self.max_velocity();
+        let courant = u * self.time_step / self.spacing;
+        if courant > MAX_ADVECTIVE_COURANT || courant.is_nan() {
+            return Err(FieldError::new(
+                format!("{key}.time_step"),
+                format!(
+                    "Δt = {} s is too long for ISPH: the advective Courant number u_max·Δt/Δs = {courant:.3} (u_max = {u:.3} m/s) must be ≤ {MAX_ADVECTIVE_COURANT}; use time_step ≤ {:.3e} s",
+                    self.time_step,
+                    MAX_ADVECTIVE_COURANT * self.spacing / u
+                ),
+            ));
+        }
+        self.validate_viscous_number(key)
     }
 
     /// Checks `inflow` and `outflow`: planes inside the tank, u_in > 0, the level inside the
@@ -493,6 +672,11 @@ impl FluidConfig {
                 ),
             ));
         }
+        self.validate_viscous_number(key)
+    }
+
+    /// Refuses a Δt above the viscous limit ν Δt/Δs² ≤ 1/6 (when the viscous term is on).
+    fn validate_viscous_number(&self, key: &str) -> Result<(), FieldError> {
         if self.viscosity_term {
             let vn = self.viscosity * self.time_step / (self.spacing * self.spacing);
             if vn > MAX_VISCOUS_NUMBER {

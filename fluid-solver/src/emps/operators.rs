@@ -1,52 +1,17 @@
 //! The E-MPS particle operators as passes over the cell list: number density (S1-15), the
-//! pressure gradient (S1-3) and the velocity Laplacian (S1-4).
+//! pressure gradient (S1-3) and the velocity Laplacian (S1-4). The collision pass both methods
+//! share is [`crate::collision`].
 //!
 //! Each pass is a gather: particle i sums over its neighbours and writes only its own slot, so
 //! the passes run in parallel without locks. The inner loops are branch-free over contiguous
 //! index ranges (see [`crate::neighbour_search`]).
 
-use crate::kernel::Kernel;
+use super::kernel::Kernel;
 use crate::kind::{DUMMY, FLUID};
 use crate::neighbour_search::CellGrid;
 use crate::particles::Particles;
+use crate::vector_field::{add, PassTotals, VectorField};
 use rayon::prelude::*;
-
-/// Three arrays of a per-particle vector (x, y, z components).
-#[derive(Debug, Clone, Default)]
-pub struct VectorField {
-    pub x: Vec<f64>,
-    pub y: Vec<f64>,
-    pub z: Vec<f64>,
-}
-
-impl VectorField {
-    /// Resizes to `n` particles (values unspecified until a pass writes them).
-    pub fn resize(&mut self, n: usize) {
-        self.x.resize(n, 0.0);
-        self.y.resize(n, 0.0);
-        self.z.resize(n, 0.0);
-    }
-}
-
-/// Sum of a vector pass over particles, with the part that non-fluid neighbours contributed.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct PassTotals {
-    /// Σ over fluid particles i of the contributions of their non-fluid neighbours j.
-    pub from_non_fluid: [f64; 3],
-    /// Neighbour candidates examined (distance evaluations).
-    pub candidates: u64,
-}
-
-fn add(a: PassTotals, b: PassTotals) -> PassTotals {
-    PassTotals {
-        from_non_fluid: [
-            a.from_non_fluid[0] + b.from_non_fluid[0],
-            a.from_non_fluid[1] + b.from_non_fluid[1],
-            a.from_non_fluid[2] + b.from_non_fluid[2],
-        ],
-        candidates: a.candidates + b.candidates,
-    }
-}
 
 /// S1-15 (sum part): `n_i = Σ_{j≠i} w(|r_j − r_i|)` with r_e = 3.1 Δs, for fluid particles and
 /// for wall, body and gate particles that have fluid within r_e,grad (only those enter the
@@ -197,62 +162,6 @@ pub fn laplacian(grid: &CellGrid, kernel: &Kernel, p: &Particles, out: &mut Vect
             (*ox, *oy, *oz) = (factor * l[0], factor * l[1], factor * l[2]);
             PassTotals {
                 from_non_fluid: wall.map(|v| factor * v),
-                candidates: seen,
-            }
-        })
-        .reduce(PassTotals::default, add)
-}
-
-/// Collision of close particles (Koshizuka's collision model; the seed is silent, see
-/// [`crate::emps_step`]): for fluid i and any neighbour j closer than `distance` that approaches
-/// i, the normal relative velocity is reversed with restitution `e`: for a fluid j (equal mass)
-/// `Δu_i = (1+e)/2 ((u_j − u_i)·n) n`, for a wall, dummy or body j (moved by its own
-/// kinematics) `Δu_i = (1+e) ((u_j − u_i)·n) n`, with n = r_ij/|r_ij|. Writes Δu into `out`.
-pub fn collision(grid: &CellGrid, p: &Particles, distance: f64, e: f64, out: &mut VectorField) -> PassTotals {
-    let d2 = distance * distance;
-    let reach = grid.reach(distance);
-    let (x, y, z, kind) = (&p.x, &p.y, &p.z, &p.kind);
-    let (vx, vy, vz) = (&p.vx, &p.vy, &p.vz);
-    out.resize(p.len());
-    (&mut out.x, &mut out.y, &mut out.z)
-        .into_par_iter()
-        .enumerate()
-        .with_min_len(256)
-        .map(|(i, (ox, oy, oz))| {
-            (*ox, *oy, *oz) = (0.0, 0.0, 0.0);
-            if kind[i] != FLUID {
-                return PassTotals::default();
-            }
-            let (xi, yi, zi) = (x[i], y[i], z[i]);
-            let mut du = [0.0; 3];
-            let mut wall = [0.0; 3];
-            let mut seen = 0u64;
-            grid.for_each_range(i, reach, |s, e_| {
-                seen += (e_ - s) as u64;
-                for j in s..e_ {
-                    let r = [x[j] - xi, y[j] - yi, z[j] - zi];
-                    let r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
-                    // Written so that a NaN neighbour is skipped (it is the detector's to report).
-                    if !(r2 < d2 && r2 > 0.0) {
-                        continue;
-                    }
-                    let closing = (vx[j] - vx[i]) * r[0] + (vy[j] - vy[i]) * r[1] + (vz[j] - vz[i]) * r[2];
-                    if closing >= 0.0 || closing.is_nan() {
-                        continue;
-                    }
-                    let share = if kind[j] == FLUID { 0.5 } else { 1.0 };
-                    let c = share * (1.0 + e) * closing / r2;
-                    for a in 0..3 {
-                        du[a] += c * r[a];
-                        if kind[j] != FLUID {
-                            wall[a] += c * r[a];
-                        }
-                    }
-                }
-            });
-            (*ox, *oy, *oz) = (du[0], du[1], du[2]);
-            PassTotals {
-                from_non_fluid: wall,
                 candidates: seen,
             }
         })

@@ -1,107 +1,108 @@
-//! One E-MPS time step, S1-9 … S1-15, read top to bottom as a list of stages.
+//! One E-MPS time step, S1-9 … S1-15, read top to bottom as a list of named stages, each timed.
 //!
-//! One addition to the seed: a collision stage after S1-13 ([`operators::collision`], as in
+//! One addition to the seed: a collision stage after S1-13 ([`crate::collision`], as in
 //! Koshizuka's MPS codes). The seed is silent on it; without it, at the seed's c = 12.1 m/s a
 //! lone fast particle is stopped by the walls' equation-of-state pressure only after it has
 //! passed the first wall layer (seen in the seed tank at t ≈ 0.18 s), or is shot out at
 //! 15 m/s after a near contact.
 
-use crate::kernel::Kernel;
+use super::kernel::Kernel;
+use super::{operators, pair_laws};
+use crate::collision::{self, COLLISION_DISTANCE, RESTITUTION};
 use crate::kind::{Kind, FLUID};
+use crate::method::StepTotals;
 use crate::neighbour_search::CellGrid;
-use crate::operators::{self, VectorField};
+use crate::pair_law::{Exchange, ExchangeScales, PairLaw};
 use crate::particles::Particles;
+use crate::physics::Physics;
+use crate::stage_timer::StageTimes;
+use crate::vector_field::VectorField;
 use rayon::prelude::*;
 
-/// Particles closer than this many spacings that approach each other collide.
-pub const COLLISION_DISTANCE: f64 = 0.8;
-/// Coefficient of restitution of a collision.
-pub const RESTITUTION: f64 = 0.2;
-
-/// The physical parameters of the step.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Physics {
-    /// ρ0 [kg/m³].
-    pub density: f64,
-    /// ν [m²/s].
-    pub viscosity: f64,
-    /// Whether ν⟨∇²u⟩ is computed (S1-10).
-    pub viscosity_term: bool,
-    /// g [m/s²].
-    pub gravity: [f64; 3],
-    /// c [m/s] (S1-16).
-    pub sound_speed: f64,
-}
-
-/// What one step exchanged and how much work it did.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct StepTotals {
-    /// Force of the walls, dummies and bodies on the fluid during the step [N]
-    /// (pressure of S1-3, viscous no-slip of S1-4 and collisions).
-    pub force_from_walls: [f64; 3],
-    /// Neighbour candidates examined over all passes.
-    pub candidates: u64,
-}
-
-/// The stage of the step at which the bodies read their share of an exchange with the fluid.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Exchange {
-    /// S1-4's viscous pair terms, at r^k (only when the viscous term is on).
-    Viscous,
-    /// S1-3's pressure pair forces, at r* with the pressures of S1-14.
-    Pressure,
-    /// The collision stage's impulses, before they are applied.
-    Collision,
-}
-
-/// The work buffers of the step (reused every step).
+/// The work buffers of the step (reused every step) and its stage times.
 #[derive(Debug, Clone)]
 pub struct EmpsStep {
     pub kernel: Kernel,
     pub physics: Physics,
-    pub grid: CellGrid,
     scratch: Vec<f64>,
     accel: VectorField,
+    times: StageTimes,
 }
 
 impl EmpsStep {
-    /// A step for particles of spacing Δs = `kernel.spacing` inside `grid`.
-    pub fn new(kernel: Kernel, physics: Physics, grid: CellGrid) -> EmpsStep {
+    /// A step for particles of spacing Δs = `kernel.spacing`.
+    pub fn new(kernel: Kernel, physics: Physics) -> EmpsStep {
         EmpsStep {
             kernel,
             physics,
-            grid,
             scratch: Vec::new(),
             accel: VectorField::default(),
+            times: StageTimes::default(),
         }
     }
 
-    /// Advances the particles by `dt`: the stages of S1-9 … S1-15 in order. `bodies` is shown
-    /// the state each exchange with the bodies is computed from, before it is applied: the
-    /// velocities at r^k when the viscous term is on ([`Exchange::Viscous`]), the pressures at r*
-    /// ([`Exchange::Pressure`]) and the collision stage ([`Exchange::Collision`]).
+    /// Wall time per stage since the start.
+    pub fn stage_times(&self) -> &StageTimes {
+        &self.times
+    }
+
+    /// Advances the particles by `dt`: the stages of S1-9 … S1-15 in order. `bodies` is handed
+    /// each pair law of an exchange with the bodies with the state it is computed from, before
+    /// it is applied: S1-4 at r^k when the viscous term is on ([`Exchange::Viscous`]), S1-3 with
+    /// the pressures at r* ([`Exchange::Pressure`]) and the collisions ([`Exchange::Collision`]).
     pub fn advance(
         &mut self,
         p: &mut Particles,
+        grid: &mut CellGrid,
         dt: f64,
-        mut bodies: impl FnMut(Exchange, &CellGrid, &Particles),
+        mut bodies: impl FnMut(Exchange, &PairLaw, &CellGrid, &Particles),
     ) -> StepTotals {
         let mut totals = StepTotals::default();
-        let viscous = self.physics.viscosity_term && self.physics.viscosity > 0.0;
+        let scales = self.scales(dt);
+        let viscous = self.physics.viscous();
+        let t = self.times.start();
         if viscous {
-            self.grid.sort(p, &mut self.scratch); // cell lists at r^k
-            self.viscous_laplacian(p, &mut totals); // S1-4
-            bodies(Exchange::Viscous, &self.grid, p);
+            grid.sort(p, &mut self.scratch); // cell lists at r^k
+            self.viscous_laplacian(grid, p, &mut totals); // S1-4
+            bodies(
+                Exchange::Viscous,
+                &pair_laws::viscous(&self.kernel, &scales, p),
+                grid,
+                p,
+            );
         }
+        let t = self.times.lap(t, "viscous");
         self.predict(p, dt, viscous); // S1-10, S1-11
-        self.grid.sort(p, &mut self.scratch); // cell lists at r*
-        totals.candidates += operators::number_density(&self.grid, &self.kernel, p); // S1-15
+        let t = self.times.lap(t, "predict");
+        grid.sort(p, &mut self.scratch); // cell lists at r*
+        let t = self.times.lap(t, "neighbour search");
+        totals.candidates += operators::number_density(grid, &self.kernel, p); // S1-15
         self.equation_of_state(p); // S1-14
-        self.pressure_gradient(p, &mut totals); // S1-3
-        bodies(Exchange::Pressure, &self.grid, p);
+        let t = self.times.lap(t, "density and pressure");
+        self.pressure_gradient(grid, p, &mut totals); // S1-3
+        bodies(Exchange::Pressure, &pair_laws::pressure(&self.kernel, p), grid, p);
         self.correct(p, dt); // S1-12, S1-13
-        self.collide(p, dt, &mut totals, |g, p| bodies(Exchange::Collision, g, p));
+        let t = self.times.lap(t, "pressure gradient");
+        self.collide(grid, p, dt, &mut totals, |g, p| {
+            bodies(Exchange::Collision, &collision::contact_law(&scales, p), g, p)
+        });
+        self.times.lap(t, "collision");
         totals
+    }
+
+    /// The scales that turn velocity changes of a step of `dt` into forces.
+    pub fn scales(&self, dt: f64) -> ExchangeScales {
+        ExchangeScales {
+            spacing: self.kernel.spacing,
+            particle_mass: self.particle_mass(),
+            viscosity: self.physics.viscosity,
+            dt,
+        }
+    }
+
+    /// S1-3's pressure pair law with the present pressures (the bodies' load before a step).
+    pub fn pressure_law<'a>(&self, p: &'a Particles) -> PairLaw<'a> {
+        pair_laws::pressure(&self.kernel, p)
     }
 
     /// Mass of one particle ρ0 Δs³.
@@ -110,8 +111,8 @@ impl EmpsStep {
     }
 
     /// S1-4 on the velocities at r^k, into the acceleration buffer.
-    fn viscous_laplacian(&mut self, p: &Particles, totals: &mut StepTotals) {
-        let t = operators::laplacian(&self.grid, &self.kernel, p, &mut self.accel);
+    fn viscous_laplacian(&mut self, grid: &CellGrid, p: &Particles, totals: &mut StepTotals) {
+        let t = operators::laplacian(grid, &self.kernel, p, &mut self.accel);
         let m_nu = self.particle_mass() * self.physics.viscosity;
         for a in 0..3 {
             totals.force_from_walls[a] += m_nu * t.from_non_fluid[a];
@@ -120,8 +121,8 @@ impl EmpsStep {
     }
 
     /// S1-3 on the pressures at r*, into the acceleration buffer.
-    fn pressure_gradient(&mut self, p: &Particles, totals: &mut StepTotals) {
-        let t = operators::gradient(&self.grid, &self.kernel, p, &p.pressure, &mut self.accel);
+    fn pressure_gradient(&mut self, grid: &CellGrid, p: &Particles, totals: &mut StepTotals) {
+        let t = operators::gradient(grid, &self.kernel, p, &p.pressure, &mut self.accel);
         let volume = self.particle_mass() / self.physics.density;
         for a in 0..3 {
             totals.force_from_walls[a] -= volume * t.from_non_fluid[a];
@@ -132,14 +133,15 @@ impl EmpsStep {
     /// Collisions of close approaching particles (see the module doc), applied like S1-13.
     fn collide(
         &mut self,
+        grid: &CellGrid,
         p: &mut Particles,
         dt: f64,
         totals: &mut StepTotals,
         body_contact: impl FnOnce(&CellGrid, &Particles),
     ) {
         let distance = COLLISION_DISTANCE * self.kernel.spacing;
-        let t = operators::collision(&self.grid, p, distance, RESTITUTION, &mut self.accel);
-        body_contact(&self.grid, p);
+        let t = collision::collision(grid, p, distance, RESTITUTION, &mut self.accel);
+        body_contact(grid, p);
         let m = self.particle_mass();
         for a in 0..3 {
             totals.force_from_walls[a] += m * t.from_non_fluid[a] / dt;
@@ -150,9 +152,9 @@ impl EmpsStep {
 
     /// Sorts the particles and computes the number density and pressure at their present
     /// positions (S1-15, S1-14), e.g. for the initial state's outputs.
-    pub fn refresh_pressure(&mut self, p: &mut Particles) {
-        self.grid.sort(p, &mut self.scratch);
-        operators::number_density(&self.grid, &self.kernel, p);
+    pub fn refresh_pressure(&mut self, p: &mut Particles, grid: &mut CellGrid) {
+        grid.sort(p, &mut self.scratch);
+        operators::number_density(grid, &self.kernel, p);
         self.equation_of_state(p);
     }
 

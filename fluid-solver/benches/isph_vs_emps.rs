@@ -1,0 +1,136 @@
+//! ISPH against E-MPS on the same dam break (the Koshizuka & Oka column, L = 0.146 m, a slab
+//! `--depth` deep) at the same particle size and threads: fluid-particle-steps per second, PPE
+//! iterations per step and the PPE's share of the step, wall time to the same physical end time
+//! (each method at its own largest stable Δt: E-MPS acoustic, ISPH advective), and the RMS of the
+//! step-to-step change of a pressure probe on the far wall.
+//!
+//! `cargo bench -p fluid-solver --bench isph_vs_emps -- [spacing] [end time] [ppe solver]`;
+//! defaults Δs = L/20 = 0.0073 m (8 000 fluid particles), 0.5 s (past the impact on the far wall
+//! at about 0.3 s), "jacobi-pcg" (or "faer-cholesky").
+
+use fluid_solver::probes;
+use fluid_solver::{FluidSolver, Kind};
+use schemas::case::fluid::{FluidConfig, FluidMethodName, IsphConfig, PpeSolver, ProbeConfig, ProbeKind};
+use schemas::case::Case;
+use std::path::PathBuf;
+use std::time::Instant;
+
+fn case(ds: f64) -> FluidConfig {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../cases/dam-break-koshizuka/case.toml");
+    let case = Case::load(&path).unwrap_or_else(|e| {
+        eprintln!("error: {e}");
+        std::process::exit(1)
+    });
+    let mut cfg = case
+        .fluid
+        .values()
+        .next()
+        .cloned()
+        .unwrap_or_else(|| std::process::exit(1));
+    let depth = 10.0 * ds;
+    cfg.spacing = ds;
+    cfg.tank.max = [0.584, depth, 0.438];
+    cfg.block[0].max = [0.146, depth, 0.292];
+    cfg.probe.clear();
+    cfg
+}
+
+struct Row {
+    name: String,
+    dt: f64,
+    steps: u64,
+    fluid: usize,
+    wall: f64,
+    ppe_iterations: u64,
+    ppe_share: f64,
+    probe_rms: f64,
+}
+
+fn run(name: &str, cfg: &FluidConfig, end: f64) -> Row {
+    let mut solver = FluidSolver::new(cfg);
+    let fluid = solver.particles().count(Kind::Fluid);
+    let probe = ProbeConfig {
+        name: "wall".into(),
+        kind: ProbeKind::Pressure,
+        position: vec![0.584 - 0.5 * cfg.spacing, 5.0 * cfg.spacing, 0.02],
+        axis: None,
+    };
+    let tank = solver.tank();
+    let (mut last, mut sum2, mut n) = (0.0, 0.0, 0u64);
+    let start = Instant::now();
+    while let Some(dt) = solver.next_step_towards(end) {
+        if let Err(e) = solver.step(dt) {
+            eprintln!("{name}: {e}");
+            break;
+        }
+        let p = probes::sample(&probe, solver.particles(), solver.kernel(), &tank);
+        sum2 += (p - last).powi(2);
+        last = p;
+        n += 1;
+    }
+    let wall = start.elapsed().as_secs_f64();
+    let times = solver.stage_times();
+    let ppe = times.seconds("PPE assembly") + times.seconds("PPE solve");
+    Row {
+        name: name.into(),
+        dt: cfg.time_step,
+        steps: solver.steps(),
+        fluid,
+        wall,
+        ppe_iterations: solver.totals().ppe_iterations,
+        ppe_share: if times.total() > 0.0 {
+            ppe / times.total()
+        } else {
+            0.0
+        },
+        probe_rms: (sum2 / n.max(1) as f64).sqrt(),
+    }
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args()
+        .skip(1)
+        .filter(|a| !a.starts_with("--"))
+        .collect();
+    let ds: f64 = args.first().and_then(|s| s.parse().ok()).unwrap_or(0.0073);
+    let end: f64 = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(0.5);
+    let solver = match args.get(2).map(String::as_str) {
+        Some("faer-cholesky") => PpeSolver::FaerCholesky,
+        _ => PpeSolver::JacobiPcg,
+    };
+    let mut emps = case(ds);
+    emps.time_step = 0.45 * ds / emps.sound_speed(); // acoustic Courant 0.45, as the case file
+    let mut isph = case(ds);
+    isph.method = FluidMethodName::Isph;
+    isph.sound_speed = None;
+    isph.isph = Some(IsphConfig {
+        ppe_solver: solver,
+        ..IsphConfig::default()
+    });
+    isph.time_step = 0.3 * ds / isph.max_velocity(); // advective Courant 0.3 (limit 0.4)
+    for c in [&emps, &isph] {
+        if let Err(e) = c.validate("fluid.water") {
+            eprintln!("error: {e:?}");
+            std::process::exit(1);
+        }
+    }
+    println!(
+        "dam break, Δs = {ds} m, end {end} s, {} threads",
+        rayon::current_num_threads()
+    );
+    println!("method  Δt [s]    steps  fluid   wall [s]  fluid-steps/s  PPE it/step  PPE share  wall-probe RMS Δp [Pa]");
+    for row in [run("E-MPS", &emps, end), run("ISPH", &isph, end)] {
+        println!(
+            "{:6}  {:.2e}  {:5}  {:6}  {:8.2}  {:13.3e}  {:11.1}  {:8.1} %  {:.2}",
+            row.name,
+            row.dt,
+            row.steps,
+            row.fluid,
+            row.wall,
+            row.fluid as f64 * row.steps as f64 / row.wall,
+            row.ppe_iterations as f64 / row.steps.max(1) as f64,
+            100.0 * row.ppe_share,
+            row.probe_rms
+        );
+    }
+}

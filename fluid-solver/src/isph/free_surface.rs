@@ -1,0 +1,185 @@
+//! Free-surface detection after Marrone et al. (2010), as S2 §2(4) uses it (S2-10 … S2-13):
+//! 1. λ_min of the moment matrix ([`crate::moments`], normalised so a full neighbourhood reads 1):
+//!    `λ_min ≤ 0.2` → surface, `λ_min > 0.9` → interior (S2-11);
+//! 2. in between, the geometric scan: the outward normal `n_i = −⟨∇λ⟩/|⟨∇λ⟩|` with
+//!    `⟨∇λ⟩_i = m_i⁻¹ Σ_j V_j (λ_j − λ_i) ∇W_ij` (S2-12, S2-13), and the particle is on the surface
+//!    when the umbrella-shaped region along n_i holds no other particle.
+//!
+//! The umbrella in 3D, with Marrone's h = r_e/2 (his kernel's support is 2h) and T = x_i + h n_i:
+//! a neighbour j with |x_ji| < √2 h occupies it when it lies in the 45° cone about n_i
+//! (`n·x_ji > |x_ji − (n·x_ji) n|`), a farther one when `|x_j − T| < h`. This is Marrone's 2D
+//! test (a quarter-plane wedge near i, the disc about T beyond) turned about n_i.
+//!
+//! Walls: a wall, body or inflow particle takes part (fills the moment matrix, reads λ = 1 in
+//! S2-13, occupies the umbrella) only when it is *wet*: its own support is full (Σ V W over all
+//! neighbours ≥ [`WET_FILL`] of the lattice value, see [`fill_flags`]). Water against a
+//! submerged wall is then not a free surface, while the wall particles above the waterline,
+//! whose support is half air, do not hide the surface particles at the contact line (a tank
+//! corner's top particle read λ_min > 0.9 with them and lost its p = 0). A band particle whose normal cannot be formed (m_i singular or ⟨∇λ⟩ = 0) is
+//! taken as interior: a false p = 0 inside the water would punch a hole in the pressure field.
+
+use super::kernel::Wendland;
+use super::neighbour_list::NeighbourList;
+use crate::kind::FLUID;
+use crate::moments::{smallest_eigenvalue, solve, Matrix3};
+use crate::particles::Particles;
+use rayon::prelude::*;
+
+/// S2-11: at or below this λ_min a particle is on the free surface (λ^splash).
+pub const LAMBDA_SPLASH: f64 = 0.2;
+/// S2-11: above this λ_min a particle is interior (λ^inner).
+pub const LAMBDA_INNER: f64 = 0.9;
+
+/// A particle's surface flag: 1 on the free surface (p = 0), 0 otherwise.
+pub const SURFACE: u8 = 1;
+
+/// A solid particle is wet when Σ V W over its support is at least this fraction of the lattice
+/// value: submerged wall particles read ≈ 1, those at or above the waterline miss the air side.
+pub const WET_FILL: f64 = 0.9;
+
+/// 1 for the particles that take part in the detection: fluid, and solids whose support is
+/// full (module doc); `fill` is Σ_j V W_ij / lattice value over all neighbours, self included.
+pub fn fill_flags(p: &Particles, fill: &[f64], out: &mut Vec<u8>) {
+    out.resize(p.len(), 0);
+    out.par_iter_mut()
+        .enumerate()
+        .with_min_len(4096)
+        .for_each(|(i, f)| *f = u8::from(p.kind[i] == FLUID || fill[i] >= WET_FILL));
+}
+
+/// S2-10 at fluid particle i over its listed neighbours that take part (`takes_part`, from
+/// [`fill_flags`]), normalised.
+pub fn moment_matrix(
+    k: &Wendland,
+    list: &NeighbourList,
+    p: &Particles,
+    takes_part: &[u8],
+    i: usize,
+) -> Matrix3 {
+    let mut m = [[0.0; 3]; 3];
+    let scale = -k.volume / k.lattice_moment;
+    for &j in list.of(i) {
+        let j = j as usize;
+        if takes_part[j] == 0 {
+            continue;
+        }
+        let d = [p.x[j] - p.x[i], p.y[j] - p.y[i], p.z[j] - p.z[i]];
+        let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        let c = scale * k.dw_over_r(r);
+        for a in 0..3 {
+            for b in 0..3 {
+                m[a][b] += c * d[a] * d[b];
+            }
+        }
+    }
+    m
+}
+
+/// λ_min of every fluid particle (S2-10, S2-11); 1 for other particles.
+pub fn lambda_min(k: &Wendland, list: &NeighbourList, p: &Particles, takes_part: &[u8], out: &mut Vec<f64>) {
+    out.resize(p.len(), 1.0);
+    out.par_iter_mut()
+        .enumerate()
+        .with_min_len(512)
+        .for_each(|(i, l)| {
+            *l = if p.kind[i] == FLUID {
+                smallest_eigenvalue(&moment_matrix(k, list, p, takes_part, i))
+            } else {
+                1.0
+            };
+        });
+}
+
+/// The surface flags of every particle (S2-11 … S2-13 and the scan); `lambda` from [`lambda_min`].
+pub fn detect(
+    k: &Wendland,
+    list: &NeighbourList,
+    p: &Particles,
+    takes_part: &[u8],
+    lambda: &[f64],
+    flags: &mut Vec<u8>,
+) {
+    flags.resize(p.len(), 0);
+    flags
+        .par_iter_mut()
+        .enumerate()
+        .with_min_len(512)
+        .for_each(|(i, f)| {
+            *f = if p.kind[i] != FLUID {
+                0
+            } else if lambda[i] <= LAMBDA_SPLASH {
+                SURFACE
+            } else if lambda[i] > LAMBDA_INNER {
+                0
+            } else {
+                match outward_normal(k, list, p, takes_part, lambda, i) {
+                    Some(n) if umbrella_is_empty(k, list, p, takes_part, i, n) => SURFACE,
+                    _ => 0,
+                }
+            };
+        });
+}
+
+/// S2-12, S2-13: `n_i = −⟨∇λ⟩/|⟨∇λ⟩|`, `⟨∇λ⟩_i = m_i⁻¹ Σ_j V (λ_j − λ_i) ∇W_ij`.
+pub fn outward_normal(
+    k: &Wendland,
+    list: &NeighbourList,
+    p: &Particles,
+    takes_part: &[u8],
+    lambda: &[f64],
+    i: usize,
+) -> Option<[f64; 3]> {
+    let mut g = [0.0; 3];
+    for &j in list.of(i) {
+        let j = j as usize;
+        if takes_part[j] == 0 {
+            continue;
+        }
+        // ∇_i W_ij = (W'/r)(x_i − x_j)
+        let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
+        let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        let c = k.volume * (lambda[j] - lambda[i]) * k.dw_over_r(r);
+        for a in 0..3 {
+            g[a] += c * d[a];
+        }
+    }
+    let m = moment_matrix(k, list, p, takes_part, i);
+    // m is normalised by the lattice moment; ⟨∇λ⟩ uses the raw m, a common factor that the
+    // normalisation of n cancels.
+    let g = solve(&m, g)?;
+    let norm = (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt();
+    if norm <= 0.0 || !norm.is_finite() {
+        return None;
+    }
+    Some(g.map(|v| -v / norm))
+}
+
+/// Whether no listed neighbour of i occupies the umbrella along `n` (module doc).
+pub fn umbrella_is_empty(
+    k: &Wendland,
+    list: &NeighbourList,
+    p: &Particles,
+    takes_part: &[u8],
+    i: usize,
+    n: [f64; 3],
+) -> bool {
+    let h = 0.5 * k.radius;
+    let t = [p.x[i] + h * n[0], p.y[i] + h * n[1], p.z[i] + h * n[2]];
+    let near2 = 2.0 * h * h;
+    !list.of(i).iter().any(|&j| {
+        let j = j as usize;
+        if takes_part[j] == 0 {
+            return false;
+        }
+        let d = [p.x[j] - p.x[i], p.y[j] - p.y[i], p.z[j] - p.z[i]];
+        let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        if r2 < near2 {
+            let along = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+            let across2 = (r2 - along * along).max(0.0);
+            along > 0.0 && across2 < along * along
+        } else {
+            let e = [p.x[j] - t[0], p.y[j] - t[1], p.z[j] - t[2]];
+            e[0] * e[0] + e[1] * e[1] + e[2] * e[2] < h * h
+        }
+    })
+}

@@ -1,0 +1,20 @@
+//! ISPH (Ohinata, Omura, Asai & Isobe, seed 003, S2-3 … S2-13): incompressible SPH by a
+//! projection method with a pressure Poisson equation every step.
+//!
+//! - [`kernel`]: the Wendland C2 kernel, support 2.4 Δs;
+//! - [`neighbour_list`]: the pairs within the support, built once per step;
+//! - [`operators`]: density (S2-7), divergence and gradient (S2-8), Laplacian (S2-9);
+//! - [`free_surface`]: Marrone's λ_min thresholds and geometric scan (S2-10 … S2-13);
+//! - [`walls`]: particle walls with Adami's pressure extrapolation;
+//! - [`ppe`]: the pressure Poisson equation (S2-5) and its solvers;
+//! - [`pair_laws`]: the fluid–body pair forces;
+//! - [`step`]: one time step, S2-3 … S2-5, as a list of named stages.
+
+pub mod free_surface;
+pub mod kernel;
+pub mod neighbour_list;
+pub mod operators;
+pub mod pair_laws;
+pub mod ppe;
+pub mod step;
+pub mod walls;

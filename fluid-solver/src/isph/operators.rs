@@ -1,0 +1,196 @@
+//! The SPH operators of ISPH (S2-7 … S2-9) as passes over the step's neighbour list, with the
+//! Wendland kernel of [`super::kernel`]. `∇_i W_ij = (W'/r)(x_i − x_j)`, and S2-9's Laplacian
+//! weight is `F_ij = 2 V (x_j − x_i)·∇W_ij / r² = −2 V W'(r)/r ≥ 0`. Each pass is a gather
+//! (particle i writes its own slot), in parallel without locks.
+
+use super::free_surface::{moment_matrix, LAMBDA_INNER};
+use super::kernel::Wendland;
+use super::neighbour_list::NeighbourList;
+use super::walls::NeumannPair;
+use crate::kind::FLUID;
+use crate::moments::solve;
+use crate::particles::Particles;
+use crate::vector_field::{add, PassTotals, VectorField};
+use rayon::prelude::*;
+
+/// S2-7 with φ = 1, normalised: `ρ̂_i/ρ0 = Σ_j V W_ij / Σ_lattice V W` (self included) over
+/// every neighbour: the numerical density of S2-5 for fluid particles, reading 1 in a full
+/// lattice, and the fill of a solid particle's support (1 for solids away from the water).
+pub fn density_ratio(k: &Wendland, list: &NeighbourList, p: &Particles, out: &mut Vec<f64>) {
+    out.resize(p.len(), 1.0);
+    let self_term = k.volume * k.w(0.0);
+    out.par_iter_mut()
+        .enumerate()
+        .with_min_len(512)
+        .for_each(|(i, o)| {
+            *o = if p.kind[i] == FLUID || !list.of(i).is_empty() {
+                let mut s = self_term;
+                for &j in list.of(i) {
+                    let j = j as usize;
+                    let r =
+                        ((p.x[j] - p.x[i]).powi(2) + (p.y[j] - p.y[i]).powi(2) + (p.z[j] - p.z[i]).powi(2))
+                            .sqrt();
+                    s += k.volume * k.w(r);
+                }
+                s / k.lattice_density
+            } else {
+                1.0
+            };
+        });
+}
+
+/// S2-8's divergence `⟨∇·v⟩_i = Σ_j V (v_j − v_i)·∇W_ij` over fluid neighbours j, for fluid i
+/// (0 elsewhere). Solid neighbours take part through the Neumann differences of
+/// [`super::walls`] instead.
+pub fn divergence(k: &Wendland, list: &NeighbourList, p: &Particles, out: &mut Vec<f64>) {
+    out.resize(p.len(), 0.0);
+    out.par_iter_mut()
+        .enumerate()
+        .with_min_len(512)
+        .for_each(|(i, o)| {
+            let mut s = 0.0;
+            if p.kind[i] == FLUID {
+                for &j in list.of(i) {
+                    let j = j as usize;
+                    if p.kind[j] != FLUID {
+                        continue;
+                    }
+                    let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
+                    let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                    let dv = [p.vx[j] - p.vx[i], p.vy[j] - p.vy[i], p.vz[j] - p.vz[i]];
+                    s += k.volume * k.dw_over_r(r) * (dv[0] * d[0] + dv[1] * d[1] + dv[2] * d[2]);
+                }
+            }
+            *o = s;
+        });
+}
+
+/// S2-9 on the velocity: `⟨∇²v⟩_i = Σ_j F_ij (v_j − v_i)` for fluid i over fluid neighbours and,
+/// with `no_slip`, solid neighbours at their own velocity (free slip leaves them out). Writes
+/// `out` (0 for solids); `from_non_fluid` is Σ_i of the solids' part.
+pub fn laplacian(
+    k: &Wendland,
+    list: &NeighbourList,
+    p: &Particles,
+    no_slip: bool,
+    out: &mut VectorField,
+) -> PassTotals {
+    out.resize(p.len());
+    (&mut out.x, &mut out.y, &mut out.z)
+        .into_par_iter()
+        .enumerate()
+        .with_min_len(512)
+        .map(|(i, (ox, oy, oz))| {
+            let mut l = [0.0; 3];
+            let mut wall = [0.0; 3];
+            if p.kind[i] == FLUID {
+                for &j in list.of(i) {
+                    let j = j as usize;
+                    let solid = p.kind[j] != FLUID;
+                    if solid && !no_slip {
+                        continue;
+                    }
+                    let r =
+                        ((p.x[j] - p.x[i]).powi(2) + (p.y[j] - p.y[i]).powi(2) + (p.z[j] - p.z[i]).powi(2))
+                            .sqrt();
+                    let f = -2.0 * k.volume * k.dw_over_r(r);
+                    let d = [
+                        f * (p.vx[j] - p.vx[i]),
+                        f * (p.vy[j] - p.vy[i]),
+                        f * (p.vz[j] - p.vz[i]),
+                    ];
+                    for a in 0..3 {
+                        l[a] += d[a];
+                        if solid {
+                            wall[a] += d[a];
+                        }
+                    }
+                }
+            }
+            (*ox, *oy, *oz) = (l[0], l[1], l[2]);
+            PassTotals {
+                from_non_fluid: wall,
+                candidates: list.of(i).len() as u64,
+            }
+        })
+        .reduce(PassTotals::default, add)
+}
+
+/// The pressure gradient of the momentum equation, for fluid i (0 elsewhere):
+/// - where the support is full (λ_min > 0.9, [`super::free_surface`]), the symmetric form
+///   `⟨∇p⟩_i = Σ_j V (p_i + p_j) ∇W_ij`: with equal particle volumes its pair terms are
+///   antisymmetric, so the fluid's momentum changes only by what walls and bodies give, and the
+///   force on a body is `−∫ ∇p dV` over its particles (buoyancy), the pair law the body exchange
+///   reads ([`super::pair_laws`]); in a full neighbourhood `Σ_j V ∇W_ij = 0`, so it agrees with
+///   S2-8 there;
+/// - near the free surface (λ_min ≤ 0.9), S2-8's difference form corrected by the particle's
+///   moment matrix, `m_i⁻¹ Σ_j V (p_j − p_i) ∇W_ij` (Bonet & Lok 1999): exact for a linear
+///   field on a half-empty support, where the symmetric form sees half the gradient and the
+///   surface layer, held at p = 0, would fall by gΔt/2 every step.
+///
+/// `from_non_fluid` is Σ_i of the solid neighbours' part.
+pub fn pressure_gradient(
+    k: &Wendland,
+    list: &NeighbourList,
+    p: &Particles,
+    (takes_part, lambda): (&[u8], &[f64]),
+    walls: &NeumannPair,
+    out: &mut VectorField,
+) -> PassTotals {
+    out.resize(p.len());
+    (&mut out.x, &mut out.y, &mut out.z)
+        .into_par_iter()
+        .enumerate()
+        .with_min_len(512)
+        .map(|(i, (ox, oy, oz))| {
+            let mut g = [0.0; 3];
+            let mut wall = [0.0; 3];
+            let full = lambda[i] > LAMBDA_INNER;
+            let correction = if p.kind[i] == FLUID && !full {
+                Some(moment_matrix(k, list, p, takes_part, i))
+            } else {
+                None
+            };
+            if p.kind[i] == FLUID {
+                for &j in list.of(i) {
+                    let j = j as usize;
+                    if !full && takes_part[j] == 0 {
+                        continue; // the sum must match the moment matrix it is corrected by
+                    }
+                    let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
+                    let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                    let solid = p.kind[j] != FLUID;
+                    // A solid neighbour's pressure as this particle's PPE saw it (walls.rs).
+                    let pj = if solid {
+                        p.pressure[i] + walls.difference(i, j)
+                    } else {
+                        p.pressure[j]
+                    };
+                    let pij = if full {
+                        p.pressure[i] + pj
+                    } else {
+                        pj - p.pressure[i]
+                    };
+                    let c = k.volume * pij * k.dw_over_r(r);
+                    for a in 0..3 {
+                        g[a] += c * d[a];
+                        if solid {
+                            wall[a] += c * d[a];
+                        }
+                    }
+                }
+            }
+            if let Some(m) = correction {
+                // m_i is −Σ V (W'/r) d ⊗ d; the sum above is m_i ∇p for a linear field.
+                if let (Some(gc), Some(wc)) = (solve(&m, g), solve(&m, wall)) {
+                    (g, wall) = (gc, wc);
+                }
+            }
+            (*ox, *oy, *oz) = (g[0], g[1], g[2]);
+            PassTotals {
+                from_non_fluid: wall,
+                candidates: list.of(i).len() as u64,
+            }
+        })
+        .reduce(PassTotals::default, add)
+}

@@ -1,0 +1,459 @@
+//! One ISPH time step (S2-3 … S2-5), read top to bottom as a list of named stages, each timed.
+//!
+//! All passes work at the positions r^n of the step's start, on one neighbour list:
+//! 1. neighbour search and list;
+//! 2. density ratio ρ̂/ρ0 (S2-7) and free-surface flags ([`super::free_surface`], S2-10 … S2-13);
+//! 3. `v* = v^n + (ν∇²v^n + g)Δt` (S2-3, S2-9);
+//! 4. the PPE `∇²p = (ρ/Δt)∇·v* + α_d(ρ0 − ρ̂)/Δt²` (S2-5) with p = 0 on surface particles and
+//!    the walls' Neumann differences ([`super::walls`]), assembled and solved ([`super::ppe`]);
+//! 5. the walls' pressure by Adami's extrapolation (for outputs and probes; the gradient reads the
+//!    per-pair wall pressure of [`super::walls`]);
+//! 6. `v^{n+1} = v* − (Δt/ρ)∇p` (S2-4), `x^{n+1} = x^n + v^{n+1}Δt`; bodies move with their own
+//!    velocity;
+//! 7. the collision stage both methods share ([`crate::collision`]): at the case's time steps no
+//!    pair of a settled or smoothly moving flow comes within its 0.8 Δs, so it acts only on
+//!    violent contacts (jets meeting walls and bodies), as in E-MPS.
+
+use super::free_surface::{self, SURFACE};
+use super::kernel::Wendland;
+use super::neighbour_list::NeighbourList;
+use super::operators;
+use super::pair_laws;
+use super::ppe::{PpeFailure, PpeReport, PpeSystem, NOT_AN_UNKNOWN};
+use super::walls::{self, NeumannPair};
+use crate::collision::{self, COLLISION_DISTANCE, RESTITUTION};
+use crate::kind::{Kind, FLUID};
+use crate::method::StepTotals;
+use crate::neighbour_search::CellGrid;
+use crate::pair_law::{Exchange, ExchangeScales, PairLaw};
+use crate::particles::Particles;
+use crate::physics::Physics;
+use crate::stage_timer::StageTimes;
+use crate::vector_field::VectorField;
+use rayon::prelude::*;
+use schemas::case::fluid::{IsphConfig, WallSlip};
+
+/// One assembled PPE row: off-diagonal entries (unknown, value), diagonal, right-hand side.
+type Row = (Vec<(u32, f64)>, f64, f64);
+
+/// What ISPH keeps between steps beyond the particles (whose pressure is the PPE's warm start).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct IsphState {
+    /// Free-surface flag of each particle in the present order ([`SURFACE`] or 0), from the last
+    /// step's detection (for outputs).
+    pub surface: Vec<u8>,
+    /// How the last PPE solve went.
+    pub ppe: PpeReport,
+}
+
+/// The ISPH step: parameters, work buffers and stage times.
+#[derive(Debug, Clone)]
+pub struct IsphStep {
+    pub kernel: Wendland,
+    pub physics: Physics,
+    pub settings: IsphConfig,
+    /// n0 of the MPS lattice (S1-8): the fluid's `number_density` is written as n0 ρ̂/ρ0, the
+    /// measure the shared probes read.
+    n0_mps: f64,
+    /// Δt of the case (the initial pressure's projection uses it).
+    time_step: f64,
+    list: NeighbourList,
+    scratch: Vec<f64>,
+    ratio: Vec<f64>,
+    lambda: Vec<f64>,
+    takes_part: Vec<u8>,
+    divergence: Vec<f64>,
+    normals: VectorField,
+    accel: VectorField,
+    ppe: PpeSystem,
+    solution: Vec<f64>,
+    times: StageTimes,
+}
+
+impl IsphStep {
+    /// A step with kernel support `settings.influence_radius` Δs.
+    pub fn new(
+        spacing: f64,
+        physics: Physics,
+        settings: IsphConfig,
+        n0_mps: f64,
+        time_step: f64,
+    ) -> IsphStep {
+        IsphStep {
+            kernel: Wendland::new(spacing, settings.influence_radius),
+            physics,
+            settings,
+            n0_mps,
+            time_step,
+            list: NeighbourList::default(),
+            scratch: Vec::new(),
+            ratio: Vec::new(),
+            lambda: Vec::new(),
+            takes_part: Vec::new(),
+            divergence: Vec::new(),
+            normals: VectorField::default(),
+            accel: VectorField::default(),
+            ppe: PpeSystem::default(),
+            solution: Vec::new(),
+            times: StageTimes::default(),
+        }
+    }
+
+    /// Wall time per stage since the start.
+    pub fn stage_times(&self) -> &StageTimes {
+        &self.times
+    }
+
+    /// The present neighbour list (after a step or [`IsphStep::refresh_pressure`]).
+    pub fn neighbour_list(&self) -> &NeighbourList {
+        &self.list
+    }
+
+    /// The scales that turn velocity changes of a step of `dt` into forces.
+    pub fn scales(&self, dt: f64) -> ExchangeScales {
+        ExchangeScales {
+            spacing: self.kernel.spacing,
+            particle_mass: self.physics.density * self.kernel.volume,
+            viscosity: self.physics.viscosity,
+            dt,
+        }
+    }
+
+    /// The pressure pair law on the present pressures (at rest: the fluid's velocities are
+    /// taken as the step's start).
+    pub fn pressure_law<'a>(&'a self, p: &'a Particles) -> PairLaw<'a> {
+        pair_laws::pressure(&self.kernel, self.neumann(p, self.time_step))
+    }
+
+    /// The walls' Neumann differences for a step of `dt` with v* in the particles.
+    fn neumann<'a>(&'a self, p: &'a Particles, dt: f64) -> NeumannPair<'a> {
+        NeumannPair {
+            density: self.physics.density,
+            gravity: self.physics.gravity,
+            dt,
+            p,
+            normals: &self.normals,
+        }
+    }
+
+    /// Advances the particles by `dt` through the stages of the module doc; `bodies` is handed
+    /// each pair law with the state it acts in. A PPE that misses its tolerance stops the step.
+    pub fn advance(
+        &mut self,
+        p: &mut Particles,
+        grid: &mut CellGrid,
+        state: &mut IsphState,
+        dt: f64,
+        mut bodies: impl FnMut(Exchange, &PairLaw, &CellGrid, &Particles),
+    ) -> Result<StepTotals, PpeFailure> {
+        let mut totals = StepTotals::default();
+        let scales = self.scales(dt);
+        let t = self.times.start();
+        totals.candidates += self.neighbours(p, grid);
+        let t = self.times.lap(t, "neighbour search");
+        self.density_and_surface(p, state);
+        let t = self.times.lap(t, "density and free surface");
+        let no_slip = self.settings.wall_slip == WallSlip::NoSlip;
+        if self.physics.viscous() {
+            let pass = operators::laplacian(&self.kernel, &self.list, p, no_slip, &mut self.accel); // S2-9
+            let m_nu = scales.particle_mass * self.physics.viscosity;
+            (0..3).for_each(|a| totals.force_from_walls[a] += m_nu * pass.from_non_fluid[a]);
+            if no_slip {
+                bodies(
+                    Exchange::Viscous,
+                    &pair_laws::viscous(&self.kernel, &scales, p),
+                    grid,
+                    p,
+                );
+            }
+        }
+        self.predict_velocity(p, dt); // S2-3
+        let t = self.times.lap(t, "viscous and prediction");
+        self.assemble(p, state, dt); // S2-5
+        let t = self.times.lap(t, "PPE assembly");
+        state.ppe = self.solve_ppe(p)?;
+        totals.ppe_iterations = state.ppe.iterations;
+        let t = self.times.lap(t, "PPE solve");
+        self.wall_pressure(p, dt);
+        let t = self.times.lap(t, "wall pressure");
+        let walls = NeumannPair {
+            density: self.physics.density,
+            gravity: self.physics.gravity,
+            dt,
+            p,
+            normals: &self.normals,
+        };
+        let pass = operators::pressure_gradient(
+            &self.kernel,
+            &self.list,
+            p,
+            (&self.takes_part, &self.lambda),
+            &walls,
+            &mut self.accel,
+        );
+        (0..3).for_each(|a| totals.force_from_walls[a] -= self.kernel.volume * pass.from_non_fluid[a]);
+        bodies(
+            Exchange::Pressure,
+            &pair_laws::pressure(&self.kernel, self.neumann(p, dt)),
+            grid,
+            p,
+        );
+        self.correct(p, dt); // S2-4
+        let t = self.times.lap(t, "pressure gradient and correction");
+        let distance = COLLISION_DISTANCE * self.kernel.spacing;
+        let pass = collision::collision(grid, p, distance, RESTITUTION, &mut self.accel);
+        bodies(Exchange::Collision, &collision::contact_law(&scales, p), grid, p);
+        (0..3).for_each(|a| totals.force_from_walls[a] += scales.particle_mass * pass.from_non_fluid[a] / dt);
+        totals.candidates += pass.candidates;
+        self.apply_collisions(p, dt);
+        self.times.lap(t, "collision");
+        Ok(totals)
+    }
+
+    /// The pressure of the present state: the projection of a step of the case's Δt from the
+    /// present velocities, without moving anything (the initial outputs and loads; hydrostatic
+    /// for water at rest). Velocities are left unchanged.
+    pub fn refresh_pressure(
+        &mut self,
+        p: &mut Particles,
+        grid: &mut CellGrid,
+        state: &mut IsphState,
+    ) -> Result<(), PpeFailure> {
+        let dt = self.time_step;
+        self.neighbours(p, grid);
+        self.density_and_surface(p, state);
+        let v = (p.vx.clone(), p.vy.clone(), p.vz.clone());
+        self.predict_velocity_by_gravity(p, dt);
+        self.assemble(p, state, dt);
+        let solved = self.solve_ppe(p);
+        self.wall_pressure(p, dt);
+        (p.vx, p.vy, p.vz) = v;
+        state.ppe = solved?;
+        Ok(())
+    }
+
+    /// Sorts the particles into the cells at r^n and builds the neighbour list.
+    fn neighbours(&mut self, p: &mut Particles, grid: &mut CellGrid) -> u64 {
+        grid.sort(p, &mut self.scratch);
+        self.list.build(grid, p, self.kernel.radius)
+    }
+
+    /// ρ̂/ρ0, λ_min and the surface flags; the fluid's `number_density` becomes n0 ρ̂/ρ0.
+    fn density_and_surface(&mut self, p: &mut Particles, state: &mut IsphState) {
+        operators::density_ratio(&self.kernel, &self.list, p, &mut self.ratio);
+        free_surface::fill_flags(p, &self.ratio, &mut self.takes_part);
+        free_surface::lambda_min(&self.kernel, &self.list, p, &self.takes_part, &mut self.lambda);
+        free_surface::detect(
+            &self.kernel,
+            &self.list,
+            p,
+            &self.takes_part,
+            &self.lambda,
+            &mut state.surface,
+        );
+        let n0 = self.n0_mps;
+        (&mut p.number_density, &p.kind, &self.ratio)
+            .into_par_iter()
+            .with_min_len(4096)
+            .for_each(|(n, &k, &r)| *n = if k == FLUID { n0 * r } else { 0.0 });
+    }
+
+    /// S2-3 for fluid particles (the Laplacian is in `accel` when the viscous term is on).
+    fn predict_velocity(&mut self, p: &mut Particles, dt: f64) {
+        if !self.physics.viscous() {
+            return self.predict_velocity_by_gravity(p, dt);
+        }
+        let (g, nu, lap) = (self.physics.gravity, self.physics.viscosity, &self.accel);
+        (&mut p.vx, &mut p.vy, &mut p.vz, &p.kind)
+            .into_par_iter()
+            .enumerate()
+            .with_min_len(4096)
+            .filter(|(_, t)| *t.3 == FLUID)
+            .for_each(|(i, (u, v, w, _))| {
+                *u += (nu * lap.x[i] + g[0]) * dt;
+                *v += (nu * lap.y[i] + g[1]) * dt;
+                *w += (nu * lap.z[i] + g[2]) * dt;
+            });
+    }
+
+    /// S2-3 without the viscous term.
+    fn predict_velocity_by_gravity(&self, p: &mut Particles, dt: f64) {
+        let g = self.physics.gravity;
+        (&mut p.vx, &mut p.vy, &mut p.vz, &p.kind)
+            .into_par_iter()
+            .with_min_len(4096)
+            .filter(|t| *t.3 == FLUID)
+            .for_each(|(u, v, w, _)| {
+                *u += g[0] * dt;
+                *v += g[1] * dt;
+                *w += g[2] * dt;
+            });
+    }
+
+    /// Assembles S2-5 over the non-surface fluid particles (see [`super::ppe`]) with v* in the
+    /// particles; a fluid particle without fluid neighbours is put on the surface.
+    fn assemble(&mut self, p: &Particles, state: &mut IsphState, dt: f64) {
+        let k = self.kernel;
+        walls::normals(&k, &self.list, p, &mut self.normals);
+        operators::divergence(&k, &self.list, p, &mut self.divergence);
+        let list = &self.list;
+        let surface = &mut state.surface;
+        // Unknowns: fluid, not on the surface, with at least one fluid neighbour.
+        for (i, s) in surface.iter_mut().enumerate() {
+            if p.kind[i] == FLUID && *s != SURFACE && !list.of(i).iter().any(|&j| p.kind[j as usize] == FLUID)
+            {
+                *s = SURFACE;
+            }
+        }
+        let ppe = &mut self.ppe;
+        ppe.row_of.clear();
+        ppe.row_of.resize(p.len(), NOT_AN_UNKNOWN);
+        ppe.particle.clear();
+        for (i, &s) in surface.iter().enumerate() {
+            if p.kind[i] == FLUID && s != SURFACE {
+                ppe.row_of[i] = ppe.particle.len() as u32;
+                ppe.particle.push(i as u32);
+            }
+        }
+        let pair = NeumannPair {
+            density: self.physics.density,
+            gravity: self.physics.gravity,
+            dt,
+            p,
+            normals: &self.normals,
+        };
+        let (rho, alpha) = (self.physics.density, self.settings.alpha_d);
+        let (row_of, ratio, div) = (&ppe.row_of, &self.ratio, &self.divergence);
+        let rows: Vec<Row> = ppe
+            .particle
+            .par_iter()
+            .with_min_len(256)
+            .map(|&i| {
+                let i = i as usize;
+                let mut entries = Vec::with_capacity(list.of(i).len());
+                let (mut diag, mut rhs) = (
+                    0.0,
+                    -(rho / dt * div[i] + alpha * rho * (1.0 - ratio[i]) / (dt * dt)),
+                );
+                for &j in list.of(i) {
+                    let j = j as usize;
+                    let r =
+                        ((p.x[j] - p.x[i]).powi(2) + (p.y[j] - p.y[i]).powi(2) + (p.z[j] - p.z[i]).powi(2))
+                            .sqrt();
+                    let f = -2.0 * k.volume * k.dw_over_r(r);
+                    if p.kind[j] == FLUID {
+                        diag += f;
+                        if row_of[j] != NOT_AN_UNKNOWN {
+                            entries.push((row_of[j], -f));
+                        }
+                    } else {
+                        rhs += f * pair.difference(i, j);
+                    }
+                }
+                (entries, diag, rhs)
+            })
+            .collect();
+        ppe.start.clear();
+        ppe.col.clear();
+        ppe.val.clear();
+        ppe.diag.clear();
+        ppe.rhs.clear();
+        ppe.start.push(0);
+        for (entries, diag, rhs) in rows {
+            for (c, v) in entries {
+                ppe.col.push(c);
+                ppe.val.push(v);
+            }
+            ppe.start.push(ppe.col.len() as u32);
+            ppe.diag.push(diag);
+            ppe.rhs.push(rhs);
+        }
+    }
+
+    /// Solves the PPE warm-started from the particles' pressure and writes the fluid pressures
+    /// (0 on the surface).
+    fn solve_ppe(&mut self, p: &mut Particles) -> Result<PpeReport, PpeFailure> {
+        let ppe = &self.ppe;
+        self.solution.clear();
+        self.solution
+            .extend(ppe.particle.iter().map(|&i| p.pressure[i as usize]));
+        let s = &self.settings;
+        let report = ppe.solve(
+            s.ppe_solver,
+            &mut self.solution,
+            s.ppe_tolerance,
+            s.ppe_max_iterations,
+        )?;
+        let (row_of, x) = (&ppe.row_of, &self.solution);
+        (&mut p.pressure, &p.kind)
+            .into_par_iter()
+            .enumerate()
+            .with_min_len(4096)
+            .filter(|(_, t)| *t.1 == FLUID)
+            .for_each(|(i, (pr, _))| {
+                *pr = if row_of[i] == NOT_AN_UNKNOWN {
+                    0.0
+                } else {
+                    x[row_of[i] as usize]
+                };
+            });
+        Ok(report)
+    }
+
+    /// Adami's extrapolation onto the wall, dummy, body and inflow particles.
+    fn wall_pressure(&mut self, p: &mut Particles, dt: f64) {
+        let pair = NeumannPair {
+            density: self.physics.density,
+            gravity: self.physics.gravity,
+            dt,
+            p,
+            normals: &self.normals,
+        };
+        let solid = walls::extrapolated(&self.kernel, &self.list, &pair);
+        for (w, pw) in solid {
+            p.pressure[w] = pw;
+        }
+    }
+
+    /// S2-4 for fluid particles, `x^{n+1} = x^n + v^{n+1}Δt`; bodies move with their velocity.
+    fn correct(&self, p: &mut Particles, dt: f64) {
+        let s = dt / self.physics.density;
+        let grad = &self.accel;
+        let body = Kind::Body.code();
+        (
+            &mut p.x, &mut p.y, &mut p.z, &mut p.vx, &mut p.vy, &mut p.vz, &p.kind,
+        )
+            .into_par_iter()
+            .enumerate()
+            .with_min_len(4096)
+            .for_each(|(i, (x, y, z, u, v, w, &k))| {
+                if k == FLUID {
+                    *u -= s * grad.x[i];
+                    *v -= s * grad.y[i];
+                    *w -= s * grad.z[i];
+                }
+                if k == FLUID || k == body {
+                    *x += *u * dt;
+                    *y += *v * dt;
+                    *z += *w * dt;
+                }
+            });
+    }
+
+    /// Adds the collision velocity change Δu and moves the particle by Δu Δt.
+    fn apply_collisions(&self, p: &mut Particles, dt: f64) {
+        let du = &self.accel;
+        (&mut p.x, &mut p.y, &mut p.z, &mut p.vx, &mut p.vy, &mut p.vz)
+            .into_par_iter()
+            .enumerate()
+            .with_min_len(4096)
+            .for_each(|(i, (x, y, z, u, v, w))| {
+                *u += du.x[i];
+                *v += du.y[i];
+                *w += du.z[i];
+                *x += du.x[i] * dt;
+                *y += du.y[i] * dt;
+                *z += du.z[i] * dt;
+            });
+    }
+}

@@ -1,0 +1,35 @@
+//! [`FluidState`]: everything a step changes, in one value that clones whole, so a checkpoint of
+//! implicit coupling is `state.clone()` and its restore `clone_from` (no hand-listed fields to
+//! forget when a method gains state).
+
+use crate::method::MethodState;
+use crate::neighbour_search::CellGrid;
+use crate::open_boundary::OpenBoundaries;
+use crate::particles::Particles;
+
+/// The forces between fluid and bodies in the last step (6 per body: force, moment about the
+/// centre), as the bodies took them and as the fluid gave them, summed over the pair laws the
+/// method handed to the body exchange (see [`crate::bodies`]).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct BodyExchange {
+    pub loads: Vec<f64>,
+    pub reaction: Vec<f64>,
+}
+
+/// The state of a fluid participant.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FluidState {
+    pub particles: Particles,
+    /// The cell list matching the particles' order (loads are read through it).
+    pub grid: CellGrid,
+    /// The method's own state (e.g. ISPH's surface flags and PPE record).
+    pub method: MethodState,
+    /// Present pose (7 per body: centre, quaternion w x y z) and velocity (6 per body: V, ω).
+    pub body_pose: Vec<f64>,
+    pub body_velocity: Vec<f64>,
+    pub body_exchange: BodyExchange,
+    pub time: f64,
+    pub steps: u64,
+    pub gates_removed: bool,
+    pub open_boundaries: OpenBoundaries,
+}

@@ -1,0 +1,62 @@
+//! ISPH with a resolved body: a box held fixed, fully submerged in still water, feels the
+//! buoyancy ρ g V within 5 % (issue 5's bound, as for E-MPS in `bodies_fixed_hydrostatic.rs`),
+//! and its load and the fluid's reaction come from one pair law (action = −reaction).
+
+mod bodies_common;
+
+use bodies_common::tank_with_body;
+use fluid_solver::FluidSolver;
+use schemas::case::fluid::{Aabb, FluidMethodName, IsphConfig};
+
+#[test]
+fn isph_submerged_fixed_box_feels_rho_g_v() {
+    // The E-MPS test's scene: Δs = 0.02 m, a 12 cm box centred 0.16 m below the surface, 4
+    // particles of water around it; ISPH with Δt = 2e-3 s.
+    let body = Aabb {
+        min: [0.08, 0.08, 0.08],
+        max: [0.20, 0.20, 0.20],
+    };
+    let water = Aabb {
+        min: [0.0; 3],
+        max: [0.28, 0.28, 0.3],
+    };
+    let mut cfg = tank_with_body([0.28, 0.28, 0.4], 0.02, 8.0e-4, water, body);
+    cfg.method = FluidMethodName::Isph;
+    cfg.isph = Some(IsphConfig::default());
+    cfg.sound_speed = None;
+    cfg.time_step = 2.0e-3;
+    cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
+    let mut solver = FluidSolver::new(&cfg);
+    let volume: f64 = (0..3).map(|a| body.max[a] - body.min[a]).product();
+    let buoyancy = cfg.density * cfg.gravity_magnitude() * volume;
+    // No acoustic transient: average the loads over steps 25 … 100 (0.05 … 0.2 s).
+    solver.advance_to(0.05).unwrap_or_else(|e| panic!("{e}"));
+    let (mut mean, mut worst_balance, mut steps) = ([0.0; 6], 0.0f64, 0);
+    while let Some(dt) = solver.next_step_towards(0.2) {
+        solver.step(dt).unwrap_or_else(|e| panic!("{e}"));
+        let (loads, reaction) = (solver.body_loads(), solver.body_reactions());
+        for (l, r) in loads.iter().zip(&reaction) {
+            worst_balance = worst_balance.max((l + r).abs());
+        }
+        mean.iter_mut().zip(&loads).for_each(|(m, l)| *m += l);
+        steps += 1;
+    }
+    mean.iter_mut().for_each(|v| *v /= f64::from(steps));
+    let error = mean[2] / buoyancy - 1.0;
+    println!(
+        "ISPH mean load over {steps} steps: F = [{:.4}, {:.4}, {:.4}] N; ρgV = {buoyancy:.4} N; error {:+.2} %; worst |load + reaction| {worst_balance:.2e}",
+        mean[0], mean[1], mean[2], 100.0 * error
+    );
+    assert!(
+        error.abs() < 0.05,
+        "vertical force {} N vs ρgV = {buoyancy} N (bound 5 %)",
+        mean[2]
+    );
+    for (a, f) in mean.iter().take(2).enumerate() {
+        assert!(f.abs() < 0.02 * buoyancy, "sideways force {a}: {f}");
+    }
+    assert!(
+        worst_balance < 1e-9 * buoyancy,
+        "action = −reaction: {worst_balance}"
+    );
+}
