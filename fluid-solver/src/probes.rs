@@ -102,17 +102,32 @@ fn water_height(
 #[derive(Debug, Clone)]
 pub struct ProbeSet {
     probes: Vec<ProbeConfig>,
+    /// The wall-pressure sensors' discs, on the faces as built (see [`ProbeSet::new`]).
+    discs: Vec<Option<Disc>>,
     /// Per filtered probe: the readings (time, value) of the steps inside its window.
     windows: Vec<Option<VecDeque<(f64, f64)>>>,
 }
 
 impl ProbeSet {
-    /// The probes of a case section on `solver`'s initial layout; a wall-pressure sensor with no
-    /// wall behind its disc is an error naming it.
+    /// The probes of a case section on `solver`'s initial layout. A wall-pressure disc is moved
+    /// along its normal onto the nearest lattice face, where the face it is mounted on was built
+    /// ([`crate::lattice`]); a disc with no wall behind it is an error naming it.
     pub fn new(probes: &[ProbeConfig], solver: &FluidSolver) -> Result<ProbeSet, String> {
-        for probe in probes.iter().filter(|p| p.kind == ProbeKind::WallPressure) {
-            let (_, first_layer) =
-                Disc::of(probe).wall_particles(solver.particles(), solver.kernel().spacing);
+        let (ds, origin) = (solver.kernel().spacing, solver.tank().min);
+        let discs: Vec<Option<Disc>> = probes
+            .iter()
+            .map(|p| {
+                (p.kind == ProbeKind::WallPressure).then(|| {
+                    let mut disc = Disc::of(p);
+                    let a = disc.axis;
+                    disc.centre[a] = origin[a] + ((disc.centre[a] - origin[a]) / ds).round() * ds;
+                    disc
+                })
+            })
+            .collect();
+        for (probe, disc) in probes.iter().zip(&discs) {
+            let Some(disc) = disc else { continue };
+            let (_, first_layer) = disc.wall_particles(solver.particles(), ds);
             if first_layer == 0 {
                 return Err(format!(
                     "probe `{}`: no wall or body particle lies behind the wall-pressure disc at {:?} with normal {}: put its centre on a face of the tank, a wall box or a body, with the normal pointing into the water",
@@ -124,6 +139,7 @@ impl ProbeSet {
         }
         Ok(ProbeSet {
             probes: probes.to_vec(),
+            discs,
             windows: probes.iter().map(|p| p.window.map(|_| VecDeque::new())).collect(),
         })
     }
@@ -137,10 +153,10 @@ impl ProbeSet {
     /// this step's reading (windows longer than the row interval overlap: every step is kept).
     pub fn observe(&mut self, solver: &FluidSolver, next_row: f64) {
         let t = solver.time();
-        for (probe, w) in self.probes.iter().zip(&mut self.windows) {
+        for ((probe, disc), w) in self.probes.iter().zip(&self.discs).zip(&mut self.windows) {
             if let (Some(window), Some(readings)) = (probe.window, w) {
                 if t > next_row - window - 1e-12 {
-                    readings.push_back((t, read(probe, solver)));
+                    readings.push_back((t, read(probe, disc, solver)));
                 }
             }
         }
@@ -153,34 +169,35 @@ impl ProbeSet {
         let t = solver.time();
         self.probes
             .iter()
+            .zip(&self.discs)
             .zip(&mut self.windows)
-            .map(|(probe, w)| match (probe.window, w) {
+            .map(|((probe, disc), w)| match (probe.window, w) {
                 (Some(window), Some(readings)) => {
                     while readings.front().is_some_and(|r| r.0 <= t - window + 1e-12) {
                         readings.pop_front();
                     }
                     match readings.len() {
-                        0 => read(probe, solver),
+                        0 => read(probe, disc, solver),
                         n => readings.iter().map(|r| r.1).sum::<f64>() / n as f64,
                     }
                 }
-                _ => read(probe, solver),
+                _ => read(probe, disc, solver),
             })
             .collect()
     }
 }
 
-/// The instantaneous reading of one probe.
-fn read(probe: &ProbeConfig, solver: &FluidSolver) -> f64 {
-    match probe.kind {
-        ProbeKind::WallPressure => Disc::of(probe)
+/// The instantaneous reading of one probe (`disc`: a wall-pressure sensor's, as placed).
+fn read(probe: &ProbeConfig, disc: &Option<Disc>, solver: &FluidSolver) -> f64 {
+    match disc {
+        Some(disc) => disc
             .pressure(
                 solver.particles(),
                 &solver.pressure_law(),
                 solver.kernel().spacing,
             )
             .unwrap_or(f64::NAN),
-        _ => sample(probe, solver.particles(), solver.kernel(), &solver.tank()),
+        None => sample(probe, solver.particles(), solver.kernel(), &solver.tank()),
     }
 }
 

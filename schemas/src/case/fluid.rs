@@ -18,7 +18,19 @@
 //! [[fluid.tank.probe]]
 //! name = "front"
 //! kind = "surge-front"
+//! [[fluid.tank.probe]]      # a pressure sensor on a wall or obstacle face
+//! name = "P1"
+//! kind = "wall-pressure"
+//! position = [0.6, 0.15, 0.02]
+//! normal = "-x"             # the face's outward normal, into the water
+//! diameter = 0.02
+//! window = 0.005            # box filter [s]; default none
 //! ```
+//!
+//! Extents off the lattice (tank, blocks, gates, walls, bodies) are rounded to the nearest
+//! lattice face with a message. Run control: `max_removed_fraction` (default 0.01) of the fluid
+//! may leave over an open top before the run stops; `progress_interval` (default 10 s of wall
+//! time) between progress lines.
 //!
 //! Open channels add fixed solid boxes (`[[fluid.NAME.wall]]`, `min`/`max`: piers, levees) and
 //! inflow / outflow boundaries (`[fluid.NAME.inflow]`, `[fluid.NAME.outflow]`: see
