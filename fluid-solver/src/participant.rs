@@ -309,6 +309,7 @@ impl Participant for FluidParticipant {
                     s.totals().particle_steps,
                     s.particles().len(),
                 );
+                self.progress.note_escapes(s.time(), s.escaped());
             }
             self.solver.land_on(t);
             outputs.push(self.outputs());

@@ -21,6 +21,8 @@ pub struct Progress {
     started: Instant,
     last: Instant,
     drawn: bool,
+    /// Fluid particles removed over an open top, as last logged.
+    escaped: u64,
 }
 
 impl Progress {
@@ -36,6 +38,7 @@ impl Progress {
             started: now,
             last: now,
             drawn: false,
+            escaped: 0,
         }
     }
 
@@ -86,6 +89,19 @@ impl Progress {
             );
         }
         let _ = err.flush();
+    }
+
+    /// Logs fluid particles newly removed over an open top (`escaped`: the count so far).
+    pub fn note_escapes(&mut self, t: f64, escaped: u64) {
+        if escaped > self.escaped {
+            self.finish();
+            eprintln!(
+                "{}: t = {t:.4} s: {} fluid particle(s) left over the walls and were removed ({escaped} in all)",
+                self.name,
+                escaped - self.escaped
+            );
+            self.escaped = escaped;
+        }
     }
 
     /// Ends the bar's line (nothing to do for log lines).

@@ -143,6 +143,7 @@ pub fn run_case(case: &Case, out: &Path, terminal: bool) -> Result<RunSummary, R
                 totals.particle_steps,
                 solver.particles().len(),
             );
+            progress.note_escapes(solver.time(), solver.escaped());
         }
         solver.land_on(target);
         if solver.time() >= row_at {
