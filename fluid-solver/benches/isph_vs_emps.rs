@@ -53,7 +53,7 @@ fn run(name: &str, cfg: &FluidConfig, end: f64) -> Row {
         name: "wall".into(),
         kind: ProbeKind::Pressure,
         position: vec![0.584 - 0.5 * cfg.spacing, 5.0 * cfg.spacing, 0.02],
-        axis: None,
+        ..Default::default()
     };
     let tank = solver.tank();
     let (mut last, mut sum2, mut n) = (0.0, 0.0, 0u64);

@@ -5,7 +5,8 @@
 //! nearest sites. Sites outside the tank within `wall_layers` layers are walls: the two layers
 //! next to the tank are [`Kind::Wall`] (they carry pressure), the outer ones [`Kind::Dummy`].
 //! Sites inside the tank whose centre is inside a gate, a body, a solid wall box or a water block
-//! get that kind.
+//! get that kind. Boxes and the tank are first moved onto the lattice ([`crate::lattice`]); the
+//! layout keeps that config and the messages saying what moved.
 
 use crate::kind::Kind;
 use crate::particles::Particles;
@@ -47,10 +48,16 @@ pub struct Layout {
     pub grid_box: Domain,
     pub tank: Aabb,
     pub bodies: Vec<BodyParticles>,
+    /// The case's section with the tank and every box on the lattice (what was built).
+    pub config: FluidConfig,
+    /// One message per box that was moved onto the lattice.
+    pub notes: Vec<String>,
 }
 
 /// Builds the lattice layout of `cfg` (already validated).
 pub fn build(cfg: &FluidConfig) -> Layout {
+    let (config, notes) = crate::lattice::snap(cfg);
+    let cfg = &config;
     let ds = cfg.spacing;
     let tank = cfg.tank.inner();
     let layers = i64::from(cfg.wall_layers);
@@ -121,5 +128,7 @@ pub fn build(cfg: &FluidConfig) -> Layout {
         grid_box: above(GRID_HEADROOM),
         tank,
         bodies,
+        notes,
+        config,
     }
 }

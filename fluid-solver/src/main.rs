@@ -56,18 +56,10 @@ fn main() -> ExitCode {
                 }
             };
             let out = out.unwrap_or_else(|| PathBuf::from("out").join(&case.info.name));
-            let progress = std::io::stderr().is_terminal();
-            match fluid_solver::run::run_case(&case, &out, progress) {
+            let terminal = std::io::stderr().is_terminal();
+            match fluid_solver::run::run_case(&case, &out, terminal) {
                 Ok(s) => {
-                    eprintln!(
-                        "done: {} steps, {} particles ({} fluid), {} frames in {}, {:.1} s",
-                        s.steps,
-                        s.particles,
-                        s.fluid_particles,
-                        s.frames,
-                        out.display(),
-                        s.wall_seconds
-                    );
+                    eprintln!("done: {s}; output in {}", out.display());
                     ExitCode::SUCCESS
                 }
                 Err(e) => {

@@ -12,14 +12,16 @@
 //! unresolved drag coupling, S2) are not served by E-MPS: a window asking for them fails with
 //! a message. With an output folder, VTU frames (and surface meshes) are written at the first
 //! exchange time at or after each output time, and the probe CSV (`NAME_probes.csv`) at the
-//! first exchange time at or after each probe time, once the window is accepted.
+//! first exchange time at or after each probe time, once the window is accepted. Progress lines
+//! go to the participant's log at the case's `progress_interval`, and `finish` writes the run's
+//! summary there.
 
-use crate::probes::{self, ProbeFile};
+use crate::probes::{ProbeFile, ProbeSet};
+use crate::progress::{peak_memory_bytes, Progress, RunSummary};
 use crate::solver::FluidSolver;
 use crate::state::FluidState;
 use crate::vtp::SurfaceFrames;
 use crate::vtu;
-use schemas::case::fluid::ProbeConfig;
 use schemas::case::Case;
 use schemas::f64s::F64s;
 use schemas::message::{Fields, InterfaceDecl, Role, Waveform};
@@ -49,35 +51,36 @@ struct Frames {
 struct ProbeRows {
     path: PathBuf,
     file: ProbeFile,
-    probes: Vec<ProbeConfig>,
+    probes: ProbeSet,
+    /// The probes' filters at the checkpoint.
+    saved: Option<ProbeSet>,
     interval: f64,
     written: u64,
-    pending: Vec<(f64, Vec<f64>)>,
+    pending: Vec<(f64, Vec<f64>, u64)>,
 }
 
 impl ProbeRows {
     /// Whether a row falls due at `t` (the next row's time reached).
     fn due(&self, t: f64) -> bool {
-        let k = self.written + self.pending.len() as u64;
-        t >= (k as f64 - 1e-9) * self.interval
+        t >= self.next_row() - 1e-9 * self.interval
+    }
+
+    /// Time of the next row.
+    fn next_row(&self) -> f64 {
+        (self.written + self.pending.len() as u64) as f64 * self.interval
     }
 
     /// Samples every probe now and keeps the row until the window is accepted.
     fn sample(&mut self, solver: &FluidSolver) {
-        let tank = solver.tank();
-        let values = self
-            .probes
-            .iter()
-            .map(|p| probes::sample(p, solver.particles(), solver.kernel(), &tank))
-            .collect();
-        self.pending.push((solver.time(), values));
+        let values = self.probes.row(solver);
+        self.pending.push((solver.time(), values, solver.removed()));
     }
 
     /// Writes the rows kept back from the accepted window.
     fn commit(&mut self) -> Result<(), String> {
-        for (t, values) in self.pending.drain(..) {
+        for (t, values, removed) in self.pending.drain(..) {
             self.file
-                .row(t, &values)
+                .row(t, &values, removed)
                 .map_err(|e| format!("cannot write {}: {e}", self.path.display()))?;
             self.written += 1;
         }
@@ -92,6 +95,7 @@ pub struct FluidParticipant {
     checkpoint: Option<FluidState>,
     frames: Option<Frames>,
     probes: Option<ProbeRows>,
+    progress: Progress,
 }
 
 impl FluidParticipant {
@@ -105,6 +109,9 @@ impl FluidParticipant {
             )
         })?;
         let mut solver = FluidSolver::new(cfg);
+        for note in solver.layout_notes() {
+            eprintln!("fluid `{name}`: note: {note}");
+        }
         let frames = match out {
             Some(dir) => {
                 std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
@@ -129,12 +136,15 @@ impl FluidParticipant {
         let probes = match out {
             Some(dir) if !cfg.probe.is_empty() => {
                 let path = dir.join(format!("{name}_probes.csv"));
-                let file = ProbeFile::create(&path, &cfg.probe)
+                let probes = ProbeSet::new(&cfg.probe, &solver)
+                    .map_err(|e| format!("{}: fluid `{name}`: {e}", case.path.display()))?;
+                let file = ProbeFile::create(&path, &probes.names())
                     .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
                 let mut rows = ProbeRows {
                     path,
                     file,
-                    probes: cfg.probe.clone(),
+                    probes,
+                    saved: None,
                     interval: cfg.probe_interval.unwrap_or(cfg.output_interval),
                     written: 0,
                     pending: Vec::new(),
@@ -151,6 +161,13 @@ impl FluidParticipant {
             checkpoint: None,
             frames,
             probes,
+            // the participant's stderr is its log file, never a terminal
+            progress: Progress::new(
+                &format!("fluid `{name}`"),
+                case.info.end_time,
+                cfg.progress_interval,
+                false,
+            ),
         })
     }
 
@@ -221,6 +238,9 @@ impl Participant for FluidParticipant {
 
     fn save_checkpoint(&mut self) {
         self.checkpoint = Some(self.solver.save_state());
+        if let Some(p) = &mut self.probes {
+            p.saved = Some(p.probes.clone());
+        }
     }
 
     fn restore_checkpoint(&mut self) -> Result<(), String> {
@@ -229,6 +249,9 @@ impl Participant for FluidParticipant {
         }
         if let Some(p) = &mut self.probes {
             p.pending.clear();
+            if let Some(saved) = &p.saved {
+                p.probes.clone_from(saved);
+            }
         }
         let saved = self.checkpoint.as_ref().ok_or_else(|| {
             format!(
@@ -275,6 +298,18 @@ impl Participant for FluidParticipant {
                 self.solver
                     .step(dt)
                     .map_err(|e| format!("fluid `{}`: {e}", self.name))?;
+                if let Some(p) = &mut self.probes {
+                    let next = p.next_row();
+                    p.probes.observe(&self.solver, next);
+                }
+                let s = &self.solver;
+                self.progress.update(
+                    s.time(),
+                    s.steps(),
+                    s.totals().particle_steps,
+                    s.particles().len(),
+                );
+                self.progress.note_escapes(s.time(), s.escaped());
             }
             self.solver.land_on(t);
             outputs.push(self.outputs());
@@ -309,6 +344,21 @@ impl Participant for FluidParticipant {
                 p.len()
             );
         }
-        self.commit()
+        self.commit()?;
+        let s = &self.solver;
+        let summary = RunSummary {
+            time: s.time(),
+            steps: s.steps(),
+            particles: s.particles().len(),
+            fluid_particles: s.particles().count(crate::Kind::Fluid),
+            frames: self.frames.as_ref().map_or(0, |f| f.next as usize),
+            wall_seconds: self.progress.elapsed(),
+            particle_steps: s.totals().particle_steps,
+            peak_memory: peak_memory_bytes(),
+            escaped: s.escaped(),
+            outflow_removed: s.open_boundaries().balance().removed,
+        };
+        eprintln!("fluid `{}`: done: {summary}", self.name);
+        Ok(())
     }
 }

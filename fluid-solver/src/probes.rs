@@ -1,13 +1,21 @@
 //! Probes declared in the case, sampled into one CSV: water height at a gauge, pressure at a
-//! point, surge-front position.
+//! point, surge-front position, and wall-pressure sensors ([`crate::wall_sensor`]); the CSV's
+//! last column counts the fluid particles removed so far (open top and outflow).
 //!
 //! Droplets are left out of heights and fronts: a fluid particle counts only if its number
 //! density is at least [`MIN_DENSITY_FRACTION`] of n0 (a lone particle in the air has far less).
+//! A gauge reads the top of the water column that stands on the bed below it: starting from its
+//! lowest water particle, which must have a solid particle (floor, wall box, body) within
+//! r_e,grad below it, it climbs while the next particle up is within r_e,grad (connected water),
+//! so a drop against the lid, or spray above the column, is not read as water depth.
 
 use crate::emps::kernel::{weight, Kernel};
 use crate::kind::{Kind, FLUID};
 use crate::particles::Particles;
+use crate::solver::FluidSolver;
+use crate::wall_sensor::Disc;
 use schemas::case::fluid::{Aabb, ProbeConfig, ProbeKind};
+use std::collections::VecDeque;
 use std::fs;
 use std::io::{self, BufWriter, Write};
 use std::path::Path;
@@ -15,19 +23,13 @@ use std::path::Path;
 /// Fraction of n0 below which a fluid particle is taken as spray, not as part of the water.
 pub const MIN_DENSITY_FRACTION: f64 = 0.5;
 
-/// Samples one probe on the current particles.
+/// Samples one probe on the current particles (a wall-pressure sensor needs the method's pair
+/// law: sample it through [`ProbeSet`]; here it reads NaN).
 pub fn sample(probe: &ProbeConfig, p: &Particles, kernel: &Kernel, tank: &Aabb) -> f64 {
     let ds = kernel.spacing;
     let in_water = |i: usize| p.kind[i] == FLUID && p.number_density[i] >= MIN_DENSITY_FRACTION * kernel.n0;
     match probe.kind {
-        ProbeKind::WaterHeight => {
-            let (gx, gy) = (probe.position[0], probe.position[1]);
-            (0..p.len())
-                .filter(|&i| in_water(i))
-                .filter(|&i| (p.x[i] - gx).powi(2) + (p.y[i] - gy).powi(2) <= ds * ds)
-                .map(|i| p.z[i] + 0.5 * ds - tank.min[2])
-                .fold(0.0, f64::max)
-        }
+        ProbeKind::WaterHeight => water_height(probe, p, kernel, tank, in_water),
         ProbeKind::Pressure => {
             let at = [probe.position[0], probe.position[1], probe.position[2]];
             let (mut pw, mut w) = (0.0, 0.0);
@@ -49,34 +51,176 @@ pub fn sample(probe: &ProbeConfig, p: &Particles, kernel: &Kernel, tank: &Aabb) 
             }
         }
         ProbeKind::SurgeFront => {
-            let a = probe.axis_index();
+            // Distance reached from the face the water starts at: tank.min towards +, tank.max
+            // towards −.
+            let (a, sign) = probe.axis_direction();
             let coord = [&p.x, &p.y, &p.z][a];
+            let face = if sign > 0.0 { tank.min[a] } else { tank.max[a] };
             (0..p.len())
                 .filter(|&i| in_water(i))
-                .map(|i| coord[i] + 0.5 * ds - tank.min[a])
+                .map(|i| sign * (coord[i] - face) + 0.5 * ds)
                 .fold(0.0, f64::max)
         }
+        ProbeKind::WallPressure => f64::NAN,
     }
 }
 
-/// The probe CSV: `time` then one column per probe.
+/// The water-height gauge: the top of the connected column on the bed (see the module doc).
+fn water_height(
+    probe: &ProbeConfig,
+    p: &Particles,
+    kernel: &Kernel,
+    tank: &Aabb,
+    in_water: impl Fn(usize) -> bool,
+) -> f64 {
+    let ds = kernel.spacing;
+    let reach = kernel.re_grad;
+    let (gx, gy) = (probe.position[0], probe.position[1]);
+    let near = |i: usize| (p.x[i] - gx).powi(2) + (p.y[i] - gy).powi(2) <= ds * ds;
+    let mut column: Vec<f64> = (0..p.len())
+        .filter(|&i| near(i) && in_water(i))
+        .map(|i| p.z[i])
+        .collect();
+    column.sort_by(f64::total_cmp);
+    let Some(&bottom) = column.first() else {
+        return 0.0;
+    };
+    let solid = |i: usize| matches!(p.kind_of(i), Kind::Wall | Kind::Dummy | Kind::Body);
+    let on_bed = (0..p.len()).any(|i| solid(i) && near(i) && p.z[i] < bottom && bottom - p.z[i] <= reach);
+    if !on_bed {
+        return 0.0;
+    }
+    let top = column
+        .iter()
+        .skip(1)
+        .try_fold(bottom, |top, &z| if z - top <= reach { Ok(z) } else { Err(top) })
+        .unwrap_or_else(|top| top);
+    top + 0.5 * ds - tank.min[2]
+}
+
+/// The probes of a participant with their filters: samples rows for the CSV.
+#[derive(Debug, Clone)]
+pub struct ProbeSet {
+    probes: Vec<ProbeConfig>,
+    /// The wall-pressure sensors' discs, on the faces as built (see [`ProbeSet::new`]).
+    discs: Vec<Option<Disc>>,
+    /// Per filtered probe: the readings (time, value) of the steps inside its window.
+    windows: Vec<Option<VecDeque<(f64, f64)>>>,
+}
+
+impl ProbeSet {
+    /// The probes of a case section on `solver`'s initial layout. A wall-pressure disc is moved
+    /// along its normal onto the nearest lattice face, where the face it is mounted on was built
+    /// ([`crate::lattice`]); a disc with no wall behind it is an error naming it.
+    pub fn new(probes: &[ProbeConfig], solver: &FluidSolver) -> Result<ProbeSet, String> {
+        let (ds, origin) = (solver.kernel().spacing, solver.tank().min);
+        let discs: Vec<Option<Disc>> = probes
+            .iter()
+            .map(|p| {
+                (p.kind == ProbeKind::WallPressure).then(|| {
+                    let mut disc = Disc::of(p);
+                    let a = disc.axis;
+                    disc.centre[a] = origin[a] + ((disc.centre[a] - origin[a]) / ds).round() * ds;
+                    disc
+                })
+            })
+            .collect();
+        for (probe, disc) in probes.iter().zip(&discs) {
+            let Some(disc) = disc else { continue };
+            let (_, first_layer) = disc.wall_particles(solver.particles(), ds);
+            if first_layer == 0 {
+                return Err(format!(
+                    "probe `{}`: no wall or body particle lies behind the wall-pressure disc at {:?} with normal {}: put its centre on a face of the tank, a wall box or a body, with the normal pointing into the water",
+                    probe.name,
+                    probe.position,
+                    probe.normal.as_deref().unwrap_or("?")
+                ));
+            }
+        }
+        Ok(ProbeSet {
+            probes: probes.to_vec(),
+            discs,
+            windows: probes.iter().map(|p| p.window.map(|_| VecDeque::new())).collect(),
+        })
+    }
+
+    /// The column names of the CSV rows.
+    pub fn names(&self) -> Vec<&str> {
+        self.probes.iter().map(|p| p.name.as_str()).collect()
+    }
+
+    /// After a step: a filtered probe whose window before the row at `next_row` has begun keeps
+    /// this step's reading (windows longer than the row interval overlap: every step is kept).
+    pub fn observe(&mut self, solver: &FluidSolver, next_row: f64) {
+        let t = solver.time();
+        for ((probe, disc), w) in self.probes.iter().zip(&self.discs).zip(&mut self.windows) {
+            if let (Some(window), Some(readings)) = (probe.window, w) {
+                if t > next_row - window - 1e-12 {
+                    readings.push_back((t, read(probe, disc, solver)));
+                }
+            }
+        }
+    }
+
+    /// One row at the solver's time: instantaneous readings, and the filtered probes' means
+    /// over the steps of their last `window` seconds (the instantaneous reading when no step
+    /// fell in it yet).
+    pub fn row(&mut self, solver: &FluidSolver) -> Vec<f64> {
+        let t = solver.time();
+        self.probes
+            .iter()
+            .zip(&self.discs)
+            .zip(&mut self.windows)
+            .map(|((probe, disc), w)| match (probe.window, w) {
+                (Some(window), Some(readings)) => {
+                    while readings.front().is_some_and(|r| r.0 <= t - window + 1e-12) {
+                        readings.pop_front();
+                    }
+                    match readings.len() {
+                        0 => read(probe, disc, solver),
+                        n => readings.iter().map(|r| r.1).sum::<f64>() / n as f64,
+                    }
+                }
+                _ => read(probe, disc, solver),
+            })
+            .collect()
+    }
+}
+
+/// The instantaneous reading of one probe (`disc`: a wall-pressure sensor's, as placed).
+fn read(probe: &ProbeConfig, disc: &Option<Disc>, solver: &FluidSolver) -> f64 {
+    match disc {
+        Some(disc) => disc
+            .pressure(
+                solver.particles(),
+                &solver.pressure_law(),
+                solver.kernel().spacing,
+            )
+            .unwrap_or(f64::NAN),
+        None => sample(probe, solver.particles(), solver.kernel(), &solver.tank()),
+    }
+}
+
+/// The probe CSV: `time`, one column per probe, then `removed` (fluid particles removed so far
+/// through the open top and the outflow).
 pub struct ProbeFile {
     out: BufWriter<fs::File>,
 }
 
 impl ProbeFile {
     /// Creates the file with its header.
-    pub fn create(path: &Path, probes: &[ProbeConfig]) -> io::Result<ProbeFile> {
+    pub fn create(path: &Path, names: &[&str]) -> io::Result<ProbeFile> {
         let mut out = BufWriter::new(fs::File::create(path)?);
-        let names: Vec<&str> = probes.iter().map(|p| p.name.as_str()).collect();
-        writeln!(out, "time,{}", names.join(","))?;
+        let sep = if names.is_empty() { "" } else { "," };
+        writeln!(out, "time,{}{sep}removed", names.join(","))?;
         out.flush()?;
         Ok(ProbeFile { out })
     }
 
     /// Appends one row.
-    pub fn row(&mut self, time: f64, values: &[f64]) -> io::Result<()> {
-        let cols: Vec<String> = values.iter().map(|v| format!("{v:.6e}")).collect();
+    pub fn row(&mut self, time: f64, values: &[f64], removed: u64) -> io::Result<()> {
+        let mut cols: Vec<String> = values.iter().map(|v| format!("{v:.6e}")).collect();
+        cols.push(removed.to_string());
         writeln!(self.out, "{time:.6},{}", cols.join(","))?;
         self.out.flush()
     }

@@ -1,10 +1,13 @@
 //! A standalone run of a fluid-only case: steps to `case.end_time`, writes VTU frames with a
 //! PVD series (and free-surface VTP frames when `surface_mesh = true`) every `output_interval`
 //! and a probe CSV every `probe_interval` (with an inflow or outflow also `NAME_balance.csv`,
-//! the particle balance of [`crate::open_boundary`]).
+//! the particle balance of [`crate::open_boundary`]); reports progress at a steady interval
+//! ([`crate::progress`]) and returns the run's summary.
 
 use crate::open_boundary::BalanceFile;
-use crate::probes::{self, ProbeFile};
+use crate::probes::{ProbeFile, ProbeSet};
+pub use crate::progress::RunSummary;
+use crate::progress::{peak_memory_bytes, Progress};
 use crate::solver::FluidSolver;
 use crate::stability::Instability;
 use crate::vtp::SurfaceFrames;
@@ -12,9 +15,7 @@ use crate::vtu;
 use schemas::case::{Case, FluidConfig};
 use schemas::pvd::Collection;
 use std::fmt;
-use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 /// Why a standalone run did not finish.
 #[derive(Debug)]
@@ -23,6 +24,8 @@ pub enum RunError {
     NotFluidOnly { file: PathBuf, message: String },
     /// An output could not be written.
     Output { path: PathBuf, error: std::io::Error },
+    /// A probe cannot be placed where the case puts it.
+    Probe { file: PathBuf, message: String },
     /// The run became unstable; the frames written so far are kept.
     Unstable(Instability),
 }
@@ -32,22 +35,13 @@ impl fmt::Display for RunError {
         match self {
             RunError::NotFluidOnly { file, message } => write!(f, "{}: {message}", file.display()),
             RunError::Output { path, error } => write!(f, "cannot write {}: {error}", path.display()),
+            RunError::Probe { file, message } => write!(f, "{}: {message}", file.display()),
             RunError::Unstable(i) => write!(f, "{i}"),
         }
     }
 }
 
 impl std::error::Error for RunError {}
-
-/// What a finished run did.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RunSummary {
-    pub steps: u64,
-    pub particles: usize,
-    pub fluid_particles: usize,
-    pub frames: usize,
-    pub wall_seconds: f64,
-}
 
 /// The single fluid section of a fluid-only case.
 pub fn fluid_only(case: &Case) -> Result<(&str, &FluidConfig), RunError> {
@@ -70,22 +64,31 @@ pub fn fluid_only(case: &Case) -> Result<(&str, &FluidConfig), RunError> {
     }
 }
 
-/// Runs the case's fluid participant to `case.end_time`, writing into `out`.
-pub fn run_case(case: &Case, out: &Path, progress: bool) -> Result<RunSummary, RunError> {
+/// Runs the case's fluid participant to `case.end_time`, writing into `out`; progress goes to
+/// stderr as log lines, or as a bar when `terminal`. Messages about geometry moved onto the
+/// lattice are printed first.
+pub fn run_case(case: &Case, out: &Path, terminal: bool) -> Result<RunSummary, RunError> {
     let (name, cfg) = fluid_only(case)?;
     let io_err = |path: &Path| {
         let path = path.to_path_buf();
         move |error| RunError::Output { path, error }
     };
     std::fs::create_dir_all(out).map_err(io_err(out))?;
-    let started = Instant::now();
     let mut solver = FluidSolver::new(cfg);
+    for note in solver.layout_notes() {
+        eprintln!("{name}: note: {note}");
+    }
+    let mut probes = ProbeSet::new(&cfg.probe, &solver).map_err(|message| RunError::Probe {
+        file: case.path.clone(),
+        message,
+    })?;
     let pvd_path = out.join(format!("{name}.pvd"));
     let mut series = Collection::new(pvd_path.clone());
     let probe_path = out.join(format!("{name}_probes.csv"));
-    let mut probe_file = ProbeFile::create(&probe_path, &cfg.probe).map_err(io_err(&probe_path))?;
+    let mut probe_file = ProbeFile::create(&probe_path, &probes.names()).map_err(io_err(&probe_path))?;
     let probe_interval = cfg.probe_interval.unwrap_or(cfg.output_interval);
     let end = case.info.end_time;
+    let mut progress = Progress::new(name, end, cfg.progress_interval, terminal);
 
     let mut frames = 0usize;
     let mut surfaces = cfg
@@ -108,55 +111,61 @@ pub fn run_case(case: &Case, out: &Path, progress: bool) -> Result<RunSummary, R
         true => Some(BalanceFile::create(&balance_path).map_err(io_err(&balance_path))?),
         false => None,
     };
-    let mut sample = |solver: &FluidSolver, file: &mut ProbeFile| -> Result<(), RunError> {
-        if let Some(b) = &mut balance {
-            let (counts, p) = (solver.open_boundaries().balance(), solver.particles());
-            b.row(solver.time(), counts, p, solver.particle_mass())
-                .map_err(io_err(&balance_path))?;
-        }
-        let values: Vec<f64> = cfg
-            .probe
-            .iter()
-            .map(|p| probes::sample(p, solver.particles(), solver.kernel(), &solver.tank()))
-            .collect();
-        file.row(solver.time(), &values).map_err(io_err(&probe_path))
-    };
+    let mut sample =
+        |solver: &FluidSolver, probes: &mut ProbeSet, file: &mut ProbeFile| -> Result<(), RunError> {
+            if let Some(b) = &mut balance {
+                let (counts, p) = (solver.open_boundaries().balance(), solver.particles());
+                b.row(solver.time(), counts, p, solver.particle_mass())
+                    .map_err(io_err(&balance_path))?;
+            }
+            let values = probes.row(solver);
+            file.row(solver.time(), &values, solver.removed())
+                .map_err(io_err(&probe_path))
+        };
     write_frame(&solver, &mut series)?;
     solver.remove_gates();
-    sample(&solver, &mut probe_file)?;
+    sample(&solver, &mut probes, &mut probe_file)?;
     let (mut next_frame, mut next_probe) = (1u64, 1u64);
     let at = |k: u64, interval: f64| (k as f64 * interval).min(end);
     while solver.time() < end {
-        let target = at(next_frame, cfg.output_interval).min(at(next_probe, probe_interval));
-        solver.advance_to(target).map_err(RunError::Unstable)?;
-        if solver.time() >= at(next_probe, probe_interval) {
-            sample(&solver, &mut probe_file)?;
+        let row_at = at(next_probe, probe_interval);
+        let target = at(next_frame, cfg.output_interval).min(row_at);
+        while let Some(dt) = solver.next_step_towards(target) {
+            solver.step(dt).map_err(|e| {
+                progress.finish();
+                RunError::Unstable(e)
+            })?;
+            probes.observe(&solver, row_at);
+            let totals = solver.totals();
+            progress.update(
+                solver.time(),
+                solver.steps(),
+                totals.particle_steps,
+                solver.particles().len(),
+            );
+            progress.note_escapes(solver.time(), solver.escaped());
+        }
+        solver.land_on(target);
+        if solver.time() >= row_at {
+            sample(&solver, &mut probes, &mut probe_file)?;
             next_probe += 1;
         }
         if solver.time() >= at(next_frame, cfg.output_interval) {
             write_frame(&solver, &mut series)?;
             next_frame += 1;
-            if progress {
-                let rate = solver.totals().particle_steps as f64 / started.elapsed().as_secs_f64();
-                eprint!(
-                    "\r{name}: t = {:.4} / {end} s, step {}, {} particles, {:.3e} particle-steps/s   ",
-                    solver.time(),
-                    solver.steps(),
-                    solver.particles().len(),
-                    rate
-                );
-                let _ = std::io::stderr().flush();
-            }
         }
     }
-    if progress {
-        eprintln!();
-    }
+    progress.finish();
     Ok(RunSummary {
+        time: solver.time(),
         steps: solver.steps(),
         particles: solver.particles().len(),
         fluid_particles: solver.particles().count(crate::Kind::Fluid),
         frames,
-        wall_seconds: started.elapsed().as_secs_f64(),
+        wall_seconds: progress.elapsed(),
+        particle_steps: solver.totals().particle_steps,
+        peak_memory: peak_memory_bytes(),
+        escaped: solver.escaped(),
+        outflow_removed: solver.open_boundaries().balance().removed,
     })
 }

@@ -5,12 +5,13 @@ use crate::bodies::RigidBodies;
 use crate::emps::kernel::Kernel;
 use crate::emps::step::EmpsStep;
 use crate::isph::step::{IsphState, IsphStep};
+use crate::escape::OpenTop;
 use crate::kind::Kind;
 use crate::layout::{self, Domain};
 use crate::method::{FluidMethod, MethodState, StepTotals};
 use crate::neighbour_search::CellGrid;
 use crate::open_boundary::OpenBoundaries;
-use crate::pair_law::Exchange;
+use crate::pair_law::{Exchange, PairLaw};
 use crate::particles::Particles;
 use crate::physics::Physics;
 use crate::stability::{Instability, StabilityMonitor};
@@ -51,12 +52,24 @@ pub struct FluidSolver {
     tank: Aabb,
     bodies: RigidBodies,
     totals: RunTotals,
+    /// Where fluid may leave (removed and counted), and the most that may leave.
+    open_top: OpenTop,
+    max_removed_fraction: f64,
+    /// What the lattice moved (see [`crate::lattice`]).
+    layout_notes: Vec<String>,
 }
 
 impl FluidSolver {
     /// Builds the initial layout of a validated section (gates still in place).
     pub fn new(cfg: &FluidConfig) -> FluidSolver {
         let layout = layout::build(cfg);
+        let on_lattice = layout.config.clone();
+        let cfg = &on_lattice;
+        let open_top = OpenTop {
+            domain: layout.domain,
+            wall_top: layout.tank.max[2],
+            open: !cfg.tank.lid,
+        };
         let kernel = Kernel::new(cfg.spacing);
         let physics = Physics {
             density: cfg.density,
@@ -84,6 +97,7 @@ impl FluidSolver {
             .collect();
         let mut monitor = StabilityMonitor::new(
             layout.domain,
+            open_top,
             layout.tank,
             &cfg.wall,
             &body_boxes,
@@ -128,6 +142,7 @@ impl FluidSolver {
                 steps: 0,
                 gates_removed: false,
                 open_boundaries,
+                escaped: 0,
             },
             method,
             kernel,
@@ -139,6 +154,9 @@ impl FluidSolver {
             tank: layout.tank,
             bodies,
             totals: RunTotals::default(),
+            open_top,
+            max_removed_fraction: cfg.max_removed_fraction,
+            layout_notes: layout.notes,
         };
         solver.refresh_body_exchange();
         solver
@@ -151,6 +169,27 @@ impl FluidSolver {
         let law = self.method.pressure_law(&st.particles);
         let (loads, reaction) = self.bodies.exchange(&st.grid, &st.particles, &st.body_pose, &law);
         st.body_exchange = BodyExchange { loads, reaction };
+    }
+
+    /// What the lattice moved to build the case (one message per box; empty when all was on it).
+    pub fn layout_notes(&self) -> &[String] {
+        &self.layout_notes
+    }
+
+    /// Fluid particles removed after leaving through the open top ([`crate::escape`]).
+    pub fn escaped(&self) -> u64 {
+        self.state.escaped
+    }
+
+    /// Fluid particles removed in all: through the open top and behind an outflow plane.
+    pub fn removed(&self) -> u64 {
+        self.state.escaped + self.state.open_boundaries.balance().removed
+    }
+
+    /// The method's pressure pair law on the present state (force on a solid particle from a
+    /// fluid one): what wall-pressure sensors read.
+    pub fn pressure_law(&self) -> PairLaw<'_> {
+        self.method.pressure_law(&self.state.particles)
     }
 
     /// The inflow and outflow boundaries and their particle balance.
@@ -285,6 +324,27 @@ impl FluidSolver {
             self.started = true;
         }
         st.open_boundaries.apply(&mut st.particles, st.time, dt);
+        let escaped = self.open_top.remove_escaped(&mut st.particles);
+        if escaped > 0 {
+            st.escaped += escaped;
+            let removed = st.escaped + st.open_boundaries.balance().removed;
+            let fluid = st.particles.count(Kind::Fluid) as u64 + removed;
+            let fraction = st.escaped as f64 / fluid.max(1) as f64;
+            if fraction > self.max_removed_fraction {
+                return Err(Instability {
+                    step: st.steps,
+                    time: st.time,
+                    particle: None,
+                    quantity: "removed particles",
+                    message: format!(
+                        "{} fluid particles ({:.2} % of the fluid) have left through the open top, more than max_removed_fraction = {} %: the water is splashing out of the tank (raise its walls, add a lid) or the run is unstable; raise max_removed_fraction only if this loss is expected",
+                        st.escaped,
+                        100.0 * fraction,
+                        100.0 * self.max_removed_fraction
+                    ),
+                });
+            }
+        }
         let scales = self.method.scales(dt);
         let (bodies, pose, exchange) = (&self.bodies, &st.body_pose, &mut st.body_exchange);
         let zeros = vec![0.0; 6 * bodies.names().len()];

@@ -1,4 +1,5 @@
-//! Instability detector: NaN, fluid particles leaving the domain or entering a wall or body, body
+//! Instability detector: NaN, fluid particles leaving the domain (other than through an open top,
+//! see [`crate::escape`]) or entering a wall or body, body
 //! particles entering a wall, a fluid particle moving more than half a spacing in one step, and
 //! mechanical energy growing without a source (checked until a body moves: moving bodies are a
 //! source). Each finding names the step, the particle and the quantity.
@@ -8,6 +9,7 @@
 //! of its outer particle layer).
 
 use crate::bodies::rotate;
+use crate::escape::OpenTop;
 use crate::kind::{Kind, FLUID};
 use crate::layout::Domain;
 use crate::particles::Particles;
@@ -53,6 +55,8 @@ impl std::error::Error for Instability {}
 #[derive(Debug, Clone)]
 pub struct StabilityMonitor {
     domain: Domain,
+    /// Particles that left through here are removed and counted, not findings.
+    open_top: OpenTop,
     /// Regions fluid must not enter: the tank's outside (beyond the first wall layer's centres)
     /// is checked through `tank`; fixed walls through their boxes shrunk by half a spacing.
     tank: Aabb,
@@ -74,9 +78,10 @@ type Finding = (u32, &'static str, String);
 
 impl StabilityMonitor {
     /// A monitor for a tank with fixed `walls` and rigid `bodies` (boxes at their initial
-    /// placement), particles of `spacing`.
+    /// placement), particles of `spacing`; fluid leaving through `open_top` is not a finding.
     pub fn new(
         domain: Domain,
+        open_top: OpenTop,
         tank: Aabb,
         walls: &[Aabb],
         bodies: &[Aabb],
@@ -98,6 +103,7 @@ impl StabilityMonitor {
             .collect();
         StabilityMonitor {
             domain,
+            open_top,
             tank,
             solids,
             bodies,
@@ -218,12 +224,15 @@ impl StabilityMonitor {
         if is_body {
             return None;
         }
+        if self.open_top.has_left(r) {
+            return None; // removed and counted at the next step's start
+        }
         if (0..3).any(|a| r[a] < self.domain.lo[a] || r[a] > self.domain.hi[a]) {
             return Some((
                 id,
                 "position",
                 format!(
-                    "left the domain {:?} … {:?}: r = {r:?}",
+                    "left the domain {:?} … {:?} through a closed wall, the floor or the lid: r = {r:?}",
                     self.domain.lo, self.domain.hi
                 ),
             ));

@@ -32,4 +32,6 @@ pub struct FluidState {
     pub steps: u64,
     pub gates_removed: bool,
     pub open_boundaries: OpenBoundaries,
+    /// Fluid particles removed after leaving through the open top ([`crate::escape`]).
+    pub escaped: u64,
 }

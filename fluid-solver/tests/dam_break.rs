@@ -73,8 +73,7 @@ fn front_errors(ds: f64, depth: f64, dt: f64) -> FrontErrors {
     let front = ProbeConfig {
         name: "front".into(),
         kind: ProbeKind::SurgeFront,
-        position: vec![],
-        axis: None,
+        ..Default::default()
     };
     let mut solver = FluidSolver::new(&cfg);
     let fluid = solver.particles().count(Kind::Fluid);

@@ -12,7 +12,7 @@ fn pressure_probe(x: f64, y: f64, z: f64) -> ProbeConfig {
         name: "p".into(),
         kind: ProbeKind::Pressure,
         position: vec![x, y, z],
-        axis: None,
+        ..Default::default()
     }
 }
 

@@ -69,8 +69,7 @@ fn isph_surge_front_follows_the_experiments() {
     let front = ProbeConfig {
         name: "front".into(),
         kind: ProbeKind::SurgeFront,
-        position: vec![],
-        axis: None,
+        ..Default::default()
     };
     let mut solver = FluidSolver::new(&cfg);
     let fluid = solver.particles().count(Kind::Fluid);

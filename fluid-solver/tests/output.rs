@@ -107,7 +107,7 @@ position = [0.01, 0.04, 0.01]
         .skip(1)
         .map(|l| l.split(',').filter_map(|v| v.parse().ok()).collect())
         .collect();
-    assert_eq!(csv.lines().next(), Some("time,front,h,p"));
+    assert_eq!(csv.lines().next(), Some("time,front,h,p,removed"));
     assert_eq!(rows.len(), 11);
     // At t = 0 the front is the column's face and the gauge sees the column's height.
     assert!(

@@ -20,7 +20,19 @@
 //! [[fluid.tank.probe]]
 //! name = "front"
 //! kind = "surge-front"
+//! [[fluid.tank.probe]]      # a pressure sensor on a wall or obstacle face
+//! name = "P1"
+//! kind = "wall-pressure"
+//! position = [0.6, 0.15, 0.02]
+//! normal = "-x"             # the face's outward normal, into the water
+//! diameter = 0.02
+//! window = 0.005            # box filter [s]; default none
 //! ```
+//!
+//! Extents off the lattice (tank, blocks, gates, walls, bodies) are rounded to the nearest
+//! lattice face with a message. Run control: `max_removed_fraction` (default 0.01) of the fluid
+//! may leave over an open top before the run stops; `progress_interval` (default 10 s of wall
+//! time) between progress lines.
 //!
 //! Open channels add fixed solid boxes (`[[fluid.NAME.wall]]`, `min`/`max`: piers, levees) and
 //! inflow / outflow boundaries (`[fluid.NAME.inflow]`, `[fluid.NAME.outflow]`: see
@@ -127,42 +139,81 @@ pub struct BodyConfig {
 }
 
 /// What a probe measures.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum ProbeKind {
-    /// Height of the water surface above the tank floor at `position = [x, y]`: the highest
-    /// water particle within Δs horizontally, plus Δs/2 (spray excluded).
+    /// Height of the water surface above the tank floor at `position = [x, y]`: the top of the
+    /// water column within Δs horizontally that stands on the floor (or on a wall block), plus
+    /// Δs/2; spray and drops not connected to that column are left out.
+    #[default]
     WaterHeight,
     /// Pressure at `position = [x, y, z]`: the mean over fluid, wall and body particles within
     /// r_e,grad = 2.1 Δs, weighted by w(r) of S1-6.
     Pressure,
-    /// Surge front: the largest coordinate of the water along `axis`, plus Δs/2, measured from
-    /// `tank.min` (spray excluded).
+    /// Surge front: how far the water reaches along `axis` ("x", "+x", "-x", …), plus Δs/2,
+    /// measured from the tank face it starts at (`tank.min` for +, `tank.max` for −; spray
+    /// excluded).
     SurgeFront,
+    /// A pressure sensor mounted on a wall or obstacle face: a disc of `diameter` centred at
+    /// `position` on the face whose outward normal (into the water) is `normal`; reads the
+    /// normal force of the fluid on the wall particles behind the disc per unit area, optionally
+    /// box-filtered over the last `window` seconds.
+    WallPressure,
 }
 
 /// `[[fluid.NAME.probe]]`: one column of the probe CSV.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ProbeConfig {
     pub name: String,
     pub kind: ProbeKind,
-    /// `[x, y]` for water-height, `[x, y, z]` for pressure, unused for surge-front.
+    /// `[x, y]` for water-height, `[x, y, z]` for pressure and wall-pressure, unused for
+    /// surge-front.
     #[serde(default)]
     pub position: Vec<f64>,
-    /// Axis of a surge front: "x" (default), "y" or "z".
+    /// Axis and direction of a surge front: "x" or "+x" (default), "-x", "y", "+y", "-y", "z",
+    /// "+z", "-z".
     #[serde(default)]
     pub axis: Option<String>,
+    // Wall-pressure sensors (issue 15): face normal, disc diameter, filter window.
+    /// Outward normal of the face the sensor is mounted on, pointing into the water: one of
+    /// "+x", "-x", "+y", "-y", "+z", "-z" (walls and obstacles are axis-aligned boxes).
+    #[serde(default)]
+    pub normal: Option<String>,
+    /// Diameter of the sensor's disc [m].
+    #[serde(default)]
+    pub diameter: Option<f64>,
+    /// Box filter [s]: the reading is the mean over every step of the last `window` seconds
+    /// (an experiment's sensor rate / anti-alias filter); default: the instantaneous reading.
+    #[serde(default)]
+    pub window: Option<f64>,
+}
+
+/// An axis and a sign, parsed from "x", "+x", "-x", … (`None` for anything else).
+pub fn signed_axis(s: &str) -> Option<(usize, f64)> {
+    let (sign, axis) = match s.as_bytes().first() {
+        Some(b'+') => (1.0, &s[1..]),
+        Some(b'-') => (-1.0, &s[1..]),
+        _ => (1.0, s),
+    };
+    let a = ["x", "y", "z"].iter().position(|&n| n == axis)?;
+    Some((a, sign))
 }
 
 impl ProbeConfig {
     /// The surge-front axis as an index (0 = x).
     pub fn axis_index(&self) -> usize {
-        match self.axis.as_deref() {
-            Some("y") => 1,
-            Some("z") => 2,
-            _ => 0,
-        }
+        self.axis_direction().0
+    }
+
+    /// The surge-front axis and its direction (+1 towards `tank.max`, −1 towards `tank.min`).
+    pub fn axis_direction(&self) -> (usize, f64) {
+        self.axis.as_deref().and_then(signed_axis).unwrap_or((0, 1.0))
+    }
+
+    /// A wall-pressure sensor's normal as axis and sign (validated: always present there).
+    pub fn normal_direction(&self) -> (usize, f64) {
+        self.normal.as_deref().and_then(signed_axis).unwrap_or((2, 1.0))
     }
 }
 
@@ -360,6 +411,21 @@ pub struct FluidConfig {
     /// Outflow boundary (`[fluid.NAME.outflow]`): water beyond a plane is removed.
     #[serde(default)]
     pub outflow: Option<OutflowConfig>,
+    // Run control (issue 15): particles leaving through the open top, progress lines.
+    /// Largest fraction of the initial fluid particles that may leave through an open top
+    /// (removed and counted) before the run stops; default 0.01.
+    #[serde(default = "default_max_removed_fraction")]
+    pub max_removed_fraction: f64,
+    /// Wall-clock seconds between progress lines in the log; default 10.
+    #[serde(default = "default_progress_interval")]
+    pub progress_interval: f64,
+}
+
+fn default_max_removed_fraction() -> f64 {
+    0.01
+}
+fn default_progress_interval() -> f64 {
+    10.0
 }
 
 fn default_density() -> f64 {
@@ -406,15 +472,24 @@ impl FluidConfig {
                 ),
             ));
         }
+        if !(self.max_removed_fraction.is_finite() && (0.0..=1.0).contains(&self.max_removed_fraction)) {
+            return Err(FieldError::new(
+                k("max_removed_fraction"),
+                format!("must be in [0, 1], got {}", self.max_removed_fraction),
+            ));
+        }
+        check::positive(&k("progress_interval"), self.progress_interval)?;
         let tank = self.tank.inner();
         tank.validate(&k("tank"))?;
         for a in 0..3 {
+            // Extents that are not whole spacings are rounded to the nearest layer when the
+            // lattice is built (with a message); at least one layer is needed.
             let cells = (tank.max[a] - tank.min[a]) / self.spacing;
-            if (cells - cells.round()).abs() > 1e-6 * cells.max(1.0) || cells.round() < 1.0 {
+            if cells.round() < 1.0 {
                 return Err(FieldError::new(
                     k("tank"),
                     format!(
-                        "the tank's {} extent {} m must be a whole number of spacings ({} m); it is {cells:.4} spacings",
+                        "the tank's {} extent {} m must hold at least one spacing ({} m); it is {cells:.4} spacings",
                         ["x", "y", "z"][a],
                         tank.max[a] - tank.min[a],
                         self.spacing
@@ -610,7 +685,9 @@ impl FluidConfig {
                 ProbeKind::WaterHeight => (2, "water-height"),
                 ProbeKind::Pressure => (3, "pressure"),
                 ProbeKind::SurgeFront => (0, "surge-front"),
+                ProbeKind::WallPressure => (3, "wall-pressure"),
             };
+            Self::validate_sensor_keys(p, &pk, self.spacing)?;
             if p.position.len() != want {
                 return Err(FieldError::new(
                     format!("{pk}.position"),
@@ -629,15 +706,61 @@ impl FluidConfig {
                 ));
             }
             if let Some(axis) = &p.axis {
-                if !matches!(axis.as_str(), "x" | "y" | "z") || p.kind != ProbeKind::SurgeFront {
+                if signed_axis(axis).is_none() || p.kind != ProbeKind::SurgeFront {
                     return Err(FieldError::new(
                         format!("{pk}.axis"),
                         format!(
-                            "only a surge-front probe has an axis, one of \"x\", \"y\", \"z\"; got `{axis}`"
+                            "only a surge-front probe has an axis, one of \"x\", \"+x\", \"-x\", \"y\", \"+y\", \"-y\", \"z\", \"+z\", \"-z\"; got `{axis}`"
                         ),
                     ));
                 }
             }
+        }
+        Ok(())
+    }
+
+    /// `normal`, `diameter` and `window`: required (the first two) on a wall-pressure sensor,
+    /// refused on the other probes.
+    fn validate_sensor_keys(p: &ProbeConfig, pk: &str, spacing: f64) -> Result<(), FieldError> {
+        let sensor = p.kind == ProbeKind::WallPressure;
+        let keys = [
+            ("normal", p.normal.is_some()),
+            ("diameter", p.diameter.is_some()),
+            ("window", p.window.is_some()),
+        ];
+        if let Some((key, _)) = keys.iter().find(|(_, set)| *set && !sensor) {
+            return Err(FieldError::new(
+                format!("{pk}.{key}"),
+                "only a wall-pressure probe has `normal`, `diameter` and `window`",
+            ));
+        }
+        if !sensor {
+            return Ok(());
+        }
+        match p.normal.as_deref() {
+            Some(n) if n.starts_with(['+', '-']) && signed_axis(n).is_some() => {}
+            other => {
+                return Err(FieldError::new(
+                    format!("{pk}.normal"),
+                    format!(
+                        "a wall-pressure sensor needs the face's outward normal (into the water), one of \"+x\", \"-x\", \"+y\", \"-y\", \"+z\", \"-z\"; got {other:?}"
+                    ),
+                ))
+            }
+        }
+        match p.diameter {
+            Some(d) if d.is_finite() && d >= spacing => {}
+            other => {
+                return Err(FieldError::new(
+                    format!("{pk}.diameter"),
+                    format!(
+                        "a wall-pressure sensor needs a disc diameter of at least one spacing ({spacing} m); got {other:?}"
+                    ),
+                ))
+            }
+        }
+        if let Some(w) = p.window {
+            check::positive(&format!("{pk}.window"), w)?;
         }
         Ok(())
     }
