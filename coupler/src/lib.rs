@@ -7,6 +7,7 @@ pub mod acceleration;
 pub mod error;
 pub mod interface;
 pub mod launch;
+pub mod laws;
 pub mod ledger;
 pub mod progress;
 pub mod replay;

@@ -113,7 +113,12 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
     let (mut stack, initial) = Stack::launch(launches, &run_id, case.hash, &out, Some(recorder), timeout)?;
     let result = (|| {
         let decls: Vec<_> = stack.sessions.iter().map(|s| s.interface.clone()).collect();
-        let interface = Interface::bind(&case, &order, &decls)?;
+        let mut interface = Interface::bind(&case, &order, &decls)?;
+        for (p, session) in stack.sessions.iter().enumerate() {
+            if let Some(g) = &session.geometry {
+                interface.geometry(p, g, &initial[p])?;
+            }
+        }
         for (p, fields) in initial.iter().enumerate() {
             interface
                 .check_outputs(p, fields)
@@ -126,7 +131,7 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
         let ledger = Ledger::create(&out.join("ledger.csv"), &order, coupling.balance_tolerance)?;
         let windows = Windows {
             stack: &mut stack,
-            interface: &interface,
+            interface: &mut interface,
             config: coupling,
             ledger,
             progress: Progress::new(),
