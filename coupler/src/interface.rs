@@ -7,6 +7,7 @@
 
 use crate::error::CouplerError;
 use crate::laws::body::Bodies;
+use crate::laws::drag::Drag;
 use crate::laws::spring::Springs;
 use crate::laws::{Instant, Law};
 use schemas::case::Case;
@@ -28,6 +29,9 @@ impl Interface {
             }
             if !coupling.body.is_empty() {
                 laws.push(Box::new(Bodies::bind(&coupling.body, names, decls)?));
+            }
+            for link in &coupling.drag {
+                laws.push(Box::new(Drag::bind(case, link, names, decls)?));
             }
         }
         Ok(Interface {

@@ -3,6 +3,7 @@
 //!
 //! - [`spring`]: `[[coupling.spring]]`, a linear spring between two point masses.
 //! - [`body`]: `[[coupling.body]]`, a resolved rigid body (force to the structure, motion to the fluid).
+//! - [`drag`]: `[[coupling.drag]]`, unresolved drag and buoyancy on thin frame members (S2).
 //! - [`reference`]: `participant/name` references of the case, bound to what participants declared.
 //!
 //! Each output array of the inputs (`point_force`, `body_force`, …) is written by one law only, so
@@ -13,6 +14,7 @@
 //! only, so a checkpoint/restore of the participants never meets a law that moved on.
 
 pub mod body;
+pub mod drag;
 pub mod reference;
 pub mod spring;
 
