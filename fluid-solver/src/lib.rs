@@ -6,6 +6,7 @@
 //! - [`neighbour_search`]: cell lists with counting sort; [`operators`]: the particle operators.
 //! - [`bodies`]: rigid bodies of particles (kinematics in, loads out); [`emps_step`]: one time step; [`solver`]: the clock, save/restore, advance-to.
 //! - [`open_boundary`]: inflow and outflow boundaries (particles added and removed during a run).
+//! - [`unresolved`]: sample points and point reactions of the unresolved drag coupling (S2).
 //! - [`stability`]: the instability detector; [`probes`], [`vtu`], [`surface_mesh`] + [`vtp`]: outputs; [`run`]: a standalone run;
 //!   [`participant`]: the coupled-run side (`fluid-solver participant …`).
 
@@ -25,6 +26,7 @@ pub mod run;
 pub mod solver;
 pub mod stability;
 pub mod surface_mesh;
+pub mod unresolved;
 pub mod vtk_appended;
 pub mod vtp;
 pub mod vtu;

@@ -10,6 +10,7 @@ use crate::neighbour_search::CellGrid;
 use crate::open_boundary::OpenBoundaries;
 use crate::particles::Particles;
 use crate::stability::{Instability, StabilityMonitor};
+use crate::unresolved;
 use schemas::case::fluid::{Aabb, FluidConfig};
 
 /// Landing on a time: a remainder below this fraction of Δt is rounding, not a step; a step up to
@@ -49,6 +50,10 @@ pub struct RunTotals {
     pub candidates: u64,
     /// Particle-steps done.
     pub particle_steps: u64,
+    /// Σ (point reactions spread on the fluid)·Δt: impulse of the drag coupling [N s].
+    pub reaction_impulse: [f64; 3],
+    /// Σ (point reactions no fluid was near)·Δt: impulse that could not be applied [N s].
+    pub unapplied_impulse: [f64; 3],
 }
 
 /// An E-MPS fluid with walls.
@@ -72,6 +77,9 @@ pub struct FluidSolver {
     totals: RunTotals,
     /// Inflow and outflow (inactive without `inflow` / `outflow` in the case).
     open_boundaries: OpenBoundaries,
+    /// Point reactions of the unresolved coupling (6 each: point, force) and their paired sample
+    /// points (3 each), applied at every step until replaced.
+    point_reactions: (Vec<f64>, Vec<f64>),
 }
 
 impl FluidSolver {
@@ -135,6 +143,7 @@ impl FluidSolver {
             bodies,
             totals: RunTotals::default(),
             open_boundaries,
+            point_reactions: Default::default(),
         };
         solver.refresh_body_exchange();
         solver
@@ -289,6 +298,7 @@ impl FluidSolver {
             viscosity: self.step.physics.viscosity,
             dt,
         };
+        self.apply_point_reactions(dt);
         let kernel = self.step.kernel;
         let (bodies, pose, exchange) = (&self.bodies, &self.body_pose, &mut self.body_exchange);
         let zeros = vec![0.0; 6 * bodies.names().len()];
@@ -331,6 +341,47 @@ impl FluidSolver {
         self.monitor
             .check(&self.particles, self.steps, self.time, dt, &self.body_pose)?;
         Ok(totals)
+    }
+
+    /// Sets the point reactions of the unresolved coupling (6 per reaction: point, force) with
+    /// their paired sample points (3 per reaction), applied from the next step on.
+    pub fn set_point_reactions(&mut self, reactions: &[f64], sample_points: &[f64]) {
+        let (r, s) = &mut self.point_reactions;
+        r.clear();
+        r.extend_from_slice(reactions);
+        s.clear();
+        s.extend_from_slice(sample_points);
+    }
+
+    /// The point reactions as accelerations over a step of `dt`: each fluid particle's velocity
+    /// changes by its share of the reactions (S2-24) / its mass × dt.
+    fn apply_point_reactions(&mut self, dt: f64) {
+        let (reactions, samples) = &self.point_reactions;
+        if reactions.is_empty() {
+            return;
+        }
+        let spread =
+            unresolved::spreading::spread(&self.particles, self.step.kernel.spacing, reactions, samples);
+        let scale = dt / self.particle_mass();
+        let p = &mut self.particles;
+        for (i, f) in spread.force.chunks_exact(3).enumerate() {
+            p.vx[i] += f[0] * scale;
+            p.vy[i] += f[1] * scale;
+            p.vz[i] += f[2] * scale;
+        }
+        for c in 0..3 {
+            self.totals.reaction_impulse[c] += spread.total[c] * dt;
+            self.totals.unapplied_impulse[c] += spread.unapplied_force[c] * dt;
+        }
+    }
+
+    /// Velocity and λ_min at `points` (3 per point) for the unresolved coupling (3 and 1 per point).
+    pub fn sample_points(&self, points: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let samples = unresolved::sampling::sample(&self.particles, self.step.kernel.spacing, points);
+        (
+            samples.iter().flat_map(|s| s.velocity).collect(),
+            samples.iter().map(|s| s.lambda_min).collect(),
+        )
     }
 
     /// The next step's length towards `t_end`: Δt, or the remainder when it is at most Δt
