@@ -102,6 +102,14 @@ impl Interface {
         Ok(())
     }
 
+    /// Completes participant `p`'s initial outputs with what the laws read but `p` cannot give
+    /// before its first window (see [`Law::complete_initial`]).
+    pub fn complete_initial(&self, p: usize, outputs: &mut Fields) {
+        for law in &self.laws {
+            law.complete_initial(p, outputs);
+        }
+    }
+
     /// A window was accepted with these outputs: the laws update what they keep across windows.
     pub fn accept(&mut self, outputs: &[Vec<Fields>]) {
         for law in &mut self.laws {

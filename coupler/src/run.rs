@@ -119,6 +119,10 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
                 interface.geometry(p, g, &initial[p])?;
             }
         }
+        let mut initial = initial;
+        for (p, fields) in initial.iter_mut().enumerate() {
+            interface.complete_initial(p, fields);
+        }
         for (p, fields) in initial.iter().enumerate() {
             interface
                 .check_outputs(p, fields)

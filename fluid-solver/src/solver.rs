@@ -30,6 +30,8 @@ pub struct SavedState {
     steps: u64,
     gates_removed: bool,
     open_boundaries: OpenBoundaries,
+    /// Impulse totals (a repeated window must not count its rejected tries).
+    totals: RunTotals,
 }
 
 /// The forces between fluid and bodies in the last step (6 per body: force, moment about the
@@ -425,6 +427,7 @@ impl FluidSolver {
             steps: self.steps,
             gates_removed: self.gates_removed,
             open_boundaries: self.open_boundaries.clone(),
+            totals: self.totals,
         }
     }
 
@@ -439,6 +442,7 @@ impl FluidSolver {
         self.steps = s.steps;
         self.gates_removed = s.gates_removed;
         self.open_boundaries.clone_from(&s.open_boundaries);
+        self.totals = s.totals;
     }
 
     /// Total momentum of the fluid [kg m/s].

@@ -50,6 +50,11 @@ pub trait Law: Send {
         Ok(())
     }
 
+    /// Completes participant `p`'s initial outputs (t = 0) with the arrays this law reads that
+    /// `p` cannot produce before its first window, at their neutral value, so that every window
+    /// of an implicit run has outputs of one shape.
+    fn complete_initial(&self, _p: usize, _outputs: &mut Fields) {}
+
     /// The window was accepted with these outputs (`outputs[p][j]`, j over the window's samples):
     /// the law updates what it keeps across windows.
     fn accept(&mut self, _outputs: &[Vec<Fields>]) {}

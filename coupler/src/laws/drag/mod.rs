@@ -292,6 +292,15 @@ impl Law for Drag {
         Ok(())
     }
 
+    /// The fluid has no sample point before its first window: its samples start dry
+    /// (velocity 0, λ_min 0, so no force at t = 0).
+    fn complete_initial(&self, p: usize, outputs: &mut Fields) {
+        if p == self.fluid && outputs.sampled_lambda_min.is_empty() {
+            outputs.sampled_velocity = F64s::zeros(3 * self.pieces.len());
+            outputs.sampled_lambda_min = F64s::zeros(self.pieces.len());
+        }
+    }
+
     /// Each sub-member's flow direction becomes that of the velocity relative to the member
     /// sampled at the window's end (kept where the sample is dry or still).
     fn accept(&mut self, outputs: &[Vec<Fields>]) {
