@@ -5,7 +5,7 @@
 
 use fluid_solver::particles::Particles;
 use fluid_solver::unresolved::kernel::Wendland;
-use fluid_solver::unresolved::sampling::sample;
+use fluid_solver::unresolved::sampling::{sample, smallest_eigenvalue};
 use fluid_solver::unresolved::spreading::spread;
 use fluid_solver::Kind;
 
@@ -181,4 +181,20 @@ fn a_reaction_with_no_water_near_its_centroid_goes_to_its_sample_point_or_is_rep
     let s = spread(&p, DS, &[dry[0], dry[1], dry[2], f[0], f[1], f[2]], &dry);
     assert_eq!((s.unapplied, s.unapplied_force), (1, f));
     assert!(s.force.iter().all(|&v| v == 0.0));
+}
+
+#[test]
+fn the_closed_form_smallest_eigenvalue_matches_a_symmetric_eigensolver() {
+    for m in [
+        [1.0, 0.0, 0.0, 1.0, 0.0, 1.0],
+        [0.5, 0.0, 0.0, 1.0, 0.0, 1.0],
+        [1.0, 0.2, -0.1, 0.7, 0.05, 0.5],
+        [2.0, 1.0, 1.0, 2.0, 1.0, 2.0],
+        [0.0; 6],
+    ] {
+        let full = nalgebra::Matrix3::new(m[0], m[1], m[2], m[1], m[3], m[4], m[2], m[4], m[5]);
+        let reference = nalgebra::SymmetricEigen::new(full).eigenvalues.min();
+        let got = smallest_eigenvalue(&m);
+        assert!((got - reference).abs() <= 1e-12, "{m:?}: {got} vs {reference}");
+    }
 }

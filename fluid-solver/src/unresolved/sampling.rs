@@ -20,8 +20,10 @@ use super::kernel::Wendland;
 use super::point_grid::PointGrid;
 use crate::kind::{Kind, FLUID};
 use crate::particles::Particles;
-use nalgebra::{Matrix3, SymmetricEigen};
 use rayon::prelude::*;
+
+/// Index pairs of the upper triangle of a 3 × 3 matrix, row by row.
+const UPPER: [(usize, usize); 6] = [(0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)];
 
 /// The flow at one point.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -33,51 +35,80 @@ pub struct Sample {
 /// Samples the flow at `points` (3 per point) for particles of spacing `spacing` (volume Δs³).
 pub fn sample(p: &Particles, spacing: f64, points: &[f64]) -> Vec<Sample> {
     let kernel = Wendland::for_spacing(spacing);
-    let grid = PointGrid::build(p, |i| p.kind[i] != Kind::Gate.code(), points, kernel.radius);
+    let grid = PointGrid::build(
+        p,
+        |i| p.kind[i] != Kind::Gate.code(),
+        |i| p.kind[i] == FLUID,
+        points,
+        kernel.radius,
+    );
     points
         .par_chunks_exact(3)
         .with_min_len(64)
-        .map(|x| sample_at(p, &grid, &kernel, spacing.powi(3), [x[0], x[1], x[2]]))
+        .map(|x| sample_at(&grid, &kernel, spacing.powi(3), [x[0], x[1], x[2]]))
         .collect()
 }
 
-/// The flow at `x`.
-pub fn sample_at(p: &Particles, grid: &PointGrid, kernel: &Wendland, volume: f64, x: [f64; 3]) -> Sample {
+/// The flow at `x` (`grid` marks the fluid particles).
+pub fn sample_at(grid: &PointGrid, kernel: &Wendland, volume: f64, x: [f64; 3]) -> Sample {
+    let dry = Sample {
+        velocity: [0.0; 3],
+        lambda_min: 0.0,
+    };
+    if !grid.marked_near(x) {
+        return dry;
+    }
     let mut u = [0.0; 3];
     let mut weight = 0.0;
-    let mut m = Matrix3::<f64>::zeros();
-    grid.for_each_near(x, |j| {
-        let d = [p.x[j] - x[0], p.y[j] - x[1], p.z[j] - x[2]];
-        let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-        if r >= kernel.radius {
+    // the moment matrix is symmetric (a radial kernel): its upper triangle
+    let mut m = [0.0; 6];
+    let radius2 = kernel.radius * kernel.radius;
+    grid.for_each_near(x, |e| {
+        let d = [e.position[0] - x[0], e.position[1] - x[1], e.position[2] - x[2]];
+        let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        if r2 >= radius2 {
             return;
         }
-        if p.kind[j] == FLUID {
+        let r = r2.sqrt();
+        if e.marked {
             let w = volume * kernel.value(r);
             weight += w;
-            u[0] += w * p.vx[j];
-            u[1] += w * p.vy[j];
-            u[2] += w * p.vz[j];
+            (0..3).for_each(|c| u[c] += w * e.velocity[c]);
         }
         if r > 0.0 {
             // V (x_j − x) ⊗ ∇_x W(x − x_j) = −V W'(r)/r (d ⊗ d), d = x_j − x
             let s = -volume * kernel.derivative(r) / r;
-            for a in 0..3 {
-                for b in 0..3 {
-                    m[(a, b)] += s * d[a] * d[b];
-                }
+            for (k, (a, b)) in UPPER.iter().enumerate() {
+                m[k] += s * d[*a] * d[*b];
             }
         }
     });
+
     if weight <= 0.0 {
-        return Sample {
-            velocity: [0.0; 3],
-            lambda_min: 0.0,
-        };
+        return dry;
     }
-    let lambda_min = SymmetricEigen::new(m).eigenvalues.min();
+    let lambda_min = smallest_eigenvalue(&m);
     Sample {
         velocity: u.map(|c| c / weight),
         lambda_min,
     }
+}
+
+/// Smallest eigenvalue of the symmetric 3 × 3 matrix with upper triangle `m` (order of
+/// [`UPPER`]), in closed form (Smith 1961, Commun. ACM 4(4): the eigenvalues of `q I + p B` are
+/// `q + 2p cos(φ + 2πk/3)` with `cos 3φ = det(B)/2`).
+pub fn smallest_eigenvalue(m: &[f64; 6]) -> f64 {
+    let [a, b, c, d, e, f] = *m; // [[a b c] [b d e] [c e f]]
+    let off = b * b + c * c + e * e;
+    let q = (a + d + f) / 3.0;
+    let p2 = (a - q).powi(2) + (d - q).powi(2) + (f - q).powi(2) + 2.0 * off;
+    if p2 <= 1e-30 * (q * q).max(f64::MIN_POSITIVE) {
+        return q;
+    }
+    let p = (p2 / 6.0).sqrt();
+    let (ba, bd, bf) = ((a - q) / p, (d - q) / p, (f - q) / p);
+    let (bb, bc, be) = (b / p, c / p, e / p);
+    let det = ba * (bd * bf - be * be) - bb * (bb * bf - be * bc) + bc * (bb * be - bd * bc);
+    let phi = (0.5 * det).clamp(-1.0, 1.0).acos() / 3.0;
+    q + 2.0 * p * (phi + 2.0 * std::f64::consts::PI / 3.0).cos()
 }

@@ -43,16 +43,19 @@ pub fn spread(p: &Particles, spacing: f64, reactions: &[f64], sample_points: &[f
     if paired {
         points.extend_from_slice(sample_points);
     }
-    let grid = PointGrid::build(p, |i| p.kind[i] == FLUID, &points, kernel.radius);
+    let grid = PointGrid::build(p, |i| p.kind[i] == FLUID, |_| true, &points, kernel.radius);
     let shares: Vec<(Vec<(u32, f64)>, bool)> = reactions
         .par_chunks_exact(6)
         .enumerate()
         .with_min_len(64)
         .map(|(k, r)| {
-            let around = shares_around(p, &grid, &kernel, [r[0], r[1], r[2]]);
+            if r[3..6].iter().all(|&f| f == 0.0) {
+                return (Vec::new(), false);
+            }
+            let around = shares_around(&grid, &kernel, [r[0], r[1], r[2]]);
             if around.is_empty() && paired {
                 let s = &sample_points[3 * k..3 * k + 3];
-                (shares_around(p, &grid, &kernel, [s[0], s[1], s[2]]), true)
+                (shares_around(&grid, &kernel, [s[0], s[1], s[2]]), true)
             } else {
                 (around, false)
             }
@@ -84,14 +87,19 @@ pub fn spread(p: &Particles, spacing: f64, reactions: &[f64], sample_points: &[f
 
 /// The normalised shares `V_k W_ik / Σ_j V_j W_ij` of the fluid particles around `x` (equal
 /// volumes cancel); empty when none is within the support.
-fn shares_around(p: &Particles, grid: &PointGrid, kernel: &Wendland, x: [f64; 3]) -> Vec<(u32, f64)> {
+fn shares_around(grid: &PointGrid, kernel: &Wendland, x: [f64; 3]) -> Vec<(u32, f64)> {
     let mut share = Vec::new();
     let mut sum = 0.0;
-    grid.for_each_near(x, |j| {
-        let r = ((p.x[j] - x[0]).powi(2) + (p.y[j] - x[1]).powi(2) + (p.z[j] - x[2]).powi(2)).sqrt();
-        let w = kernel.value(r);
+    let radius2 = kernel.radius * kernel.radius;
+    grid.for_each_near(x, |e| {
+        let q = e.position;
+        let r2 = (q[0] - x[0]).powi(2) + (q[1] - x[1]).powi(2) + (q[2] - x[2]).powi(2);
+        if r2 >= radius2 {
+            return;
+        }
+        let w = kernel.value(r2.sqrt());
         if w > 0.0 {
-            share.push((j as u32, w));
+            share.push((e.index, w));
             sum += w;
         }
     });
