@@ -5,8 +5,8 @@
 //! and dry alike.
 //!
 //! Per coupling window of one fluid step (samples = 1) the stack evaluates the law 4 times (two
-//! participants × two window times), samples twice (window start and end) and spreads once
-//! (every fluid step). `cargo bench -p coupler --bench drag_cost`.
+//! participants × two window times), samples once (the window end; the window start repeats
+//! the last window's end samples) and spreads once (every fluid step). `cargo bench -p coupler --bench drag_cost`.
 
 use coupler::laws::drag::{Drag, DragSettings};
 use coupler::laws::Law;
@@ -124,7 +124,7 @@ fn main() {
         }));
     }
     let [law_ms, sample_ms, spread_ms, step_ms] = [0, 1, 2, 3].map(|k| median(times[k].clone()));
-    let window = 4.0 * law_ms + 2.0 * sample_ms + spread_ms;
+    let window = 4.0 * law_ms + sample_ms + spread_ms;
     println!(
         "Drag coupling cost, dam-break tank Δs = {} m at t = 0.3 s ({} particles), {threads} threads, median of {reps}:",
         cfg.spacing,
@@ -137,7 +137,7 @@ fn main() {
     );
     for (name, ms, times) in [
         ("drag law (coupler, per evaluation)", law_ms, 4.0),
-        ("sampling (fluid, per exchange)", sample_ms, 2.0),
+        ("sampling (fluid, per window end)", sample_ms, 1.0),
         ("spreading (fluid, per step)", spread_ms, 1.0),
     ] {
         println!(

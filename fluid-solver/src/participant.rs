@@ -95,6 +95,8 @@ pub struct FluidParticipant {
     probes: Option<ProbeRows>,
     /// Fluid momentum at t = 0, for the momentum budget written at the end.
     initial_momentum: [f64; 3],
+    /// The samples answered at the end of the last window stepped (time, velocity, λ_min).
+    end_samples: Option<(f64, F64s, F64s)>,
 }
 
 impl FluidParticipant {
@@ -151,6 +153,7 @@ impl FluidParticipant {
         Ok(Self {
             name: name.to_string(),
             initial_momentum: solver.fluid_momentum(),
+            end_samples: None,
             solver,
             checkpoint: None,
             frames,
@@ -181,6 +184,23 @@ impl FluidParticipant {
             out.sampled_lambda_min = F64s(lambda);
         }
         out
+    }
+
+    /// The outputs at a window start. The samples there are never read by the coupler's laws
+    /// (they read the samples after the window start; the window-start values come from the
+    /// last window's end), so when the last window stepped ended here with as many sample
+    /// points, its samples are repeated instead of sampled again (they are this state's flow at
+    /// the last window's points, which differ from this window's by the upstream update only).
+    fn window_start_outputs(&self, inputs: Option<&Fields>) -> Fields {
+        let points = inputs.map_or(0, |f| f.sample_point.len());
+        match &self.end_samples {
+            Some((t, v, lambda)) if *t == self.solver.time() && 3 * lambda.len() == points => Fields {
+                sampled_velocity: v.clone(),
+                sampled_lambda_min: lambda.clone(),
+                ..self.outputs()
+            },
+            _ => self.outputs_at(inputs),
+        }
     }
 
     /// Hands the point reactions of `f` to the solver (6 per reaction; their paired sample
@@ -324,7 +344,7 @@ impl Participant for FluidParticipant {
         let bodies = self.solver.body_names().len();
         let reactions = inputs.samples.iter().any(|s| !s.reaction.is_empty());
         let unapplied_before = self.solver.totals().unapplied_impulse;
-        let mut outputs = vec![self.outputs_at(inputs.samples.first())];
+        let mut outputs = vec![self.window_start_outputs(inputs.samples.first())];
         for (j, &t) in inputs.times.iter().enumerate().skip(1) {
             while let Some(dt) = self.solver.next_step_towards(t) {
                 if bodies > 0 || reactions {
@@ -353,6 +373,16 @@ impl Participant for FluidParticipant {
                 }
             }
         }
+        self.end_samples = outputs
+            .last()
+            .filter(|o| !o.sampled_lambda_min.is_empty())
+            .map(|o| {
+                (
+                    self.solver.time(),
+                    o.sampled_velocity.clone(),
+                    o.sampled_lambda_min.clone(),
+                )
+            });
         self.warn_unapplied(unapplied_before);
         Ok(outputs)
     }
