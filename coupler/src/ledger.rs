@@ -2,11 +2,20 @@
 //! and the work done on each side across the interface, written to `ledger.csv`.
 
 use crate::error::CouplerError;
-use crate::interface::{force_taken, window_work};
+use crate::interface::Interface;
 use schemas::message::Fields;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+
+/// Which window ended, when, and how its coupling iteration went.
+#[derive(Debug, Clone, Copy)]
+pub struct WindowEnd {
+    pub window: u64,
+    pub time: f64,
+    pub iterations: u32,
+    pub residual: f64,
+}
 
 /// Writes one CSV line per window and counts windows whose balance is off.
 pub struct Ledger {
@@ -39,26 +48,30 @@ impl Ledger {
         })
     }
 
-    /// One window: forces at the window end, work over the window, and the balance
+    /// One window: forces at the window end and work over the window, as the laws report them, and the balance
     /// `|Σ_p f_p| / Σ_p |f_p|` (0 when no force crossed).
     pub fn window(
         &mut self,
-        window: u64,
-        time: f64,
-        iterations: u32,
-        residual: f64,
+        end: WindowEnd,
+        interface: &Interface,
         inputs: &[Vec<Fields>],
         outputs: &[Vec<Fields>],
     ) -> Result<(), CouplerError> {
+        let WindowEnd {
+            window,
+            time,
+            iterations,
+            residual,
+        } = end;
         let mut line = format!("{window},{time:.9e},{iterations},{residual:.3e}");
         let mut net = [0.0; 3];
         let mut magnitude = 0.0;
-        for (p_inputs, p_outputs) in inputs.iter().zip(outputs) {
+        for (p, (p_inputs, p_outputs)) in inputs.iter().zip(outputs).enumerate() {
             let f = match (p_inputs.last(), p_outputs.last()) {
-                (Some(i), Some(o)) => force_taken(i, o),
+                (Some(i), Some(o)) => interface.force_taken(p, i, o),
                 _ => [0.0; 3],
             };
-            let work = window_work(p_inputs, p_outputs);
+            let work = interface.window_work(p, p_inputs, p_outputs);
             line.push_str(&format!(",{:.12e},{:.12e},{:.12e},{work:.12e}", f[0], f[1], f[2]));
             (0..3).for_each(|c| net[c] += f[c]);
             magnitude += f.iter().map(|v| v * v).sum::<f64>().sqrt();

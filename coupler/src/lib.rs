@@ -8,6 +8,7 @@ pub mod error;
 pub mod estimate;
 pub mod interface;
 pub mod launch;
+pub mod laws;
 pub mod ledger;
 pub mod out_folder;
 pub mod progress;

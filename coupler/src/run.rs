@@ -128,7 +128,16 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
     let (mut stack, initial) = Stack::launch(launches, &run_id, case.hash, &out, Some(recorder), timeout)?;
     let result = (|| {
         let decls: Vec<_> = stack.sessions.iter().map(|s| s.interface.clone()).collect();
-        let interface = Interface::bind(&case, &order, &decls)?;
+        let mut interface = Interface::bind(&case, &order, &decls)?;
+        for (p, session) in stack.sessions.iter().enumerate() {
+            if let Some(g) = &session.geometry {
+                interface.geometry(p, g, &initial[p])?;
+            }
+        }
+        let mut initial = initial;
+        for (p, fields) in initial.iter_mut().enumerate() {
+            interface.complete_initial(p, fields);
+        }
         for (p, fields) in initial.iter().enumerate() {
             interface
                 .check_outputs(p, fields)
@@ -141,7 +150,7 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
         let ledger = Ledger::create(&out.join("ledger.csv"), &order, coupling.balance_tolerance)?;
         let windows = Windows {
             stack: &mut stack,
-            interface: &interface,
+            interface: &mut interface,
             config: coupling,
             ledger,
             progress: Progress::new(),

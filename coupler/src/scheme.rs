@@ -13,7 +13,7 @@
 use crate::acceleration::{self, Accelerator};
 use crate::error::CouplerError;
 use crate::interface::Interface;
-use crate::ledger::Ledger;
+use crate::ledger::{Ledger, WindowEnd};
 use crate::progress::Progress;
 use crate::stack::{variant, Stack};
 use crate::state;
@@ -35,7 +35,7 @@ pub struct Summary {
 /// Drives the windows of a run.
 pub struct Windows<'a> {
     pub stack: &'a mut Stack,
-    pub interface: &'a Interface,
+    pub interface: &'a mut Interface,
     pub config: &'a CouplingConfig,
     pub ledger: Ledger,
     pub progress: Progress,
@@ -66,12 +66,26 @@ impl Windows<'_> {
             };
             let times = Waveform::grid(t0, t1, self.config.samples);
             let mut estimate: Vec<Vec<Fields>> = last.iter().map(|w| self.predict(w, &times)).collect();
+            let geometry_before: Vec<_> = self.stack.sessions.iter().map(|s| s.geometry.clone()).collect();
             let (inputs, iterations, residual) = match self.config.scheme {
                 Scheme::Explicit => (self.sweep(w, 0, Checkpoint::None, &times, &mut estimate)?, 1, 0.0),
                 Scheme::Implicit => self.implicit(w, &times, &mut estimate, accelerator.as_mut())?,
             };
-            self.ledger
-                .window(w, t1, iterations, residual, &inputs, &estimate)?;
+            let end = WindowEnd {
+                window: w,
+                time: t1,
+                iterations,
+                residual,
+            };
+            self.ledger.window(end, self.interface, &inputs, &estimate)?;
+            for (p, session) in self.stack.sessions.iter().enumerate() {
+                if session.geometry != geometry_before[p] {
+                    if let (Some(g), Some(outputs)) = (&session.geometry, estimate[p].last()) {
+                        self.interface.geometry(p, g, outputs)?;
+                    }
+                }
+            }
+            self.interface.accept(&estimate);
             self.reference.observe(&estimate);
             last = estimate
                 .into_iter()

@@ -12,6 +12,7 @@
 //!   the method's [`pair_law`]s); [`collision`]: the collision stage both methods share.
 //! - [`solver`]: the clock, advance-to, checkpoints of [`state::FluidState`]; [`stage_timer`]: time per stage.
 //! - [`open_boundary`]: inflow and outflow boundaries (particles added and removed during a run).
+//! - [`unresolved`]: sample points and point reactions of the unresolved drag coupling (S2).
 //! - [`stability`]: the instability detector; [`probes`], [`vtu`], [`surface_mesh`] + [`vtp`]: outputs; [`run`]: a standalone run;
 //!   [`participant`]: the coupled-run side (`fluid-solver participant …`).
 
@@ -19,8 +20,8 @@ pub mod bodies;
 pub mod body_wall_contact;
 pub mod collision;
 pub mod emps;
-pub mod isph;
 pub mod escape;
+pub mod isph;
 pub mod kind;
 pub mod lattice;
 pub mod layout;
@@ -40,6 +41,7 @@ pub mod stability;
 pub mod stage_timer;
 pub mod state;
 pub mod surface_mesh;
+pub mod unresolved;
 pub mod vector_field;
 pub mod vtk_appended;
 pub mod vtp;

@@ -8,9 +8,11 @@
 //! `body_reaction` (what the body exerted on the water and the walls: the fluid's pair terms
 //! summed from the fluid's side, for the action–reaction ledger). Save/restore keep a copy of
 //! the particle arrays. `advance` steps from the window start to exactly its end, shortening
-//! the last substep before each exchange time. Sample points and point reactions (the
-//! unresolved drag coupling, S2) are not served by E-MPS: a window asking for them fails with
-//! a message. With an output folder, VTU frames (and surface meshes) are written at the first
+//! the last substep before each exchange time. The unresolved drag coupling (S2): `reaction`
+//! (6 per point: point, force) is read at the start of each substep like the body motion and
+//! spread over the fluid (S2-24, [`crate::unresolved::spreading`]); `sampled_velocity` (3 per
+//! point) and `sampled_lambda_min` are answered at every exchange time for that time's
+//! `sample_point`s ([`crate::unresolved::sampling`]). With an output folder, VTU frames (and surface meshes) are written at the first
 //! exchange time at or after each output time, and the probe CSV (`NAME_probes.csv`) at the
 //! first exchange time at or after each probe time, once the window is accepted. Progress lines
 //! go to the participant's log at the case's `progress_interval`, and `finish` writes the run's
@@ -96,6 +98,10 @@ pub struct FluidParticipant {
     frames: Option<Frames>,
     probes: Option<ProbeRows>,
     progress: Progress,
+    /// Fluid momentum at t = 0, for the momentum budget written at the end.
+    initial_momentum: [f64; 3],
+    /// The samples answered at the end of the last window stepped (time, velocity, λ_min).
+    end_samples: Option<(f64, F64s, F64s)>,
 }
 
 impl FluidParticipant {
@@ -157,6 +163,8 @@ impl FluidParticipant {
         };
         Ok(Self {
             name: name.to_string(),
+            initial_momentum: solver.fluid_momentum(),
+            end_samples: None,
             solver,
             checkpoint: None,
             frames,
@@ -183,6 +191,90 @@ impl FluidParticipant {
             body_reaction: F64s(self.solver.body_reactions()),
             ..Fields::default()
         }
+    }
+
+    /// The interface outputs of the current state, with the flow at the sample points of `inputs`.
+    fn outputs_at(&self, inputs: Option<&Fields>) -> Fields {
+        let mut out = self.outputs();
+        if let Some(points) = inputs.map(|f| &f.sample_point).filter(|s| !s.is_empty()) {
+            let (v, lambda) = self.solver.sample_points(points);
+            out.sampled_velocity = F64s(v);
+            out.sampled_lambda_min = F64s(lambda);
+        }
+        out
+    }
+
+    /// The outputs at a window start. The samples there are never read by the coupler's laws
+    /// (they read the samples after the window start; the window-start values come from the
+    /// last window's end), so when the last window stepped ended here with as many sample
+    /// points, its samples are repeated instead of sampled again (they are this state's flow at
+    /// the last window's points, which differ from this window's by the upstream update only).
+    fn window_start_outputs(&self, inputs: Option<&Fields>) -> Fields {
+        let points = inputs.map_or(0, |f| f.sample_point.len());
+        match &self.end_samples {
+            Some((t, v, lambda)) if *t == self.solver.time() && 3 * lambda.len() == points => Fields {
+                sampled_velocity: v.clone(),
+                sampled_lambda_min: lambda.clone(),
+                ..self.outputs()
+            },
+            _ => self.outputs_at(inputs),
+        }
+    }
+
+    /// Hands the point reactions of `f` to the solver (6 per reaction; their paired sample
+    /// points, when given, 3 per reaction).
+    fn set_point_reactions(&mut self, f: &Fields) -> Result<(), String> {
+        if !f.reaction.len().is_multiple_of(6) || !f.sample_point.len().is_multiple_of(3) {
+            return Err(format!(
+                "fluid `{}`: reaction needs 6 values per point and sample_point 3, got {} and {}",
+                self.name,
+                f.reaction.len(),
+                f.sample_point.len()
+            ));
+        }
+        self.solver.set_point_reactions(&f.reaction, &f.sample_point);
+        Ok(())
+    }
+
+    /// Says on stderr when point reactions found no fluid near their centroid or sample point
+    /// in the window just stepped (they were not applied; see [`crate::unresolved::spreading`]).
+    fn warn_unapplied(&self, before: [f64; 3]) {
+        let now = self.solver.totals().unapplied_impulse;
+        if now != before {
+            let v = |f: [f64; 3]| format!("({:.3e}, {:.3e}, {:.3e})", f[0], f[1], f[2]);
+            let window = v([now[0] - before[0], now[1] - before[1], now[2] - before[2]]);
+            eprintln!(
+                "fluid `{}`: warning: in the window ending at t = {:.6} s, point reactions with no fluid particle near \
+                 their centroid or sample point were not applied: impulse {window} N s ({} N s since the start)",
+                self.name,
+                self.solver.time(),
+                v(now)
+            );
+        }
+    }
+
+    /// With the drag coupling on: the fluid's momentum budget since t = 0 on stderr (the log),
+    /// `change = gravity + walls + drag reactions` to round-off when no particle entered or left.
+    fn report_momentum(&self) {
+        let totals = self.solver.totals();
+        if totals.reaction_impulse == [0.0; 3] && totals.unapplied_impulse == [0.0; 3] {
+            return;
+        }
+        let p = self.solver.particles();
+        let mass = p.count(crate::Kind::Fluid) as f64 * self.solver.particle_mass();
+        let g = self.solver.physics().gravity;
+        let t = self.solver.time();
+        let now = self.solver.fluid_momentum();
+        let v = |f: [f64; 3]| format!("{:.12e} {:.12e} {:.12e}", f[0], f[1], f[2]);
+        eprintln!(
+            "fluid `{}`: momentum budget [N s] at t = {t}: change {} | gravity {} | walls {} | drag reactions {} | not applied {}",
+            self.name,
+            v(std::array::from_fn(|c| now[c] - self.initial_momentum[c])),
+            v(g.map(|gc| mass * gc * t)),
+            v(totals.wall_impulse),
+            v(totals.reaction_impulse),
+            v(totals.unapplied_impulse)
+        );
     }
 
     /// Writes the frame and probe rows kept back from the last window: that window was accepted.
@@ -272,28 +364,19 @@ impl Participant for FluidParticipant {
                 self.name
             ));
         }
-        if let Some(s) = inputs
-            .samples
-            .iter()
-            .find(|s| !s.sample_point.is_empty() || !s.reaction.is_empty())
-        {
-            return Err(format!(
-                "fluid `{}`: the E-MPS participant does not serve sample points or point reactions (got {} and {} values)",
-                self.name,
-                s.sample_point.len(),
-                s.reaction.len()
-            ));
-        }
         self.commit()?;
         let bodies = self.solver.body_names().len();
-        let mut outputs = vec![self.outputs()];
-        for &t in inputs.times.iter().skip(1) {
+        let reactions = inputs.samples.iter().any(|s| !s.reaction.is_empty());
+        let unapplied_before = self.solver.totals().unapplied_impulse;
+        let mut outputs = vec![self.window_start_outputs(inputs.samples.first())];
+        for (j, &t) in inputs.times.iter().enumerate().skip(1) {
             while let Some(dt) = self.solver.next_step_towards(t) {
-                if bodies > 0 {
+                if bodies > 0 || reactions {
                     let f = inputs.at(self.solver.time());
                     if !f.body_pose.is_empty() || !f.body_velocity.is_empty() {
                         self.solver.set_body_motion(&f.body_pose, &f.body_velocity)?;
                     }
+                    self.set_point_reactions(&f)?;
                 }
                 self.solver
                     .step(dt)
@@ -312,7 +395,7 @@ impl Participant for FluidParticipant {
                 self.progress.note_escapes(s.time(), s.escaped());
             }
             self.solver.land_on(t);
-            outputs.push(self.outputs());
+            outputs.push(self.outputs_at(inputs.samples.get(j)));
             if let Some(p) = &mut self.probes {
                 if p.due(t) {
                     p.sample(&self.solver);
@@ -326,6 +409,17 @@ impl Participant for FluidParticipant {
                 }
             }
         }
+        self.end_samples = outputs
+            .last()
+            .filter(|o| !o.sampled_lambda_min.is_empty())
+            .map(|o| {
+                (
+                    self.solver.time(),
+                    o.sampled_velocity.clone(),
+                    o.sampled_lambda_min.clone(),
+                )
+            });
+        self.warn_unapplied(unapplied_before);
         Ok(outputs)
     }
 
@@ -344,6 +438,7 @@ impl Participant for FluidParticipant {
                 p.len()
             );
         }
+        self.report_momentum();
         self.commit()?;
         let s = &self.solver;
         let summary = RunSummary {

@@ -4,8 +4,8 @@
 use crate::bodies::RigidBodies;
 use crate::emps::kernel::Kernel;
 use crate::emps::step::EmpsStep;
-use crate::isph::step::{IsphState, IsphStep};
 use crate::escape::OpenTop;
+use crate::isph::step::{IsphState, IsphStep};
 use crate::kind::Kind;
 use crate::layout::{self, Domain};
 use crate::method::{FluidMethod, MethodState, StepTotals};
@@ -17,6 +17,7 @@ use crate::physics::Physics;
 use crate::stability::{Instability, StabilityMonitor};
 use crate::stage_timer::StageTimes;
 use crate::state::{BodyExchange, FluidState};
+use crate::unresolved;
 use schemas::case::fluid::{Aabb, FluidConfig, FluidMethodName};
 
 /// Landing on a time: a remainder below this fraction of Δt is rounding, not a step; a step up to
@@ -34,6 +35,10 @@ pub struct RunTotals {
     pub particle_steps: u64,
     /// Iterations of the pressure Poisson equation's solver (ISPH).
     pub ppe_iterations: u64,
+    /// Σ (point reactions spread on the fluid)·Δt: impulse of the drag coupling [N s].
+    pub reaction_impulse: [f64; 3],
+    /// Σ (point reactions no fluid was near)·Δt: impulse that could not be applied [N s].
+    pub unapplied_impulse: [f64; 3],
 }
 
 /// A particle fluid with walls, stepped by the case's method.
@@ -51,12 +56,14 @@ pub struct FluidSolver {
     domain: Domain,
     tank: Aabb,
     bodies: RigidBodies,
-    totals: RunTotals,
     /// Where fluid may leave (removed and counted), and the most that may leave.
     open_top: OpenTop,
     max_removed_fraction: f64,
     /// What the lattice moved (see [`crate::lattice`]).
     layout_notes: Vec<String>,
+    /// Point reactions of the unresolved coupling (6 each: point, force) and their paired sample
+    /// points (3 each), applied at every step until replaced.
+    point_reactions: (Vec<f64>, Vec<f64>),
 }
 
 impl FluidSolver {
@@ -143,6 +150,7 @@ impl FluidSolver {
                 gates_removed: false,
                 open_boundaries,
                 escaped: 0,
+                totals: RunTotals::default(),
             },
             method,
             kernel,
@@ -153,10 +161,10 @@ impl FluidSolver {
             domain: layout.domain,
             tank: layout.tank,
             bodies,
-            totals: RunTotals::default(),
             open_top,
             max_removed_fraction: cfg.max_removed_fraction,
             layout_notes: layout.notes,
+            point_reactions: Default::default(),
         };
         solver.refresh_body_exchange();
         solver
@@ -290,7 +298,7 @@ impl FluidSolver {
 
     /// Totals since the start.
     pub fn totals(&self) -> RunTotals {
-        self.totals
+        self.state.totals
     }
 
     /// Bytes held by the particle arrays, the step's buffers and the cell grid.
@@ -345,6 +353,8 @@ impl FluidSolver {
                 });
             }
         }
+        self.apply_point_reactions(dt);
+        let st = &mut self.state;
         let scales = self.method.scales(dt);
         let (bodies, pose, exchange) = (&self.bodies, &st.body_pose, &mut st.body_exchange);
         let zeros = vec![0.0; 6 * bodies.names().len()];
@@ -375,14 +385,55 @@ impl FluidSolver {
         st.steps += 1;
         st.time += dt;
         for a in 0..3 {
-            self.totals.wall_impulse[a] += totals.force_from_walls[a] * dt;
+            st.totals.wall_impulse[a] += totals.force_from_walls[a] * dt;
         }
-        self.totals.candidates += totals.candidates;
-        self.totals.ppe_iterations += u64::from(totals.ppe_iterations);
-        self.totals.particle_steps += st.particles.len() as u64;
+        st.totals.candidates += totals.candidates;
+        st.totals.ppe_iterations += u64::from(totals.ppe_iterations);
+        st.totals.particle_steps += st.particles.len() as u64;
         self.monitor
             .check(&st.particles, st.steps, st.time, dt, &st.body_pose)?;
         Ok(totals)
+    }
+
+    /// Sets the point reactions of the unresolved coupling (6 per reaction: point, force) with
+    /// their paired sample points (3 per reaction), applied from the next step on.
+    pub fn set_point_reactions(&mut self, reactions: &[f64], sample_points: &[f64]) {
+        let (r, s) = &mut self.point_reactions;
+        r.clear();
+        r.extend_from_slice(reactions);
+        s.clear();
+        s.extend_from_slice(sample_points);
+    }
+
+    /// The point reactions as accelerations over a step of `dt`: each fluid particle's velocity
+    /// changes by its share of the reactions (S2-24) / its mass × dt.
+    fn apply_point_reactions(&mut self, dt: f64) {
+        let (reactions, samples) = &self.point_reactions;
+        if reactions.is_empty() {
+            return;
+        }
+        let spread =
+            unresolved::spreading::spread(&self.state.particles, self.kernel.spacing, reactions, samples);
+        let scale = dt / self.particle_mass();
+        let p = &mut self.state.particles;
+        for (i, f) in spread.force.chunks_exact(3).enumerate() {
+            p.vx[i] += f[0] * scale;
+            p.vy[i] += f[1] * scale;
+            p.vz[i] += f[2] * scale;
+        }
+        for c in 0..3 {
+            self.state.totals.reaction_impulse[c] += spread.total[c] * dt;
+            self.state.totals.unapplied_impulse[c] += spread.unapplied_force[c] * dt;
+        }
+    }
+
+    /// Velocity and λ_min at `points` (3 per point) for the unresolved coupling (3 and 1 per point).
+    pub fn sample_points(&self, points: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let samples = unresolved::sampling::sample(&self.state.particles, self.kernel.spacing, points);
+        (
+            samples.iter().flat_map(|s| s.velocity).collect(),
+            samples.iter().map(|s| s.lambda_min).collect(),
+        )
     }
 
     /// The next step's length towards `t_end`: Δt, or the remainder when it is at most Δt

@@ -34,4 +34,6 @@ pub struct FluidState {
     pub open_boundaries: OpenBoundaries,
     /// Fluid particles removed after leaving through the open top ([`crate::escape`]).
     pub escaped: u64,
+    /// Running totals (impulses, counts): a repeated window must not count its rejected tries.
+    pub totals: crate::solver::RunTotals,
 }

@@ -26,8 +26,8 @@ pub mod table;
 pub mod work;
 
 use crate::error::CouplerError;
-use schemas::signals;
 use schemas::case::Case;
+use schemas::signals;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 

@@ -1,5 +1,6 @@
 //! `[coupling]`: windows, scheme, acceleration and the interface laws between participants.
 
+use super::drag::DragLink;
 use super::error::check;
 use super::{Case, FieldError};
 use serde::Deserialize;
@@ -105,6 +106,9 @@ pub struct CouplingConfig {
     pub spring: Vec<SpringLink>,
     #[serde(default)]
     pub body: Vec<BodyLink>,
+    /// `[[coupling.drag]]`: unresolved drag and buoyancy on thin frame members (S2).
+    #[serde(default)]
+    pub drag: Vec<DragLink>,
 }
 
 fn default_samples() -> u32 {
@@ -197,6 +201,18 @@ impl CouplingConfig {
                     ));
                 }
             }
+        }
+        for (i, link) in self.drag.iter().enumerate() {
+            link.validate(case, &format!("coupling.drag[{i}]"))?;
+        }
+        if self.drag.len() > 1 {
+            return Err(FieldError::new(
+                "coupling.drag",
+                format!(
+                    "{} drag links given; one [[coupling.drag]] per case is supported (one fluid, one frame)",
+                    self.drag.len()
+                ),
+            ));
         }
         for (name, fluid) in &case.fluid {
             for body in fluid.body_names() {

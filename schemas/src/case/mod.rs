@@ -6,6 +6,7 @@
 //! file, the key and what is allowed.
 
 pub mod coupling;
+pub mod drag;
 pub mod error;
 pub mod fluid;
 pub mod frame;

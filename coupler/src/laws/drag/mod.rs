@@ -1,0 +1,323 @@
+//! `[[coupling.drag]]`: unresolved drag and buoyancy on beam members thinner than a fluid
+//! particle (S2 §4, physics.md §6).
+//!
+//! At each instant: every member of the structure's geometry is cut into sub-members
+//! ([`sub_members`]); each sub-member's sample point sits one member width upstream of its
+//! centroid, upstream being against the flow direction its last accepted window sampled (or the
+//! case's `initial_flow`). The fluid answers the velocity and λ_min there; the law turns them
+//! into drag (S2-19, with the fluid velocity relative to the member), submerged length (S2-20),
+//! buoyancy (S2-21) and optional axial drag (S2 §6, same C_D), shares each sub-member's force
+//! between its member's nodes (S2-22, S2-23) and hands the exact opposite force to the fluid as
+//! a point reaction at the centroid, which the fluid spreads by S2-24. Buoyancy's reaction goes
+//! to the fluid too (the member pushes the water it displaces down), so the pair balances.
+//!
+//! Lag: the forces at an instant use the samples the fluid returned for that instant in the
+//! outputs the sweep started from — in explicit coupling those of the last window's end, in
+//! implicit coupling the iterate, which converges to the same instant's samples. Before the
+//! fluid has answered any sample point (the first window of an explicit run) the force is zero.
+
+pub mod coefficient;
+pub mod force;
+pub mod sub_members;
+
+use super::reference::participant_index;
+use super::{sum_vectors, trapezoid_work, Instant, Law};
+use crate::error::CouplerError;
+use coefficient::{attack_angle, DragTable};
+use nalgebra::Vector3;
+use schemas::case::drag::DragLink;
+use schemas::case::Case;
+use schemas::message::{Fields, Geometry, InterfaceDecl};
+use schemas::F64s;
+use sub_members::SubMember;
+
+/// A flow direction is taken from a sample only if its speed exceeds this [m/s] (a dry sample
+/// answers zero velocity; the direction stays what it was).
+const DIRECTION_MIN_SPEED: f64 = 1e-9;
+
+/// The settings of one drag link, resolved against the case.
+#[derive(Debug, Clone)]
+pub struct DragSettings {
+    /// Fluid density ρ [kg/m³].
+    pub density: f64,
+    /// Gravity vector g [m/s²] (S2-21).
+    pub gravity: [f64; 3],
+    /// Sub-member length d [m] (S2 §4(1)c).
+    pub sub_member_length: f64,
+    pub initial_flow: Option<[f64; 3]>,
+    pub section_axis: Option<[f64; 3]>,
+    pub axial_drag: bool,
+    pub drag_coefficient: Vec<[f64; 2]>,
+}
+
+impl DragSettings {
+    /// The settings of `link` in `case` (validated: the fluid exists).
+    pub fn from_case(case: &Case, link: &DragLink) -> Result<DragSettings, CouplerError> {
+        let fluid = case.fluid.get(&link.fluid).ok_or_else(|| {
+            CouplerError::Usage(format!(
+                "coupling.drag: `{}` is not a fluid participant",
+                link.fluid
+            ))
+        })?;
+        Ok(DragSettings {
+            density: fluid.density,
+            gravity: fluid.gravity,
+            sub_member_length: link.sub_member_length.unwrap_or(fluid.spacing),
+            initial_flow: link.initial_flow,
+            section_axis: link.section_axis,
+            axial_drag: link.axial_drag,
+            drag_coefficient: link.drag_coefficient.clone(),
+        })
+    }
+}
+
+/// One sub-member's share at one instant.
+#[derive(Debug, Clone, Copy)]
+pub struct SubMemberLoad {
+    /// Where the fluid is sampled.
+    pub sample_point: Vector3<f64>,
+    /// Centroid, where the reaction acts on the fluid.
+    pub centroid: Vector3<f64>,
+    /// Force of the fluid on the sub-member: drag (+ axial drag) + buoyancy [N].
+    pub force: Vector3<f64>,
+    /// The two nodes and their shares of `force` (S2-22, S2-23).
+    pub nodes: [usize; 2],
+    pub node_forces: [Vector3<f64>; 2],
+}
+
+/// The drag law between fluid participant `fluid` and structure participant `structure`.
+pub struct Drag {
+    fluid: usize,
+    structure: usize,
+    nodes: usize,
+    settings: DragSettings,
+    table: DragTable,
+    section_axis: Option<Vector3<f64>>,
+    pieces: Vec<SubMember>,
+    /// Unit flow direction at each sub-member, from the last accepted window (None: unknown).
+    directions: Vec<Option<Vector3<f64>>>,
+}
+
+impl Drag {
+    /// Binds `link` of `case` to the running participants.
+    pub fn bind(
+        case: &Case,
+        link: &DragLink,
+        names: &[String],
+        decls: &[InterfaceDecl],
+    ) -> Result<Drag, CouplerError> {
+        let fluid = participant_index(names, &link.fluid, &link.fluid)?;
+        let structure = participant_index(names, &link.structure, &link.structure)?;
+        let nodes = decls[structure].frame_nodes as usize;
+        Ok(Drag::new(
+            DragSettings::from_case(case, link)?,
+            fluid,
+            structure,
+            nodes,
+        ))
+    }
+
+    /// A law for a structure of `nodes` frame nodes, before any geometry is known.
+    pub fn new(settings: DragSettings, fluid: usize, structure: usize, nodes: usize) -> Drag {
+        Drag {
+            fluid,
+            structure,
+            nodes,
+            table: DragTable::new(&settings.drag_coefficient),
+            section_axis: settings.section_axis.map(Vector3::from),
+            settings,
+            pieces: Vec::new(),
+            directions: Vec::new(),
+        }
+    }
+
+    /// The sub-members, as cut from the last geometry.
+    pub fn sub_members(&self) -> &[SubMember] {
+        &self.pieces
+    }
+
+    /// Cuts a (new) geometry with the node positions `positions` (3 per node); every flow
+    /// direction starts again from the case's `initial_flow`.
+    pub fn set_geometry(&mut self, geometry: &Geometry, positions: &[f64]) -> Result<(), String> {
+        self.pieces = sub_members::cut(geometry, positions, self.settings.sub_member_length)?;
+        let initial = self.settings.initial_flow.map(|v| Vector3::from(v).normalize());
+        self.directions = vec![initial; self.pieces.len()];
+        Ok(())
+    }
+
+    /// Every sub-member's sample point, centroid and force at one instant, from the structure's
+    /// outputs `structure` and the fluid's `fluid` (its samples at the points of this law).
+    pub fn evaluate(&self, structure: &Fields, fluid: &Fields) -> Vec<SubMemberLoad> {
+        let x = &structure.node_position;
+        let v = &structure.node_velocity;
+        let count = self.pieces.len();
+        let sampled = fluid.sampled_velocity.len() == 3 * count && fluid.sampled_lambda_min.len() == count;
+        let rho = self.settings.density;
+        let g = Vector3::from(self.settings.gravity);
+        self.pieces
+            .iter()
+            .zip(&self.directions)
+            .enumerate()
+            .map(|(i, (s, dir))| {
+                let [a, b] = s.nodes;
+                let (xa, xb) = (vec3(x, 3 * a), vec3(x, 3 * b));
+                let (n1, n2) = (0.5 * (1.0 - s.xi), 0.5 * (1.0 + s.xi));
+                let centroid = xa * n1 + xb * n2;
+                let span = xb - xa;
+                let length = span.norm();
+                let sample_point = match dir {
+                    Some(d) => centroid - d * s.width,
+                    None => centroid,
+                };
+                let mut force = Vector3::zeros();
+                if sampled && length > 0.0 {
+                    let axis = span / length;
+                    let member_velocity = if v.len() >= 6 * self.nodes {
+                        vec3(v, 6 * a) * n1 + vec3(v, 6 * b) * n2
+                    } else {
+                        Vector3::zeros()
+                    };
+                    let v_rel = vec3(&fluid.sampled_velocity, 3 * i) - member_velocity;
+                    let l = force::submerged_length(fluid.sampled_lambda_min[i], s.fraction * length);
+                    let (across, along) = force::split(&v_rel, &axis);
+                    let cd = self
+                        .table
+                        .at(attack_angle(&across, &axis, self.section_axis.as_ref()));
+                    force += force::drag(cd, rho, &across, s.width, l);
+                    if self.settings.axial_drag {
+                        force += force::drag(cd, rho, &along, s.width, l);
+                    }
+                    force += force::buoyancy(rho, &g, s.area, l);
+                }
+                SubMemberLoad {
+                    sample_point,
+                    centroid,
+                    force,
+                    nodes: s.nodes,
+                    node_forces: force::to_nodes(s.xi, &force),
+                }
+            })
+            .collect()
+    }
+}
+
+/// The 3-vector at `values[at..at + 3]` (zero where the array is short).
+fn vec3(values: &[f64], at: usize) -> Vector3<f64> {
+    values
+        .get(at..at + 3)
+        .map_or_else(Vector3::zeros, |s| Vector3::new(s[0], s[1], s[2]))
+}
+
+impl Law for Drag {
+    fn add_inputs(&self, p: usize, at: Instant, inputs: &mut Fields) {
+        if p != self.fluid && p != self.structure {
+            return;
+        }
+        let loads = self.evaluate(at.start[self.structure], at.start[self.fluid]);
+        if p == self.structure {
+            let mut f = F64s::zeros(6 * self.nodes);
+            for load in &loads {
+                for (node, nf) in load.nodes.iter().zip(&load.node_forces) {
+                    (0..3).for_each(|c| f[6 * node + c] += nf[c]);
+                }
+            }
+            inputs.node_force = f;
+        }
+        if p == self.fluid {
+            inputs.sample_point = F64s(
+                loads
+                    .iter()
+                    .flat_map(|l| l.sample_point.iter().copied())
+                    .collect(),
+            );
+            inputs.reaction = F64s(
+                loads
+                    .iter()
+                    .flat_map(|l| l.centroid.iter().copied().chain(l.force.iter().map(|f| -f)))
+                    .collect(),
+            );
+        }
+    }
+
+    fn check_outputs(&self, p: usize, outputs: &Fields) -> Result<(), String> {
+        if p == self.structure {
+            let n = self.nodes;
+            for (name, len, per) in [
+                ("node_position", outputs.node_position.len(), 3),
+                ("node_velocity", outputs.node_velocity.len(), 6),
+            ] {
+                if len != per * n {
+                    return Err(format!(
+                        "{name} has {len} values; {n} declared frame nodes need {}",
+                        per * n
+                    ));
+                }
+            }
+        }
+        if p == self.fluid && outputs.sampled_velocity.len() != 3 * outputs.sampled_lambda_min.len() {
+            return Err(format!(
+                "sampled_velocity has {} values for {} values of sampled_lambda_min; 3 per sample point are needed",
+                outputs.sampled_velocity.len(),
+                outputs.sampled_lambda_min.len()
+            ));
+        }
+        Ok(())
+    }
+
+    /// The structure: the node forces handed to it; the fluid: the point reactions.
+    fn force_given(&self, p: usize, inputs: &Fields, _outputs: &Fields) -> [f64; 3] {
+        if p == self.structure {
+            sum_vectors(&inputs.node_force, 6, 0)
+        } else if p == self.fluid {
+            sum_vectors(&inputs.reaction, 6, 3)
+        } else {
+            [0.0; 3]
+        }
+    }
+
+    /// Work of the node forces along the node positions (the fluid's side is not known here).
+    fn window_work(&self, p: usize, inputs: &[Fields], outputs: &[Fields]) -> f64 {
+        if p != self.structure {
+            return 0.0;
+        }
+        let f: Vec<&[f64]> = inputs.iter().map(|i| &i.node_force[..]).collect();
+        let x: Vec<&[f64]> = outputs.iter().map(|o| &o.node_position[..]).collect();
+        trapezoid_work(&f, &x, 6, 3)
+    }
+
+    fn geometry(&mut self, p: usize, geometry: &Geometry, outputs: &Fields) -> Result<(), String> {
+        if p == self.structure {
+            self.set_geometry(geometry, &outputs.node_position)?;
+        }
+        Ok(())
+    }
+
+    /// The fluid has no sample point before its first window: its samples start dry
+    /// (velocity 0, λ_min 0, so no force at t = 0).
+    fn complete_initial(&self, p: usize, outputs: &mut Fields) {
+        if p == self.fluid && outputs.sampled_lambda_min.is_empty() {
+            outputs.sampled_velocity = F64s::zeros(3 * self.pieces.len());
+            outputs.sampled_lambda_min = F64s::zeros(self.pieces.len());
+        }
+    }
+
+    /// Each sub-member's flow direction becomes that of the velocity relative to the member
+    /// sampled at the window's end (kept where the sample is dry or still).
+    fn accept(&mut self, outputs: &[Vec<Fields>]) {
+        let (Some(s), Some(f)) = (outputs[self.structure].last(), outputs[self.fluid].last()) else {
+            return;
+        };
+        if f.sampled_velocity.len() != 3 * self.pieces.len() {
+            return;
+        }
+        for (i, (piece, dir)) in self.pieces.iter().zip(&mut self.directions).enumerate() {
+            let [a, b] = piece.nodes;
+            let member = vec3(&s.node_velocity, 6 * a) * (0.5 * (1.0 - piece.xi))
+                + vec3(&s.node_velocity, 6 * b) * (0.5 * (1.0 + piece.xi));
+            let v = vec3(&f.sampled_velocity, 3 * i) - member;
+            if v.norm() > DIRECTION_MIN_SPEED {
+                *dir = Some(v.normalize());
+            }
+        }
+    }
+}

@@ -1,0 +1,108 @@
+//! A point reaction of the drag law spread over the fluid particles around its point (S2-24):
+//! `f_k = F V_k W(x_c − x_k) / Σ_j V_j W(x_c − x_j)` over the fluid particles k within the
+//! kernel's support of the sub-member centroid x_c, F the reaction (−f of the sub-member's
+//! force). The shares sum to one, so `Σ_k f_k = F` to round-off wherever fluid is present — near
+//! a wall or the free surface too.
+//!
+//! Where no fluid particle is within the support of the centroid (a sub-member just above the
+//! water whose sample point upstream is wet), the reaction is spread the same way around its
+//! paired sample point (reaction k pairs with sample point k), where the drag law found the
+//! water. Where no fluid is near either point, nothing can take it: the reaction is not applied
+//! and is returned as `unapplied`, which the solver adds up and the participant reports as a
+//! warning with its impulse.
+
+use super::kernel::Wendland;
+use super::point_grid::PointGrid;
+use crate::kind::FLUID;
+use crate::particles::Particles;
+use rayon::prelude::*;
+
+/// The forces of a set of point reactions on the fluid particles.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Spread {
+    /// Force on each particle (3 per particle, in the particles' present order) [N].
+    pub force: Vec<f64>,
+    /// Σ of `force`.
+    pub total: [f64; 3],
+    /// Reactions spread around their sample point instead of their centroid.
+    pub moved: usize,
+    /// Reactions with no fluid near either point, and their sum: not applied.
+    pub unapplied: usize,
+    pub unapplied_force: [f64; 3],
+}
+
+/// Spreads `reactions` (6 per reaction: point, force) over the fluid particles of spacing
+/// `spacing`; `sample_points` (3 per reaction, or empty) are the fall-back points.
+pub fn spread(p: &Particles, spacing: f64, reactions: &[f64], sample_points: &[f64]) -> Spread {
+    let kernel = Wendland::for_spacing(spacing);
+    let mut points: Vec<f64> = reactions
+        .chunks_exact(6)
+        .flat_map(|r| [r[0], r[1], r[2]])
+        .collect();
+    let paired = sample_points.len() * 2 == reactions.len();
+    if paired {
+        points.extend_from_slice(sample_points);
+    }
+    let grid = PointGrid::build(p, |i| p.kind[i] == FLUID, |_| true, &points, kernel.radius);
+    let shares: Vec<(Vec<(u32, f64)>, bool)> = reactions
+        .par_chunks_exact(6)
+        .enumerate()
+        .with_min_len(64)
+        .map(|(k, r)| {
+            if r[3..6].iter().all(|&f| f == 0.0) {
+                return (Vec::new(), false);
+            }
+            let around = shares_around(&grid, &kernel, [r[0], r[1], r[2]]);
+            if around.is_empty() && paired {
+                let s = &sample_points[3 * k..3 * k + 3];
+                (shares_around(&grid, &kernel, [s[0], s[1], s[2]]), true)
+            } else {
+                (around, false)
+            }
+        })
+        .collect();
+    let mut out = Spread {
+        force: vec![0.0; 3 * p.len()],
+        ..Spread::default()
+    };
+    for (r, (share, moved)) in reactions.chunks_exact(6).zip(shares) {
+        let f = [r[3], r[4], r[5]];
+        if share.is_empty() {
+            if f.iter().any(|&c| c != 0.0) {
+                out.unapplied += 1;
+                (0..3).for_each(|c| out.unapplied_force[c] += f[c]);
+            }
+            continue;
+        }
+        out.moved += usize::from(moved);
+        for (i, w) in share {
+            for (c, fc) in f.iter().enumerate() {
+                out.force[3 * i as usize + c] += w * fc;
+                out.total[c] += w * fc;
+            }
+        }
+    }
+    out
+}
+
+/// The normalised shares `V_k W_ik / Σ_j V_j W_ij` of the fluid particles around `x` (equal
+/// volumes cancel); empty when none is within the support.
+fn shares_around(grid: &PointGrid, kernel: &Wendland, x: [f64; 3]) -> Vec<(u32, f64)> {
+    let mut share = Vec::new();
+    let mut sum = 0.0;
+    let radius2 = kernel.radius * kernel.radius;
+    grid.for_each_near(x, |e| {
+        let q = e.position;
+        let r2 = (q[0] - x[0]).powi(2) + (q[1] - x[1]).powi(2) + (q[2] - x[2]).powi(2);
+        if r2 >= radius2 {
+            return;
+        }
+        let w = kernel.value(r2.sqrt());
+        if w > 0.0 {
+            share.push((e.index, w));
+            sum += w;
+        }
+    });
+    share.iter_mut().for_each(|(_, w)| *w /= sum);
+    share
+}

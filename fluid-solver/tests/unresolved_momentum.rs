@@ -1,0 +1,64 @@
+//! Issue 13: point reactions of the drag coupling change the fluid's momentum by exactly their
+//! impulse: with reactions at the surface, at the floor and inside, the budget
+//! `Δp = M g t + wall impulse + reaction impulse` closes to round-off (as conservation.rs's does
+//! without them), and the reaction impulse is Σ F Δt.
+mod common;
+
+use fluid_solver::{FluidSolver, Kind};
+use schemas::case::fluid::{Aabb, TankConfig};
+
+#[test]
+fn point_reactions_change_the_fluid_momentum_by_their_impulse() {
+    let (_, mut cfg) = common::load_case("hydrostatic-tank");
+    cfg.spacing = 0.02;
+    cfg.tank = TankConfig {
+        min: [0.0; 3],
+        max: [0.2, 0.2, 0.3],
+        lid: true,
+    };
+    cfg.block = vec![Aabb {
+        min: [0.0, 0.0, 0.0],
+        max: [0.2, 0.2, 0.12],
+    }];
+    cfg.time_step = 8.0e-4;
+    cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
+    let mut solver = FluidSolver::new(&cfg);
+    let mass = solver.particles().count(Kind::Fluid) as f64 * solver.particle_mass();
+    // Three sub-members: at the surface, on the floor, inside (point, force −f).
+    let reactions = [
+        0.1, 0.1, 0.115, 0.3, 0.0, -0.1, //
+        0.05, 0.1, 0.005, -0.2, 0.1, 0.0, //
+        0.15, 0.15, 0.06, 0.05, 0.05, 0.2,
+    ];
+    solver.set_point_reactions(&reactions, &[]);
+    let steps = 100;
+    for _ in 0..steps {
+        solver.step(cfg.time_step).unwrap_or_else(|e| panic!("{e}"));
+    }
+    let t = solver.time();
+    let p1 = solver.fluid_momentum();
+    let totals = solver.totals();
+    let given: Vec<f64> = (0..3)
+        .map(|c| reactions.chunks_exact(6).map(|r| r[3 + c]).sum::<f64>() * t)
+        .collect();
+    let scale = mass * 9.8 * t;
+    println!(
+        "momentum {p1:?}, reactions {:?} (given {given:?}), walls {:?}",
+        totals.reaction_impulse, totals.wall_impulse
+    );
+    assert_eq!(totals.unapplied_impulse, [0.0; 3], "every reaction found water");
+    for c in 0..3 {
+        // Σ f_k = F per step (normalised shares): round-off of 100 steps of ~50 terms.
+        assert!(
+            (totals.reaction_impulse[c] - given[c]).abs() < 1e-12,
+            "axis {c}: reaction impulse"
+        );
+        let residual =
+            p1[c] - mass * cfg.gravity[c] * t - totals.wall_impulse[c] - totals.reaction_impulse[c];
+        // the same round-off bound as conservation.rs's budget without reactions
+        assert!(
+            residual.abs() < 1e-9 * scale,
+            "axis {c}: momentum residual {residual} of {scale}"
+        );
+    }
+}
