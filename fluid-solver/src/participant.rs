@@ -118,6 +118,9 @@ impl FluidParticipant {
         for note in solver.layout_notes() {
             eprintln!("fluid `{name}`: note: {note}");
         }
+        for defect in solver.known_defects() {
+            eprintln!("warning: fluid `{name}`: {defect}");
+        }
         let frames = match out {
             Some(dir) => {
                 std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
@@ -244,7 +247,7 @@ impl FluidParticipant {
             let v = |f: [f64; 3]| format!("({:.3e}, {:.3e}, {:.3e})", f[0], f[1], f[2]);
             let window = v([now[0] - before[0], now[1] - before[1], now[2] - before[2]]);
             eprintln!(
-                "fluid `{}`: warning: in the window ending at t = {:.6} s, point reactions with no fluid particle near \
+                "warning: fluid `{}`: in the window ending at t = {:.6} s, point reactions with no fluid particle near \
                  their centroid or sample point were not applied: impulse {window} N s ({} N s since the start)",
                 self.name,
                 self.solver.time(),
