@@ -7,6 +7,7 @@
 use super::assembly::NODE_DOFS;
 use super::condensation::Block;
 use super::element::{corotate, ELEMENT_DOFS};
+use super::energy;
 use super::factor_age::{Staleness, CG_PRODUCTS_LIMIT};
 use super::global_system::{end_mass, mass_block, tangent_stiffness, Contribution, Motion, NodalForces};
 use super::newmark;
@@ -144,6 +145,14 @@ impl Frame {
         }
         let unconverged = self.unconverged;
         let hinges_before = self.hinges_if_recording();
+        let motion_before: Option<energy::Motion> = self
+            .energy
+            .as_ref()
+            .map(|_| self.nodes.iter().map(|n| (n.velocity, n.acceleration)).collect());
+        let internal_before = match &self.energy {
+            Some(acc) if acc.starting() => Some(self.gather(&self.contributions()).internal),
+            _ => None,
+        };
         let du = match self.equilibrium {
             Equilibrium::OneSolve => self.solve_once(dt, loads, &inertia)?,
             Equilibrium::Iterate { tolerance } => {
@@ -163,6 +172,9 @@ impl Frame {
                     newmark::advance(*duk, node.velocity[k], node.acceleration[k], dt)
                 };
             }
+        }
+        if let Some(before) = &motion_before {
+            self.account_step(dt, loads, &du, before, internal_before.as_deref());
         }
         self.elapsed += dt;
         if let Some(before) = &hinges_before {
@@ -396,12 +408,13 @@ impl Frame {
     /// Puts each elastic element's integration point where ASI-Gauss wants it given its member's hinges
     /// (a few comparisons per member: on one thread, cheaper than rayon's tasks).
     pub(super) fn update_integration_points(&mut self) {
+        let sections = &self.sections;
         self.elements.chunks_exact_mut(2).for_each(|member| {
             let hinged = [member[0].stress.hinge.is_some(), member[1].stress.hinge.is_some()];
             for (half, e) in member.iter_mut().enumerate() {
                 if !hinged[half] {
                     let s = e.elastic_integration_point(hinged[1 - half]);
-                    e.stress.move_to(e.length0, s);
+                    e.stress.move_to(&sections[e.section], e.length0, s);
                 }
             }
         });
