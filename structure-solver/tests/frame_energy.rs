@@ -59,7 +59,7 @@ fn free_vibration_with(p: f64, dt: f64, steps: usize, eq: Equilibrium) -> (f64, 
 
 /// First natural period of the cantilever (Euler–Bernoulli): ω1 = 1.875² √(EI / (m L⁴)).
 fn period() -> f64 {
-    let ei = 2.05e11 * 0.1f64.powi(4) / 12.0;
+    let ei = 200e9 * 0.1f64.powi(4) / 12.0;
     let m = 7850.0 * 0.01;
     2.0 * std::f64::consts::PI / (1.875f64.powi(2) * (ei / (m * 2.0f64.powi(4))).sqrt())
 }

@@ -6,7 +6,7 @@
 
 use super::assembly::NODE_DOFS;
 use super::condensation::Block;
-use super::element::{corotate, ELEMENT_DOFS};
+use super::element::{corotate, linear_kinematics, ELEMENT_DOFS};
 use super::energy;
 use super::factor_age::{Staleness, CG_PRODUCTS_LIMIT};
 use super::global_system::{end_mass, mass_block, tangent_stiffness, Contribution, Motion, NodalForces};
@@ -22,6 +22,9 @@ const MAX_AXIAL_STRAIN: f64 = 0.5;
 /// Largest rotation of a node relative to its element's chord [rad] before the run is declared
 /// unstable (the natural deformation is ambiguous near π).
 const MAX_RELATIVE_ROTATION: f64 = 2.5;
+/// Largest node rotation [rad] of a first-order (`geometry = "linear"`) element: its rotations are
+/// the rotation vectors of the node orientations, which wrap at π.
+const MAX_LINEAR_ROTATION: f64 = 3.0;
 
 /// Share of its first unbalanced force above which a one-solve step counts in
 /// [`Frame::unconverged_steps`]: a sign that Δt is too long for one solve per step. Measured on the
@@ -430,7 +433,12 @@ impl Frame {
                 .chain(&e.current.deformation[9..12])
                 .fold(0.0_f64, |m, x| m.max(x.abs()));
             let bad_values = !(strain.is_finite() && rotation.is_finite());
-            if bad_values || strain.abs() > MAX_AXIAL_STRAIN || rotation > MAX_RELATIVE_ROTATION {
+            let rotation_limit = if e.linear {
+                MAX_LINEAR_ROTATION
+            } else {
+                MAX_RELATIVE_ROTATION
+            };
+            if bad_values || strain.abs() > MAX_AXIAL_STRAIN || rotation > rotation_limit {
                 let advice = if self.equilibrium == Equilibrium::OneSolve
                     && self.unbalance > ONE_SOLVE_UNBALANCE_LIMIT
                 {
@@ -446,7 +454,7 @@ impl Frame {
                 };
                 return Err(format!(
                     "frame: element {i} (member {}) has axial strain {strain:.3} and end rotation {rotation:.3} rad \
-                     relative to its chord (limits {MAX_AXIAL_STRAIN} and {MAX_RELATIVE_ROTATION} rad): the run is \
+                     relative to its chord (limits {MAX_AXIAL_STRAIN} and {rotation_limit} rad): the run is \
                      unstable; {advice}",
                     e.member
                 ));
@@ -464,14 +472,27 @@ impl Frame {
 fn update_element(e: &mut Element, nodes: &[Node], sections: &[Section]) {
     let [a, b] = e.nodes;
     let (na, nb) = (&nodes[a], &nodes[b]);
-    let now = corotate(
-        &na.position,
-        &nb.position,
-        &na.rotation,
-        &nb.rotation,
-        &e.reference,
-        e.length0,
-    );
+    let now = if e.linear {
+        linear_kinematics(
+            &na.position,
+            &nb.position,
+            &na.initial,
+            &nb.initial,
+            &na.rotation,
+            &nb.rotation,
+            &e.reference,
+            e.length0,
+        )
+    } else {
+        corotate(
+            &na.position,
+            &nb.position,
+            &na.rotation,
+            &nb.rotation,
+            &e.reference,
+            e.length0,
+        )
+    };
     e.previous = (e.current, e.stress);
     let mut dd = [0.0; ELEMENT_DOFS];
     for (i, d) in dd.iter_mut().enumerate() {
