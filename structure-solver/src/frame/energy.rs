@@ -26,6 +26,12 @@
 //!   forms), the unbalanced force a one-solve step carries into the next, the change of the
 //!   spatial rotary inertia over a step, and the strain energy a fracture releases.
 //!
+//! Measured (`tests/frame_energy.rs`): a cantilever's elastic free vibration at Δt = T1/100 leaves
+//! a residual of 8e-12 of its initial energy over 5 periods with first-order elements
+//! (`geometry = "linear"`: every term exact), and with co-rotational ones one that grows by
+//! 3.5e-9 of it per step, iterated or not (their forces are not the exact gradient of U); a
+//! fixed–fixed beam's plastic collapse ends at 3.5e-4 of the external work.
+//!
 //! Cost: nothing while not recorded; while recorded, one pass over the nodes and one over the
 //! elements (their rotary inertia) per step, and a tangent stiffness per element per step when
 //! the frame has stiffness-proportional damping. Plastic work is summed at hinges in every step
