@@ -69,11 +69,13 @@ impl FrameTables {
         }
         self.events_written = events.len();
         if let (Some(w), Some(r), true) = (&mut self.energy, frame.energy(), history_row) {
-            writeln!(
-                w,
-                "{t},{},{},{},{},{},{},{},{}",
+            // one write and a flush per row: a run that ends abnormally leaves whole rows only
+            let row = format!(
+                "{t},{},{},{},{},{},{},{},{}\n",
                 r.kinetic, r.strain, r.plastic, r.shift, r.damping, r.algorithmic, r.external, r.residual
-            )?;
+            );
+            w.write_all(row.as_bytes())?;
+            w.flush()?;
         }
         let Some(w) = self.section_forces.as_mut().filter(|_| history_row) else {
             return Ok(());
