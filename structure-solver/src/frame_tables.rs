@@ -2,7 +2,9 @@
 //! element end at every history time: `t, member, element, end, node, N, Vy, Vz, T, My, Mz`, local
 //! axes of the element, N in tension positive) and `hinge-events.csv` (one row per hinge forming or
 //! closing and per fracture, written as they are reached: `t, event, member, element, node, N, Vy,
-//! Vz, T, My, Mz, f`, f the yield function there or S2-17's left side for a fracture).
+//! Vz, T, My, Mz, f`, f the yield function there or S2-17's left side for a fracture) and, with a
+//! history, `energy.csv` (one row per history time: `t, kinetic, strain, plastic, shift, damping,
+//! algorithmic, external, residual` in J; the columns and their equations in `frame/energy.rs`).
 
 use crate::frame::Frame;
 use std::fs::File;
@@ -13,13 +15,15 @@ use std::path::Path;
 pub struct FrameTables {
     section_forces: Option<BufWriter<File>>,
     hinge_events: BufWriter<File>,
+    /// `energy.csv`, when the frame keeps its energy account.
+    energy: Option<BufWriter<File>>,
     /// Hinge events written so far.
     events_written: usize,
 }
 
 impl FrameTables {
     /// Creates the tables in `dir` (`section-forces.csv` only with `section_forces`).
-    pub fn create(dir: &Path, section_forces: bool) -> io::Result<Self> {
+    pub fn create(dir: &Path, section_forces: bool, energy: bool) -> io::Result<Self> {
         let open = |name: &str, header: &str| -> io::Result<BufWriter<File>> {
             let mut w = BufWriter::new(File::create(dir.join(name))?);
             writeln!(w, "{header}")?;
@@ -33,6 +37,14 @@ impl FrameTables {
                 "hinge-events.csv",
                 "t,event,member,element,node,N,Vy,Vz,T,My,Mz,f",
             )?,
+            energy: energy
+                .then(|| {
+                    open(
+                        "energy.csv",
+                        "t,kinetic,strain,plastic,shift,damping,algorithmic,external,residual",
+                    )
+                })
+                .transpose()?,
             events_written: 0,
         })
     }
@@ -56,6 +68,15 @@ impl FrameTables {
             writeln!(self.hinge_events, ",{}", e.function)?;
         }
         self.events_written = events.len();
+        if let (Some(w), Some(r), true) = (&mut self.energy, frame.energy(), history_row) {
+            // one write and a flush per row: a run that ends abnormally leaves whole rows only
+            let row = format!(
+                "{t},{},{},{},{},{},{},{},{}\n",
+                r.kinetic, r.strain, r.plastic, r.shift, r.damping, r.algorithmic, r.external, r.residual
+            );
+            w.write_all(row.as_bytes())?;
+            w.flush()?;
+        }
         let Some(w) = self.section_forces.as_mut().filter(|_| history_row) else {
             return Ok(());
         };
@@ -78,6 +99,9 @@ impl FrameTables {
     }
 
     pub fn flush(&mut self) -> io::Result<()> {
+        if let Some(w) = &mut self.energy {
+            w.flush()?;
+        }
         if let Some(w) = &mut self.section_forces {
             w.flush()?;
         }

@@ -36,7 +36,7 @@ impl Output {
         let h = cfg.history.as_ref();
         let tables = s
             .frame()
-            .map(|_| FrameTables::create(dir, h.is_some_and(|h| h.section_forces)))
+            .map(|f| FrameTables::create(dir, h.is_some_and(|h| h.section_forces), f.energy().is_some()))
             .transpose()
             .map_err(|e| format!("cannot create the frame tables in {}: {e}", dir.display()))?;
         let vtu = s

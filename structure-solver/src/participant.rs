@@ -53,6 +53,9 @@ impl StructureParticipant {
         let mut structure = Structure::from_config(cfg, &key).map_err(at_key)?;
         if out.is_some() {
             structure.record_hinge_events();
+            if cfg.history.is_some() {
+                structure.record_energy();
+            }
         }
         let schedule = LoadSchedule::from_config(cfg, &key, &case.dir(), &structure).map_err(at_key)?;
         let mut output = out.map(|dir| Output::create(dir, cfg, &structure)).transpose()?;

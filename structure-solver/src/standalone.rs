@@ -47,6 +47,9 @@ pub fn run(case_path: &Path, out: Option<&Path>) -> Result<RunSummary, String> {
     let schedule = LoadSchedule::from_config(cfg, &key, &case.dir(), &structure).map_err(at_key)?;
     let out_dir = out.map_or_else(|| Path::new("out").join(&case.info.name), Path::to_path_buf);
     structure.record_hinge_events();
+    if cfg.history.is_some() {
+        structure.record_energy();
+    }
     let mut output = Output::create(&out_dir, cfg, &structure)?;
 
     let end_time = case.info.end_time;

@@ -180,6 +180,13 @@ impl Structure {
         }
     }
 
+    /// Starts keeping the frame's energy account (for the output's `energy.csv`).
+    pub fn record_energy(&mut self) {
+        if let Some(f) = &mut self.frame {
+            f.record_energy(true);
+        }
+    }
+
     /// Number of frame nodes (0 without a frame).
     pub fn frame_node_count(&self) -> usize {
         self.frame.as_ref().map_or(0, Frame::node_count)

@@ -59,6 +59,7 @@ fn frame() -> FrameConfig {
         wall: Vec::new(),
         equilibrium_tolerance: None,
         damping: None,
+        geometry: Default::default(),
     }
 }
 

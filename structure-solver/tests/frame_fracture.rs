@@ -41,6 +41,7 @@ fn two_part_cantilever() -> FrameConfig {
         wall: Vec::new(),
         equilibrium_tolerance: None,
         damping: None,
+        geometry: Default::default(),
     }
 }
 

@@ -50,6 +50,7 @@ fn portal() -> FrameConfig {
         wall: Vec::new(),
         equilibrium_tolerance: None,
         damping: None,
+        geometry: Default::default(),
     }
 }
 

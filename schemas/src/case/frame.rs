@@ -4,6 +4,7 @@
 //! [structure.bridge.frame]
 //! time_step = 1.0e-4                 # Newmark Δt [s]
 //! gravity = [0.0, 0.0, -9.81]        # [m/s²], applied to the lumped masses
+//! geometry = "corotational"          # optional: or "linear" (first order: small displacements)
 //!
 //! [structure.bridge.frame.material]
 //! young_modulus = 2.0e11             # E [Pa]
@@ -100,6 +101,22 @@ pub struct FrameConfig {
     /// Rayleigh damping `C = a0 M + a1 K` (K the tangent stiffness); absent: none.
     #[serde(default)]
     pub damping: Option<DampingConfig>,
+    /// Element kinematics: co-rotational (large displacements and rotations, the default) or
+    /// linear (first order, for checks against hand calculations).
+    #[serde(default)]
+    pub geometry: Geometry,
+}
+
+/// `geometry` of a frame.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Geometry {
+    /// Co-rotational (updated-Lagrangian) elements: large displacements and rotations.
+    #[default]
+    Corotational,
+    /// First order: the elements' strains from the displacements and rotations in their
+    /// undeformed axes, no geometric stiffness (small displacements, no P-Δ).
+    Linear,
 }
 
 /// `[structure.NAME.frame.damping]`: Rayleigh damping, by its coefficients (`mass` = a0 [1/s],

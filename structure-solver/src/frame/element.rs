@@ -202,6 +202,35 @@ pub fn corotate(
     }
 }
 
+/// First-order kinematics (`geometry = "linear"`): the element keeps its frame at t = 0 and its
+/// length `length0`, and its "deformations" are the end displacements `x − x0` and rotation vectors
+/// of the nodal rotations, in that frame (the strains then follow from [`strain_matrix`] as in a
+/// small-displacement analysis; the rotation vector equals the sum of the rotation increments for
+/// rotations about a fixed axis).
+#[allow(clippy::too_many_arguments)]
+pub fn linear_kinematics(
+    xa: &Vector3<f64>,
+    xb: &Vector3<f64>,
+    xa0: &Vector3<f64>,
+    xb0: &Vector3<f64>,
+    qa: &UnitQuaternion<f64>,
+    qb: &UnitQuaternion<f64>,
+    reference: &UnitQuaternion<f64>,
+    length0: f64,
+) -> Corotated {
+    let to_local = reference.inverse();
+    let mut deformation = [0.0; ELEMENT_DOFS];
+    let parts = [xa - xa0, quaternion_log(qa), xb - xb0, quaternion_log(qb)];
+    for (block, v) in parts.iter().enumerate() {
+        deformation[3 * block..3 * block + 3].copy_from_slice(to_local.transform_vector(v).as_slice());
+    }
+    Corotated {
+        frame: *reference.to_rotation_matrix().matrix(),
+        deformation,
+        length: length0,
+    }
+}
+
 /// Rotation vector (axis × angle, |angle| ≤ π) of a rotation matrix, exact down to the smallest
 /// angles (through the quaternion: θ = 2 atan2(|v|, w) v/|v|).
 pub fn rotation_vector(r: &Matrix3<f64>) -> Vector3<f64> {

@@ -76,8 +76,11 @@ impl Frame {
             self.nodes.push(node);
             let e = &mut self.elements[i];
             e.nodes[end.node()] = self.nodes.len() - 1;
+            let (dissipated, shifted) = (e.stress.dissipated, e.stress.shifted);
             e.stress = StressState::elastic(e.stress.s);
             e.stress.hinge = None;
+            e.stress.dissipated = dissipated;
+            e.stress.shifted = shifted;
             e.fractures += 1;
             changed = true;
         }

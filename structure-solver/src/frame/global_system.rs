@@ -43,7 +43,9 @@ impl Contribution {
 pub(super) fn tangent_stiffness(e: &Element, section: &Section) -> Block {
     let frame = &e.current.frame;
     let mut k = global_stiffness(frame, e.length0, e.stress.s, &e.stress.tangent(section));
-    add_axial_geometric_stiffness(&mut k, frame, e.stress.sigma[0], e.current.length);
+    if !e.linear {
+        add_axial_geometric_stiffness(&mut k, frame, e.stress.sigma[0], e.current.length);
+    }
     k
 }
 

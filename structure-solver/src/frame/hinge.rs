@@ -48,6 +48,14 @@ pub struct StressState {
     /// Accumulated generalised strains at the integration point (for fracture, S2-17).
     pub strain: Resultants,
     pub hinge: Option<End>,
+    /// Plastic work dissipated in this element so far [J]: the trapezoid `l ⟨σ⟩ · Δε_p` of every
+    /// plastic step, `Δε_p = D⁻¹ (σ_trial − σ)` the part of the strain increment the return to the
+    /// yield surface took out of the elastic trial (normality flow; `energy.rs`).
+    pub dissipated: f64,
+    /// Change of [`StressState::strain_energy`] made by moving the integration point so far [J]:
+    /// the end forces stay, the one-point strain energy does not (a hinge forming puts the point at
+    /// the hinge, where |M| is largest).
+    pub shifted: f64,
 }
 
 impl StressState {
@@ -58,13 +66,17 @@ impl StressState {
             sigma: [0.0; 6],
             strain: [0.0; 6],
             hinge: None,
+            dissipated: 0.0,
+            shifted: 0.0,
         }
     }
 
     /// Moves the integration point to `s_new`, keeping the end forces.
-    pub fn move_to(&mut self, length: f64, s_new: f64) {
+    pub fn move_to(&mut self, section: &Section, length: f64, s_new: f64) {
         if s_new != self.s {
+            let before = self.strain_energy(section, length);
             move_integration_point(length, self.s, s_new, &mut self.sigma);
+            self.shifted += self.strain_energy(section, length) - before;
             self.s = s_new;
         }
     }
@@ -113,20 +125,50 @@ impl StressState {
                         End::Finish
                     };
                     *self = start;
-                    self.move_to(length, end.integration_point());
+                    self.move_to(section, length, end.integration_point());
                     self.hinge = Some(end);
+                    let before = self.sigma;
                     self.elastic_trial(section, length, dd);
+                    let trial = self.sigma;
                     section.return_to_surface(&mut self.sigma);
+                    self.dissipate(section, length, &before, &trial);
                 }
             }
             Some(_) => {
                 if section.yield_function(self.sigma[0], self.sigma[4], self.sigma[5]) > 0.0 {
+                    let trial = self.sigma;
                     section.return_to_surface(&mut self.sigma);
+                    self.dissipate(section, length, &start.sigma, &trial);
                 } else {
                     self.hinge = None;
                 }
             }
         }
+    }
+
+    /// Adds the plastic work of a step from resultants `before` through the elastic `trial` to the
+    /// returned `self.sigma`: `l Σᵢ ⟨σᵢ⟩ (trialᵢ − σᵢ) / Dᵢ` (a few products, at hinges only).
+    fn dissipate(&mut self, section: &Section, length: f64, before: &Resultants, trial: &Resultants) {
+        let mut work = 0.0;
+        for i in 0..6 {
+            let d = section.stiffness[i];
+            if d > 0.0 {
+                work += 0.5 * (before[i] + self.sigma[i]) * (trial[i] - self.sigma[i]) / d;
+            }
+        }
+        self.dissipated += length * work;
+    }
+
+    /// Elastic strain energy of the element's section forces, `½ l Σᵢ σᵢ² / Dᵢ` (one-point rule).
+    pub fn strain_energy(&self, section: &Section, length: f64) -> f64 {
+        let mut u = 0.0;
+        for i in 0..6 {
+            let d = section.stiffness[i];
+            if d > 0.0 {
+                u += self.sigma[i] * self.sigma[i] / d;
+            }
+        }
+        0.5 * length * u
     }
 
     /// Adds the elastic response `D B(s) dd` to the resultants and `B(s) dd` to the strains.

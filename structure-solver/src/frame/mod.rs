@@ -17,6 +17,7 @@ pub mod condensed_system;
 pub mod contact;
 pub mod damping;
 pub mod element;
+pub mod energy;
 pub mod equilibrium;
 pub mod factor_age;
 pub mod fracture;
@@ -38,6 +39,7 @@ pub mod yield_function;
 /// (measured: a fifth of a step's time went to rayon's wake-ups and yields).
 pub(crate) const PARALLEL_CHUNK: usize = 256;
 
+pub use energy::EnergyRow;
 pub use equilibrium::MAX_CORRECTIONS;
 pub use global_system::DenseMatrices;
 pub use stepping::Equilibrium;
@@ -100,6 +102,8 @@ pub struct Frame {
     /// The predicted part of the step's end velocity, `(1 − δ/β) v + Δt (1 − δ/(2β)) a`, 6 per
     /// node, while the frame is damped.
     predicted_velocity: Vec<f64>,
+    /// The energy account, when kept (`energy.rs`).
+    energy: Option<energy::EnergyAccount>,
 }
 
 impl Frame {
@@ -170,6 +174,7 @@ impl Frame {
                 None => (0.0, 0.0),
             },
             predicted_velocity: Vec::new(),
+            energy: None,
         })
     }
 

@@ -6,7 +6,8 @@
 
 use super::assembly::NODE_DOFS;
 use super::condensation::Block;
-use super::element::{corotate, ELEMENT_DOFS};
+use super::element::{corotate, linear_kinematics, ELEMENT_DOFS};
+use super::energy;
 use super::factor_age::{Staleness, CG_PRODUCTS_LIMIT};
 use super::global_system::{end_mass, mass_block, tangent_stiffness, Contribution, Motion, NodalForces};
 use super::newmark;
@@ -21,6 +22,9 @@ const MAX_AXIAL_STRAIN: f64 = 0.5;
 /// Largest rotation of a node relative to its element's chord [rad] before the run is declared
 /// unstable (the natural deformation is ambiguous near π).
 const MAX_RELATIVE_ROTATION: f64 = 2.5;
+/// Largest node rotation [rad] of a first-order (`geometry = "linear"`) element: its rotations are
+/// the rotation vectors of the node orientations, which wrap at π.
+const MAX_LINEAR_ROTATION: f64 = 3.0;
 
 /// Share of its first unbalanced force above which a one-solve step counts in
 /// [`Frame::unconverged_steps`]: a sign that Δt is too long for one solve per step. Measured on the
@@ -144,6 +148,14 @@ impl Frame {
         }
         let unconverged = self.unconverged;
         let hinges_before = self.hinges_if_recording();
+        let motion_before: Option<energy::Motion> = self
+            .energy
+            .as_ref()
+            .map(|_| self.nodes.iter().map(|n| (n.velocity, n.acceleration)).collect());
+        let internal_before = match &self.energy {
+            Some(acc) if acc.starting() => Some(self.gather(&self.contributions()).internal),
+            _ => None,
+        };
         let du = match self.equilibrium {
             Equilibrium::OneSolve => self.solve_once(dt, loads, &inertia)?,
             Equilibrium::Iterate { tolerance } => {
@@ -163,6 +175,9 @@ impl Frame {
                     newmark::advance(*duk, node.velocity[k], node.acceleration[k], dt)
                 };
             }
+        }
+        if let Some(before) = &motion_before {
+            self.account_step(dt, loads, &du, before, internal_before.as_deref());
         }
         self.elapsed += dt;
         if let Some(before) = &hinges_before {
@@ -396,12 +411,13 @@ impl Frame {
     /// Puts each elastic element's integration point where ASI-Gauss wants it given its member's hinges
     /// (a few comparisons per member: on one thread, cheaper than rayon's tasks).
     pub(super) fn update_integration_points(&mut self) {
+        let sections = &self.sections;
         self.elements.chunks_exact_mut(2).for_each(|member| {
             let hinged = [member[0].stress.hinge.is_some(), member[1].stress.hinge.is_some()];
             for (half, e) in member.iter_mut().enumerate() {
                 if !hinged[half] {
                     let s = e.elastic_integration_point(hinged[1 - half]);
-                    e.stress.move_to(e.length0, s);
+                    e.stress.move_to(&sections[e.section], e.length0, s);
                 }
             }
         });
@@ -417,7 +433,12 @@ impl Frame {
                 .chain(&e.current.deformation[9..12])
                 .fold(0.0_f64, |m, x| m.max(x.abs()));
             let bad_values = !(strain.is_finite() && rotation.is_finite());
-            if bad_values || strain.abs() > MAX_AXIAL_STRAIN || rotation > MAX_RELATIVE_ROTATION {
+            let rotation_limit = if e.linear {
+                MAX_LINEAR_ROTATION
+            } else {
+                MAX_RELATIVE_ROTATION
+            };
+            if bad_values || strain.abs() > MAX_AXIAL_STRAIN || rotation > rotation_limit {
                 let advice = if self.equilibrium == Equilibrium::OneSolve
                     && self.unbalance > ONE_SOLVE_UNBALANCE_LIMIT
                 {
@@ -433,7 +454,7 @@ impl Frame {
                 };
                 return Err(format!(
                     "frame: element {i} (member {}) has axial strain {strain:.3} and end rotation {rotation:.3} rad \
-                     relative to its chord (limits {MAX_AXIAL_STRAIN} and {MAX_RELATIVE_ROTATION} rad): the run is \
+                     relative to its chord (limits {MAX_AXIAL_STRAIN} and {rotation_limit} rad): the run is \
                      unstable; {advice}",
                     e.member
                 ));
@@ -451,14 +472,27 @@ impl Frame {
 fn update_element(e: &mut Element, nodes: &[Node], sections: &[Section]) {
     let [a, b] = e.nodes;
     let (na, nb) = (&nodes[a], &nodes[b]);
-    let now = corotate(
-        &na.position,
-        &nb.position,
-        &na.rotation,
-        &nb.rotation,
-        &e.reference,
-        e.length0,
-    );
+    let now = if e.linear {
+        linear_kinematics(
+            &na.position,
+            &nb.position,
+            &na.initial,
+            &nb.initial,
+            &na.rotation,
+            &nb.rotation,
+            &e.reference,
+            e.length0,
+        )
+    } else {
+        corotate(
+            &na.position,
+            &nb.position,
+            &na.rotation,
+            &nb.rotation,
+            &e.reference,
+            e.length0,
+        )
+    };
     e.previous = (e.current, e.stress);
     let mut dd = [0.0; ELEMENT_DOFS];
     for (i, d) in dd.iter_mut().enumerate() {

@@ -4,7 +4,7 @@
 use super::element::{corotate, initial_frame, quaternion_of, Corotated, S_GAUSS};
 use super::hinge::StressState;
 use nalgebra::{UnitQuaternion, Vector3};
-use schemas::case::frame::{FrameConfig, DOF_NAMES};
+use schemas::case::frame::{FrameConfig, Geometry, DOF_NAMES};
 use schemas::case::FieldError;
 use std::collections::BTreeMap;
 
@@ -14,6 +14,8 @@ pub struct Node {
     /// Its id in the config; `None` for member mid nodes and nodes made by fracture.
     pub id: Option<u32>,
     pub position: Vector3<f64>,
+    /// Position at t = 0 (first-order kinematics measure displacements from it).
+    pub initial: Vector3<f64>,
     /// Rotation from the initial orientation.
     pub rotation: UnitQuaternion<f64>,
     /// `[v, ω]`, global.
@@ -30,6 +32,7 @@ impl Node {
         Node {
             id,
             position,
+            initial: position,
             rotation: UnitQuaternion::identity(),
             velocity: [0.0; 6],
             acceleration: [0.0; 6],
@@ -56,6 +59,9 @@ pub struct Element {
     pub stress: StressState,
     /// Times this element has fractured (and been split off a node).
     pub fractures: u32,
+    /// First-order kinematics (`geometry = "linear"`): strains from the undeformed configuration,
+    /// no geometric stiffness.
+    pub linear: bool,
     /// `current` and `stress` before the last update, to take a step back (`stepping.rs`).
     pub previous: (Corotated, StressState),
 }
@@ -133,6 +139,7 @@ pub fn build(cfg: &FrameConfig, key: &str) -> Result<Topology, FieldError> {
                 current,
                 stress: StressState::elastic(0.0),
                 fractures: 0,
+                linear: cfg.geometry == Geometry::Linear,
                 previous: (current, StressState::elastic(0.0)),
             };
             element.stress = StressState::elastic(element.elastic_integration_point(false));

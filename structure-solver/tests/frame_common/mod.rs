@@ -66,6 +66,7 @@ pub fn beam(length: f64, members: usize, width: f64, depth: f64, material: Mater
         wall: Vec::new(),
         equilibrium_tolerance: None,
         damping: None,
+        geometry: Default::default(),
     }
 }
 
@@ -135,6 +136,7 @@ pub fn building(n: usize, yield_stress: f64) -> FrameConfig {
         wall: Vec::new(),
         equilibrium_tolerance: None,
         damping: None,
+        geometry: Default::default(),
     }
 }
 
