@@ -93,6 +93,9 @@ pub struct Frame {
     unbalance: f64,
     /// Steps taken back and cut into parts because they left too much of their unbalanced force.
     cut_steps: u64,
+    /// Whether the step under way may be taken back ([`Frame::take_back`]): only then do the nodes
+    /// and elements keep their state before each update (a copy of every element per update).
+    keeps_previous: bool,
     /// Time since the frame was built: the sum of its steps [s].
     elapsed: f64,
     /// Hinge events, when recorded (`hinge_events.rs`).
@@ -167,6 +170,7 @@ impl Frame {
             end_of_step_forces: None,
             unbalance: 0.0,
             cut_steps: 0,
+            keeps_previous: false,
             elapsed: 0.0,
             events: None,
             damping: match &cfg.damping {

@@ -128,6 +128,7 @@ impl Frame {
     /// [`Frame::step`] without the cut; with `may_cut`, a one-solve step that leaves more than
     /// [`CUT_TRIGGER`] times its first unbalanced force is taken back (returns false).
     fn step_once(&mut self, dt: f64, loads: &[f64], may_cut: bool) -> Result<bool, String> {
+        self.keeps_previous = may_cut;
         let with_contact: Vec<f64>;
         let loads = match &self.contact {
             Some(c) => {
@@ -376,8 +377,11 @@ impl Frame {
     /// On one thread: about 15 ns per node, and rayon's tasks took longer than the work (measured on
     /// the benchmark's 7 × 7 × 7 grid: 0.15 ms per step in rayon tasks, 0.03 ms on one thread).
     pub(super) fn apply_increment(&mut self, du: &[f64]) {
+        let keep = self.keeps_previous;
         for (node, du) in self.nodes.iter_mut().zip(du.chunks_exact(NODE_DOFS)) {
-            node.previous = (node.position, node.rotation);
+            if keep {
+                node.previous = (node.position, node.rotation);
+            }
             node.position += Vector3::new(du[0], du[1], du[2]);
             let spin = UnitQuaternion::from_scaled_axis(Vector3::new(du[3], du[4], du[5]));
             node.rotation = spin * node.rotation;
@@ -387,22 +391,23 @@ impl Frame {
 
     /// New co-rotational frames, natural deformation increments and resultants of every element.
     pub(super) fn update_elements(&mut self) {
-        let (nodes, sections) = (&self.nodes, &self.sections);
+        let (nodes, sections, keep) = (&self.nodes, &self.sections, self.keeps_previous);
         self.elements
             .par_iter_mut()
             .with_min_len(PARALLEL_CHUNK)
-            .for_each(|e| update_element(e, nodes, sections));
+            .for_each(|e| update_element(e, nodes, sections, keep));
     }
 
     /// [`Frame::update_elements`] and, in the same pass, the elements' contributions at the new
     /// state without stiffness.
     fn update_elements_with_forces(&mut self) -> Vec<Contribution> {
-        let (nodes, sections, density) = (&self.nodes, &self.sections, self.density);
+        let (nodes, sections, density, keep) =
+            (&self.nodes, &self.sections, self.density, self.keeps_previous);
         self.elements
             .par_iter_mut()
             .with_min_len(PARALLEL_CHUNK)
             .map(|e| {
-                update_element(e, nodes, sections);
+                update_element(e, nodes, sections, keep);
                 Contribution::of(e, &sections[e.section], density)
             })
             .collect()
@@ -468,8 +473,8 @@ impl Frame {
 }
 
 /// Brings element `e` to the current node positions and rotations: its co-rotational frame, natural
-/// deformation increment and resultants.
-fn update_element(e: &mut Element, nodes: &[Node], sections: &[Section]) {
+/// deformation increment and resultants; with `keep`, its state before (for [`Frame::take_back`]).
+fn update_element(e: &mut Element, nodes: &[Node], sections: &[Section], keep: bool) {
     let [a, b] = e.nodes;
     let (na, nb) = (&nodes[a], &nodes[b]);
     let now = if e.linear {
@@ -493,7 +498,9 @@ fn update_element(e: &mut Element, nodes: &[Node], sections: &[Section]) {
             e.length0,
         )
     };
-    e.previous = (e.current, e.stress);
+    if keep {
+        e.previous = (e.current, e.stress);
+    }
     let mut dd = [0.0; ELEMENT_DOFS];
     for (i, d) in dd.iter_mut().enumerate() {
         *d = now.deformation[i] - e.current.deformation[i];
