@@ -240,6 +240,16 @@ pub fn cut_back(out: &Path, manifest: &Manifest) -> Result<(), CouplerError> {
         let path = out.join(rel);
         std::fs::remove_file(&path).map_err(|e| io("delete", &path, e))?;
     }
+    // checkpoint files cut short by the end of the first run
+    for entry in std::fs::read_dir(out.join(FOLDER))
+        .into_iter()
+        .flatten()
+        .filter_map(Result::ok)
+    {
+        if entry.file_name().to_string_lossy().ends_with(".tmp") {
+            let _ = std::fs::remove_file(entry.path());
+        }
+    }
     Ok(())
 }
 
