@@ -326,7 +326,76 @@ fn a_checkpoint_interval_that_is_not_a_whole_number_of_windows_is_refused_by_che
     let err = stderr(&check);
     assert_eq!(check.status.code(), Some(2), "{err}");
     assert!(
-        err.contains("coupling.checkpoint_interval") && err.contains("whole number"),
+        err.contains("case.toml")
+            && err.contains("coupling.checkpoint_interval")
+            && err.contains("whole number"),
+        "{err}"
+    );
+}
+
+#[test]
+fn checkpoints_of_a_case_with_a_frame_are_refused_by_check_until_frames_can_write_them() {
+    let dir = out_dir("resume-frame");
+    let case = dir.join("case.toml");
+    let text = r#"
+[case]
+name = "frame-in-tank"
+end_time = 0.01
+
+[fluid.water]
+spacing = 0.02
+time_step = 5.0e-4
+output_interval = 0.01
+tank = { min = [0.0, 0.0, 0.0], max = [0.2, 0.1, 0.2], lid = true }
+
+[[fluid.water.block]]
+min = [0.0, 0.0, 0.0]
+max = [0.1, 0.1, 0.1]
+
+[structure.column.frame]
+time_step = 5.0e-4
+gravity = [0.0, 0.0, -9.8]
+
+[structure.column.frame.material]
+young_modulus = 2.0e11
+poisson = 0.3
+density = 7850.0
+yield_stress = 2.35e8
+
+[[structure.column.frame.section]]
+name = "bar"
+kind = "rectangle"
+width = 0.002
+depth = 0.002
+
+[[structure.column.frame.node]]
+id = 1
+position = [0.15, 0.05, 0.0]
+
+[[structure.column.frame.node]]
+id = 2
+position = [0.15, 0.05, 0.15]
+
+[[structure.column.frame.member]]
+nodes = [1, 2]
+section = "bar"
+orientation = [1.0, 0.0, 0.0]
+
+[[structure.column.frame.support]]
+node = 1
+fixed = ["x", "y", "z", "rx", "ry", "rz"]
+
+[coupling]
+window = 5.0e-4
+scheme = "explicit"
+checkpoint_interval = 5.0e-3
+"#;
+    std::fs::write(&case, text).unwrap_or_else(|e| panic!("{e}"));
+    let check = coupler(&["check", case.to_str().unwrap_or_default()]);
+    let err = stderr(&check);
+    assert_eq!(check.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("coupling.checkpoint_interval") && err.contains("has a frame"),
         "{err}"
     );
 }
