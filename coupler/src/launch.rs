@@ -57,16 +57,22 @@ pub struct Children {
 
 impl Children {
     /// Starts `exe args…` in its own process group (so Ctrl-C reaches only the coupler),
-    /// with stdout and stderr going to `log`.
+    /// with stdout and stderr going to `log` (appended to with `append`: a resumed run).
     pub fn spawn(
         &mut self,
         name: &str,
         exe: &Path,
         args: &[String],
         log: &Path,
+        append: bool,
     ) -> Result<u32, CouplerError> {
         let io = |e: std::io::Error| CouplerError::Io(format!("cannot write {}: {e}", log.display()));
-        let out = File::create(log).map_err(io)?;
+        let out = if append {
+            std::fs::OpenOptions::new().create(true).append(true).open(log)
+        } else {
+            File::create(log)
+        }
+        .map_err(io)?;
         let err = out.try_clone().map_err(io)?;
         let process = Command::new(exe)
             .args(args)

@@ -48,6 +48,19 @@ impl Ledger {
         })
     }
 
+    /// Continues `path` (a resumed run, cut back to the checkpoint: header and earlier rows are there).
+    pub fn append(path: &Path, tolerance: f64) -> Result<Ledger, CouplerError> {
+        let out = schemas::checkpoint::append(path)
+            .map_err(|e| CouplerError::Io(format!("cannot continue {}: {e}", path.display())))?;
+        Ok(Ledger {
+            out: BufWriter::new(out),
+            path: path.to_path_buf(),
+            tolerance,
+            violations: 0,
+            worst_balance: 0.0,
+        })
+    }
+
     /// One window: forces at the window end and work over the window, as the laws report them, and the balance
     /// `|Σ_p f_p| / Σ_p |f_p|` (0 when no force crossed).
     pub fn window(

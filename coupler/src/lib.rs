@@ -4,6 +4,7 @@
 //! recordings against one solver, and reports error against run time and stability.
 
 pub mod acceleration;
+pub mod checkpoint;
 pub mod error;
 pub mod estimate;
 pub mod interface;

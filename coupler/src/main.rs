@@ -57,6 +57,11 @@ enum Command {
         /// Use another executable for a participant: --exe NAME=PATH (repeatable).
         #[arg(long, value_name = "NAME=PATH", value_parser = parse_exe)]
         exe: Vec<(String, PathBuf)>,
+        /// Continue the run whose output folder is OUT from its last complete checkpoint (the case
+        /// sets coupling.checkpoint_interval): every output is cut back to that point and appended
+        /// to, ending as an uninterrupted run's would. Takes the folder's lock; needs no --overwrite.
+        #[arg(long, value_name = "OUT", conflicts_with_all = ["out", "overwrite"])]
+        resume: Option<PathBuf>,
     },
     /// Drive one solver with its partners' recorded messages and compare its answers with the
     /// recorded ones; exits non-zero when it departs, when it compared fewer answers than the
@@ -141,12 +146,14 @@ fn main() -> ExitCode {
             overwrite,
             max_output,
             exe,
+            resume,
         } => run(&RunOptions {
             case,
             out,
             exe: exe.into_iter().collect::<BTreeMap<_, _>>(),
             overwrite,
             max_output,
+            resume,
         }),
         Command::Replay {
             recording,
@@ -215,6 +222,13 @@ fn check(path: &std::path::Path, out: Option<&std::path::Path>, max_output: u64)
             short(c.window),
             c.samples
         );
+        if let (Some(interval), Some(every)) = (c.checkpoint_interval, c.checkpoint_windows()) {
+            println!(
+                "  checkpoints: every {} s ({every} windows), the last {} kept in OUT/checkpoint/",
+                short(interval),
+                coupler::checkpoint::KEEP
+            );
+        }
     }
     if let Some(r) = &case.reference {
         println!(

@@ -28,26 +28,7 @@ impl OutputFolder {
     pub fn take(dir: &Path, overwrite: bool) -> Result<OutputFolder, CouplerError> {
         let io = |what: &str, e: std::io::Error| CouplerError::Io(format!("{what} {}: {e}", dir.display()));
         std::fs::create_dir_all(dir).map_err(|e| io("cannot create the output folder", e))?;
-        let lock_path = dir.join(LOCK_FILE);
-        let mut lock = OpenOptions::new()
-            .read(true)
-            .write(true)
-            .create(true)
-            .truncate(false)
-            .open(&lock_path)
-            .map_err(|e| io("cannot lock the output folder", e))?;
-        // SAFETY: flock(2) on a descriptor this function owns.
-        let held = unsafe { libc::flock(lock.as_raw_fd(), libc::LOCK_EX | libc::LOCK_NB) } == 0;
-        if !held {
-            let mut pid = String::new();
-            let _ = lock.read_to_string(&mut pid);
-            return Err(CouplerError::Usage(format!(
-                "{} is the output folder of a run still going on (coupler pid {}); wait for it to end, stop it, \
-                 or choose another --out",
-                dir.display(),
-                pid.trim()
-            )));
-        }
+        let mut lock = Self::lock(dir)?;
         let earlier: Vec<PathBuf> = std::fs::read_dir(dir)
             .map_err(|e| io("cannot read the output folder", e))?
             .filter_map(Result::ok)
@@ -64,11 +45,12 @@ impl OutputFolder {
                 names.truncate(4);
                 return Err(CouplerError::Usage(format!(
                     "{} already holds {} files or folders of an earlier run ({}{}); pass --overwrite to delete them \
-                     first, or choose another --out",
+                     first, --resume {} to continue it from its last checkpoint, or choose another --out",
                     dir.display(),
                     earlier.len(),
                     names.join(", "),
-                    if earlier.len() > names.len() { ", …" } else { "" }
+                    if earlier.len() > names.len() { ", …" } else { "" },
+                    dir.display()
                 )));
             }
             for p in &earlier {
@@ -90,5 +72,51 @@ impl OutputFolder {
             dir: dir.to_path_buf(),
             _lock: lock,
         })
+    }
+
+    /// Takes an existing output folder for a resumed run: locked like [`OutputFolder::take`], its
+    /// files kept.
+    pub fn hold(dir: &Path) -> Result<OutputFolder, CouplerError> {
+        if !dir.is_dir() {
+            return Err(CouplerError::Usage(format!(
+                "--resume {}: there is no such output folder",
+                dir.display()
+            )));
+        }
+        let mut lock = Self::lock(dir)?;
+        lock.set_len(0)
+            .and_then(|()| lock.rewind())
+            .and_then(|()| writeln!(lock, "{}", std::process::id()))
+            .map_err(|e| CouplerError::Io(format!("cannot lock the output folder {}: {e}", dir.display())))?;
+        Ok(OutputFolder {
+            dir: dir.to_path_buf(),
+            _lock: lock,
+        })
+    }
+
+    /// Takes the folder's lock, or says which run holds it.
+    fn lock(dir: &Path) -> Result<File, CouplerError> {
+        let io = |what: &str, e: std::io::Error| CouplerError::Io(format!("{what} {}: {e}", dir.display()));
+        let lock_path = dir.join(LOCK_FILE);
+        let mut lock = OpenOptions::new()
+            .read(true)
+            .write(true)
+            .create(true)
+            .truncate(false)
+            .open(&lock_path)
+            .map_err(|e| io("cannot lock the output folder", e))?;
+        // SAFETY: flock(2) on a descriptor this function owns.
+        let held = unsafe { libc::flock(lock.as_raw_fd(), libc::LOCK_EX | libc::LOCK_NB) } == 0;
+        if !held {
+            let mut pid = String::new();
+            let _ = lock.read_to_string(&mut pid);
+            return Err(CouplerError::Usage(format!(
+                "{} is the output folder of a run still going on (coupler pid {}); wait for it to end, stop it, \
+                 or choose another --out",
+                dir.display(),
+                pid.trim()
+            )));
+        }
+        Ok(lock)
     }
 }

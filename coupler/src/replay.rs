@@ -133,7 +133,7 @@ pub fn replay(opts: &ReplayOptions) -> Result<ReplayReport, CouplerError> {
         args: participant_args(&case_path, name, &run_id, &out),
     };
     let timeout = Duration::from_secs_f64(case.coupling.as_ref().map(|c| c.timeout).unwrap_or(120.0));
-    let (mut stack, initial) = Stack::launch(vec![launch], &run_id, case.hash, &out, None, timeout)?;
+    let (mut stack, initial) = Stack::launch(vec![launch], &run_id, case.hash, &out, None, timeout, None)?;
     let initial = initial.into_iter().next().unwrap_or_default();
     let result = drive(&mut stack, &mine, initial, opts.tolerance);
     let mut report = match result {

@@ -1,5 +1,6 @@
 //! `coupler run`: load the case, start the participants it needs, run the windows, stop cleanly.
 
+use crate::checkpoint::{self, Manifest};
 use crate::error::CouplerError;
 use crate::estimate::{bytes_text, Estimate};
 use crate::interface::Interface;
@@ -7,7 +8,7 @@ use crate::launch::{describe, executable_for};
 use crate::ledger::Ledger;
 use crate::out_folder::OutputFolder;
 use crate::progress::Progress;
-use crate::scheme::{Summary, Windows};
+use crate::scheme::{CheckpointPlan, Summary, Windows};
 use crate::stack::{Launch, Stack};
 use schemas::case::{Case, Kind};
 use schemas::message::{Role, PROTOCOL_VERSION};
@@ -28,6 +29,8 @@ pub struct RunOptions {
     pub overwrite: bool,
     /// Refuse a run estimated to write more bytes than this.
     pub max_output: u64,
+    /// Continue the run in this output folder from its last complete checkpoint.
+    pub resume: Option<PathBuf>,
 }
 
 /// The output folder a run writes to: `--out`, or `out/<case name>`.
@@ -86,12 +89,22 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
         .iter()
         .map(|(name, kind)| executable_for(&case, name, *kind, &opts.exe).map(|exe| (name.clone(), exe)))
         .collect::<Result<BTreeMap<_, _>, _>>()?;
-    let out = default_output_folder(&case, opts.out.as_deref());
+    let out = match &opts.resume {
+        Some(dir) => dir.clone(),
+        None => default_output_folder(&case, opts.out.as_deref()),
+    };
     let estimate = Estimate::of(&case);
     estimate.check(&out, opts.max_output)?;
     eprintln!("estimate: {}", estimate.describe());
-    let folder = OutputFolder::take(&out, opts.overwrite)?;
+    let folder = match &opts.resume {
+        Some(_) => OutputFolder::hold(&out)?,
+        None => OutputFolder::take(&out, opts.overwrite)?,
+    };
     let out = folder.dir.clone();
+    let resumed = match &opts.resume {
+        Some(_) => Some(resume_point(&case, &out)?),
+        None => None,
+    };
     signals::install();
     let Some(coupling) = &case.coupling else {
         let (name, kind) = &participants[0];
@@ -111,7 +124,22 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
             exe: executables[name].clone(),
             args: participant_args(&case_path, name, &run_id, &out),
         })
-        .collect();
+        .collect::<Vec<_>>();
+    let mut launches = launches;
+    if let Some(m) = &resumed {
+        for l in &mut launches {
+            let file = checkpoint::participant_file(&out, &l.name, m)?;
+            l.args
+                .extend(["--resume".to_string(), file.display().to_string()]);
+        }
+        checkpoint::cut_back(&out, m)?;
+        eprintln!(
+            "resuming from the checkpoint of window {} (t = {} s) in {}",
+            m.window,
+            m.time,
+            out.join(schemas::checkpoint::FOLDER).display()
+        );
+    }
     let recording = out.join("recording.rec");
     let header = RecordingHeader {
         protocol: PROTOCOL_VERSION,
@@ -121,11 +149,22 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
         run_id: run_id.clone(),
         participants: order.clone(),
     };
-    let recorder = Recorder::create(&recording, &header)
-        .map_err(|e| CouplerError::Io(format!("cannot write {}: {e}", recording.display())))?;
+    let recorder = match &resumed {
+        Some(_) => Recorder::append(&recording),
+        None => Recorder::create(&recording, &header),
+    }
+    .map_err(|e| CouplerError::Io(format!("cannot write {}: {e}", recording.display())))?;
     let started = Instant::now();
     let timeout = Duration::from_secs_f64(coupling.timeout);
-    let (mut stack, initial) = Stack::launch(launches, &run_id, case.hash, &out, Some(recorder), timeout)?;
+    let (mut stack, initial) = Stack::launch(
+        launches,
+        &run_id,
+        case.hash,
+        &out,
+        Some(recorder),
+        timeout,
+        resumed.as_ref().map(|m| m.wall),
+    )?;
     let result = (|| {
         let decls: Vec<_> = stack.sessions.iter().map(|s| s.interface.clone()).collect();
         let mut interface = Interface::bind(&case, &order, &decls)?;
@@ -147,7 +186,11 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
                     message: format!("initial outputs: {message}"),
                 })?;
         }
-        let ledger = Ledger::create(&out.join("ledger.csv"), &order, coupling.balance_tolerance)?;
+        let ledger_path = out.join("ledger.csv");
+        let ledger = match &resumed {
+            Some(_) => Ledger::append(&ledger_path, coupling.balance_tolerance)?,
+            None => Ledger::create(&ledger_path, &order, coupling.balance_tolerance)?,
+        };
         let windows = Windows {
             stack: &mut stack,
             interface: &mut interface,
@@ -155,8 +198,16 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
             ledger,
             progress: Progress::new(),
             reference: Default::default(),
+            checkpoints: coupling.checkpoint_windows().map(|every| CheckpointPlan {
+                every,
+                out: out.clone(),
+                case_hash: case.hash,
+            }),
         };
-        windows.run(case.info.end_time, initial)
+        match &resumed {
+            Some(m) => windows.resume(case.info.end_time, &m.coupler),
+            None => windows.run(case.info.end_time, initial),
+        }
     })();
     match result {
         Ok(summary) => {
@@ -169,6 +220,41 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
             Err(e)
         }
     }
+}
+
+/// The last complete checkpoint in `out`, checked against the case.
+fn resume_point(case: &Case, out: &Path) -> Result<Manifest, CouplerError> {
+    if case.coupling.is_none() {
+        return Err(CouplerError::Usage(format!(
+            "--resume: {} has no [coupling]; only coupled runs take checkpoints",
+            case.path.display()
+        )));
+    }
+    let m = checkpoint::latest(out)?;
+    if m.case_hash != case.hash {
+        return Err(CouplerError::Usage(format!(
+            "--resume {}: the checkpoint was written by a run of another case text (hash {:016x}; {} has {:016x}); \
+             resume with the case file the run was started with",
+            out.display(),
+            m.case_hash,
+            case.path.display(),
+            case.hash
+        )));
+    }
+    let names: Vec<String> = case
+        .coupling
+        .as_ref()
+        .map(|c| c.serial_order(case))
+        .unwrap_or_default();
+    if m.participants != names {
+        return Err(CouplerError::Usage(format!(
+            "--resume {}: the checkpoint is of participants {:?}, the case has {:?}",
+            out.display(),
+            m.participants,
+            names
+        )));
+    }
+    Ok(m)
 }
 
 fn report(s: &Summary, wall: f64, out: &Path) {

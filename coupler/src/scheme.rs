@@ -11,6 +11,7 @@
 //! iterates it to the fixed point.
 
 use crate::acceleration::{self, Accelerator};
+use crate::checkpoint::{self, CouplerState, Manifest};
 use crate::error::CouplerError;
 use crate::interface::Interface;
 use crate::ledger::{Ledger, WindowEnd};
@@ -19,7 +20,7 @@ use crate::stack::{variant, Stack};
 use crate::state;
 use schemas::case::coupling::{CouplingConfig, Predictor, Scheme};
 use schemas::message::{
-    Checkpoint, Fields, FromParticipant, Header, ToParticipant, Waveform, PROTOCOL_VERSION,
+    Checkpoint, Fields, FromParticipant, Geometry, Header, ToParticipant, Waveform, PROTOCOL_VERSION,
 };
 
 /// What a finished run did.
@@ -41,23 +42,93 @@ pub struct Windows<'a> {
     pub progress: Progress,
     /// Magnitude of each output field so far, the floor of the convergence measure.
     pub reference: state::Magnitudes,
+    /// Checkpoints to take (`coupling.checkpoint_interval`), if any.
+    pub checkpoints: Option<CheckpointPlan>,
+}
+
+/// Where and how often a run takes checkpoints.
+pub struct CheckpointPlan {
+    /// Windows between two checkpoints.
+    pub every: u64,
+    /// The run's output folder.
+    pub out: std::path::PathBuf,
+    pub case_hash: u64,
+}
+
+/// bincode bytes of `value` (the coupler's checkpoint keeps message types this way).
+fn encode<T: bincode::Encode>(value: &T) -> Vec<u8> {
+    // encoding into a Vec cannot fail
+    bincode::encode_to_vec(value, bincode::config::standard()).unwrap_or_default()
+}
+
+fn decode<T: bincode::Decode<()>>(bytes: &[u8], what: &str) -> Result<T, CouplerError> {
+    bincode::decode_from_slice(bytes, bincode::config::standard())
+        .map(|(v, _)| v)
+        .map_err(|e| {
+            CouplerError::Usage(format!(
+                "--resume: the checkpoint's {what} does not read back: {e}"
+            ))
+        })
 }
 
 impl Windows<'_> {
     /// Runs every window from 0 to `end_time`, starting from the participants' initial outputs.
-    pub fn run(mut self, end_time: f64, initial: Vec<Fields>) -> Result<Summary, CouplerError> {
-        let dt = self.config.window;
-        let total = ((end_time / dt) - 1e-9).ceil().max(1.0) as u64;
-        let mut accelerator = acceleration::from_config(self.config);
-        let mut last: Vec<Waveform> = initial
+    pub fn run(self, end_time: f64, initial: Vec<Fields>) -> Result<Summary, CouplerError> {
+        let last: Vec<Waveform> = initial
             .into_iter()
             .map(|f| Waveform {
                 times: vec![0.0],
                 samples: vec![f],
             })
             .collect();
-        let mut summary = Summary::default();
-        for w in 0..total {
+        let accelerator = acceleration::from_config(self.config);
+        self.run_from(end_time, 0, last, accelerator, Summary::default())
+    }
+
+    /// Runs the windows after a checkpoint to `end_time`, from the coupler's state kept in it.
+    pub fn resume(mut self, end_time: f64, state: &CouplerState) -> Result<Summary, CouplerError> {
+        let last: Vec<Waveform> = decode(&state.last, "last window")?;
+        let geometry: Vec<Option<Geometry>> = decode(&state.geometry, "member geometry")?;
+        if last.len() != self.stack.sessions.len() || geometry.len() != last.len() {
+            return Err(CouplerError::Usage(format!(
+                "--resume: the checkpoint is of {} participants, the case has {}",
+                last.len(),
+                self.stack.sessions.len()
+            )));
+        }
+        for (p, g) in geometry.into_iter().enumerate() {
+            if let (Some(g), Some(outputs)) = (&g, last[p].last()) {
+                self.interface.geometry(p, g, outputs)?;
+            }
+            self.stack.sessions[p].geometry = g;
+        }
+        let mut accelerator = acceleration::from_config(self.config);
+        accelerator
+            .restore(&state.accelerator)
+            .map_err(CouplerError::Usage)?;
+        self.reference.restore(&state.magnitudes);
+        self.ledger.worst_balance = state.worst_balance;
+        self.ledger.violations = state.balance_violations;
+        let summary = Summary {
+            windows: state.windows,
+            iterations: state.iterations,
+            max_iterations: state.max_iterations,
+            ..Summary::default()
+        };
+        self.run_from(end_time, state.next_window, last, accelerator, summary)
+    }
+
+    fn run_from(
+        mut self,
+        end_time: f64,
+        first: u64,
+        mut last: Vec<Waveform>,
+        mut accelerator: Box<dyn Accelerator>,
+        mut summary: Summary,
+    ) -> Result<Summary, CouplerError> {
+        let dt = self.config.window;
+        let total = ((end_time / dt) - 1e-9).ceil().max(1.0) as u64;
+        for w in first..total {
             let t0 = w as f64 * dt;
             let t1 = if w + 1 == total {
                 end_time
@@ -98,11 +169,62 @@ impl Windows<'_> {
             summary.iterations += u64::from(iterations);
             summary.max_iterations = summary.max_iterations.max(iterations);
             self.progress.update(t1, end_time, w + 1, total);
+            if let Some(plan) = &self.checkpoints {
+                if (w + 1) % plan.every == 0 && w + 1 < total {
+                    self.write_checkpoint(w, t1, &last, accelerator.as_ref(), &summary)?;
+                }
+            }
         }
         self.progress.finish();
         summary.worst_balance = self.ledger.worst_balance;
         summary.balance_violations = self.ledger.violations;
         Ok(summary)
+    }
+
+    /// The checkpoint at the end of window `w` (see [`crate::checkpoint`]): every participant's
+    /// state, then the manifest.
+    fn write_checkpoint(
+        &mut self,
+        w: u64,
+        time: f64,
+        last: &[Waveform],
+        accelerator: &dyn Accelerator,
+        summary: &Summary,
+    ) -> Result<(), CouplerError> {
+        let Some(plan) = &self.checkpoints else {
+            return Ok(());
+        };
+        let out = plan.out.clone();
+        let case_hash = plan.case_hash;
+        checkpoint::create_folder(&out)?;
+        let names: Vec<String> = self.stack.sessions.iter().map(|s| s.name.clone()).collect();
+        for (p, name) in names.iter().enumerate() {
+            let path = schemas::checkpoint::file(&out, name, w);
+            self.stack.write_checkpoint(p, w, &path)?;
+        }
+        let geometry: Vec<Option<Geometry>> =
+            self.stack.sessions.iter().map(|s| s.geometry.clone()).collect();
+        let manifest = Manifest {
+            case_hash,
+            window: w,
+            time,
+            wall: self.stack.wall_seconds(),
+            participants: names,
+            coupler: CouplerState {
+                next_window: w + 1,
+                last: encode(&last.to_vec()),
+                geometry: encode(&geometry),
+                accelerator: accelerator.save(),
+                magnitudes: self.reference.saved(),
+                worst_balance: self.ledger.worst_balance,
+                balance_violations: self.ledger.violations,
+                windows: summary.windows,
+                iterations: summary.iterations,
+                max_iterations: summary.max_iterations,
+            },
+            files: checkpoint::output_files(&out)?,
+        };
+        checkpoint::write_manifest(&out, &manifest)
     }
 
     /// First estimate of a participant's outputs at `times` from its last window `last`; the
@@ -127,7 +249,14 @@ impl Windows<'_> {
         accelerator: &mut dyn Accelerator,
     ) -> Result<(Vec<Vec<Fields>>, u32, f64), CouplerError> {
         let mut scales = Vec::new();
+        let start_geometry: Vec<_> = self.stack.sessions.iter().map(|s| s.geometry.clone()).collect();
         for k in 0..self.config.max_iterations {
+            if k > 0 {
+                // a repeated sweep starts from the window start's geometry, as the participants do
+                for (s, g) in self.stack.sessions.iter_mut().zip(&start_geometry) {
+                    s.geometry.clone_from(g);
+                }
+            }
             let (x, blocks) = state::flatten(estimate);
             let checkpoint = if k == 0 {
                 Checkpoint::Save

@@ -42,7 +42,10 @@ pub struct Stack {
 
 impl Stack {
     /// Starts every participant, opens their links and shakes hands (protocol version, role,
-    /// case hash). Returns the stack and each participant's initial outputs.
+    /// case hash). Returns the stack and each participant's initial outputs. A run resumed from a
+    /// checkpoint taken `resumed` wall seconds into the run appends to the logs, keeps its wall
+    /// clock going from there, and does not record the handshake (the recording already holds the
+    /// first run's).
     pub fn launch(
         launches: Vec<Launch>,
         run_id: &str,
@@ -50,17 +53,31 @@ impl Stack {
         out: &std::path::Path,
         recorder: Option<Recorder>,
         timeout: Duration,
+        resumed: Option<f64>,
     ) -> Result<(Stack, Vec<schemas::message::Fields>), CouplerError> {
+        let now = Instant::now();
         let mut stack = Stack {
             sessions: Vec::new(),
             children: Children::default(),
-            recorder,
-            started: Instant::now(),
+            recorder: None,
+            started: resumed
+                .and_then(|wall| now.checked_sub(Duration::from_secs_f64(wall.max(0.0))))
+                .unwrap_or(now),
             timeout,
+        };
+        // a resumed run's handshake is not recorded: the recorder joins after it
+        let held = match resumed {
+            Some(_) => recorder,
+            None => {
+                stack.recorder = recorder;
+                None
+            }
         };
         for l in &launches {
             let log = out.join(format!("{}.log", l.name));
-            let pid = stack.children.spawn(&l.name, &l.exe, &l.args, &log)?;
+            let pid = stack
+                .children
+                .spawn(&l.name, &l.exe, &l.args, &log, resumed.is_some())?;
             eprintln!("started {} ({}, pid {pid})", l.name, l.exe.display());
             let link =
                 Link::open(run_id, &l.name, Side::Coupler).map_err(|e| link_error(&l.name, None, e))?;
@@ -76,6 +93,9 @@ impl Stack {
         let mut initial = Vec::new();
         for i in 0..stack.sessions.len() {
             initial.push(stack.handshake(i, run_id, case_hash)?);
+        }
+        if held.is_some() {
+            stack.recorder = held;
         }
         Ok((stack, initial))
     }
@@ -154,6 +174,44 @@ impl Stack {
             .send(&msg)
             .map_err(|e| link_error(&name, window, e))?;
         self.record(&name, Message::To(msg))
+    }
+
+    /// Asks participant `i` to write its checkpoint of window `window` to `path` and waits for it
+    /// to say it did. Neither message is recorded (see [`ToParticipant::WriteCheckpoint`]).
+    pub fn write_checkpoint(
+        &mut self,
+        i: usize,
+        window: u64,
+        path: &std::path::Path,
+    ) -> Result<u64, CouplerError> {
+        let name = self.sessions[i].name.clone();
+        let msg = ToParticipant::WriteCheckpoint {
+            window,
+            path: path.display().to_string(),
+        };
+        self.sessions[i]
+            .link
+            .send(&msg)
+            .map_err(|e| link_error(&name, Some(window), e))?;
+        let deadline = Instant::now() + self.timeout;
+        let answer = self.wait(i, Some(window), |link, alive| {
+            link.recv::<FromParticipant>(Some(deadline), alive)
+        })?;
+        match answer {
+            FromParticipant::CheckpointWritten { window: w, bytes } if w == window => Ok(bytes),
+            FromParticipant::Failed { diagnostic, .. } => Err(CouplerError::Participant {
+                name,
+                window: Some(window),
+                message: format!("could not write its checkpoint: {diagnostic}"),
+            }),
+            other => Err(self.protocol_error(i, Some(window), "CheckpointWritten", &other)),
+        }
+    }
+
+    /// Seconds of wall time since the run started (a resumed run: since the first run started,
+    /// less the time it was down).
+    pub fn wall_seconds(&self) -> f64 {
+        self.started.elapsed().as_secs_f64()
     }
 
     /// Waits (idle) for participant `i`'s next message, at most the case's timeout, and records it.
@@ -316,6 +374,7 @@ pub fn variant(m: &FromParticipant) -> &'static str {
         FromParticipant::Advanced { .. } => "Advanced",
         FromParticipant::Failed { .. } => "Failed",
         FromParticipant::Finished => "Finished",
+        FromParticipant::CheckpointWritten { .. } => "CheckpointWritten",
     }
 }
 

@@ -103,6 +103,23 @@ impl Magnitudes {
         }
     }
 
+    /// Every magnitude as (participant, array name, RMS), for a checkpoint.
+    pub fn saved(&self) -> Vec<(usize, String, f64)> {
+        self.rms
+            .iter()
+            .map(|((p, name), v)| (*p, name.to_string(), *v))
+            .collect()
+    }
+
+    /// Takes back what [`Magnitudes::saved`] gave (names that are no array are left out).
+    pub fn restore(&mut self, saved: &[(usize, String, f64)]) {
+        let names: Vec<&'static str> = Fields::default().arrays().iter().map(|(n, _)| *n).collect();
+        self.rms = saved
+            .iter()
+            .filter_map(|(p, name, v)| names.iter().find(|n| **n == name).map(|n| ((*p, *n), *v)))
+            .collect();
+    }
+
     /// The norm below which block `b`'s residual is measured against this floor instead.
     fn floor(&self, b: &Block) -> f64 {
         let rms = self.rms.get(&(b.participant, b.name)).copied().unwrap_or(0.0);

@@ -33,7 +33,10 @@ enum Command {
 
 fn participant(args: &ParticipantArgs) -> Result<(), String> {
     let case = Case::load(&args.case).map_err(|e| e.to_string())?;
-    let mut solver = FluidParticipant::from_case(&case, &args.name, args.out.as_deref())?;
+    let mut solver = match &args.resume {
+        Some(from) => FluidParticipant::resume(&case, &args.name, args.out.as_deref(), from)?,
+        None => FluidParticipant::from_case(&case, &args.name, args.out.as_deref())?,
+    };
     serve(args, case.hash, &mut solver).map_err(|e| e.to_string())
 }
 

@@ -99,7 +99,7 @@ impl FluidMethod {
 
 /// The part of a method's state that a checkpoint must keep beyond the particles (whose
 /// pressure is the warm start of the next step).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum MethodState {
     /// E-MPS keeps nothing beyond the particles.
     Emps,

@@ -17,7 +17,7 @@ pub const CELL_IN_SPACINGS: f64 = 1.05;
 const PAD: usize = 3;
 
 /// A uniform grid of cells over a box, with the particles sorted by cell.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct CellGrid {
     origin: [f64; 3],
     inv_cell: f64,

@@ -27,7 +27,7 @@ use std::io::{self, BufWriter, Write};
 use std::path::Path;
 
 /// Particles added and removed by the open boundaries since the solver was made.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct ParticleBalance {
     /// Strip particles created during the run (the initial strip is part of the initial layout).
     pub inserted: u64,
@@ -38,7 +38,7 @@ pub struct ParticleBalance {
 }
 
 /// The inflow strip: where its lattice is and how far it is filled.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 struct InflowStrip {
     cfg: InflowConfig,
     spacing: f64,
@@ -151,7 +151,7 @@ impl InflowStrip {
 }
 
 /// The inflow and outflow boundaries of one fluid participant, with their particle balance.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct OpenBoundaries {
     inflow: Option<InflowStrip>,
     /// x of the outflow plane.

@@ -18,6 +18,8 @@
 //! go to the participant's log at the case's `progress_interval`, and `finish` writes the run's
 //! summary there.
 
+mod resume;
+
 use crate::probes::{ProbeFile, ProbeSet};
 use crate::progress::{peak_memory_bytes, Progress, RunSummary};
 use crate::solver::FluidSolver;
@@ -424,6 +426,10 @@ impl Participant for FluidParticipant {
             });
         self.warn_unapplied(unapplied_before);
         Ok(outputs)
+    }
+
+    fn write_checkpoint(&mut self, path: &Path) -> Result<u64, String> {
+        self.checkpoint_to(path)
     }
 
     fn finish(&mut self) -> Result<(), String> {

@@ -10,7 +10,7 @@ use crate::kind::Kind;
 use rayon::prelude::*;
 
 /// Every particle's state, one array per quantity; index `i` is the same particle in each.
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Particles {
     pub x: Vec<f64>,
     pub y: Vec<f64>,

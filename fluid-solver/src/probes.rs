@@ -144,6 +144,16 @@ impl ProbeSet {
         })
     }
 
+    /// The filtered probes' readings kept for their windows (a checkpoint keeps them).
+    pub fn windows(&self) -> &[Option<VecDeque<(f64, f64)>>] {
+        &self.windows
+    }
+
+    /// Takes over the readings of [`ProbeSet::windows`] (a resumed run).
+    pub fn set_windows(&mut self, windows: Vec<Option<VecDeque<(f64, f64)>>>) {
+        self.windows = windows;
+    }
+
     /// The column names of the CSV rows.
     pub fn names(&self) -> Vec<&str> {
         self.probes.iter().map(|p| p.name.as_str()).collect()
@@ -215,6 +225,13 @@ impl ProbeFile {
         writeln!(out, "time,{}{sep}removed", names.join(","))?;
         out.flush()?;
         Ok(ProbeFile { out })
+    }
+
+    /// Continues the file of a resumed run (header and earlier rows are there).
+    pub fn append(path: &Path) -> io::Result<ProbeFile> {
+        Ok(ProbeFile {
+            out: BufWriter::new(schemas::checkpoint::append(path)?),
+        })
     }
 
     /// Appends one row.

@@ -16,7 +16,7 @@ use crate::particles::Particles;
 use crate::physics::Physics;
 use crate::stability::{Instability, StabilityMonitor};
 use crate::stage_timer::StageTimes;
-use crate::state::{BodyExchange, FluidState};
+use crate::state::{BodyExchange, FluidState, RunState};
 use crate::unresolved;
 use schemas::case::fluid::{Aabb, FluidConfig, FluidMethodName};
 
@@ -25,7 +25,7 @@ use schemas::case::fluid::{Aabb, FluidConfig, FluidMethodName};
 const LANDING_SLACK: f64 = 1e-9;
 
 /// Running totals since the solver was made.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RunTotals {
     /// Σ force_from_walls·Δt: impulse of walls and bodies on the fluid [N s].
     pub wall_impulse: [f64; 3],
@@ -490,6 +490,23 @@ impl FluidSolver {
     /// Puts back a state saved by [`FluidSolver::save_state`].
     pub fn restore_state(&mut self, s: &FluidState) {
         self.state.clone_from(s);
+    }
+
+    /// What a resumed run needs besides [`FluidState`] (not part of it because implicit coupling's
+    /// restores must not touch it).
+    pub fn run_state(&self) -> RunState {
+        RunState {
+            started: self.started,
+            energy_reference: self.monitor.energy_reference(),
+            point_reactions: self.point_reactions.clone(),
+        }
+    }
+
+    /// Puts back a [`FluidSolver::run_state`].
+    pub fn restore_run_state(&mut self, r: RunState) {
+        self.started = r.started;
+        self.monitor.set_energy_reference(r.energy_reference);
+        self.point_reactions = r.point_reactions;
     }
 
     /// The method's own state (ISPH: surface flags, last PPE record).

@@ -134,6 +134,19 @@ impl StabilityMonitor {
         self.driven = true;
     }
 
+    /// The energy check's reference (initial energy, allowed growth, driven), which a resumed run
+    /// takes over from the checkpoint.
+    pub fn energy_reference(&self) -> (Option<f64>, f64, bool) {
+        (self.initial_energy, self.allowed_growth, self.driven)
+    }
+
+    /// Takes over a reference from [`StabilityMonitor::energy_reference`].
+    pub fn set_energy_reference(&mut self, (initial, growth, driven): (Option<f64>, f64, bool)) {
+        self.initial_energy = initial;
+        self.allowed_growth = growth;
+        self.driven = driven;
+    }
+
     /// Records the initial energy (call once before the first step).
     pub fn start(&mut self, p: &Particles) {
         let g = self.gravity;

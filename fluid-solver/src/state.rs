@@ -10,14 +10,14 @@ use crate::particles::Particles;
 /// The forces between fluid and bodies in the last step (6 per body: force, moment about the
 /// centre), as the bodies took them and as the fluid gave them, summed over the pair laws the
 /// method handed to the body exchange (see [`crate::bodies`]).
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct BodyExchange {
     pub loads: Vec<f64>,
     pub reaction: Vec<f64>,
 }
 
 /// The state of a fluid participant.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct FluidState {
     pub particles: Particles,
     /// The cell list matching the particles' order (loads are read through it).
@@ -36,4 +36,14 @@ pub struct FluidState {
     pub escaped: u64,
     /// Running totals (impulses, counts): a repeated window must not count its rejected tries.
     pub totals: crate::solver::RunTotals,
+}
+
+/// The rest of a fluid solver's state that a resumed run needs: whether the first step was taken,
+/// the stability monitor's energy reference (initial energy, allowed growth, driven), and the point
+/// reactions of the unresolved coupling in force (6 each) with their sample points (3 each).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct RunState {
+    pub started: bool,
+    pub energy_reference: (Option<f64>, f64, bool),
+    pub point_reactions: (Vec<f64>, Vec<f64>),
 }

@@ -87,6 +87,26 @@ impl SurfaceFrames {
         }
     }
 
+    /// The series so far (a checkpoint keeps it).
+    pub fn series(&self) -> &Collection {
+        &self.series
+    }
+
+    /// Frames that continue `series` (a resumed run); the `.pvd` is rewritten to list them.
+    pub fn resumed(
+        dir: &Path,
+        name: &str,
+        spacing: f64,
+        series: Vec<(f64, String)>,
+    ) -> io::Result<SurfaceFrames> {
+        Ok(SurfaceFrames {
+            dir: dir.to_path_buf(),
+            name: name.to_string(),
+            spacing,
+            series: Collection::resumed(dir.join(format!("{name}_surface.pvd")), series)?,
+        })
+    }
+
     /// Meshes the fluid of `p`, writes it as frame `k` at `time` and adds it to the series; an
     /// error names the file that could not be written.
     pub fn write(&mut self, k: u64, time: f64, p: &Particles) -> Result<(), (PathBuf, io::Error)> {

@@ -1,11 +1,12 @@
 //! The contract between the coupler and its participants: case files ([`case`]),
 //! interface messages ([`message`]) with their interpolation in a window ([`waveform`]),
 //! recordings ([`recording`]), the iceoryx2 link ([`link`]), the participant loop
-//! ([`participant`]) and the stop signals both sides heed ([`signals`]); and the output files every solver writes: ParaView's time series ([`pvd`]), each
+//! ([`participant`]), checkpoints for resuming a run ([`checkpoint`]) and the stop signals both sides heed ([`signals`]); and the output files every solver writes: ParaView's time series ([`pvd`]), each
 //! file written whole or not at all ([`atomic_file`]).
 
 pub mod atomic_file;
 pub mod case;
+pub mod checkpoint;
 pub mod f64s;
 pub mod link;
 pub mod message;

@@ -8,7 +8,7 @@ use crate::f64s::F64s;
 use bincode::{Decode, Encode};
 
 /// Version of this message set; a participant with another version is refused at the handshake.
-pub const PROTOCOL_VERSION: u32 = 1;
+pub const PROTOCOL_VERSION: u32 = 2;
 
 /// Which solver a participant is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Encode, Decode)]
@@ -152,6 +152,11 @@ pub enum ToParticipant {
     },
     /// The run is over: write final output and exit.
     Finish,
+    /// Write the full state at the end of window `window` (accepted) to the file `path`
+    /// ([`crate::checkpoint`]), after writing every output row and frame kept back from it; answered by
+    /// `CheckpointWritten`. Not recorded: a recording holds the same messages whether or not the run
+    /// took checkpoints (protocol version 2).
+    WriteCheckpoint { window: u64, path: String },
 }
 
 /// Participant → coupler. (Variants differ in size; a message is built and moved once per
@@ -179,4 +184,9 @@ pub enum FromParticipant {
     },
     /// Final output written.
     Finished,
+    /// The state asked for by `WriteCheckpoint` is on disk (synced), `bytes` long.
+    CheckpointWritten {
+        window: u64,
+        bytes: u64,
+    },
 }

@@ -15,7 +15,7 @@ use crate::message::{
     Checkpoint, Fields, FromParticipant, Geometry, Header, Hello, InterfaceDecl, Role, ToParticipant,
     Waveform, PROTOCOL_VERSION,
 };
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 /// A solver that can take part in a coupled run.
@@ -41,6 +41,13 @@ pub trait Participant {
     fn advance(&mut self, inputs: &Waveform) -> Result<Vec<Fields>, String>;
     /// The run is over: write final output.
     fn finish(&mut self) -> Result<(), String>;
+    /// Writes every output kept back from the accepted window, then the full state (solver, output
+    /// bookkeeping) to `path` with [`crate::checkpoint::write`]; returns its size in bytes. A
+    /// solver that cannot do this says so, and the run stops with that message.
+    fn write_checkpoint(&mut self, path: &Path) -> Result<u64, String> {
+        let _ = path;
+        Err("this solver cannot write checkpoints".into())
+    }
 }
 
 /// Command-line arguments every solver takes in participant mode (`SOLVER participant …`).
@@ -61,6 +68,11 @@ pub struct ParticipantArgs {
     /// Folder for this participant's own output (VTU, CSV).
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Continue from this checkpoint file (written on the coupler's `WriteCheckpoint`) instead of
+    /// t = 0: the solver restores its state and appends to the output files in `--out`, which the
+    /// coupler has cut back to their length at the checkpoint.
+    #[arg(long)]
+    pub resume: Option<PathBuf>,
 }
 
 /// Why a participant stopped.
@@ -222,6 +234,26 @@ fn serve_until_stopped<P: Participant>(
                     }
                 }
             }
+            ToParticipant::WriteCheckpoint { window, path } => {
+                match solver.write_checkpoint(Path::new(&path)) {
+                    Ok(bytes) => {
+                        link.send(&FromParticipant::CheckpointWritten { window, bytes })?;
+                    }
+                    Err(diagnostic) => {
+                        let header = Header {
+                            protocol,
+                            window,
+                            iteration: 0,
+                            time: solver.time(),
+                        };
+                        link.send(&FromParticipant::Failed {
+                            header,
+                            diagnostic: diagnostic.clone(),
+                        })?;
+                        return Err(ServeError::Solver(diagnostic));
+                    }
+                }
+            }
             ToParticipant::Finish => {
                 let done = solver.finish();
                 link.send(&FromParticipant::Finished)?;
@@ -243,6 +275,7 @@ fn name_of(m: &ToParticipant) -> &'static str {
         ToParticipant::Refused { .. } => "Refused",
         ToParticipant::Advance { .. } => "Advance",
         ToParticipant::Finish => "Finish",
+        ToParticipant::WriteCheckpoint { .. } => "WriteCheckpoint",
     }
 }
 

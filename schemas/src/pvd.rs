@@ -20,6 +20,18 @@ impl Collection {
         }
     }
 
+    /// A series that continues `frames` (a resumed run): the `.pvd` is rewritten to list them.
+    pub fn resumed(path: PathBuf, frames: Vec<(f64, String)>) -> io::Result<Collection> {
+        let c = Collection { path, frames };
+        c.rewrite()?;
+        Ok(c)
+    }
+
+    /// Time and file of each frame listed so far.
+    pub fn frames(&self) -> &[(f64, String)] {
+        &self.frames
+    }
+
     /// Frames listed so far.
     pub fn len(&self) -> usize {
         self.frames.len()
@@ -33,6 +45,11 @@ impl Collection {
     /// Adds the frame file `file` (relative to the `.pvd`'s folder) at `time` and rewrites the `.pvd`.
     pub fn add(&mut self, time: f64, file: &str) -> io::Result<()> {
         self.frames.push((time, file.to_string()));
+        self.rewrite()
+    }
+
+    /// Writes the `.pvd` listing the frames.
+    fn rewrite(&self) -> io::Result<()> {
         let mut s = String::from(
             "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n\
              <Collection>\n",

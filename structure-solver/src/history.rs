@@ -26,9 +26,23 @@ impl HistoryWriter {
     /// Creates the files in `dir` with their header rows. Names were validated with the case;
     /// an unknown one here is an error all the same.
     pub fn create(dir: &Path, cfg: &HistoryConfig, s: &Structure) -> Result<Self, String> {
+        Self::open(dir, cfg, s, false)
+    }
+
+    /// Continues the files of a resumed run in `dir` (their header and earlier rows are there).
+    pub fn append(dir: &Path, cfg: &HistoryConfig, s: &Structure) -> Result<Self, String> {
+        Self::open(dir, cfg, s, true)
+    }
+
+    fn open(dir: &Path, cfg: &HistoryConfig, s: &Structure, append: bool) -> Result<Self, String> {
         let mut files = Vec::new();
         let open = |name: String, header: &str| -> Result<BufWriter<File>, String> {
             let path = dir.join(name);
+            if append {
+                return schemas::checkpoint::append(&path)
+                    .map(BufWriter::new)
+                    .map_err(|e| format!("cannot continue {}: {e}", path.display()));
+            }
             let mut w = BufWriter::new(
                 File::create(&path).map_err(|e| format!("cannot create {}: {e}", path.display()))?,
             );

@@ -62,6 +62,9 @@ fn main() -> ExitCode {
 
 fn participant(args: &ParticipantArgs) -> Result<(), String> {
     let case = Case::load(&args.case).map_err(|e| e.to_string())?;
-    let mut solver = StructureParticipant::from_case(&case, &args.name, args.out.as_deref())?;
+    let mut solver = match &args.resume {
+        Some(from) => StructureParticipant::resume(&case, &args.name, args.out.as_deref(), from)?,
+        None => StructureParticipant::from_case(&case, &args.name, args.out.as_deref())?,
+    };
     serve(args, case.hash, &mut solver).map_err(|e| e.to_string())
 }

@@ -53,6 +53,25 @@ impl Output {
         })
     }
 
+    /// Continues the output of a resumed run in `dir`: the histories are appended to. Structures
+    /// with a frame do not resume (see [`crate::structure::Structure`]), so there are no frame
+    /// tables or VTU series to continue.
+    pub fn resume(dir: &Path, cfg: &StructureConfig, s: &Structure) -> Result<Self, String> {
+        let history = cfg
+            .history
+            .as_ref()
+            .map(|h| HistoryWriter::append(dir, h, s))
+            .transpose()?;
+        Ok(Self {
+            dir: dir.to_path_buf(),
+            history,
+            tables: None,
+            vtu: None,
+            vtu_interval: None,
+            vtu_due: 0.0,
+        })
+    }
+
     pub fn dir(&self) -> &Path {
         &self.dir
     }

@@ -10,6 +10,8 @@
 //! (the next advance comes without a restore, or the run finishes), so an implicit iteration
 //! that is repeated never writes twice.
 
+mod resume;
+
 use crate::frame::Frame;
 use crate::load_schedule::LoadSchedule;
 use crate::output::Output;
@@ -28,7 +30,8 @@ pub struct StructureParticipant {
     name: String,
     structure: Structure,
     schedule: LoadSchedule,
-    checkpoint: Option<Structure>,
+    /// The state at the window start and the geometry version sent by then.
+    checkpoint: Option<(Structure, Option<u64>)>,
     /// Frame connectivity version last sent as geometry.
     geometry_sent: Option<u64>,
     output: Option<Output>,
@@ -175,7 +178,7 @@ impl Participant for StructureParticipant {
     }
 
     fn save_checkpoint(&mut self) {
-        self.checkpoint = Some(self.structure.clone());
+        self.checkpoint = Some((self.structure.clone(), self.geometry_sent));
     }
 
     fn restore_checkpoint(&mut self) -> Result<(), String> {
@@ -186,7 +189,8 @@ impl Participant for StructureParticipant {
                 self.name
             )
         })?;
-        self.structure = saved.clone();
+        self.structure = saved.0.clone();
+        self.geometry_sent = saved.1;
         Ok(())
     }
 
@@ -218,6 +222,10 @@ impl Participant for StructureParticipant {
             }
         }
         Ok(outputs)
+    }
+
+    fn write_checkpoint(&mut self, path: &Path) -> Result<u64, String> {
+        self.checkpoint_to(path)
     }
 
     fn finish(&mut self) -> Result<(), String> {

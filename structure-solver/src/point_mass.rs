@@ -4,7 +4,7 @@ use nalgebra::Vector3;
 use schemas::case::structure::PointMassConfig;
 
 /// A point with mass, its reference position, displacement from it and velocity.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct PointMass {
     pub name: String,
     /// Mass [kg].

@@ -20,7 +20,7 @@ const MIDPOINT_TOLERANCE: f64 = 4.0 * f64::EPSILON;
 const MIDPOINT_ITERATIONS: usize = 200;
 
 /// State and mass properties of one rigid body.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct RigidBody {
     pub name: String,
     mass: f64,

@@ -5,7 +5,7 @@ use crate::anchor::Anchor;
 use nalgebra::Vector3;
 
 /// A spring between anchors `a` and `b` with stiffness `k` [N/m].
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct Spring {
     pub a: Anchor,
     pub b: Anchor,

@@ -28,7 +28,10 @@ use schemas::case::structure::{StructureConfig, GROUND};
 use schemas::case::FieldError;
 
 /// The state of one structure participant; `Clone` is its checkpoint.
-#[derive(Clone)]
+///
+/// A checkpoint file holds it without its frame (`frame` is skipped): frames are not written to
+/// checkpoint files yet, and a structure with a frame refuses to write one.
+#[derive(Clone, serde::Serialize, serde::Deserialize)]
 pub struct Structure {
     time: f64,
     max_step: f64,
@@ -37,6 +40,7 @@ pub struct Structure {
     springs: Vec<Spring>,
     bodies: Vec<RigidBody>,
     supports: Vec<Support>,
+    #[serde(skip)]
     frame: Option<Frame>,
     /// Frame nodes before any fracture: loads may leave out the nodes made since (see
     /// [`Structure::advance`]).

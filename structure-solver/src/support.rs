@@ -6,7 +6,7 @@
 //! the fluid's lift is compared with `F_d`. It is checked at the start of every substep.
 
 /// A support holding body `body` (index) until release.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct Support {
     pub body: usize,
     /// F_d [N].

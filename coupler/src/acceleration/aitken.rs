@@ -4,6 +4,7 @@
 
 use super::{dot, relax, Accelerator};
 
+#[derive(serde::Serialize, serde::Deserialize)]
 pub struct Aitken {
     initial: f64,
     omega: f64,
@@ -37,6 +38,14 @@ impl Accelerator for Aitken {
         };
         self.last_residual = Some(r);
         relax(x, h, self.omega)
+    }
+
+    fn save(&self) -> Vec<u8> {
+        super::save(self)
+    }
+
+    fn restore(&mut self, bytes: &[u8]) -> Result<(), String> {
+        super::restore(self, bytes)
     }
 
     fn end_window(&mut self) {

@@ -2,6 +2,7 @@
 
 use super::{relax, Accelerator};
 
+#[derive(serde::Serialize, serde::Deserialize)]
 pub struct ConstantRelaxation {
     pub omega: f64,
 }
@@ -9,6 +10,14 @@ pub struct ConstantRelaxation {
 impl Accelerator for ConstantRelaxation {
     fn next(&mut self, x: &[f64], h: &[f64], _iteration: u32) -> Vec<f64> {
         relax(x, h, self.omega)
+    }
+
+    fn save(&self) -> Vec<u8> {
+        super::save(self)
+    }
+
+    fn restore(&mut self, bytes: &[u8]) -> Result<(), String> {
+        super::restore(self, bytes)
     }
 
     fn end_window(&mut self) {}

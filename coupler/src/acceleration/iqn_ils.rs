@@ -6,6 +6,7 @@
 use super::{relax, Accelerator};
 use nalgebra::{DMatrix, DVector};
 
+#[derive(serde::Serialize, serde::Deserialize)]
 pub struct IqnIls {
     initial: f64,
     reuse: usize,
@@ -84,6 +85,14 @@ impl Accelerator for IqnIls {
             }
             return next;
         }
+    }
+
+    fn save(&self) -> Vec<u8> {
+        super::save(self)
+    }
+
+    fn restore(&mut self, bytes: &[u8]) -> Result<(), String> {
+        super::restore(self, bytes)
     }
 
     fn end_window(&mut self) {

@@ -19,6 +19,24 @@ pub trait Accelerator {
     fn next(&mut self, x: &[f64], h: &[f64], iteration: u32) -> Vec<f64>;
     /// The window converged.
     fn end_window(&mut self);
+    /// What it keeps across windows (relaxation, reused secant pairs), for a checkpoint.
+    fn save(&self) -> Vec<u8>;
+    /// Takes back what [`Accelerator::save`] gave (a resumed run).
+    fn restore(&mut self, bytes: &[u8]) -> Result<(), String>;
+}
+
+/// `a`'s state as bincode bytes.
+fn save<A: serde::Serialize>(a: &A) -> Vec<u8> {
+    // encoding plain numbers and vectors into a Vec cannot fail
+    bincode::serde::encode_to_vec(a, bincode::config::standard()).unwrap_or_default()
+}
+
+/// `a`'s state from [`save`]'s bytes.
+fn restore<A: serde::de::DeserializeOwned>(a: &mut A, bytes: &[u8]) -> Result<(), String> {
+    let (back, _) = bincode::serde::decode_from_slice(bytes, bincode::config::standard())
+        .map_err(|e| format!("the accelerator's saved state does not read back: {e}"))?;
+    *a = back;
+    Ok(())
 }
 
 /// The accelerator the case asks for.

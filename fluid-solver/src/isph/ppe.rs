@@ -48,7 +48,7 @@ pub struct PpeFailure {
 }
 
 /// How a solve went.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct PpeReport {
     pub iterations: u32,
     pub residual: f64,

@@ -37,7 +37,7 @@ use schemas::case::fluid::{IsphConfig, WallSlip};
 type Row = (Vec<(u32, f64)>, f64, f64);
 
 /// What ISPH keeps between steps beyond the particles (whose pressure is the PPE's warm start).
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct IsphState {
     /// Free-surface flag of each particle in the present order ([`SURFACE`] or 0), from the last
     /// step's detection (for outputs).

@@ -102,6 +102,11 @@ pub struct CouplingConfig {
     /// Wall seconds a participant may take for one answer before it is taken as hung.
     #[serde(default = "default_timeout")]
     pub timeout: f64,
+    /// Simulated time between checkpoints [s] (a whole number of windows; none by default): at
+    /// each such window end every participant and the coupler write their full state to
+    /// `OUT/checkpoint/`, and `coupler run CASE --resume OUT` continues from the last one.
+    #[serde(default)]
+    pub checkpoint_interval: Option<f64>,
     #[serde(default)]
     pub spring: Vec<SpringLink>,
     #[serde(default)]
@@ -134,6 +139,46 @@ fn default_timeout() -> f64 {
 }
 
 impl CouplingConfig {
+    /// Windows between checkpoints (`checkpoint_interval` / `window`), when checkpoints are asked for.
+    pub fn checkpoint_windows(&self) -> Option<u64> {
+        self.checkpoint_interval
+            .map(|i| (i / self.window).round().max(1.0) as u64)
+    }
+
+    /// `checkpoint_interval` must be a whole number of windows, and every participant must be able
+    /// to write its state (frames and the drag law cannot yet).
+    fn check_checkpoints(&self, case: &Case, interval: f64) -> Result<(), FieldError> {
+        const KEY: &str = "coupling.checkpoint_interval";
+        check::positive(KEY, interval)?;
+        let windows = interval / self.window;
+        let whole = windows.round().max(1.0);
+        if (windows - whole).abs() > 1e-9 * whole {
+            return Err(FieldError::new(
+                KEY,
+                format!(
+                    "{interval} s is not a whole number of coupling windows ({} s); use {} s ({whole} windows)",
+                    self.window,
+                    whole * self.window
+                ),
+            ));
+        }
+        if let Some((name, _)) = case.structure.iter().find(|(_, s)| s.frame.is_some()) {
+            return Err(FieldError::new(
+                KEY,
+                format!(
+                    "structure `{name}` has a frame, and frames cannot write checkpoints yet; remove {KEY}"
+                ),
+            ));
+        }
+        if !self.drag.is_empty() {
+            return Err(FieldError::new(
+                KEY,
+                format!("the drag coupling cannot write checkpoints yet; remove {KEY}"),
+            ));
+        }
+        Ok(())
+    }
+
     /// Checks the section against the case's participants.
     pub fn validate(&self, case: &Case) -> Result<(), FieldError> {
         check::positive("coupling.window", self.window)?;
@@ -159,6 +204,9 @@ impl CouplingConfig {
         }
         check::positive("coupling.balance_tolerance", self.balance_tolerance)?;
         check::positive("coupling.timeout", self.timeout)?;
+        if let Some(interval) = self.checkpoint_interval {
+            self.check_checkpoints(case, interval)?;
+        }
         let names = case.participants();
         for (i, name) in self.order.iter().enumerate() {
             if case.kind_of(name).is_none() {

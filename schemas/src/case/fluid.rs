@@ -863,7 +863,7 @@ pub const MIN_INFLOW_STRIP_LAYERS: f64 = 5.0;
 /// rise_time = 4.0       # h reaches h_max at this time [s]
 /// span = [0.0, 100.0]   # y range fed [m]; default: the tank's width
 /// ```
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, serde::Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct InflowConfig {
     /// x of the inflow plane [m].

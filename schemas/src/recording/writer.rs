@@ -28,6 +28,22 @@ impl Recorder {
         Ok(rec)
     }
 
+    /// Continues a recording (a resumed run, cut back to a frame boundary at its checkpoint).
+    pub fn append(path: &Path) -> io::Result<Recorder> {
+        let mut file = crate::checkpoint::append(path)?;
+        let mut magic = vec![0; MAGIC_V2.len()];
+        std::io::Read::read_exact(&mut File::open(path)?, &mut magic)?;
+        if magic != MAGIC_V2 {
+            return Err(io::Error::other("not a version-2 recording"));
+        }
+        file.flush()?;
+        Ok(Recorder {
+            out: BufWriter::new(file),
+            path: path.to_path_buf(),
+            scratch: Vec::new(),
+        })
+    }
+
     /// The file being written.
     pub fn path(&self) -> &Path {
         &self.path

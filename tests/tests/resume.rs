@@ -1,0 +1,401 @@
+//! Issue 16 item 10: checkpoint and resume through the real processes. Each case runs once
+//! uninterrupted, and once killed (SIGKILL to the coupler and both participants, at a random moment
+//! after the first checkpoint) and resumed with `coupler run CASE --resume OUT`; every output file of
+//! the two runs must then be equal byte for byte. Excluded, because they hold wall-clock time or
+//! the run's identity: the logs (`NAME.log`, appended to by the resumed run), the checkpoint folder,
+//! and in `recording.rec` each frame's wall time, the run id (header, `Welcome`) and the pid in each `Hello`
+//! (the recording is compared frame by frame on everything else).
+
+use schemas::message::{FromParticipant, ToParticipant};
+use schemas::recording::{Message, Recording};
+use stack_tests::{binary, case_from, coupler, coupler_run, out_dir, stderr};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// Adds `checkpoint_interval` to the case's `[coupling]` section.
+fn with_checkpoints(case: &Path, interval: &str) {
+    let text = std::fs::read_to_string(case).unwrap_or_default();
+    assert!(
+        text.contains("\n[coupling]\n"),
+        "the case has a [coupling] section"
+    );
+    let text = text.replacen(
+        "\n[coupling]\n",
+        &format!("\n[coupling]\ncheckpoint_interval = {interval}\n"),
+        1,
+    );
+    std::fs::write(case, text).unwrap_or_else(|e| panic!("{e}"));
+}
+
+/// A number in [0, n) that differs from run to run (the moment of the kill).
+fn random_below(n: u64) -> u64 {
+    let nanos = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.subsec_nanos())
+        .unwrap_or(0);
+    u64::from(nanos ^ std::process::id()) % n.max(1)
+}
+
+/// Whether `out` holds a complete checkpoint (a coupler manifest).
+fn has_checkpoint(out: &Path) -> bool {
+    std::fs::read_dir(out.join("checkpoint"))
+        .map(|d| {
+            d.filter_map(Result::ok).any(|e| {
+                e.file_name().to_string_lossy().starts_with("coupler-")
+                    && !e.file_name().to_string_lossy().ends_with(".tmp")
+            })
+        })
+        .unwrap_or(false)
+}
+
+/// Starts `coupler run CASE --out OUT` and kills the whole stack with SIGKILL at a random moment
+/// after its first complete checkpoint (within 1.5 times the time it took to get there). Returns whether the run was killed (it may have ended first).
+fn run_and_kill(case: &Path, out: &Path, log: &Path) -> bool {
+    let err = std::fs::File::create(log).unwrap_or_else(|e| panic!("{e}"));
+    let mut child = Command::new(binary("coupler"))
+        .args([
+            "run",
+            case.to_str().unwrap_or_default(),
+            "--out",
+            out.to_str().unwrap_or_default(),
+        ])
+        .stdout(Stdio::null())
+        .stderr(err)
+        .spawn()
+        .unwrap_or_else(|e| panic!("cannot start the coupler: {e}"));
+    let started = Instant::now();
+    let limit = started + Duration::from_secs(120);
+    while !has_checkpoint(out) {
+        if child.try_wait().ok().flatten().is_some() || Instant::now() > limit {
+            panic!(
+                "the run ended without a checkpoint:\n{}",
+                std::fs::read_to_string(log).unwrap_or_default()
+            );
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    // anywhere in the next one and a half checkpoint intervals (the run may end first)
+    let delay = random_below(started.elapsed().as_millis() as u64 * 3 / 2);
+    std::thread::sleep(Duration::from_millis(delay));
+    // the participants' pids, from the coupler's "started NAME (EXE, pid N)" lines
+    let text = std::fs::read_to_string(log).unwrap_or_default();
+    let pids: Vec<String> = text
+        .lines()
+        .filter_map(|l| l.strip_prefix("started "))
+        .filter_map(|l| {
+            l.rsplit_once("pid ")
+                .map(|(_, p)| p.trim_end_matches(')').to_string())
+        })
+        .collect();
+    assert_eq!(pids.len(), 2, "two participants started:\n{text}");
+    let ended_first = child.try_wait().ok().flatten().is_some();
+    let mut kill = Command::new("kill");
+    kill.arg("-KILL").arg(child.id().to_string()).args(&pids);
+    let _ = kill.status();
+    let _ = child.wait();
+    println!(
+        "{} {delay} ms after the first checkpoint",
+        if ended_first {
+            "the run had ended"
+        } else {
+            "killed the stack"
+        }
+    );
+    // the participants die with SIGKILL too; wait until they are gone
+    for pid in &pids {
+        let proc = PathBuf::from(format!("/proc/{pid}"));
+        let gone = Instant::now() + Duration::from_secs(10);
+        while proc.exists() && Instant::now() < gone {
+            std::thread::sleep(Duration::from_millis(5));
+        }
+    }
+    !ended_first
+}
+
+/// Every file under `dir` that must be equal byte for byte (relative paths, sorted).
+fn compared_files(dir: &Path) -> Vec<PathBuf> {
+    fn walk(root: &Path, dir: &Path, found: &mut Vec<PathBuf>) {
+        for e in std::fs::read_dir(dir)
+            .into_iter()
+            .flatten()
+            .filter_map(Result::ok)
+        {
+            let path = e.path();
+            let rel = path.strip_prefix(root).unwrap_or(&path).to_path_buf();
+            let name = rel
+                .file_name()
+                .and_then(|n| n.to_str())
+                .unwrap_or_default()
+                .to_string();
+            if path.is_dir() {
+                if !rel.starts_with("checkpoint") {
+                    walk(root, &path, found);
+                }
+            } else if !(name.ends_with(".log") || name == ".coupler.lock" || name == "recording.rec") {
+                found.push(rel);
+            }
+        }
+    }
+    let mut found = Vec::new();
+    walk(dir, dir, &mut found);
+    found.sort();
+    found
+}
+
+/// Asserts that the outputs of `a` and `b` are the same (see the module doc for what is excluded).
+fn assert_same_outputs(a: &Path, b: &Path) {
+    let files = compared_files(a);
+    assert_eq!(files, compared_files(b), "the two runs wrote the same files");
+    for rel in &files {
+        let (x, y) = (std::fs::read(a.join(rel)), std::fs::read(b.join(rel)));
+        let (x, y) = (x.unwrap_or_default(), y.unwrap_or_default());
+        let at = x.iter().zip(&y).position(|(p, q)| p != q);
+        assert!(
+            x == y,
+            "{} differs: {} and {} bytes, first difference at byte {at:?}",
+            rel.display(),
+            x.len(),
+            y.len()
+        );
+    }
+    let read = |d: &Path| Recording::read(&d.join("recording.rec")).unwrap_or_else(|e| panic!("{e}"));
+    let (ra, rb) = (read(a), read(b));
+    assert_eq!(ra.end, rb.end);
+    let mut ha = ra.header.clone();
+    ha.run_id = rb.header.run_id.clone();
+    assert_eq!(ha, rb.header, "recording headers differ beyond the run id");
+    assert_eq!(ra.frames.len(), rb.frames.len(), "recordings hold as many frames");
+    for (i, (fa, fb)) in ra.frames.iter().zip(&rb.frames).enumerate() {
+        let mut ma = fa.message.clone();
+        match (&mut ma, &fb.message) {
+            (Message::From(FromParticipant::Hello(ha)), Message::From(FromParticipant::Hello(hb))) => {
+                ha.pid = hb.pid
+            }
+            (
+                Message::To(ToParticipant::Welcome { run_id: a }),
+                Message::To(ToParticipant::Welcome { run_id: b }),
+            ) => a.clone_from(b),
+            _ => {}
+        }
+        assert!(
+            fa.participant == fb.participant && ma == fb.message,
+            "recording frame {i} differs: {:?} vs {:?}",
+            fa.participant,
+            fb.participant
+        );
+    }
+    println!(
+        "{} files equal byte for byte, {} recording frames equal but for wall time",
+        files.len(),
+        ra.frames.len()
+    );
+}
+
+/// Runs `case` uninterrupted into `dir/whole`, then killed and resumed into `dir/resumed`, and
+/// compares the two.
+fn killed_and_resumed_equals_uninterrupted(dir: &Path, case: &Path) {
+    let whole = dir.join("whole");
+    let run = coupler_run(case, &whole);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let resumed = dir.join("resumed");
+    let killed = run_and_kill(case, &resumed, &dir.join("killed.txt"));
+    let again = coupler(&[
+        "run",
+        case.to_str().unwrap_or_default(),
+        "--resume",
+        resumed.to_str().unwrap_or_default(),
+    ]);
+    let err = stderr(&again);
+    println!("{err}");
+    assert!(again.status.success(), "the resumed run failed:\n{err}");
+    assert!(err.contains("resuming from the checkpoint of window"), "{err}");
+    assert_same_outputs(&whole, &resumed);
+    if !killed {
+        println!("the run ended before the kill: the resumed run continued from its last checkpoint");
+    }
+}
+
+#[test]
+fn a_floating_box_killed_and_resumed_writes_the_same_outputs() {
+    let dir = out_dir("resume-floating-box");
+    let case = case_from(
+        "dam-break-floating-box",
+        &dir,
+        &[
+            ("end_time", "0.03"),
+            ("spacing", "0.02"),
+            ("output_interval", "0.01"),
+            ("surface_mesh", "true"),
+            (
+                "tank",
+                "{ min = [0.0, 0.0, 0.0], max = [0.6, 0.44, 0.4], lid = true }",
+            ),
+        ],
+    );
+    // a whole number of windows also for the case's report ladders (windows up to 0.01 s)
+    with_checkpoints(&case, "0.01");
+    killed_and_resumed_equals_uninterrupted(&dir, &case);
+}
+
+#[test]
+fn the_bridge_washout_with_inflow_outflow_and_a_release_killed_and_resumed_writes_the_same_outputs() {
+    let dir = out_dir("resume-bridge");
+    // F_d = 0.1 MN: the bore lifts the deck off its bearings near t = 4 s, after the checkpoints
+    // at 1.2, 2.4 and 3.6 s, so the resumed run makes the release again.
+    let case = case_from(
+        "bridge-washout-small",
+        &dir,
+        &[
+            ("end_time", "4.32"),
+            ("release_force", "1.0e5"),
+            ("surface_mesh", "false"),
+        ],
+    );
+    with_checkpoints(&case, "1.2");
+    killed_and_resumed_equals_uninterrupted(&dir, &case);
+    let releases = std::fs::read_to_string(dir.join("resumed/bridge/releases.csv")).unwrap_or_default();
+    assert!(
+        releases
+            .lines()
+            .nth(1)
+            .is_some_and(|l| l.starts_with("deck,") && l.len() > "deck,".len()),
+        "the deck was released: {releases}"
+    );
+}
+
+#[test]
+fn an_implicit_oscillator_with_iqn_ils_killed_and_resumed_writes_the_same_outputs() {
+    let dir = out_dir("resume-oscillator");
+    let case = case_from(
+        "oscillator",
+        &dir,
+        &[("end_time", "2.0"), ("max_iterations", "30\nreuse_windows = 3")],
+    );
+    // a whole number of windows also for the case's report ladders (windows up to 0.04 s)
+    with_checkpoints(&case, "0.4");
+    killed_and_resumed_equals_uninterrupted(&dir, &case);
+    // the resumed run's recording replays like an uninterrupted one's
+    let recording = dir.join("resumed/recording.rec");
+    let replay = coupler(&[
+        "replay",
+        recording.to_str().unwrap_or_default(),
+        "--participant",
+        "mass-right",
+        "--out",
+        dir.join("replay").to_str().unwrap_or_default(),
+    ]);
+    assert!(replay.status.success(), "{}", stderr(&replay));
+}
+
+#[test]
+fn resuming_a_folder_without_a_checkpoint_is_refused_as_bad_usage() {
+    let dir = out_dir("resume-none");
+    let case = case_from("oscillator", &dir, &[("end_time", "0.1")]);
+    let out = dir.join("out");
+    let run = coupler_run(&case, &out);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let again = coupler(&[
+        "run",
+        case.to_str().unwrap_or_default(),
+        "--resume",
+        out.to_str().unwrap_or_default(),
+    ]);
+    let err = stderr(&again);
+    assert_eq!(again.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("no complete checkpoint") && err.contains("checkpoint_interval"),
+        "{err}"
+    );
+    let missing = dir.join("no-such-folder");
+    let again = coupler(&[
+        "run",
+        case.to_str().unwrap_or_default(),
+        "--resume",
+        missing.to_str().unwrap_or_default(),
+    ]);
+    assert_eq!(again.status.code(), Some(2), "{}", stderr(&again));
+}
+
+#[test]
+fn a_checkpoint_interval_that_is_not_a_whole_number_of_windows_is_refused_by_check() {
+    let dir = out_dir("resume-check");
+    let case = case_from("oscillator", &dir, &[("end_time", "0.1")]);
+    with_checkpoints(&case, "0.0125");
+    let check = coupler(&["check", case.to_str().unwrap_or_default()]);
+    let err = stderr(&check);
+    assert_eq!(check.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("case.toml")
+            && err.contains("coupling.checkpoint_interval")
+            && err.contains("whole number"),
+        "{err}"
+    );
+}
+
+#[test]
+fn checkpoints_of_a_case_with_a_frame_are_refused_by_check_until_frames_can_write_them() {
+    let dir = out_dir("resume-frame");
+    let case = dir.join("case.toml");
+    let text = r#"
+[case]
+name = "frame-in-tank"
+end_time = 0.01
+
+[fluid.water]
+spacing = 0.02
+time_step = 5.0e-4
+output_interval = 0.01
+tank = { min = [0.0, 0.0, 0.0], max = [0.2, 0.1, 0.2], lid = true }
+
+[[fluid.water.block]]
+min = [0.0, 0.0, 0.0]
+max = [0.1, 0.1, 0.1]
+
+[structure.column.frame]
+time_step = 5.0e-4
+gravity = [0.0, 0.0, -9.8]
+
+[structure.column.frame.material]
+young_modulus = 2.0e11
+poisson = 0.3
+density = 7850.0
+yield_stress = 2.35e8
+
+[[structure.column.frame.section]]
+name = "bar"
+kind = "rectangle"
+width = 0.002
+depth = 0.002
+
+[[structure.column.frame.node]]
+id = 1
+position = [0.15, 0.05, 0.0]
+
+[[structure.column.frame.node]]
+id = 2
+position = [0.15, 0.05, 0.15]
+
+[[structure.column.frame.member]]
+nodes = [1, 2]
+section = "bar"
+orientation = [1.0, 0.0, 0.0]
+
+[[structure.column.frame.support]]
+node = 1
+fixed = ["x", "y", "z", "rx", "ry", "rz"]
+
+[coupling]
+window = 5.0e-4
+scheme = "explicit"
+checkpoint_interval = 5.0e-3
+"#;
+    std::fs::write(&case, text).unwrap_or_else(|e| panic!("{e}"));
+    let check = coupler(&["check", case.to_str().unwrap_or_default()]);
+    let err = stderr(&check);
+    assert_eq!(check.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("coupling.checkpoint_interval") && err.contains("has a frame"),
+        "{err}"
+    );
+}
