@@ -25,12 +25,17 @@ impl KeptState {
         self.nodes.extend(nodes.iter().map(|n| (n.position, n.rotation)));
     }
 
-    /// Keeps the nodes' and the elements' state.
-    pub fn keep(&mut self, nodes: &[Node], elements: &[Element]) {
-        self.keep_nodes(nodes);
+    /// Keeps the elements' frames and stress states.
+    pub fn keep_elements(&mut self, elements: &[Element]) {
         self.elements.clear();
         self.elements
             .extend(elements.iter().map(|e| (e.current, e.stress)));
+    }
+
+    /// Keeps the nodes' and the elements' state.
+    pub fn keep(&mut self, nodes: &[Node], elements: &[Element]) {
+        self.keep_nodes(nodes);
+        self.keep_elements(elements);
     }
 
     /// Puts the nodes and elements back in the kept state.

@@ -407,15 +407,27 @@ impl Frame {
             update_element(e, nodes, sections);
             Contribution::of(e, &sections[e.section], density)
         };
-        let elements = self.elements.par_iter_mut().with_min_len(PARALLEL_CHUNK);
         if !keep {
-            return elements.map(update).collect();
+            return self
+                .elements
+                .par_iter_mut()
+                .with_min_len(PARALLEL_CHUNK)
+                .map(update)
+                .collect();
         }
-        let mut contributions = Vec::new();
-        elements
-            .map(|e| ((e.current, e.stress), update(e)))
-            .unzip_into_vecs(&mut self.kept.elements, &mut contributions);
-        contributions
+        if self.kept.elements.len() != self.elements.len() {
+            // sized once (and after a fracture); the values are written below
+            self.kept.keep_elements(&self.elements);
+        }
+        self.elements
+            .par_iter_mut()
+            .zip(self.kept.elements.par_iter_mut())
+            .with_min_len(PARALLEL_CHUNK)
+            .map(|(e, kept)| {
+                *kept = (e.current, e.stress);
+                update(e)
+            })
+            .collect()
     }
 
     /// Puts each elastic element's integration point where ASI-Gauss wants it given its member's hinges
