@@ -339,13 +339,12 @@ impl Frame {
             let node_blocks = self.node_blocks(contributions, mass_factor);
             let (elements, sections) = (&self.elements, &self.sections);
             let scale = self.stiffness_factor(dt);
-            let stiffness = |e: usize| {
-                scaled(
-                    tangent_stiffness(&elements[e], &sections[elements[e].section]),
-                    scale,
-                )
-            };
-            self.system.assemble(&stiffness, &node_blocks)?;
+            let unscaled = |e: usize| tangent_stiffness(&elements[e], &sections[elements[e].section]);
+            let scaled_by = |e: usize| scaled(unscaled(e), scale);
+            // without damping, each block goes straight to the assembly (no copy on the way)
+            let stiffness: &(dyn Fn(usize) -> Block + Sync) =
+                if scale == 1.0 { &unscaled } else { &scaled_by };
+            self.system.assemble(stiffness, &node_blocks)?;
             self.factor_age.record(&self.elements);
             self.assemblies += 1;
         }
