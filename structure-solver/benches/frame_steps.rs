@@ -5,7 +5,9 @@
 //! Besides the numeric factorisations per step (and those that assembled the matrix anew), the table
 //! gives the products with the effective matrix in the conjugate-gradient solves that follow hinges
 //! forming or closing (the kept factor as preconditioner).
-//! Run: `cargo bench -p structure-solver --bench frame_steps [grid sizes, e.g. 3 7] [elastic|hinges]`.
+//! Run: `cargo bench -p structure-solver --bench frame_steps [grid sizes, e.g. 3 7] [elastic|hinges]
+//! [one|iterated] [steps=N]` (`steps=N` times N steps in every chosen row instead of the defaults,
+//! e.g. for a short run under callgrind).
 
 #[path = "../tests/frame_common/mod.rs"]
 mod frame_common;
@@ -106,7 +108,23 @@ fn main() {
         .filter(|a| !a.starts_with("--"))
         .collect();
     let chosen: Vec<usize> = args.iter().filter_map(|a| a.parse().ok()).collect();
-    let cases: Vec<&String> = args.iter().filter(|a| a.parse::<usize>().is_err()).collect();
+    let steps_override: Option<usize> = args
+        .iter()
+        .find_map(|a| a.strip_prefix("steps=").and_then(|s| s.parse().ok()));
+    let words: Vec<&String> = args
+        .iter()
+        .filter(|a| a.parse::<usize>().is_err() && !a.starts_with("steps="))
+        .collect();
+    let cases: Vec<&String> = words
+        .iter()
+        .copied()
+        .filter(|a| !["one", "iterated"].contains(&a.as_str()))
+        .collect();
+    let modes: Vec<&String> = words
+        .iter()
+        .copied()
+        .filter(|a| ["one", "iterated"].contains(&a.as_str()))
+        .collect();
     println!(
         "| grid | DOFs | case | steps | steps/s | ms/step | CPU ms/step | factorisations/step (assembled anew) | CG products/step \
          | hinge nodes | worst unbalance | unconverged steps |"
@@ -135,9 +153,10 @@ fn main() {
                 ),
                 ("iterated", iterate, steps / 4, 1e-3),
             ] {
-                if steps == 0 {
+                if steps == 0 || !modes.is_empty() && !modes.iter().any(|m| mode.starts_with(m.as_str())) {
                     continue;
                 }
+                let steps = steps_override.unwrap_or(steps);
                 match run(n, steps, dt, yield_stress, lateral, equilibrium) {
                     Ok(m) => println!(
                         "| {n}×{n}×{n} | {} | {case} | {mode} | {:.1} | {:.2} | {} | {:.2} ({:.2}) | {:.2} | {} | {:.1e} | {} |",

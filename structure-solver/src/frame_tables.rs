@@ -5,6 +5,10 @@
 //! Vz, T, My, Mz, f`, f the yield function there or S2-17's left side for a fracture) and, with a
 //! history, `energy.csv` (one row per history time: `t, kinetic, strain, plastic, shift, damping,
 //! algorithmic, external, residual` in J; the columns and their equations in `frame/energy.rs`).
+//!
+//! Every row reaches its file whole as it is written (one write and a flush: a hinge event, an
+//! energy row, or all the section-force rows of one history time together), so a run that ends
+//! abnormally, even killed, leaves whole rows up to its last history time.
 
 use crate::frame::Frame;
 use std::fs::File;
@@ -53,21 +57,22 @@ impl FrameTables {
     pub fn record(&mut self, frame: &Frame, t: f64, history_row: bool) -> io::Result<()> {
         let events = frame.hinge_events();
         for e in events.iter().skip(self.events_written) {
-            write!(
-                self.hinge_events,
+            let mut row = format!(
                 "{},{},{},{},{}",
                 e.time,
                 e.kind.name(),
                 e.member,
                 e.element,
                 e.node
-            )?;
+            );
             for f in e.forces {
-                write!(self.hinge_events, ",{f}")?;
+                row.push_str(&format!(",{f}"));
             }
-            writeln!(self.hinge_events, ",{}", e.function)?;
+            row.push_str(&format!(",{}\n", e.function));
+            self.hinge_events.write_all(row.as_bytes())?;
+            self.hinge_events.flush()?;
+            self.events_written += 1;
         }
-        self.events_written = events.len();
         if let (Some(w), Some(r), true) = (&mut self.energy, frame.energy(), history_row) {
             // one write and a flush per row: a run that ends abnormally leaves whole rows only
             let row = format!(
@@ -80,7 +85,10 @@ impl FrameTables {
         let Some(w) = self.section_forces.as_mut().filter(|_| history_row) else {
             return Ok(());
         };
+        // the rows of this history time in one write (a write and a flush per row would cost a
+        // system call per element end)
         let nodes = frame.element_nodes();
+        let mut rows = String::new();
         for (i, (forces, (member, _))) in frame
             .section_forces()
             .iter()
@@ -88,14 +96,15 @@ impl FrameTables {
             .enumerate()
         {
             for (end, f) in forces.iter().enumerate() {
-                write!(w, "{t},{member},{i},{end},{}", nodes[i][end])?;
+                rows.push_str(&format!("{t},{member},{i},{end},{}", nodes[i][end]));
                 for x in f {
-                    write!(w, ",{x}")?;
+                    rows.push_str(&format!(",{x}"));
                 }
-                writeln!(w)?;
+                rows.push('\n');
             }
         }
-        Ok(())
+        w.write_all(rows.as_bytes())?;
+        w.flush()
     }
 
     pub fn flush(&mut self) -> io::Result<()> {

@@ -1,15 +1,18 @@
 //! [`Output`]: everything a structure run writes to its folder — the CSV histories
 //! ([`HistoryWriter`]), the frame's tables ([`FrameTables`]: section forces at the history times,
 //! hinge events), the frame's VTU series ([`VtuSeries`]) at the history times (or every
-//! `vtu_interval`, or none), and `releases.csv` (one row per support: body, release time or
-//! empty) at the end.
+//! `vtu_interval`, or none), and `releases.csv` (`body,release_time`: a row per release, written
+//! at the first record after it, and at the end a row with an empty time per body never released).
+//! Every row reaches its file whole when it is written, so a run that ends abnormally, even killed,
+//! leaves whole rows.
 
 use crate::frame_tables::FrameTables;
 use crate::history::HistoryWriter;
 use crate::structure::Structure;
 use crate::vtu_series::VtuSeries;
 use schemas::case::structure::StructureConfig;
-use std::io::Write;
+use std::fs::File;
+use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 /// The output folder of one structure participant.
@@ -17,6 +20,8 @@ pub struct Output {
     dir: PathBuf,
     history: Option<HistoryWriter>,
     tables: Option<FrameTables>,
+    /// `releases.csv` (when there are supports) and which supports' releases it has.
+    releases: Option<(BufWriter<File>, Vec<bool>)>,
     vtu: Option<VtuSeries>,
     /// VTU interval [s] (`None`: every record) and the next time a snapshot is due.
     vtu_interval: Option<f64>,
@@ -43,10 +48,20 @@ impl Output {
             .frame()
             .filter(|_| h.is_none_or(|h| h.vtu))
             .map(|_| VtuSeries::new(dir));
+        let releases = (!s.supports().is_empty())
+            .then(|| -> std::io::Result<_> {
+                let mut w = BufWriter::new(File::create(dir.join("releases.csv"))?);
+                w.write_all(b"body,release_time\n")?;
+                w.flush()?;
+                Ok((w, vec![false; s.supports().len()]))
+            })
+            .transpose()
+            .map_err(|e| format!("cannot create {}: {e}", dir.join("releases.csv").display()))?;
         Ok(Self {
             dir: dir.to_path_buf(),
             history,
             tables,
+            releases,
             vtu,
             vtu_interval: h.and_then(|h| h.vtu_interval),
             vtu_due: 0.0,
@@ -76,11 +91,13 @@ impl Output {
         &self.dir
     }
 
-    /// Writes one history row per file and a frame snapshot for the state `s`.
+    /// Writes one history row per file, the releases since the last record and a frame snapshot
+    /// for the state `s`.
     pub fn record(&mut self, s: &Structure) -> Result<(), String> {
         if let Some(h) = &mut self.history {
             h.record(s).map_err(|e| self.error(e))?;
         }
+        self.write_releases(s, false).map_err(|e| self.error(e))?;
         if let (Some(tables), Some(frame)) = (&mut self.tables, s.frame()) {
             tables
                 .record(frame, s.time(), true)
@@ -99,7 +116,7 @@ impl Output {
         Ok(())
     }
 
-    /// Flushes the histories and writes `releases.csv` when there are supports.
+    /// Flushes the histories and ends `releases.csv` (a row per body never released).
     pub fn finish(&mut self, s: &Structure) -> Result<(), String> {
         if let Some(h) = &mut self.history {
             h.flush()
@@ -111,8 +128,27 @@ impl Output {
                 .and_then(|()| tables.flush())
                 .map_err(|e| format!("writing to {}: {e}", self.dir.display()))?;
         }
-        if !s.supports().is_empty() {
-            write_releases(&self.dir.join("releases.csv"), s).map_err(|e| self.error(e))?;
+        self.write_releases(s, true).map_err(|e| self.error(e))
+    }
+
+    /// Writes a `body,release_time` row, and flushes it, for every support of `s` released since
+    /// the last call; with `end`, also one with an empty time for every support never released.
+    fn write_releases(&mut self, s: &Structure, end: bool) -> std::io::Result<()> {
+        let Some((w, written)) = &mut self.releases else {
+            return Ok(());
+        };
+        for (support, written) in s.supports().iter().zip(written.iter_mut()) {
+            let time = match support.released_at {
+                Some(t) => t.to_string(),
+                None if end => String::new(),
+                None => continue,
+            };
+            if !*written {
+                let row = format!("{},{time}\n", s.bodies()[support.body].name);
+                w.write_all(row.as_bytes())?;
+                w.flush()?;
+                *written = true;
+            }
         }
         Ok(())
     }
@@ -128,15 +164,4 @@ pub fn output_times(interval: f64, end: f64) -> Vec<f64> {
     (1..=n)
         .map(|k| if k == n { end } else { interval * k as f64 })
         .collect()
-}
-
-/// `body,release_time` per support; the time is empty for a body never released.
-fn write_releases(path: &Path, s: &Structure) -> std::io::Result<()> {
-    let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
-    writeln!(f, "body,release_time")?;
-    for support in s.supports() {
-        let time = support.released_at.map(|t| t.to_string()).unwrap_or_default();
-        writeln!(f, "{},{time}", s.bodies()[support.body].name)?;
-    }
-    f.flush()
 }

@@ -506,3 +506,120 @@ fn hinge_events_of_the_plastic_collapse() {
         assert!(r[11].abs() < 1e-9, "f = {}", r[11]);
     }
 }
+
+/// Rows of the plastic-collapse beam's centre load [N]: up to 1.2 times its collapse load by
+/// 0.76 s (hinges form), back to zero by 1 s (they close), then none: the beam rings on.
+const LOAD_UP_AND_DOWN: &str =
+    "t,fx,fy,fz,mx,my,mz\n0.0,0,0,0,0,0,0\n0.76,0,0,-282000.0,0,0,0\n1.0,0,0,0,0,0,0\n";
+
+/// A deck held by a washout support beside the beam, lifted past its release force at 0.05 s.
+const RELEASED_DECK: &str = r#"
+[[structure.beam.body]]
+name = "deck"
+mass = 1000.0
+centre = [0.0, 5.0, 0.0]
+inertia = { box = [1.0, 1.0, 1.0] }
+
+[[structure.beam.support]]
+body = "deck"
+release_force = 1.0e4
+
+[[structure.beam.load]]
+body = "deck"
+value = [0.0, 0.0, 2.0e4, 0.0, 0.0, 0.0]
+history = "step"
+start = 0.05
+"#;
+
+/// Whether the text of a CSV file ends with whole rows: a header, then only rows that end with a
+/// line end and have the header's number of cells, each a number except the event kind.
+fn whole_rows(name: &str, text: &str) -> Result<usize, String> {
+    if !text.ends_with('\n') {
+        return Err(format!(
+            "{name} does not end with a line end: {:?}",
+            text.lines().last()
+        ));
+    }
+    let mut lines = text.lines();
+    let columns = lines.next().ok_or(format!("{name} is empty"))?.split(',').count();
+    let mut count = 0;
+    for l in lines {
+        let cells: Vec<&str> = l.split(',').collect();
+        let numbers = cells.iter().enumerate().all(|(i, c)| {
+            c.parse::<f64>().is_ok()
+                || (name == "hinge-events.csv" && i == 1)
+                || name == "releases.csv" && i == 0
+        });
+        if cells.len() != columns || !numbers {
+            return Err(format!("{name}: row {l:?} is not whole"));
+        }
+        count += 1;
+    }
+    Ok(count)
+}
+
+/// A standalone run killed (SIGKILL) mid-run leaves its section forces, hinge events, energy,
+/// node history and releases with whole rows up to its last history time: the plastic-collapse
+/// beam loaded past collapse and unloaded, beside a deck released at 0.05 s, run towards 1000 s
+/// and killed once the hinges have closed.
+#[test]
+fn a_killed_run_leaves_whole_rows_in_every_table() {
+    let out = scratch("killed");
+    std::fs::create_dir_all(&out).expect("scratch folder");
+    let text = std::fs::read_to_string(case("structure-plastic-collapse")).expect("the case");
+    let text = text
+        .replace("end_time = 0.76", "end_time = 1000.0")
+        .replace(
+            "value = [0.0, 0.0, -282000.0, 0.0, 0.0, 0.0]\nhistory = \"ramp\"\nstart = 0.0\nend = 0.76",
+            "history = \"table\"\ntable = \"load.csv\"",
+        )
+        .replace(
+            "[structure.beam.history]",
+            &format!("{RELEASED_DECK}\n[structure.beam.history]"),
+        );
+    std::fs::write(out.join("load.csv"), LOAD_UP_AND_DOWN).expect("write the load");
+    let path = out.join("case.toml");
+    std::fs::write(&path, text).expect("write the case");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_structure-solver"))
+        .arg("run")
+        .args([&path, Path::new("--out"), &out])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the binary starts");
+    let read = |name: &str| std::fs::read_to_string(out.join(name)).unwrap_or_default();
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    while !read("hinge-events.csv").contains("closing") {
+        if let Ok(Some(status)) = child.try_wait() {
+            let mut stderr = String::new();
+            if let Some(mut e) = child.stderr.take() {
+                let _ = std::io::Read::read_to_string(&mut e, &mut stderr);
+            }
+            panic!("the run ended ({status}) before its hinges closed: {stderr}");
+        }
+        assert!(
+            std::time::Instant::now() < deadline,
+            "no hinge closed within 60 s"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    child.kill().expect("SIGKILL");
+    let _ = child.wait();
+    let mut counts = Vec::new();
+    for name in [
+        "section-forces.csv",
+        "hinge-events.csv",
+        "energy.csv",
+        "node-3.csv",
+        "releases.csv",
+    ] {
+        counts.push(whole_rows(name, &read(name)).unwrap_or_else(|e| panic!("{e}")));
+    }
+    println!("whole rows left: {counts:?}");
+    assert!(counts.iter().all(|&c| c > 0), "rows: {counts:?}");
+    assert!(
+        read("releases.csv").contains("deck,0.05"),
+        "{}",
+        read("releases.csv")
+    );
+}

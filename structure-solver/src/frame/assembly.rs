@@ -241,22 +241,21 @@ impl SparseSystem {
         }
     }
 
-    /// `y = A x`, A the symmetric matrix whose lower triangle is stored.
+    /// `y = A x`, A the symmetric matrix whose lower triangle is stored. Each column's rows are
+    /// sorted and begin with its diagonal (see [`SparseSystem::new`]), which is taken first.
     pub fn multiply(&self, x: &[f64], y: &mut [f64]) {
         y.iter_mut().for_each(|v| *v = 0.0);
         let (col_ptr, row_idx) = (self.pattern.col_ptr(), self.pattern.row_idx());
         for (c, &xc) in x.iter().enumerate() {
-            let mut column = 0.0;
-            for (&r, &v) in row_idx[col_ptr[c]..col_ptr[c + 1]]
-                .iter()
-                .zip(&self.values[col_ptr[c]..col_ptr[c + 1]])
-            {
-                if r == c {
-                    column += v * xc;
-                } else {
-                    y[r] += v * xc;
-                    column += v * x[r];
-                }
+            let (rows, values) = (
+                &row_idx[col_ptr[c]..col_ptr[c + 1]],
+                &self.values[col_ptr[c]..col_ptr[c + 1]],
+            );
+            debug_assert_eq!(rows.first(), Some(&c));
+            let mut column = 0.0 + values[0] * xc;
+            for (&r, &v) in rows[1..].iter().zip(&values[1..]) {
+                y[r] += v * xc;
+                column += v * x[r];
             }
             y[c] += column;
         }

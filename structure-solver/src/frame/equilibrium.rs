@@ -16,7 +16,6 @@
 use super::assembly::NODE_DOFS;
 use super::hinge::End;
 use super::stepping::{check_finite, norm};
-use super::topology::{Element, Node};
 use super::Frame;
 
 /// Corrections per step at most.
@@ -40,8 +39,8 @@ impl Frame {
         tolerance: f64,
     ) -> Result<Vec<f64>, String> {
         self.end_of_step_forces = None;
-        let committed_nodes = self.nodes.clone();
-        let committed_elements = self.elements.clone();
+        // the committed state, which every iterate starts from
+        self.kept.keep(&self.nodes, &self.elements);
         let mass_factor = self.effective_mass_factor(dt);
         let mut du = vec![0.0; self.nodes.len() * NODE_DOFS];
         let mut first_residual = None;
@@ -89,7 +88,7 @@ impl Frame {
                     halvings += 1;
                     delta.iter_mut().for_each(|d| *d *= 0.5);
                     du = from.iter().zip(delta.iter()).map(|(a, b)| a + b).collect();
-                    self.set_trial(&committed_nodes, &committed_elements, &du);
+                    self.set_trial(&du);
                     continue;
                 }
                 if residual > SLOW_CONVERGENCE * last_residual && !refactor {
@@ -111,16 +110,16 @@ impl Frame {
                 *d += x;
             }
             check_finite(&du)?;
-            self.set_trial(&committed_nodes, &committed_elements, &du);
+            self.set_trial(&du);
         }
         Ok(du)
     }
 
-    /// Puts the frame in the state the committed one reaches with the increment `du`.
-    fn set_trial(&mut self, committed_nodes: &[Node], committed_elements: &[Element], du: &[f64]) {
-        self.nodes.clone_from_slice(committed_nodes);
+    /// Puts the frame in the state the committed one (kept at the start of the step) reaches with
+    /// the increment `du`.
+    fn set_trial(&mut self, du: &[f64]) {
+        self.kept.restore(&mut self.nodes, &mut self.elements);
         self.apply_increment(du);
-        self.elements.clone_from_slice(committed_elements);
         self.update_elements();
     }
 }

@@ -24,6 +24,7 @@ pub mod fracture;
 pub mod global_system;
 pub mod hinge;
 pub mod hinge_events;
+pub mod kept_state;
 pub mod newmark;
 pub mod preconditioned_cg;
 pub mod section;
@@ -93,9 +94,9 @@ pub struct Frame {
     unbalance: f64,
     /// Steps taken back and cut into parts because they left too much of their unbalanced force.
     cut_steps: u64,
-    /// Whether the step under way may be taken back ([`Frame::take_back`]): only then do the nodes
-    /// and elements keep their state before each update (a copy of every element per update).
-    keeps_previous: bool,
+    /// The state of the nodes and elements to go back to: before the increment of a one-solve step
+    /// that may be taken back ([`Frame::take_back`]), at the start of an iterated step.
+    kept: kept_state::KeptState,
     /// Time since the frame was built: the sum of its steps [s].
     elapsed: f64,
     /// Hinge events, when recorded (`hinge_events.rs`).
@@ -170,7 +171,7 @@ impl Frame {
             end_of_step_forces: None,
             unbalance: 0.0,
             cut_steps: 0,
-            keeps_previous: false,
+            kept: Default::default(),
             elapsed: 0.0,
             events: None,
             damping: match &cfg.damping {

@@ -105,6 +105,17 @@ impl Section {
     /// Gradient a = ∂f/∂σ of the yield function in [`Resultants`] order (zero for Q and T).
     pub fn yield_gradient(&self, sigma: &Resultants) -> Resultants {
         let [n0, my0, mz0] = self.plastic;
+        if self.yield_kind == YieldFunction::Quadratic {
+            // 2 σᵢ / σᵢ0², rounded as before the other surfaces came
+            return [
+                2.0 * sigma[0] / (n0 * n0),
+                0.0,
+                0.0,
+                0.0,
+                2.0 * sigma[4] / (my0 * my0),
+                2.0 * sigma[5] / (mz0 * mz0),
+            ];
+        }
         let [gn, gy, gz] = self
             .yield_kind
             .gradient(sigma[0] / n0, sigma[4] / my0, sigma[5] / mz0);

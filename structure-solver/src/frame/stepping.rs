@@ -116,19 +116,13 @@ impl Frame {
     /// Puts the nodes and elements back where the last increment found them (a one-solve step that
     /// has not been finished: velocities, accelerations and counters untouched).
     fn take_back(&mut self) {
-        for n in &mut self.nodes {
-            (n.position, n.rotation) = n.previous;
-        }
-        for e in &mut self.elements {
-            (e.current, e.stress) = e.previous;
-        }
+        self.kept.restore(&mut self.nodes, &mut self.elements);
         self.end_of_step_forces = None;
     }
 
     /// [`Frame::step`] without the cut; with `may_cut`, a one-solve step that leaves more than
     /// [`CUT_TRIGGER`] times its first unbalanced force is taken back (returns false).
     fn step_once(&mut self, dt: f64, loads: &[f64], may_cut: bool) -> Result<bool, String> {
-        self.keeps_previous = may_cut;
         let with_contact: Vec<f64>;
         let loads = match &self.contact {
             Some(c) => {
@@ -158,7 +152,7 @@ impl Frame {
             _ => None,
         };
         let du = match self.equilibrium {
-            Equilibrium::OneSolve => self.solve_once(dt, loads, &inertia)?,
+            Equilibrium::OneSolve => self.solve_once(dt, loads, &inertia, may_cut)?,
             Equilibrium::Iterate { tolerance } => {
                 self.solve_to_equilibrium(dt, loads, &inertia, tolerance)?
             }
@@ -201,8 +195,15 @@ impl Frame {
     }
 
     /// ASI's one solve: the increment from the unbalanced force at the start of the step, the state
-    /// moved by it, and the internal forces there kept for the next step. Returns the increment.
-    fn solve_once(&mut self, dt: f64, loads: &[f64], inertia: &[f64]) -> Result<Vec<f64>, String> {
+    /// moved by it, and the internal forces there kept for the next step; with `keep`, the state
+    /// before the increment is kept for [`Frame::take_back`]. Returns the increment.
+    fn solve_once(
+        &mut self,
+        dt: f64,
+        loads: &[f64],
+        inertia: &[f64],
+        keep: bool,
+    ) -> Result<Vec<f64>, String> {
         let mass_factor = self.effective_mass_factor(dt);
         let (nodal, contributions) = match self.end_of_step_forces.take() {
             Some(nodal) if self.system.has_values_for(dt) => (nodal, None),
@@ -219,8 +220,11 @@ impl Frame {
         let first = norm(&du);
         self.solve_with_current_tangent(&mut du, dt, mass_factor)?;
         check_finite(&du)?;
+        if keep {
+            self.kept.keep_nodes(&self.nodes);
+        }
         self.apply_increment(&du);
-        let contributions = self.update_elements_with_forces();
+        let contributions = self.update_elements_with_forces(keep);
         let nodal = self.gather(&contributions);
         let last = norm(&self.residual(&nodal, loads, inertia, &du, mass_factor, dt));
         self.end_of_step_forces = Some(nodal);
@@ -335,13 +339,12 @@ impl Frame {
             let node_blocks = self.node_blocks(contributions, mass_factor);
             let (elements, sections) = (&self.elements, &self.sections);
             let scale = self.stiffness_factor(dt);
-            let stiffness = |e: usize| {
-                scaled(
-                    tangent_stiffness(&elements[e], &sections[elements[e].section]),
-                    scale,
-                )
-            };
-            self.system.assemble(&stiffness, &node_blocks)?;
+            let unscaled = |e: usize| tangent_stiffness(&elements[e], &sections[elements[e].section]);
+            let scaled_by = |e: usize| scaled(unscaled(e), scale);
+            // without damping, each block goes straight to the assembly (no copy on the way)
+            let stiffness: &(dyn Fn(usize) -> Block + Sync) =
+                if scale == 1.0 { &unscaled } else { &scaled_by };
+            self.system.assemble(stiffness, &node_blocks)?;
             self.factor_age.record(&self.elements);
             self.assemblies += 1;
         }
@@ -377,11 +380,7 @@ impl Frame {
     /// On one thread: about 15 ns per node, and rayon's tasks took longer than the work (measured on
     /// the benchmark's 7 × 7 × 7 grid: 0.15 ms per step in rayon tasks, 0.03 ms on one thread).
     pub(super) fn apply_increment(&mut self, du: &[f64]) {
-        let keep = self.keeps_previous;
         for (node, du) in self.nodes.iter_mut().zip(du.chunks_exact(NODE_DOFS)) {
-            if keep {
-                node.previous = (node.position, node.rotation);
-            }
             node.position += Vector3::new(du[0], du[1], du[2]);
             let spin = UnitQuaternion::from_scaled_axis(Vector3::new(du[3], du[4], du[5]));
             node.rotation = spin * node.rotation;
@@ -391,24 +390,41 @@ impl Frame {
 
     /// New co-rotational frames, natural deformation increments and resultants of every element.
     pub(super) fn update_elements(&mut self) {
-        let (nodes, sections, keep) = (&self.nodes, &self.sections, self.keeps_previous);
+        let (nodes, sections) = (&self.nodes, &self.sections);
         self.elements
             .par_iter_mut()
             .with_min_len(PARALLEL_CHUNK)
-            .for_each(|e| update_element(e, nodes, sections, keep));
+            .for_each(|e| update_element(e, nodes, sections));
     }
 
     /// [`Frame::update_elements`] and, in the same pass, the elements' contributions at the new
-    /// state without stiffness.
-    fn update_elements_with_forces(&mut self) -> Vec<Contribution> {
-        let (nodes, sections, density, keep) =
-            (&self.nodes, &self.sections, self.density, self.keeps_previous);
+    /// state without stiffness; with `keep`, also the elements' state before it, into the kept
+    /// state (`kept_state.rs`).
+    fn update_elements_with_forces(&mut self, keep: bool) -> Vec<Contribution> {
+        let (nodes, sections, density) = (&self.nodes, &self.sections, self.density);
+        let update = |e: &mut Element| {
+            update_element(e, nodes, sections);
+            Contribution::of(e, &sections[e.section], density)
+        };
+        if !keep {
+            return self
+                .elements
+                .par_iter_mut()
+                .with_min_len(PARALLEL_CHUNK)
+                .map(update)
+                .collect();
+        }
+        if self.kept.elements.len() != self.elements.len() {
+            // sized once (and after a fracture); the values are written below
+            self.kept.keep_elements(&self.elements);
+        }
         self.elements
             .par_iter_mut()
+            .zip(self.kept.elements.par_iter_mut())
             .with_min_len(PARALLEL_CHUNK)
-            .map(|e| {
-                update_element(e, nodes, sections, keep);
-                Contribution::of(e, &sections[e.section], density)
+            .map(|(e, kept)| {
+                *kept = (e.current, e.stress);
+                update(e)
             })
             .collect()
     }
@@ -473,8 +489,8 @@ impl Frame {
 }
 
 /// Brings element `e` to the current node positions and rotations: its co-rotational frame, natural
-/// deformation increment and resultants; with `keep`, its state before (for [`Frame::take_back`]).
-fn update_element(e: &mut Element, nodes: &[Node], sections: &[Section], keep: bool) {
+/// deformation increment and resultants.
+fn update_element(e: &mut Element, nodes: &[Node], sections: &[Section]) {
     let [a, b] = e.nodes;
     let (na, nb) = (&nodes[a], &nodes[b]);
     let now = if e.linear {
@@ -498,9 +514,6 @@ fn update_element(e: &mut Element, nodes: &[Node], sections: &[Section], keep: b
             e.length0,
         )
     };
-    if keep {
-        e.previous = (e.current, e.stress);
-    }
     let mut dd = [0.0; ELEMENT_DOFS];
     for (i, d) in dd.iter_mut().enumerate() {
         *d = now.deformation[i] - e.current.deformation[i];

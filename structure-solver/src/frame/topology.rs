@@ -23,8 +23,6 @@ pub struct Node {
     /// `[a, α]`, global.
     pub acceleration: [f64; 6],
     pub fixed: [bool; 6],
-    /// Position and rotation before the last increment, to take a step back (`stepping.rs`).
-    pub previous: (Vector3<f64>, UnitQuaternion<f64>),
 }
 
 impl Node {
@@ -37,7 +35,6 @@ impl Node {
             velocity: [0.0; 6],
             acceleration: [0.0; 6],
             fixed: [false; 6],
-            previous: (position, UnitQuaternion::identity()),
         }
     }
 }
@@ -62,8 +59,6 @@ pub struct Element {
     /// First-order kinematics (`geometry = "linear"`): strains from the undeformed configuration,
     /// no geometric stiffness.
     pub linear: bool,
-    /// `current` and `stress` before the last update, to take a step back (`stepping.rs`).
-    pub previous: (Corotated, StressState),
 }
 
 impl Element {
@@ -140,7 +135,6 @@ pub fn build(cfg: &FrameConfig, key: &str) -> Result<Topology, FieldError> {
                 stress: StressState::elastic(0.0),
                 fractures: 0,
                 linear: cfg.geometry == Geometry::Linear,
-                previous: (current, StressState::elastic(0.0)),
             };
             element.stress = StressState::elastic(element.elastic_integration_point(false));
             elements.push(element);
