@@ -187,7 +187,7 @@ impl IsphStep {
             &self.kernel,
             &self.list,
             p,
-            (&self.takes_part, &self.lambda),
+            &self.takes_part,
             &walls,
             &mut self.accel,
         );
