@@ -14,7 +14,7 @@ use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{FluidConfig, FluidMethodName, IsphConfig, PpeSolver};
 
 /// The hydrostatic tank at CI size with ISPH: Δs = 0.02 m, water H = 0.3 m in a 0.2 × 0.2 m
-/// tank (1500 fluid particles), Δt = 2e-3 s (u_max Δt/Δs = 0.24, u_max = √(2gH)).
+/// tank (1500 fluid particles), Δt = 2e-3 s (u Δt/Δs = 0.34, u = 2√(gH)).
 fn isph_tank() -> FluidConfig {
     let (_, mut cfg) = common::load_case("hydrostatic-tank");
     cfg.method = FluidMethodName::Isph;
@@ -258,11 +258,11 @@ fn a_ppe_that_misses_its_tolerance_stops_the_run_with_the_diagnostic() {
 #[test]
 fn a_time_step_beyond_the_advective_limit_is_refused() {
     let mut cfg = isph_tank();
-    cfg.time_step = 5.0e-3; // u_max Δt/Δs = 0.61 > 0.4
+    cfg.time_step = 5.0e-3; // u Δt/Δs = 0.86 > 0.4, u = 2√(gH) = 3.43 m/s
     let err = cfg.validate("fluid.water").expect_err("must be refused");
     let text = format!("{err:?}");
     assert!(
-        text.contains("advective Courant") && text.contains("time_step ≤ 3.299e-3"),
+        text.contains("advective Courant") && text.contains("time_step ≤ 2.333e-3"),
         "{text}"
     );
 }
@@ -300,7 +300,7 @@ fn a_restored_checkpoint_continues_bit_identically_with_either_method() {
     continuation_is_bit_identical(&dam);
     dam.method = FluidMethodName::Isph;
     dam.sound_speed = None;
-    dam.time_step = 2.0e-3;
+    dam.time_step = 1.6e-3;
     dam.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
     continuation_is_bit_identical(&dam);
     dam.isph = Some(IsphConfig {
