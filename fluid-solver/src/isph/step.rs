@@ -187,7 +187,7 @@ impl IsphStep {
             &self.kernel,
             &self.list,
             p,
-            &self.takes_part,
+            (&self.takes_part, &self.lambda),
             &walls,
             &mut self.accel,
         );
