@@ -107,7 +107,7 @@ fn main() {
         ppe_solver: solver,
         ..IsphConfig::default()
     });
-    isph.time_step = 0.3 * ds / isph.max_velocity(); // advective Courant 0.3 (limit 0.4)
+    isph.time_step = 0.3 * ds / isph.advective_velocity(); // advective Courant 0.3 (limit 0.4)
     for c in [&emps, &isph] {
         if let Err(e) = c.validate("fluid.water") {
             eprintln!("error: {e:?}");

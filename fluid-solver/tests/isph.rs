@@ -14,7 +14,7 @@ use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{FluidConfig, FluidMethodName, IsphConfig, PpeSolver};
 
 /// The hydrostatic tank at CI size with ISPH: Δs = 0.02 m, water H = 0.3 m in a 0.2 × 0.2 m
-/// tank (1500 fluid particles), Δt = 2e-3 s (u_max Δt/Δs = 0.24, u_max = √(2gH)).
+/// tank (1500 fluid particles), Δt = 2e-3 s (u Δt/Δs = 0.34, u = 2√(gH)).
 fn isph_tank() -> FluidConfig {
     let (_, mut cfg) = common::load_case("hydrostatic-tank");
     cfg.method = FluidMethodName::Isph;
@@ -42,9 +42,9 @@ fn isph_pressure_is_rho_g_h_and_the_water_stays_still() {
     let mut solver = FluidSolver::new(&cfg);
     let fluid = solver.particles().count(Kind::Fluid);
     // The projection has no acoustic transient to wait for: 0.1 s (50 steps), then the floor force
-    // averaged over the next 0.1 s (printed only: the surface layer's corrected gradient is not
-    // antisymmetric, so the walls' pair forces do not sum to the weight; measured −3 %). (Longer runs of this closed tank are not yet stable, see
-    // `isph_tank_stays_still_for_one_second`.)
+    // averaged over the next 0.1 s (printed only: p = 0 is held on the top layer, whose own
+    // weight the walls' pair law does not see in full; measured −3.3 %). The same tank run for
+    // 1 s: `isph_tank_stays_still_for_one_second`.
     solver.advance_to(0.1).unwrap_or_else(|e| panic!("{e}"));
     let before = solver.totals().wall_impulse[2];
     solver.advance_to(0.2).unwrap_or_else(|e| panic!("{e}"));
@@ -90,20 +90,51 @@ fn isph_pressure_is_rho_g_h_and_the_water_stays_still() {
     );
 }
 
-/// Known defect, kept as a record: in the closed tank a mode along the tank's vertical edges
-/// grows from about step 200 (0.4 s) until the detector stops the run (about 0.9 s).
+/// The tank of `isph_pressure_is_rho_g_h_and_the_water_stays_still` for 1 s (500 steps, about
+/// 20 s in release; that test is its CI twin at 0.2 s). With the symmetric pressure gradient a
+/// column along a vertical edge of the tank ran away from 0.4 s (see
+/// `isph::operators::pressure_gradient`). Bounds of issue 12: 1 % of ρgh, 1e-3 √(gH).
 #[test]
 #[ignore]
 fn isph_tank_stays_still_for_one_second() {
     let cfg = isph_tank();
+    let rho_g = cfg.density * cfg.gravity_magnitude();
     let mut solver = FluidSolver::new(&cfg);
-    solver.advance_to(1.0).unwrap_or_else(|e| panic!("{e}"));
-    let p = solver.particles();
-    let fastest = (0..p.len())
-        .filter(|&i| p.kind[i] == Kind::Fluid.code())
-        .map(|i| p.velocity(i).iter().map(|v| v * v).sum::<f64>().sqrt())
-        .fold(0.0, f64::max);
-    assert!(fastest < 1e-3 * (9.8f64 * 0.3).sqrt(), "fastest {fastest} m/s");
+    for t in [0.25, 0.5, 0.75, 1.0] {
+        solver.advance_to(t).unwrap_or_else(|e| panic!("{e}"));
+        let p = solver.particles();
+        let surface = surface_flags(&solver);
+        let ids: Vec<usize> = (0..p.len())
+            .filter(|&i| p.kind[i] == Kind::Fluid.code())
+            .collect();
+        let tops: Vec<f64> = ids
+            .iter()
+            .filter(|&&i| surface[i] == SURFACE)
+            .map(|&i| p.z[i])
+            .collect();
+        let z_s = tops.iter().sum::<f64>() / tops.len() as f64;
+        let (mut fastest, mut worst): (f64, f64) = (0.0, 0.0);
+        for &i in &ids {
+            fastest = fastest.max(p.velocity(i).iter().map(|v| v * v).sum::<f64>().sqrt());
+            let depth = z_s - p.z[i];
+            if depth >= 3.0 * cfg.spacing {
+                worst = worst.max((p.pressure[i] / (rho_g * depth) - 1.0).abs());
+            }
+        }
+        println!(
+            "t = {t:.2} s: worst interior pressure error {:.3} %, fastest {fastest:.2e} m/s",
+            100.0 * worst
+        );
+        assert!(
+            worst < 0.01,
+            "t = {t}: pressure differs from rho g h by {:.3} %",
+            100.0 * worst
+        );
+        assert!(
+            fastest < 1e-3 * (cfg.gravity_magnitude() * 0.3).sqrt(),
+            "t = {t}: fastest {fastest} m/s"
+        );
+    }
 }
 
 /// Runs the detection of `isph::free_surface` on given particles (all fluid, no walls).
@@ -227,11 +258,11 @@ fn a_ppe_that_misses_its_tolerance_stops_the_run_with_the_diagnostic() {
 #[test]
 fn a_time_step_beyond_the_advective_limit_is_refused() {
     let mut cfg = isph_tank();
-    cfg.time_step = 5.0e-3; // u_max Δt/Δs = 0.61 > 0.4
+    cfg.time_step = 5.0e-3; // u Δt/Δs = 0.86 > 0.4, u = 2√(gH) = 3.43 m/s
     let err = cfg.validate("fluid.water").expect_err("must be refused");
     let text = format!("{err:?}");
     assert!(
-        text.contains("advective Courant") && text.contains("time_step ≤ 3.299e-3"),
+        text.contains("advective Courant") && text.contains("time_step ≤ 2.333e-3"),
         "{text}"
     );
 }
@@ -269,7 +300,7 @@ fn a_restored_checkpoint_continues_bit_identically_with_either_method() {
     continuation_is_bit_identical(&dam);
     dam.method = FluidMethodName::Isph;
     dam.sound_speed = None;
-    dam.time_step = 2.0e-3;
+    dam.time_step = 1.6e-3;
     dam.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
     continuation_is_bit_identical(&dam);
     dam.isph = Some(IsphConfig {

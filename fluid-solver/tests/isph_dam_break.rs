@@ -10,7 +10,8 @@ use schemas::case::fluid::{FluidMethodName, IsphConfig};
 #[test]
 fn isph_surge_front_follows_the_experiments() {
     // CI size as the E-MPS test: Δs = L/10 = 0.0146 m, a slab 4 particles deep (800 fluid
-    // particles); Δt = 2e-3 s (u_max Δt/Δs = 0.33 with u_max = √(2g·2L)), 3.4× E-MPS's 6e-4 s.
+    // particles); Δt = 1.6e-3 s (u Δt/Δs = 0.37 with the front speed u = 2√(g·2L), Ritter),
+    // 2.7× E-MPS's 6e-4 s.
     let (_, mut cfg) = common::load_case("dam-break-koshizuka");
     cfg.method = FluidMethodName::Isph;
     cfg.isph = Some(IsphConfig::default());
@@ -18,7 +19,7 @@ fn isph_surge_front_follows_the_experiments() {
     cfg.spacing = 0.0146;
     cfg.tank.max = [0.584, 0.0584, 0.438];
     cfg.block[0].max = [0.146, 0.0584, 0.292];
-    cfg.time_step = 2.0e-3;
+    cfg.time_step = 1.6e-3;
     cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
     let e = front_common::front_errors(&cfg, 0.006, 4);
     let (koshizuka_oka, martin_moyce, shift) = (e.koshizuka_oka, e.martin_moyce, e.shift);

@@ -1,7 +1,12 @@
 //! The ISPH fluid–body pair laws, as force on body particle j from fluid particle i (the fluid
-//! gets the reverse): the pair terms of [`super::operators::pressure_gradient`] and, with no-slip
-//! walls, of [`super::operators::laplacian`]. Body particles carry the pressure extrapolated onto
-//! them ([`super::walls`]).
+//! gets the reverse in the exchange's bookkeeping). Pressure: the symmetric pair term
+//! `V² (p_i + p_j^(i)) ∇_i W_ij`, antisymmetric in the pair, so a body's load is
+//! `−Σ_body V ⟨∇p⟩` (buoyancy on a submerged body, ρgV) and walls' loads sum to the water's
+//! weight; the fluid's own acceleration uses S2-8's corrected difference form instead
+//! ([`super::operators::pressure_gradient`], which says why). Viscous, with no-slip walls: the
+//! pair terms of [`super::operators::laplacian`]. Body particles carry the pressure
+//! extrapolated onto them ([`super::walls`]) for outputs; the pair laws read the per-pair
+//! pressure `p_i + Δp_ij` that fluid particle i's PPE saw.
 
 use super::kernel::Wendland;
 use super::walls::NeumannPair;
