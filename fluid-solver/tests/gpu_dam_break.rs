@@ -25,10 +25,22 @@ fn tank(depth: f64, height: f64) -> FluidConfig {
     cfg
 }
 
-/// Largest |r_gpu − r_cpu| over the fluid particles, and the two surge fronts.
-fn compare(depth: f64, height: f64, steps: usize) -> Option<(f64, f64, f64, usize)> {
+/// What differs between the two steps after a run.
+struct Comparison {
+    /// Largest |r_gpu − r_cpu| over the fluid particles [m].
+    worst: f64,
+    /// Surge fronts on the CPU and the GPU [m].
+    front_cpu: f64,
+    front_gpu: f64,
+    /// Impulse of the walls on the fluid, CPU and GPU [N s].
+    impulse_cpu: [f64; 3],
+    impulse_gpu: [f64; 3],
+}
+
+/// Runs `cfg` for `steps` steps on the CPU and on the GPU.
+fn compare(cfg: &FluidConfig, steps: usize) -> Option<Comparison> {
     let dev = gpu_common::device()?;
-    let cfg = tank(depth, height);
+    let cfg = cfg.clone();
     let mut cpu = FluidSolver::new(&cfg);
     let mut gpu = FluidSolver::new(&cfg);
     gpu.to_device(&cfg, dev).unwrap_or_else(|e| panic!("{e}"));
@@ -64,10 +76,17 @@ fn compare(depth: f64, height: f64, steps: usize) -> Option<(f64, f64, f64, usiz
     let fc = probes::sample(&front, pc, cpu.kernel(), &tank);
     let fg = probes::sample(&front, pg, gpu.kernel(), &tank);
     let n = pc.len();
+    let (ic, ig) = (cpu.totals().wall_impulse, gpu.totals().wall_impulse);
     println!(
-        "{n} particles, {steps} steps: CPU {t_cpu:.2} s, GPU {t_gpu:.2} s; largest position difference {worst:.3e} m; front CPU {fc:.5} m, GPU {fg:.5} m"
+        "{n} particles, {steps} steps: CPU {t_cpu:.2} s, GPU {t_gpu:.2} s; largest position difference {worst:.3e} m; front CPU {fc:.5} m, GPU {fg:.5} m; wall impulse CPU {ic:?}, GPU {ig:?} N s"
     );
-    Some((worst, fc, fg, n))
+    Some(Comparison {
+        worst,
+        front_cpu: fc,
+        front_gpu: fg,
+        impulse_cpu: ic,
+        impulse_gpu: ig,
+    })
 }
 
 /// The bound on |r_gpu − r_cpu| after 200 steps, from f32 rounding (unit roundoff u = 2⁻²⁴ ≈
@@ -89,10 +108,17 @@ const POSITION_BOUND: f64 = 2.0e-5;
 /// The bound on the surge front, relative to the CPU's.
 const FRONT_BOUND: f64 = 0.01;
 
-fn check(depth: f64, height: f64) {
-    let Some((worst, fc, fg, _)) = compare(depth, height, 200) else {
+/// The walls' impulse on the fluid is a sum of f32 pair terms over the step's particles:
+/// relative rounding u √(terms) ≈ 6e-8 · √(10⁶) = 6e-5 per step, and the positions' differences
+/// above shift the pressure pairs by δP/P ≈ 1e-6 · c²ρ0/(ρ0 g H) ≈ 5e-5: 1e-3 of the largest
+/// component leaves a margin of about 10.
+const IMPULSE_BOUND: f64 = 1.0e-3;
+
+fn check(cfg: &FluidConfig, steps: usize) {
+    let Some(c) = compare(cfg, steps) else {
         return;
     };
+    let (worst, fc, fg) = (c.worst, c.front_cpu, c.front_gpu);
     assert!(
         worst < POSITION_BOUND,
         "a fluid particle is {worst:.3e} m from its CPU position (bound {POSITION_BOUND:e} m)"
@@ -101,13 +127,33 @@ fn check(depth: f64, height: f64) {
         (fg - fc).abs() < FRONT_BOUND * fc,
         "surge front on the GPU {fg} m, on the CPU {fc} m (bound 1 %)"
     );
+    let scale = c.impulse_cpu.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    for a in 0..3 {
+        assert!(
+            (c.impulse_gpu[a] - c.impulse_cpu[a]).abs() < IMPULSE_BOUND * scale,
+            "wall impulse on the GPU {:?}, on the CPU {:?} N s (bound {IMPULSE_BOUND} of the largest)",
+            c.impulse_gpu,
+            c.impulse_cpu
+        );
+    }
 }
 
 /// CI size: a slab 0.06 m deep (3 particles) of the tank, 0.34 m high with its lid: 675 fluid
 /// particles, 9 595 in all (about 20 s on lavapipe on this shared 2-core machine).
 #[test]
 fn gpu_step_matches_cpu_step_on_the_dam_break_slab() {
-    check(0.06, 0.34);
+    check(&tank(0.06, 0.34), 200);
+}
+
+/// The viscous term on (S1-4 on the GPU, with the walls' no-slip force): the same slab with a
+/// fluid 5e4 times as viscous as water (ν = 0.05 m²/s, ν Δt/Δs² = 0.06), 30 steps.
+#[test]
+fn gpu_viscous_step_matches_cpu_step() {
+    let mut cfg = tank(0.06, 0.34);
+    cfg.viscosity_term = true;
+    cfg.viscosity = 0.05;
+    cfg.validate("fluid.tank").unwrap_or_else(|e| panic!("{e:?}"));
+    check(&cfg, 30);
 }
 
 /// The seed's tank at its full 0.45 m depth and 0.6 m height: 3 375 fluid particles, about
@@ -115,5 +161,5 @@ fn gpu_step_matches_cpu_step_on_the_dam_break_slab() {
 #[test]
 #[ignore]
 fn gpu_step_matches_cpu_step_on_the_full_dam_break_tank() {
-    check(0.45, 0.6);
+    check(&tank(0.45, 0.6), 200);
 }
