@@ -224,7 +224,7 @@ impl FluidSolver {
     /// The method's pressure pair law on the present state (force on a solid particle from a
     /// fluid one): what wall-pressure sensors read.
     pub fn pressure_law(&self) -> PairLaw<'_> {
-        self.method.pressure_law(&self.state.particles)
+        self.method.pressure_law(self.particles())
     }
 
     /// The inflow and outflow boundaries and their particle balance.
@@ -487,7 +487,7 @@ impl FluidSolver {
 
     /// Velocity and λ_min at `points` (3 per point) for the unresolved coupling (3 and 1 per point).
     pub fn sample_points(&self, points: &[f64]) -> (Vec<f64>, Vec<f64>) {
-        let samples = unresolved::sampling::sample(&self.state.particles, self.kernel.spacing, points);
+        let samples = unresolved::sampling::sample(self.particles(), self.kernel.spacing, points);
         (
             samples.iter().flat_map(|s| s.velocity).collect(),
             samples.iter().map(|s| s.lambda_min).collect(),
@@ -556,7 +556,7 @@ impl FluidSolver {
     /// Total momentum of the fluid [kg m/s].
     pub fn fluid_momentum(&self) -> [f64; 3] {
         let m = self.physics.density * self.kernel.spacing.powi(3);
-        let p = &self.state.particles;
+        let p = self.particles();
         let mut sum = [0.0; 3];
         for i in (0..p.len()).filter(|&i| p.kind[i] == Kind::Fluid.code()) {
             sum[0] += m * p.vx[i];

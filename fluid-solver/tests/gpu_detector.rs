@@ -115,3 +115,32 @@ fn energy_fed_in_without_a_source_is_found_as_on_the_cpu() {
     assert_eq!((a.step, a.quantity), (b.step, b.quantity), "CPU: {a}\nGPU: {b}");
     assert_eq!(b.quantity, "mechanical energy", "{b}");
 }
+
+/// A fluid particle above an open tank's domain has left through the open top: the device
+/// counts it, the host removes it before the next step, as on the CPU.
+#[test]
+fn fluid_leaving_through_the_open_top_is_removed_as_on_the_cpu() {
+    let Some(dev) = gpu_common::device() else {
+        return;
+    };
+    let text = CASE.replace(", lid = true", "");
+    let case = Case::parse(Path::new("small.toml"), text).unwrap_or_else(|e| panic!("{e}"));
+    let cfg = &case.fluid["water"];
+    let mut cpu = FluidSolver::new(cfg);
+    let mut gpu = FluidSolver::new(cfg);
+    gpu.to_device(cfg, dev).unwrap_or_else(|e| panic!("{e}"));
+    for s in [&mut cpu, &mut gpu] {
+        let top = s.domain().hi[2];
+        for k in 0..4 {
+            s.step(cfg.time_step).unwrap_or_else(|e| panic!("{e}"));
+            if k == 1 {
+                let p = s.particles_mut();
+                let i = first_fluid(p);
+                p.z[i] = top + 0.01;
+            }
+        }
+        s.sync_host();
+    }
+    assert_eq!((cpu.escaped(), gpu.escaped()), (1, 1));
+    assert_eq!(cpu.particles().len(), gpu.particles().len());
+}

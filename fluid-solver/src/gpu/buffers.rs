@@ -171,15 +171,14 @@ impl Buffers {
             });
         enc.copy_buffer_to_buffer(self.at(b), 0, &staging, 0, size);
         dev.queue.submit([enc.finish()]);
-        let out = map_read(dev, &staging);
+        let out = map_read(dev, &staging.slice(..));
         self.downloaded += size;
         out
     }
 }
 
-/// Maps a MAP_READ buffer, waits, and copies its contents out.
-pub fn map_read<T: Pod + Zeroable>(dev: &GpuDevice, staging: &wgpu::Buffer) -> Vec<T> {
-    let slice = staging.slice(..);
+/// Maps a slice of a MAP_READ buffer, waits, and copies its contents out.
+pub fn map_read<T: Pod + Zeroable>(dev: &GpuDevice, slice: &wgpu::BufferSlice<'_>) -> Vec<T> {
     let (tx, rx) = mpsc::channel();
     slice.map_async(wgpu::MapMode::Read, move |r| {
         let _ = tx.send(r);
@@ -193,6 +192,6 @@ pub fn map_read<T: Pod + Zeroable>(dev: &GpuDevice, staging: &wgpu::Buffer) -> V
         Ok(view) => bytemuck::pod_collect_to_vec(&view),
         Err(e) => panic!("the GPU buffer could not be mapped: {e:?}"),
     };
-    staging.unmap();
+    slice.buffer().unmap();
     out
 }

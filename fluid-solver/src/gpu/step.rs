@@ -45,6 +45,8 @@ pub struct GpuEmps {
     params: Params,
     n: usize,
     viscous: bool,
+    /// Where the reduction's partials are read back (reused every step).
+    staging: wgpu::Buffer,
     /// Submit and wait after each stage to time it (the benchmark); off in runs.
     profile: bool,
     times: StageTimes,
@@ -67,10 +69,10 @@ impl GpuEmps {
         }
         let (origin, cell, dims) = grid.geometry();
         let cells = dims[0] * dims[1] * dims[2];
-        if cells > 65_535 * 256 {
+        if cells > 65_535 * 64 {
             return Err(format!(
                 "the GPU path's prefix sum handles at most {} cells so far, the case's grid has {cells}; use backend = \"cpu\"",
-                65_535 * 256
+                65_535 * 64
             ));
         }
         let k = &setup.kernel;
@@ -128,7 +130,14 @@ impl GpuEmps {
         let mut buffers = Buffers::new(&dev, n, cells, boxes.len() / 2, groups);
         let kernels = Kernels::new(&dev, &buffers);
         buffers.write(&dev, BOXES, &boxes);
+        let staging = dev.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("partials"),
+            size: (groups.max(1) * std::mem::size_of::<Partial>()) as u64,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
         let mut step = GpuEmps {
+            staging,
             dev,
             buffers,
             kernels,
@@ -212,16 +221,11 @@ impl GpuEmps {
             dispatch(p, k, &k.reduce_step, n, WIDE_WG)
         });
         let bytes = (groups * std::mem::size_of::<Partial>()) as u64;
-        let staging = rec.step.dev.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("partials"),
-            size: bytes,
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let (partials_buffer, staging) = (rec.step.buffers.at(PARTIALS), &rec.step.staging);
         rec.enc
-            .copy_buffer_to_buffer(rec.step.buffers.at(PARTIALS), 0, &staging, 0, bytes);
+            .copy_buffer_to_buffer(partials_buffer, 0, staging, 0, bytes);
         rec.finish("detector and totals");
-        let partials: Vec<Partial> = map_read(&self.dev, &staging);
+        let partials: Vec<Partial> = map_read(&self.dev, &self.staging.slice(..bytes));
         self.buffers.downloaded += bytes;
         if !self.profile {
             self.times.lap(t0, "step");
