@@ -3,6 +3,9 @@
 
 use std::fmt;
 
+/// Storage buffers the kernels bind at once ([`super::buffers`]).
+pub const STORAGE_BUFFERS: u32 = 19;
+
 /// A wgpu device and queue on a Vulkan adapter.
 pub struct GpuDevice {
     pub device: wgpu::Device,
@@ -50,6 +53,13 @@ impl GpuDevice {
             return Err(NoAdapter(format!(
                 "the adapter `{}` is not a Vulkan one ({:?})",
                 info.name, info.backend
+            )));
+        }
+        let have = adapter.limits().max_storage_buffers_per_shader_stage;
+        if have < STORAGE_BUFFERS {
+            return Err(NoAdapter(format!(
+                "the adapter `{}` binds {have} storage buffers per shader, the GPU path needs {STORAGE_BUFFERS}",
+                info.name
             )));
         }
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {

@@ -67,6 +67,13 @@ impl GpuEmps {
                 "the GPU path runs at most {MAX_PARTICLES} particles so far (one dispatch row), the case has {n}; use backend = \"cpu\""
             ));
         }
+        let largest = dev.device.limits().max_storage_buffer_binding_size;
+        if 16 * n as u64 > largest {
+            return Err(format!(
+                "the GPU binds at most {largest} B per array, {n} particles need {} B; use backend = \"cpu\"",
+                16 * n as u64
+            ));
+        }
         let (origin, cell, dims) = grid.geometry();
         let cells = dims[0] * dims[1] * dims[2];
         if cells > 65_535 * 64 {
