@@ -13,6 +13,7 @@
 //! - [`solver`]: the clock, advance-to, checkpoints of [`state::FluidState`]; [`stage_timer`]: time per stage.
 //! - [`open_boundary`]: inflow and outflow boundaries (particles added and removed during a run).
 //! - [`unresolved`]: sample points and point reactions of the unresolved drag coupling (S2).
+//! - [`gpu`]: the E-MPS step on a GPU (wgpu, WGSL), chosen by `backend = "gpu"`.
 //! - [`stability`]: the instability detector; [`probes`], [`vtu`], [`surface_mesh`] + [`vtp`]: outputs; [`run`]: a standalone run;
 //!   [`participant`]: the coupled-run side (`fluid-solver participant …`).
 
@@ -21,6 +22,7 @@ pub mod body_wall_contact;
 pub mod collision;
 pub mod emps;
 pub mod escape;
+pub mod gpu;
 pub mod isph;
 pub mod kind;
 pub mod lattice;

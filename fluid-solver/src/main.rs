@@ -3,7 +3,8 @@
 
 use clap::{Parser, Subcommand};
 use fluid_solver::participant::FluidParticipant;
-use schemas::case::Case;
+use schemas::case::fluid::FluidBackend;
+use schemas::case::{Case, CaseError};
 use schemas::participant::{serve, ParticipantArgs};
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -26,6 +27,9 @@ enum Command {
         /// Output folder (default: out/<case name>).
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Where the step runs, overriding the case's `backend`: cpu or gpu (E-MPS, fluid-only).
+        #[arg(long, value_parser = ["cpu", "gpu"])]
+        backend: Option<String>,
     },
     /// Serve one [fluid.NAME] participant of a coupled run (started by `coupler run`).
     Participant(ParticipantArgs),
@@ -50,20 +54,28 @@ fn main() -> ExitCode {
                 ExitCode::FAILURE
             }
         },
-        Command::Run { case, out } => {
-            let case = match Case::load(&case) {
+        Command::Run { case, out, backend } => {
+            let mut case = match Case::load(&case) {
                 Ok(c) => c,
                 Err(e) => {
                     eprintln!("error: {e}");
                     return ExitCode::from(2);
                 }
             };
+            if let Err(e) = set_backend(&mut case, backend.as_deref()) {
+                eprintln!("error: {e}");
+                return ExitCode::from(2);
+            }
             let out = out.unwrap_or_else(|| PathBuf::from("out").join(&case.info.name));
             let terminal = std::io::stderr().is_terminal();
             match fluid_solver::run::run_case(&case, &out, terminal) {
                 Ok(s) => {
                     eprintln!("done: {s}; output in {}", out.display());
                     ExitCode::SUCCESS
+                }
+                Err(e @ fluid_solver::run::RunError::Gpu { .. }) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(2)
                 }
                 Err(e) => {
                     eprintln!("error: {e}");
@@ -72,4 +84,21 @@ fn main() -> ExitCode {
             }
         }
     }
+}
+
+/// `--backend`: sets every fluid section's backend and checks that the GPU path runs it.
+fn set_backend(case: &mut Case, backend: Option<&str>) -> Result<(), CaseError> {
+    let backend = match backend {
+        None => return Ok(()),
+        Some("gpu") => FluidBackend::Gpu,
+        Some(_) => FluidBackend::Cpu,
+    };
+    for (name, cfg) in case.fluid.iter_mut() {
+        cfg.backend = backend;
+        if backend == FluidBackend::Gpu {
+            cfg.gpu_support(&format!("fluid.{name}"))
+                .map_err(|e| CaseError::at(&case.path, e))?;
+        }
+    }
+    Ok(())
 }

@@ -14,7 +14,7 @@ use rayon::prelude::*;
 /// Cell edge in spacings.
 pub const CELL_IN_SPACINGS: f64 = 1.05;
 /// Empty cells kept around the domain so that no query needs a bounds check.
-const PAD: usize = 3;
+pub const PAD: usize = 3;
 
 /// A uniform grid of cells over a box, with the particles sorted by cell.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -54,6 +54,12 @@ impl CellGrid {
             perm: Vec::new(),
             fluid_before: vec![0; cells + 1],
         }
+    }
+
+    /// The grid's origin (corner of its first cell, padding included), cell edge and cells per
+    /// axis (x fastest): what the GPU's cell sort copies.
+    pub fn geometry(&self) -> ([f64; 3], f64, [usize; 3]) {
+        (self.origin, self.cell, self.dims)
     }
 
     /// Number of cells, padding included.

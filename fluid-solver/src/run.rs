@@ -4,6 +4,7 @@
 //! the particle balance of [`crate::open_boundary`]); reports progress at a steady interval
 //! ([`crate::progress`]) and returns the run's summary.
 
+use crate::gpu::driver::GpuStartError;
 use crate::open_boundary::BalanceFile;
 use crate::probes::{ProbeFile, ProbeSet};
 pub use crate::progress::RunSummary;
@@ -28,6 +29,8 @@ pub enum RunError {
     Probe { file: PathBuf, message: String },
     /// The run became unstable; the frames written so far are kept.
     Unstable(Instability),
+    /// `backend = "gpu"` and no GPU, or a case the GPU path does not run (bad usage).
+    Gpu { file: PathBuf, error: GpuStartError },
 }
 
 impl fmt::Display for RunError {
@@ -37,6 +40,7 @@ impl fmt::Display for RunError {
             RunError::Output { path, error } => write!(f, "cannot write {}: {error}", path.display()),
             RunError::Probe { file, message } => write!(f, "{}: {message}", file.display()),
             RunError::Unstable(i) => write!(f, "{i}"),
+            RunError::Gpu { file, error } => write!(f, "{}: {error}", file.display()),
         }
     }
 }
@@ -74,7 +78,13 @@ pub fn run_case(case: &Case, out: &Path, terminal: bool) -> Result<RunSummary, R
         move |error| RunError::Output { path, error }
     };
     std::fs::create_dir_all(out).map_err(io_err(out))?;
-    let mut solver = FluidSolver::new(cfg);
+    let mut solver = FluidSolver::with_backend(cfg).map_err(|error| RunError::Gpu {
+        file: case.path.clone(),
+        error,
+    })?;
+    if let Some(d) = solver.device() {
+        eprintln!("{name}: running on the GPU {}", d.dev.description());
+    }
     for note in solver.layout_notes() {
         eprintln!("{name}: note: {note}");
     }
@@ -144,11 +154,12 @@ pub fn run_case(case: &Case, out: &Path, terminal: bool) -> Result<RunSummary, R
                 solver.time(),
                 solver.steps(),
                 totals.particle_steps,
-                solver.particles().len(),
+                solver.particle_count(),
             );
             progress.note_escapes(solver.time(), solver.escaped());
         }
         solver.land_on(target);
+        solver.sync_host(); // the GPU path: a copy only when a row or a frame is due
         if solver.time() >= row_at {
             sample(&solver, &mut probes, &mut probe_file)?;
             next_probe += 1;
@@ -159,6 +170,7 @@ pub fn run_case(case: &Case, out: &Path, terminal: bool) -> Result<RunSummary, R
         }
     }
     progress.finish();
+    solver.sync_host();
     Ok(RunSummary {
         time: solver.time(),
         steps: solver.steps(),

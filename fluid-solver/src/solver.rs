@@ -42,28 +42,35 @@ pub struct RunTotals {
 }
 
 /// A particle fluid with walls, stepped by the case's method.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct FluidSolver {
     /// Everything a step changes (a checkpoint is a clone of it).
-    state: FluidState,
+    pub(crate) state: FluidState,
     method: FluidMethod,
     /// The MPS lattice constants the shared services read (probes: radii, n0).
-    kernel: Kernel,
-    physics: Physics,
-    monitor: StabilityMonitor,
+    pub(crate) kernel: Kernel,
+    pub(crate) physics: Physics,
+    pub(crate) monitor: StabilityMonitor,
     time_step: f64,
-    started: bool,
-    domain: Domain,
-    tank: Aabb,
+    pub(crate) started: bool,
+    pub(crate) domain: Domain,
+    pub(crate) tank: Aabb,
     bodies: RigidBodies,
     /// Where fluid may leave (removed and counted), and the most that may leave.
-    open_top: OpenTop,
+    pub(crate) open_top: OpenTop,
     max_removed_fraction: f64,
     /// What the lattice moved (see [`crate::lattice`]).
     layout_notes: Vec<String>,
     /// Point reactions of the unresolved coupling (6 each: point, force) and their paired sample
     /// points (3 each), applied at every step until replaced.
     point_reactions: (Vec<f64>, Vec<f64>),
+    /// The GPU path ([`crate::gpu`]): the step on the device, when the case asks for it.
+    pub(crate) device: Option<Box<crate::gpu::GpuEmps>>,
+    /// The device's particles are ahead of the host's / the host's of the device's; the last
+    /// step saw fluid leave through the open top (removed on the host before the next step).
+    pub(crate) host_stale: bool,
+    pub(crate) host_dirty: bool,
+    pub(crate) escape_pending: bool,
 }
 
 impl FluidSolver {
@@ -165,6 +172,10 @@ impl FluidSolver {
             max_removed_fraction: cfg.max_removed_fraction,
             layout_notes: layout.notes,
             point_reactions: Default::default(),
+            device: None,
+            host_stale: false,
+            host_dirty: false,
+            escape_pending: false,
         };
         solver.refresh_body_exchange();
         solver
@@ -216,7 +227,7 @@ impl FluidSolver {
     /// The method's pressure pair law on the present state (force on a solid particle from a
     /// fluid one): what wall-pressure sensors read.
     pub fn pressure_law(&self) -> PairLaw<'_> {
-        self.method.pressure_law(&self.state.particles)
+        self.method.pressure_law(self.particles())
     }
 
     /// The inflow and outflow boundaries and their particle balance.
@@ -224,13 +235,28 @@ impl FluidSolver {
         &self.state.open_boundaries
     }
 
-    /// The particles (in cell order; use `id` for identity).
+    /// The particles (in cell order; use `id` for identity). On the GPU path, call
+    /// [`FluidSolver::sync_host`] after stepping first.
     pub fn particles(&self) -> &Particles {
+        assert!(
+            !self.host_stale,
+            "the particles are on the GPU: call FluidSolver::sync_host before reading them"
+        );
         &self.state.particles
     }
 
-    /// Mutable particles, e.g. to set initial velocities or body kinematics.
+    /// Number of particles (also on the GPU path without a copy).
+    pub fn particle_count(&self) -> usize {
+        self.device
+            .as_ref()
+            .map_or(self.state.particles.len(), |d| d.len())
+    }
+
+    /// Mutable particles, e.g. to set initial velocities or body kinematics (on the GPU path
+    /// they are copied back first and go to the device before the next step).
     pub fn particles_mut(&mut self) -> &mut Particles {
+        self.sync_host();
+        self.host_dirty = self.device.is_some();
         &mut self.state.particles
     }
 
@@ -342,6 +368,9 @@ impl FluidSolver {
 
     /// One step of length `dt` (≤ Δt); stops with a diagnostic if the state became unstable.
     pub fn step(&mut self, dt: f64) -> Result<StepTotals, Instability> {
+        if self.device.is_some() {
+            return self.step_on_device(dt);
+        }
         if !self.state.gates_removed {
             self.remove_gates();
         }
@@ -351,8 +380,17 @@ impl FluidSolver {
             self.started = true;
         }
         st.open_boundaries.apply(&mut st.particles, st.time, dt);
-        let escaped = self.open_top.remove_escaped(&mut st.particles);
+        self.remove_escaped()?;
+        self.apply_point_reactions(dt);
+        self.step_on_host(dt)
+    }
+
+    /// Removes the fluid that left through the open top ([`crate::escape`]); stops when more
+    /// than `max_removed_fraction` of the fluid has left.
+    pub(crate) fn remove_escaped(&mut self) -> Result<(), Instability> {
+        let escaped = self.open_top.remove_escaped(&mut self.state.particles);
         if escaped > 0 {
+            let st = &mut self.state;
             st.escaped += escaped;
             let removed = st.escaped + st.open_boundaries.balance().removed;
             let fluid = st.particles.count(Kind::Fluid) as u64 + removed;
@@ -372,7 +410,11 @@ impl FluidSolver {
                 });
             }
         }
-        self.apply_point_reactions(dt);
+        Ok(())
+    }
+
+    /// The rest of [`FluidSolver::step`] on the CPU.
+    fn step_on_host(&mut self, dt: f64) -> Result<StepTotals, Instability> {
         let st = &mut self.state;
         let scales = self.method.scales(dt);
         let (bodies, pose, exchange) = (&self.bodies, &st.body_pose, &mut st.body_exchange);
@@ -448,7 +490,7 @@ impl FluidSolver {
 
     /// Velocity and λ_min at `points` (3 per point) for the unresolved coupling (3 and 1 per point).
     pub fn sample_points(&self, points: &[f64]) -> (Vec<f64>, Vec<f64>) {
-        let samples = unresolved::sampling::sample(&self.state.particles, self.kernel.spacing, points);
+        let samples = unresolved::sampling::sample(self.particles(), self.kernel.spacing, points);
         (
             samples.iter().flat_map(|s| s.velocity).collect(),
             samples.iter().map(|s| s.lambda_min).collect(),
@@ -485,14 +527,20 @@ impl FluidSolver {
     }
 
     /// A copy of the state (particles, cell list, the method's own state, bodies, clock,
-    /// open boundaries) for implicit coupling.
+    /// open boundaries) for implicit coupling (on the GPU path, after [`FluidSolver::sync_host`]).
     pub fn save_state(&self) -> FluidState {
+        assert!(
+            !self.host_stale,
+            "the particles are on the GPU: call FluidSolver::sync_host before saving the state"
+        );
         self.state.clone()
     }
 
     /// Puts back a state saved by [`FluidSolver::save_state`].
     pub fn restore_state(&mut self, s: &FluidState) {
         self.state.clone_from(s);
+        self.host_stale = false;
+        self.host_dirty = self.device.is_some();
     }
 
     /// What a resumed run needs besides [`FluidState`] (not part of it because implicit coupling's
@@ -519,13 +567,16 @@ impl FluidSolver {
 
     /// Wall time per stage of the method's step since the start.
     pub fn stage_times(&self) -> &StageTimes {
+        if let Some(d) = &self.device {
+            return d.stage_times();
+        }
         self.method.stage_times()
     }
 
     /// Total momentum of the fluid [kg m/s].
     pub fn fluid_momentum(&self) -> [f64; 3] {
         let m = self.physics.density * self.kernel.spacing.powi(3);
-        let p = &self.state.particles;
+        let p = self.particles();
         let mut sum = [0.0; 3];
         for i in (0..p.len()).filter(|&i| p.kind[i] == Kind::Fluid.code()) {
             sum[0] += m * p.vx[i];

@@ -147,6 +147,14 @@ impl StabilityMonitor {
         self.driven = driven;
     }
 
+    /// The mechanical energy ([`StabilityMonitor::mechanical_energy`]) above which a step is
+    /// unstable; `None` when the energy is not checked (driven fluid, or before the start).
+    pub fn energy_limit(&self) -> Option<f64> {
+        self.initial_energy
+            .filter(|_| !self.driven)
+            .map(|e0| e0 + self.allowed_growth)
+    }
+
     /// Records the initial energy (call once before the first step).
     pub fn start(&mut self, p: &Particles) {
         let g = self.gravity;

@@ -77,14 +77,34 @@ impl Output {
             .as_ref()
             .map(|h| HistoryWriter::append(dir, h, s))
             .transpose()?;
+        let releases = (!s.supports().is_empty())
+            .then(|| Self::append_releases(dir, s))
+            .transpose()
+            .map_err(|e| format!("cannot continue {}: {e}", dir.join("releases.csv").display()))?;
         Ok(Self {
             dir: dir.to_path_buf(),
             history,
             tables: None,
+            releases,
             vtu: None,
             vtu_interval: None,
             vtu_due: 0.0,
         })
+    }
+
+    /// Opens `releases.csv` (already cut back to the checkpoint) for appending; the bodies it
+    /// already names count as written.
+    fn append_releases(dir: &Path, s: &Structure) -> std::io::Result<(BufWriter<File>, Vec<bool>)> {
+        let path = dir.join("releases.csv");
+        let text = std::fs::read_to_string(&path)?;
+        let named: Vec<&str> = text.lines().skip(1).filter_map(|l| l.split(',').next()).collect();
+        let written = s
+            .supports()
+            .iter()
+            .map(|support| named.contains(&s.bodies()[support.body].name.as_str()))
+            .collect();
+        let file = std::fs::OpenOptions::new().append(true).open(&path)?;
+        Ok((BufWriter::new(file), written))
     }
 
     pub fn dir(&self) -> &Path {

@@ -68,7 +68,7 @@ pub fn front_errors(cfg: &FluidConfig, interval: f64, print_every: usize) -> Fro
         kind: ProbeKind::SurgeFront,
         ..Default::default()
     };
-    let mut solver = FluidSolver::new(cfg);
+    let mut solver = FluidSolver::with_backend(cfg).unwrap_or_else(|e| panic!("{e}"));
     let fluid = solver.particles().count(Kind::Fluid);
     let tank = solver.tank();
     let mut series = vec![(0.0, 1.0)];
@@ -77,6 +77,7 @@ pub fn front_errors(cfg: &FluidConfig, interval: f64, print_every: usize) -> Fro
         solver
             .advance_to(solver.time() + interval)
             .unwrap_or_else(|e| panic!("{e}"));
+        solver.sync_host(); // the GPU path's copy (nothing on the CPU)
         let z = probes::sample(&front, solver.particles(), solver.kernel(), &tank) / l;
         series.push((solver.time() * scale, z));
         if z >= 3.95 {

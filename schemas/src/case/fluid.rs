@@ -4,6 +4,7 @@
 //! ```toml
 //! [fluid.tank]
 //! method = "emps"           # or "isph" (then optionally [fluid.tank.isph], see IsphConfig)
+//! backend = "cpu"           # or "gpu": E-MPS on a Vulkan GPU (see FluidConfig::gpu_support)
 //! spacing = 0.01            # Δs [m]
 //! time_step = 5e-4          # Δt [s], checked against the acoustic and viscous limits
 //! sound_speed = 12.1        # c [m/s]; default u_max / 0.2 with u_max = √(2gH) (S1-16)
@@ -228,6 +229,18 @@ pub enum FluidMethodName {
     Isph,
 }
 
+/// Where a fluid participant's step runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum FluidBackend {
+    /// The CPU (rayon threads): every feature.
+    #[default]
+    Cpu,
+    /// A GPU through wgpu compute shaders (Vulkan): E-MPS of a fluid-only case; see
+    /// [`FluidConfig::gpu_support`] for what it refuses.
+    Gpu,
+}
+
 /// Largest advective Courant number `u_max Δt / Δs` of ISPH: a particle at u_max moves at most
 /// 0.4 Δs per step, so a step's neighbour lists stay valid for its whole length and the
 /// instability detector's 0.5 Δs per step is not reached by the predicted flow itself.
@@ -352,6 +365,9 @@ pub struct FluidConfig {
     /// The method: "emps" (default) or "isph".
     #[serde(default)]
     pub method: FluidMethodName,
+    /// Where the step runs: "cpu" (default) or "gpu".
+    #[serde(default)]
+    pub backend: FluidBackend,
     /// ISPH settings (`[fluid.NAME.isph]`, only with `method = "isph"`; defaults when absent).
     #[serde(default)]
     pub isph: Option<IsphConfig>,
@@ -582,6 +598,9 @@ impl FluidConfig {
         }
         self.validate_probes(key)?;
         self.validate_open_boundaries(key, &named)?;
+        if self.backend == FluidBackend::Gpu {
+            self.gpu_support(key)?;
+        }
         match self.method {
             FluidMethodName::Emps => {
                 if self.isph.is_some() {
@@ -603,6 +622,34 @@ impl FluidConfig {
                 self.validate_isph_time_step(key)
             }
         }
+    }
+
+    /// Refuses what the GPU path (`backend = "gpu"`) does not run yet, naming the feature: a run
+    /// never goes on with a mix that silently differs from the CPU's. `key` is the section's
+    /// dotted path; the error is at its `backend` key.
+    pub fn gpu_support(&self, key: &str) -> Result<(), FieldError> {
+        let refuse = |feature: &str| {
+            Err(FieldError::new(
+                format!("{key}.backend"),
+                format!("the GPU path does not run {feature} yet; use backend = \"cpu\" (the default) for this case"),
+            ))
+        };
+        if self.method != FluidMethodName::Emps {
+            return refuse("method = \"isph\" (only E-MPS is on the GPU)");
+        }
+        if !self.body.is_empty() {
+            return refuse("rigid bodies ([[body]])");
+        }
+        if self.inflow.is_some() || self.outflow.is_some() {
+            return refuse("inflow or outflow boundaries");
+        }
+        if let Some(p) = self.probe.iter().find(|p| p.window.is_some()) {
+            return refuse(&format!(
+                "filtered probes (probe `{}` has a window; probes are read from a copy at each probe row, not every step)",
+                p.name
+            ));
+        }
+        Ok(())
     }
 
     /// The ISPH settings: the `[isph]` table or its defaults.

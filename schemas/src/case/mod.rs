@@ -211,6 +211,20 @@ impl Case {
             cfg.validate(&format!("structure.{name}"))?;
         }
         self.check_files()?;
+        let coupled = names.len() > 1 || self.coupling.is_some();
+        if let Some(name) = self
+            .fluid
+            .iter()
+            .find(|(_, c)| c.backend == fluid::FluidBackend::Gpu)
+            .map(|(n, _)| n)
+        {
+            if coupled {
+                return Err(FieldError::new(
+                    format!("fluid.{name}.backend"),
+                    "the GPU path runs fluid-only cases so far (bodies and the drag coupling are not on the GPU yet); use backend = \"cpu\" (the default) in a coupled case",
+                ));
+            }
+        }
         match (&self.coupling, names.len()) {
             (None, n) if n > 1 => {
                 return Err(FieldError::new(

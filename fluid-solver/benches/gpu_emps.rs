@@ -1,0 +1,113 @@
+//! Speed of the GPU path (src/gpu) on the seed's dam-break tank: particle-steps per second, time
+//! per stage (each stage submitted and waited for, so the sum is above the plain step) and the
+//! bytes crossing between host and device per step and per probe window (0.01 s).
+//!
+//! On a real GPU: Δs = 0.01 m and 0.005 m (the goal: ≥ 2e8 particle-steps/s at ≥ 1 M
+//! particles). With only a software Vulkan device (lavapipe) it says so and runs one small size
+//! to check that the path works; its numbers are not GPU speed.
+
+use fluid_solver::gpu::GpuDevice;
+use fluid_solver::FluidSolver;
+use schemas::case::fluid::FluidConfig;
+use schemas::case::Case;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// The seed's tank at spacing `ds`, `depth` deep (the seed's 0.45 m, or a slab), open 30 cm
+/// walls as in the CPU benchmark, Δt scaled with Δs (c Δt/Δs = 0.6).
+fn tank(base: &FluidConfig, ds: f64, depth: f64) -> FluidConfig {
+    let mut cfg = base.clone();
+    cfg.spacing = ds;
+    cfg.time_step = 5.0e-4 * ds / 0.01;
+    cfg.tank.max[1] = depth;
+    cfg.block[0].max[1] = depth.min(0.3);
+    cfg.gate[0].max[1] = depth.min(0.3);
+    cfg.probe.clear();
+    cfg
+}
+
+fn run(base: &FluidConfig, ds: f64, depth: f64, steps: u64) {
+    let cfg = tank(base, ds, depth);
+    let dev = match GpuDevice::open() {
+        Ok(d) => d,
+        Err(e) => {
+            println!("error: {e}");
+            return;
+        }
+    };
+    let mut solver = FluidSolver::new(&cfg);
+    if let Err(e) = solver.to_device(&cfg, dev) {
+        println!("error: {e}");
+        return;
+    }
+    let n = solver.particle_count() as u64;
+    let dt = cfg.time_step;
+    let start = Instant::now();
+    for _ in 0..steps {
+        if let Err(e) = solver.step(dt) {
+            println!("error: {e}");
+            return;
+        }
+    }
+    let plain = start.elapsed().as_secs_f64();
+    let Some(d) = solver.device_mut() else { return };
+    let (up0, down0) = d.bytes_moved();
+    d.set_profile(true);
+    let profiled = steps.min(20);
+    for _ in 0..profiled {
+        if let Err(e) = solver.step(dt) {
+            println!("error: {e}");
+            return;
+        }
+    }
+    let Some(d) = solver.device() else { return };
+    let (up1, down1) = d.bytes_moved();
+    let per_step = (up1 - up0 + down1 - down0) as f64 / profiled as f64;
+    let window = (0.01 / dt).round();
+    println!(
+        "Δs = {ds} m, {n} particles, {steps} steps: {:.3e} particle-steps/s ({:.2} ms/step)",
+        (n * steps) as f64 / plain,
+        1e3 * plain / steps as f64
+    );
+    println!(
+        "  host↔device per step: {per_step:.0} B (reduction partials + uniforms); per 0.01 s probe window ({window} steps): {:.0} B + one particle copy of {} B",
+        per_step * window,
+        n * 44
+    );
+    println!("  time per stage (each waited for), ms/step:");
+    for (name, s) in d.stage_times().stages().iter().filter(|(n, _)| *n != "step") {
+        println!("    {name:<24} {:8.3}", 1e3 * s / profiled as f64);
+    }
+}
+
+fn main() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../cases/dam-break-tank/case.toml");
+    let case = match Case::load(&path) {
+        Ok(c) => c,
+        Err(e) => {
+            println!("error: {e}");
+            return;
+        }
+    };
+    let Some(base) = case.fluid.values().next().cloned() else {
+        println!("error: the case has no fluid section");
+        return;
+    };
+    let software = match GpuDevice::open() {
+        Ok(d) => {
+            println!("device: {}", d.description());
+            d.is_software()
+        }
+        Err(e) => {
+            println!("no GPU: {e}\nGPU speed: not measured");
+            return;
+        }
+    };
+    if software {
+        println!("only a software Vulkan device is present: GPU speed not measured; one small size to check that the path works");
+        run(&base, 0.02, 0.1, 50);
+    } else {
+        run(&base, 0.01, 0.45, 500);
+        run(&base, 0.005, 0.45, 200);
+    }
+}

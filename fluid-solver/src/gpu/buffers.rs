@@ -1,0 +1,197 @@
+//! The device arrays of the GPU step, their precision and the copies between host and device.
+//!
+//! Per particle: position + kind `vec4<f32>` (16 B), velocity `vec4<f32>` (16 B), id `u32`
+//! (4 B), number density + pressure `vec2<f32>` (8 B), the pair pass's result `vec4<f32>` (16 B),
+//! the force from non-fluid neighbours `vec4<f32>` (16 B), candidates `u32` (4 B), cell before and
+//! after the sort and the permutation 3 × `u32` (12 B), and the sort's spare position, velocity
+//! and id (36 B): 128 B. Per cell: start, count, fluid count 3 × `u32` (12 B).
+
+use super::device::GpuDevice;
+use super::reduce::Partial;
+use crate::particles::Particles;
+use bytemuck::{Pod, Zeroable};
+use std::sync::mpsc;
+
+/// Device bytes per particle (see the module doc).
+pub const BYTES_PER_PARTICLE: u64 = 128;
+/// Device bytes per cell.
+pub const BYTES_PER_CELL: u64 = 12;
+
+/// Every storage buffer of the step, in binding order 1 … 19 (0 is the uniform block).
+pub struct Buffers {
+    pub params: wgpu::Buffer,
+    pub storage: Vec<wgpu::Buffer>,
+    /// Particles the buffers hold room for.
+    pub capacity: usize,
+    /// Bytes copied host → device and device → host since the start.
+    pub uploaded: u64,
+    pub downloaded: u64,
+}
+
+/// Binding numbers (see `shaders/common.wgsl`).
+pub const POS: usize = 1;
+pub const VEL: usize = 2;
+pub const ID: usize = 3;
+pub const DENS: usize = 4;
+pub const SPARE_POS: usize = 14;
+pub const SPARE_VEL: usize = 15;
+pub const SPARE_ID: usize = 16;
+pub const BOXES: usize = 18;
+pub const PARTIALS: usize = 19;
+
+impl Buffers {
+    /// Buffers for `n` particles, `cells` cells, `boxes` wall blocks and `groups` reduction groups.
+    pub fn new(dev: &GpuDevice, n: usize, cells: usize, boxes: usize, groups: usize) -> Buffers {
+        let n = n.max(1) as u64;
+        let cells = cells as u64;
+        let sizes: [u64; 19] = [
+            16 * n,                                                  // 1 pos
+            16 * n,                                                  // 2 vel
+            4 * n,                                                   // 3 id
+            8 * n,                                                   // 4 dens
+            16 * n,                                                  // 5 acc
+            16 * n,                                                  // 6 wall force
+            4 * n,                                                   // 7 candidates
+            4 * n,                                                   // 8 cell_of
+            4 * n,                                                   // 9 perm
+            4 * (cells + 1),                                         // 10 cell_start
+            4 * cells,                                               // 11 cell_count
+            4 * cells,                                               // 12 fluid_count
+            4 * cells.div_ceil(256).max(1),                          // 13 block sums
+            16 * n,                                                  // 14 spare pos
+            16 * n,                                                  // 15 spare vel
+            4 * n,                                                   // 16 spare id
+            4 * n,                                                   // 17 cell_sorted
+            32 * boxes.max(1) as u64,                                // 18 boxes
+            (std::mem::size_of::<Partial>() * groups.max(1)) as u64, // 19 partials
+        ];
+        let storage = sizes
+            .iter()
+            .enumerate()
+            .map(|(k, &size)| {
+                dev.device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some(&format!("binding {}", k + 1)),
+                    size,
+                    usage: wgpu::BufferUsages::STORAGE
+                        | wgpu::BufferUsages::COPY_SRC
+                        | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                })
+            })
+            .collect();
+        let params = dev.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("params"),
+            size: std::mem::size_of::<super::params::Params>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        Buffers {
+            params,
+            storage,
+            capacity: n as usize,
+            uploaded: 0,
+            downloaded: 0,
+        }
+    }
+
+    /// The buffer of binding `b`.
+    pub fn at(&self, b: usize) -> &wgpu::Buffer {
+        &self.storage[b - 1]
+    }
+
+    /// Writes `data` at the start of binding `b`'s buffer.
+    pub fn write<T: Pod>(&mut self, dev: &GpuDevice, b: usize, data: &[T]) {
+        let bytes: &[u8] = bytemuck::cast_slice(data);
+        if !bytes.is_empty() {
+            dev.queue.write_buffer(self.at(b), 0, bytes);
+            self.uploaded += bytes.len() as u64;
+        }
+    }
+
+    /// Writes the uniform block.
+    pub fn write_params(&mut self, dev: &GpuDevice, p: &super::params::Params) {
+        dev.queue.write_buffer(&self.params, 0, bytemuck::bytes_of(p));
+        self.uploaded += std::mem::size_of_val(p) as u64;
+    }
+
+    /// Copies the particles to the device (positions, velocities and pressures in f32).
+    pub fn upload(&mut self, dev: &GpuDevice, p: &Particles) {
+        let n = p.len();
+        let pos: Vec<[f32; 4]> = (0..n)
+            .map(|i| [p.x[i] as f32, p.y[i] as f32, p.z[i] as f32, f32::from(p.kind[i])])
+            .collect();
+        let vel: Vec<[f32; 4]> = (0..n)
+            .map(|i| [p.vx[i] as f32, p.vy[i] as f32, p.vz[i] as f32, 0.0])
+            .collect();
+        let dens: Vec<[f32; 2]> = (0..n)
+            .map(|i| [p.number_density[i] as f32, p.pressure[i] as f32])
+            .collect();
+        self.write(dev, POS, &pos);
+        self.write(dev, VEL, &vel);
+        self.write(dev, ID, &p.id);
+        self.write(dev, DENS, &dens);
+    }
+
+    /// Copies the first `n` particles back into `p` (its arrays are replaced; kinds from the
+    /// position's w).
+    pub fn download(&mut self, dev: &GpuDevice, n: usize, p: &mut Particles) {
+        let pos: Vec<[f32; 4]> = self.read(dev, POS, n);
+        let vel: Vec<[f32; 4]> = self.read(dev, VEL, n);
+        let id: Vec<u32> = self.read(dev, ID, n);
+        let dens: Vec<[f32; 2]> = self.read(dev, DENS, n);
+        let col = |v: &[[f32; 4]], a: usize| v.iter().map(|e| f64::from(e[a])).collect::<Vec<f64>>();
+        p.x = col(&pos, 0);
+        p.y = col(&pos, 1);
+        p.z = col(&pos, 2);
+        p.kind = pos.iter().map(|e| e[3] as u8).collect();
+        p.vx = col(&vel, 0);
+        p.vy = col(&vel, 1);
+        p.vz = col(&vel, 2);
+        p.number_density = dens.iter().map(|e| f64::from(e[0])).collect();
+        p.pressure = dens.iter().map(|e| f64::from(e[1])).collect();
+        p.id = id;
+    }
+
+    /// Reads the first `count` elements of binding `b`'s buffer.
+    pub fn read<T: Pod + Zeroable>(&mut self, dev: &GpuDevice, b: usize, count: usize) -> Vec<T> {
+        let size = (std::mem::size_of::<T>() * count) as u64;
+        if size == 0 {
+            return Vec::new();
+        }
+        let staging = dev.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("download"),
+            size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut enc = dev
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("download"),
+            });
+        enc.copy_buffer_to_buffer(self.at(b), 0, &staging, 0, size);
+        dev.queue.submit([enc.finish()]);
+        let out = map_read(dev, &staging.slice(..));
+        self.downloaded += size;
+        out
+    }
+}
+
+/// Maps a slice of a MAP_READ buffer, waits, and copies its contents out.
+pub fn map_read<T: Pod + Zeroable>(dev: &GpuDevice, slice: &wgpu::BufferSlice<'_>) -> Vec<T> {
+    let (tx, rx) = mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    dev.wait();
+    match rx.recv() {
+        Ok(Ok(())) => {}
+        other => panic!("the GPU device was lost while reading a buffer back: {other:?}"),
+    }
+    let out = match slice.get_mapped_range() {
+        Ok(view) => bytemuck::pod_collect_to_vec(&view),
+        Err(e) => panic!("the GPU buffer could not be mapped: {e:?}"),
+    };
+    slice.buffer().unmap();
+    out
+}

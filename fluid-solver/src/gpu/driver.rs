@@ -1,0 +1,136 @@
+//! The solver's step on the device: the GPU path of [`FluidSolver::step`]. The host keeps the
+//! clock, the totals and the instability detector's thresholds; the particles stay on the device
+//! and are copied back only when an output, a probe row, a removal through the open top or a
+//! diagnostic needs them ([`FluidSolver::sync_host`]).
+
+use super::device::{GpuDevice, NoAdapter};
+use super::step::{GpuEmps, GpuSetup};
+use crate::method::StepTotals;
+use crate::solver::FluidSolver;
+use crate::stability::Instability;
+use schemas::case::fluid::{FluidBackend, FluidConfig};
+use std::fmt;
+
+/// Why a solver could not be put on the GPU.
+#[derive(Debug, Clone, PartialEq)]
+pub enum GpuStartError {
+    /// No Vulkan adapter (bad usage: the message says how to get one).
+    NoAdapter(NoAdapter),
+    /// The case is beyond what the GPU path handles so far.
+    Unsupported(String),
+}
+
+impl fmt::Display for GpuStartError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            GpuStartError::NoAdapter(e) => write!(f, "{e}"),
+            GpuStartError::Unsupported(m) => write!(f, "{m}"),
+        }
+    }
+}
+
+impl std::error::Error for GpuStartError {}
+
+impl FluidSolver {
+    /// Builds the solver of a validated section on the backend it names (`backend = "gpu"`: the
+    /// gates are removed on the host, then the particles go to the device).
+    pub fn with_backend(cfg: &FluidConfig) -> Result<FluidSolver, GpuStartError> {
+        let mut solver = FluidSolver::new(cfg);
+        if cfg.backend == FluidBackend::Gpu {
+            solver.to_device(cfg, GpuDevice::open().map_err(GpuStartError::NoAdapter)?)?;
+        }
+        Ok(solver)
+    }
+
+    /// Moves the particles to `dev`; from now on [`FluidSolver::step`] runs there.
+    pub fn to_device(&mut self, cfg: &FluidConfig, dev: GpuDevice) -> Result<(), GpuStartError> {
+        cfg.gpu_support("fluid")
+            .map_err(|e| GpuStartError::Unsupported(format!("`{}`: {}", e.key, e.message)))?;
+        self.remove_gates();
+        let setup = GpuSetup {
+            kernel: self.kernel,
+            physics: self.physics,
+            domain: self.domain,
+            open_top: self.open_top,
+            tank: self.tank,
+            walls: cfg.wall.clone(),
+        };
+        let step = GpuEmps::new(dev, &setup, &self.state.grid, &self.state.particles)
+            .map_err(GpuStartError::Unsupported)?;
+        self.device = Some(Box::new(step));
+        self.host_stale = false;
+        Ok(())
+    }
+
+    /// The device step, when the solver runs on a GPU.
+    pub fn device(&self) -> Option<&GpuEmps> {
+        self.device.as_deref()
+    }
+
+    /// Mutable device step (e.g. to time its stages).
+    pub fn device_mut(&mut self) -> Option<&mut GpuEmps> {
+        self.device.as_deref_mut()
+    }
+
+    /// Copies the device's particles to the host when the device is ahead (outputs, probes),
+    /// re-sorting the host's cell list for its point queries. Nothing on the CPU path.
+    pub fn sync_host(&mut self) {
+        if let (Some(dev), true) = (self.device.as_deref_mut(), self.host_stale) {
+            let st = &mut self.state;
+            dev.download(&mut st.particles);
+            st.grid.sort(&mut st.particles, &mut Vec::new());
+            self.host_stale = false;
+        }
+    }
+
+    /// One step on the device (see the module doc): removals through the open top found by the
+    /// last step happen on the host first, the detector's findings are explained by the host's
+    /// detector on a copy.
+    pub(crate) fn step_on_device(&mut self, dt: f64) -> Result<StepTotals, Instability> {
+        if !self.started {
+            self.sync_host();
+            self.monitor.start(&self.state.particles);
+            self.started = true;
+        }
+        if self.escape_pending {
+            self.sync_host();
+            self.remove_escaped()?;
+            self.host_dirty = true;
+            self.escape_pending = false;
+        }
+        let Some(dev) = self.device.as_deref_mut() else {
+            unreachable!("step_on_device is called with a device")
+        };
+        if self.host_dirty {
+            dev.upload(&self.state.particles);
+            self.host_dirty = false;
+        }
+        let report = dev.advance(dt);
+        let n = dev.len() as u64;
+        self.host_stale = true;
+        let st = &mut self.state;
+        st.steps += 1;
+        st.time += dt;
+        for a in 0..3 {
+            st.totals.wall_impulse[a] += report.force_from_walls[a] * dt;
+        }
+        st.totals.candidates += report.candidates;
+        st.totals.particle_steps += n;
+        self.escape_pending = report.escaped > 0;
+        let energy_over = self
+            .monitor
+            .energy_limit()
+            .is_some_and(|limit| !report.energy.is_finite() || report.energy > limit);
+        if report.finding.is_some() || energy_over {
+            self.sync_host();
+            let st = &self.state;
+            self.monitor
+                .check(&st.particles, st.steps, st.time, dt, &st.body_pose)?;
+        }
+        Ok(StepTotals {
+            force_from_walls: report.force_from_walls,
+            candidates: report.candidates,
+            ppe_iterations: 0,
+        })
+    }
+}

@@ -1,0 +1,133 @@
+//! The WGSL kernels (`shaders/`) as compute pipelines sharing one bind group layout: binding 0
+//! the uniform block, 1 … 19 the storage buffers of [`super::buffers`].
+
+use super::buffers::Buffers;
+use super::device::GpuDevice;
+
+/// The WGSL sources, joined into one module (the bindings are declared once in `common.wgsl`).
+const SOURCES: [&str; 4] = [
+    include_str!("shaders/common.wgsl"),
+    include_str!("shaders/cell_sort.wgsl"),
+    include_str!("shaders/emps.wgsl"),
+    include_str!("shaders/reduce.wgsl"),
+];
+
+/// One pipeline per kernel, and the bind group over the step's buffers.
+pub struct Kernels {
+    pub clear_cells: wgpu::ComputePipeline,
+    pub count_cells: wgpu::ComputePipeline,
+    pub scan_blocks: wgpu::ComputePipeline,
+    pub scan_sums: wgpu::ComputePipeline,
+    pub scan_add: wgpu::ComputePipeline,
+    pub scatter: wgpu::ComputePipeline,
+    pub order_cells: wgpu::ComputePipeline,
+    pub reorder: wgpu::ComputePipeline,
+    pub clear_sums: wgpu::ComputePipeline,
+    pub laplacian: wgpu::ComputePipeline,
+    pub predict: wgpu::ComputePipeline,
+    pub density: wgpu::ComputePipeline,
+    pub gradient: wgpu::ComputePipeline,
+    pub correct: wgpu::ComputePipeline,
+    pub collide: wgpu::ComputePipeline,
+    pub apply_collisions: wgpu::ComputePipeline,
+    pub reduce_step: wgpu::ComputePipeline,
+    pub bind_group: wgpu::BindGroup,
+}
+
+impl Kernels {
+    /// Compiles the kernels and binds `buffers`.
+    pub fn new(dev: &GpuDevice, buffers: &Buffers) -> Kernels {
+        let device = &dev.device;
+        let source = SOURCES.join("\n");
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("emps"),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let entry = |binding: u32, ty: wgpu::BufferBindingType| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let mut entries = vec![entry(0, wgpu::BufferBindingType::Uniform)];
+        for b in 1..=buffers.storage.len() as u32 {
+            entries.push(entry(b, wgpu::BufferBindingType::Storage { read_only: false }));
+        }
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("emps"),
+            entries: &entries,
+        });
+        let mut bindings = vec![wgpu::BindGroupEntry {
+            binding: 0,
+            resource: buffers.params.as_entire_binding(),
+        }];
+        for (k, b) in buffers.storage.iter().enumerate() {
+            bindings.push(wgpu::BindGroupEntry {
+                binding: k as u32 + 1,
+                resource: b.as_entire_binding(),
+            });
+        }
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("emps"),
+            layout: &layout,
+            entries: &bindings,
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("emps"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let make = |name: &str| {
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(name),
+                layout: Some(&pipeline_layout),
+                module: &module,
+                entry_point: Some(name),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        };
+        Kernels {
+            clear_cells: make("clear_cells"),
+            count_cells: make("count_cells"),
+            scan_blocks: make("scan_blocks"),
+            scan_sums: make("scan_sums"),
+            scan_add: make("scan_add"),
+            scatter: make("scatter"),
+            order_cells: make("order_cells"),
+            reorder: make("reorder"),
+            clear_sums: make("clear_sums"),
+            laplacian: make("laplacian"),
+            predict: make("predict"),
+            density: make("density"),
+            gradient: make("gradient"),
+            correct: make("correct"),
+            collide: make("collide"),
+            apply_collisions: make("apply_collisions"),
+            reduce_step: make("reduce_step"),
+            bind_group,
+        }
+    }
+}
+
+/// Threads per workgroup of the per-particle and per-cell kernels.
+pub const WG: u32 = 64;
+/// Threads per workgroup of the scans and the reduction.
+pub const WIDE_WG: u32 = 256;
+
+/// Records `pipeline` over `items` threads of `group` per workgroup.
+pub fn dispatch(
+    pass: &mut wgpu::ComputePass<'_>,
+    k: &Kernels,
+    pipeline: &wgpu::ComputePipeline,
+    items: u32,
+    group: u32,
+) {
+    pass.set_pipeline(pipeline);
+    pass.set_bind_group(0, &k.bind_group, &[]);
+    pass.dispatch_workgroups(items.div_ceil(group).max(1), 1, 1);
+}

@@ -1,0 +1,25 @@
+//! The GPU path of the E-MPS step: wgpu compute shaders (WGSL) on a Vulkan device, chosen per run
+//! by `backend = "gpu"` in the case or `fluid-solver run --backend gpu` (the CPU stays the
+//! default). The particles live on the device; they cross to the host only when an output,
+//! a probe row or a diagnostic is due.
+//!
+//! - [`device`]: adapter selection (Vulkan only) and the error when there is none;
+//! - [`params`]: the constants every kernel reads (one uniform block);
+//! - [`buffers`]: the device arrays, their precision, upload and download;
+//! - [`kernels`]: the WGSL modules (`shaders/`) as compute pipelines on one bind group;
+//! - [`cell_sort`]: counting sort and prefix sum by cell;
+//! - [`step`]: the E-MPS stages of [`crate::emps::step`] in the same order;
+//! - [`reduce`]: the instability detector's scan and the step's totals, reduced on the device;
+//! - [`driver`]: the solver's step on the device (escapes, detector, host copies).
+
+pub mod buffers;
+pub mod cell_sort;
+pub mod device;
+pub mod driver;
+pub mod kernels;
+pub mod params;
+pub mod reduce;
+pub mod step;
+
+pub use device::{GpuDevice, NoAdapter};
+pub use step::GpuEmps;

@@ -1,0 +1,49 @@
+//! The constants of the kernels, one uniform block (`Params` in `shaders/common.wgsl`; the field
+//! order and padding are the WGSL layout's: a vec3 takes 16 bytes with the scalar after it).
+
+use bytemuck::{Pod, Zeroable};
+
+/// Mirror of `Params` in `shaders/common.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+pub struct Params {
+    pub origin: [f32; 3],
+    pub inv_cell: f32,
+    pub dims: [u32; 3],
+    pub n: u32,
+    pub gravity: [f32; 3],
+    pub dt: f32,
+    pub re: f32,
+    pub re_grad: f32,
+    pub inv_n0: f32,
+    pub grad_factor: f32,
+    pub lap_factor: f32,
+    pub nu: f32,
+    pub rho: f32,
+    pub c2: f32,
+    pub coll_dist: f32,
+    pub restitution: f32,
+    pub reach: u32,
+    pub reach_grad: u32,
+    pub reach_coll: u32,
+    pub cells: u32,
+    pub pad: u32,
+    pub viscous: u32,
+    pub domain_lo: [f32; 3],
+    pub spacing: f32,
+    pub domain_hi: [f32; 3],
+    pub wall_top: f32,
+    pub tank_lo: [f32; 3],
+    pub open_top: u32,
+    pub tank_hi: [f32; 3],
+    pub n_boxes: u32,
+    pub mass: f32,
+    pub volume: f32,
+    pub scan_blocks: u32,
+    pub _pad: u32,
+}
+
+/// Converts to the device's f32.
+pub fn f32x3(v: [f64; 3]) -> [f32; 3] {
+    v.map(|x| x as f32)
+}

@@ -1,0 +1,95 @@
+// Bindings and helpers shared by every kernel of the GPU E-MPS step (src/gpu). One bind group
+// holds every buffer; each kernel touches only the ones it needs.
+// Precision: positions, velocities, number density, pressure and the per-particle sums are f32
+// (see the README's GPU section); counts and indices are u32.
+
+struct Params {
+    origin: vec3<f32>, inv_cell: f32,
+    dims: vec3<u32>, n: u32,
+    gravity: vec3<f32>, dt: f32,
+    re: f32, re_grad: f32, inv_n0: f32, grad_factor: f32,
+    lap_factor: f32, nu: f32, rho: f32, c2: f32,
+    coll_dist: f32, restitution: f32, reach: u32, reach_grad: u32,
+    reach_coll: u32, cells: u32, pad: u32, viscous: u32,
+    domain_lo: vec3<f32>, spacing: f32,
+    domain_hi: vec3<f32>, wall_top: f32,
+    tank_lo: vec3<f32>, open_top: u32,
+    tank_hi: vec3<f32>, n_boxes: u32,
+    mass: f32, volume: f32, scan_blocks: u32, _pad: u32,
+};
+
+// Kind codes (src/kind.rs).
+const FLUID: u32 = 0u;
+const WALL: u32 = 1u;
+const DUMMY: u32 = 2u;
+const BODY: u32 = 3u;
+
+const WG: u32 = 64u;
+const SCAN_WG: u32 = 256u;
+const NONE: u32 = 0xffffffffu;
+
+@group(0) @binding(0) var<uniform> prm: Params;
+// xyz: position [m]; w: kind code.
+@group(0) @binding(1) var<storage, read_write> pos: array<vec4<f32>>;
+// xyz: velocity [m/s].
+@group(0) @binding(2) var<storage, read_write> vel: array<vec4<f32>>;
+// Stable particle id.
+@group(0) @binding(3) var<storage, read_write> pid: array<u32>;
+// x: number density n (S1-15); y: pressure P (S1-14).
+@group(0) @binding(4) var<storage, read_write> dens: array<vec2<f32>>;
+// Per-particle result of the last pair pass (Laplacian, gradient or collision Δu).
+@group(0) @binding(5) var<storage, read_write> acc: array<vec4<f32>>;
+// xyz: force of non-fluid neighbours on the particle summed over the step's passes [N];
+// w: unused.
+@group(0) @binding(6) var<storage, read_write> wallf: array<vec4<f32>>;
+// Neighbour candidates examined by the particle's slot in this step.
+@group(0) @binding(7) var<storage, read_write> cand: array<u32>;
+// Cell of each particle before the sort (unsorted order).
+@group(0) @binding(8) var<storage, read_write> cell_of: array<u32>;
+// Sorting permutation: sorted slot → index before the sort.
+@group(0) @binding(9) var<storage, read_write> perm: array<u32>;
+// Particles of cell c are cell_start[c] .. cell_start[c + 1] (cells + 1 entries).
+@group(0) @binding(10) var<storage, read_write> cell_start: array<u32>;
+// Particles per cell (count pass), then counted down by the scatter.
+@group(0) @binding(11) var<storage, read_write> cell_count: array<atomic<u32>>;
+// Fluid particles per cell.
+@group(0) @binding(12) var<storage, read_write> fluid_count: array<atomic<u32>>;
+// Totals of the scan's blocks (then their exclusive prefix).
+@group(0) @binding(13) var<storage, read_write> block_sums: array<u32>;
+@group(0) @binding(14) var<storage, read_write> spare_pos: array<vec4<f32>>;
+@group(0) @binding(15) var<storage, read_write> spare_vel: array<vec4<f32>>;
+@group(0) @binding(16) var<storage, read_write> spare_id: array<u32>;
+// Cell of each particle in the sorted order.
+@group(0) @binding(17) var<storage, read_write> cell_sorted: array<u32>;
+// Wall blocks for the instability detector: min (xyz), max (xyz) per box, shrunk by Δs/2.
+@group(0) @binding(18) var<storage, read_write> boxes: array<vec4<f32>>;
+// One partial per workgroup of the reduction (see reduce.wgsl).
+@group(0) @binding(19) var<storage, read_write> partials: array<Partial>;
+
+struct Partial {
+    wall: vec3<f32>, energy: f32,
+    candidates: u32, finding: u32, escaped: u32, fluid: u32,
+};
+
+fn kind_of(i: u32) -> u32 {
+    return u32(pos[i].w);
+}
+
+// Cell index of a point, clamped onto the grid's inner border like CellGrid::cell_index.
+fn cell_index(p: vec3<f32>) -> u32 {
+    let c = floor((p - prm.origin) * prm.inv_cell);
+    let lo = f32(prm.pad);
+    let hi = vec3<f32>(prm.dims - vec3<u32>(prm.pad + 1u));
+    let cc = vec3<u32>(min(max(c, vec3<f32>(lo)), hi));
+    return cc.x + prm.dims.x * (cc.y + prm.dims.y * cc.z);
+}
+
+// First particle slot of the run of cells along x that starts `reach` cells before cell c,
+// shifted by (dy, dz) rows, and one past its last slot.
+fn row_range(c: u32, reach: u32, dy: u32, dz: u32) -> vec2<u32> {
+    let nx = prm.dims.x;
+    let nxy = nx * prm.dims.y;
+    let row = c + dz * nxy + dy * nx;
+    let lo = row - reach * nxy - reach * nx - reach;
+    return vec2<u32>(cell_start[lo], cell_start[lo + 2u * reach + 1u]);
+}

@@ -1,0 +1,120 @@
+// The instability detector's scan (src/stability.rs) and the step's totals, reduced on the
+// device to one Partial per workgroup of 256 particles: the force of the walls on the fluid,
+// the fluid's mechanical energy per unit mass Σ ½|u|² − g·r, the candidates, the smallest
+// (id · 8 + finding code) of a particle with a finding, and the particles that left through the
+// open top. The host sums the partials in f64 and, on a finding, explains it with the CPU
+// detector on a copy of the particles.
+
+// Finding codes (the host's StabilityMonitor names them).
+const F_NOT_FINITE: u32 = 1u;
+const F_INSIDE_WALL: u32 = 2u;
+const F_LEFT_DOMAIN: u32 = 3u;
+const F_TOO_FAST: u32 = 4u;
+
+var<workgroup> r_wall: array<vec3<f32>, 256>;
+var<workgroup> r_energy: array<f32, 256>;
+var<workgroup> r_cand: array<u32, 256>;
+var<workgroup> r_find: array<u32, 256>;
+var<workgroup> r_esc: array<u32, 256>;
+var<workgroup> r_fluid: array<u32, 256>;
+
+fn is_finite(v: f32) -> bool {
+    // NaN fails both comparisons; ±inf fails the bound.
+    return abs(v) <= 3.0e38;
+}
+
+fn outside(p: vec3<f32>, lo: vec3<f32>, hi: vec3<f32>) -> bool {
+    return any(p < lo) || any(p > hi);
+}
+
+// The finding code of particle i (0 when none), as StabilityMonitor::check_particle; sets
+// `left` when the particle left through the open top (removed at the next step's start).
+fn finding(i: u32, left: ptr<function, bool>) -> u32 {
+    let p = pos[i].xyz;
+    let u = vel[i].xyz;
+    let pr = dens[i].y;
+    if !(is_finite(p.x) && is_finite(p.y) && is_finite(p.z) && is_finite(u.x) && is_finite(u.y)
+        && is_finite(u.z) && is_finite(pr)) {
+        return F_NOT_FINITE;
+    }
+    let k = kind_of(i);
+    if k != FLUID && k != BODY {
+        return 0u;
+    }
+    let h = 0.5 * prm.spacing;
+    let below_top = p.z <= prm.tank_hi.z;
+    let out_tank = p.x < prm.tank_lo.x - h || p.x > prm.tank_hi.x + h || p.y < prm.tank_lo.y - h
+        || p.y > prm.tank_hi.y + h || p.z < prm.tank_lo.z - h;
+    if out_tank && below_top {
+        return F_INSIDE_WALL;
+    }
+    for (var b = 0u; b < prm.n_boxes; b = b + 1u) {
+        if all(p >= boxes[2u * b].xyz) && all(p <= boxes[2u * b + 1u].xyz) {
+            return F_INSIDE_WALL;
+        }
+    }
+    if k == BODY {
+        return 0u;
+    }
+    let out_domain = outside(p, prm.domain_lo, prm.domain_hi);
+    if prm.open_top != 0u && out_domain && p.z > prm.wall_top {
+        *left = true;
+        return 0u;
+    }
+    if out_domain {
+        return F_LEFT_DOMAIN;
+    }
+    if length(u) * prm.dt > 0.5 * prm.spacing {
+        return F_TOO_FAST;
+    }
+    return 0u;
+}
+
+@compute @workgroup_size(256)
+fn reduce_step(@builtin(global_invocation_id) g: vec3<u32>, @builtin(local_invocation_id) l: vec3<u32>, @builtin(workgroup_id) w: vec3<u32>) {
+    let i = g.x;
+    var wall = vec3<f32>(0.0);
+    var energy = 0.0;
+    var seen = 0u;
+    var found = NONE;
+    var esc = 0u;
+    var fluid = 0u;
+    if i < prm.n {
+        var left = false;
+        let f = finding(i, &left);
+        if f != 0u {
+            found = pid[i] * 8u + f;
+        }
+        if left && kind_of(i) == FLUID {
+            esc = 1u;
+        }
+        if kind_of(i) == FLUID {
+            let u = vel[i].xyz;
+            energy = 0.5 * dot(u, u) - dot(prm.gravity, pos[i].xyz);
+            fluid = 1u;
+        }
+        wall = wallf[i].xyz;
+        seen = cand[i];
+    }
+    r_wall[l.x] = wall;
+    r_energy[l.x] = energy;
+    r_cand[l.x] = seen;
+    r_find[l.x] = found;
+    r_esc[l.x] = esc;
+    r_fluid[l.x] = fluid;
+    workgroupBarrier();
+    for (var s = 128u; s > 0u; s = s / 2u) {
+        if l.x < s {
+            r_wall[l.x] = r_wall[l.x] + r_wall[l.x + s];
+            r_energy[l.x] = r_energy[l.x] + r_energy[l.x + s];
+            r_cand[l.x] = r_cand[l.x] + r_cand[l.x + s];
+            r_find[l.x] = min(r_find[l.x], r_find[l.x + s]);
+            r_esc[l.x] = r_esc[l.x] + r_esc[l.x + s];
+            r_fluid[l.x] = r_fluid[l.x] + r_fluid[l.x + s];
+        }
+        workgroupBarrier();
+    }
+    if l.x == 0u {
+        partials[w.x] = Partial(r_wall[0], r_energy[0], r_cand[0], r_find[0], r_esc[0], r_fluid[0]);
+    }
+}

@@ -1,0 +1,311 @@
+//! One E-MPS step on the device, the stages of [`crate::emps::step`] in the same order: (when the
+//! viscous term is on) cell sort at r^k and S1-4, then S1-10/S1-11, cell sort at r*, S1-15 with
+//! S1-14, S1-3, S1-12/S1-13, the collision pass and its update, and the device reduction of the
+//! detector and the totals. Only the 32 B per 256 particles of that reduction come back per step.
+
+use super::buffers::{map_read, Buffers, BOXES, PARTIALS};
+use super::cell_sort;
+use super::device::GpuDevice;
+use super::kernels::{dispatch, Kernels, WG, WIDE_WG};
+use super::params::{f32x3, Params};
+use super::reduce::{self, Partial, StepReport};
+use crate::collision::{COLLISION_DISTANCE, RESTITUTION};
+use crate::emps::kernel::Kernel;
+use crate::escape::OpenTop;
+use crate::layout::Domain;
+use crate::neighbour_search::{CellGrid, PAD};
+use crate::particles::Particles;
+use crate::physics::Physics;
+use crate::stage_timer::StageTimes;
+use schemas::case::fluid::Aabb;
+use std::fmt;
+
+/// Largest particle count of one dispatch row (65 535 workgroups of 64): larger runs need 2D
+/// dispatches, not written yet.
+pub const MAX_PARTICLES: usize = 65_535 * 64;
+
+/// What the device step needs to know of the case: the operators, the physics, the grid and the
+/// detector's geometry.
+#[derive(Debug, Clone)]
+pub struct GpuSetup {
+    pub kernel: Kernel,
+    pub physics: Physics,
+    pub domain: Domain,
+    pub open_top: OpenTop,
+    pub tank: Aabb,
+    /// Fixed wall blocks (the detector's boxes are these shrunk by half a spacing).
+    pub walls: Vec<Aabb>,
+}
+
+/// The E-MPS step on a GPU: the device, its buffers and kernels.
+pub struct GpuEmps {
+    pub dev: GpuDevice,
+    buffers: Buffers,
+    kernels: Kernels,
+    params: Params,
+    n: usize,
+    viscous: bool,
+    /// Where the reduction's partials are read back (reused every step).
+    staging: wgpu::Buffer,
+    /// Submit and wait after each stage to time it (the benchmark); off in runs.
+    profile: bool,
+    times: StageTimes,
+}
+
+impl fmt::Debug for GpuEmps {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "GpuEmps({} particles on {:?})", self.n, self.dev)
+    }
+}
+
+impl GpuEmps {
+    /// Uploads `p` (sorted by `grid`, whose geometry the device copies) to `dev`.
+    pub fn new(dev: GpuDevice, setup: &GpuSetup, grid: &CellGrid, p: &Particles) -> Result<GpuEmps, String> {
+        let n = p.len();
+        if n > MAX_PARTICLES {
+            return Err(format!(
+                "the GPU path runs at most {MAX_PARTICLES} particles so far (one dispatch row), the case has {n}; use backend = \"cpu\""
+            ));
+        }
+        let largest = dev.device.limits().max_storage_buffer_binding_size;
+        if 16 * n as u64 > largest {
+            return Err(format!(
+                "the GPU binds at most {largest} B per array, {n} particles need {} B; use backend = \"cpu\"",
+                16 * n as u64
+            ));
+        }
+        let (origin, cell, dims) = grid.geometry();
+        let cells = dims[0] * dims[1] * dims[2];
+        if cells > 65_535 * 64 {
+            return Err(format!(
+                "the GPU path's prefix sum handles at most {} cells so far, the case's grid has {cells}; use backend = \"cpu\"",
+                65_535 * 64
+            ));
+        }
+        let k = &setup.kernel;
+        let ph = &setup.physics;
+        let mass = ph.density * k.spacing.powi(3);
+        let h = 0.5 * k.spacing;
+        let boxes: Vec<[f32; 4]> = setup
+            .walls
+            .iter()
+            .map(|b| (b.min.map(|v| v + h), b.max.map(|v| v - h)))
+            .filter(|(lo, hi)| (0..3).all(|a| hi[a] > lo[a]))
+            .flat_map(|(lo, hi)| {
+                let (lo, hi) = (f32x3(lo), f32x3(hi));
+                [[lo[0], lo[1], lo[2], 0.0], [hi[0], hi[1], hi[2], 0.0]]
+            })
+            .collect();
+        let viscous = ph.viscous();
+        let params = Params {
+            origin: f32x3(origin),
+            inv_cell: (1.0 / cell) as f32,
+            dims: dims.map(|d| d as u32),
+            n: n as u32,
+            gravity: f32x3(ph.gravity),
+            dt: 0.0,
+            re: k.re as f32,
+            re_grad: k.re_grad as f32,
+            inv_n0: (1.0 / k.n0) as f32,
+            grad_factor: k.gradient_factor() as f32,
+            lap_factor: k.laplacian_factor() as f32,
+            nu: if viscous { ph.viscosity as f32 } else { 0.0 },
+            rho: ph.density as f32,
+            c2: (ph.sound_speed * ph.sound_speed) as f32,
+            coll_dist: (COLLISION_DISTANCE * k.spacing) as f32,
+            restitution: RESTITUTION as f32,
+            reach: grid.reach(k.re) as u32,
+            reach_grad: grid.reach(k.re_grad) as u32,
+            reach_coll: grid.reach(COLLISION_DISTANCE * k.spacing) as u32,
+            cells: cells as u32,
+            pad: PAD as u32,
+            viscous: u32::from(viscous),
+            domain_lo: f32x3(setup.domain.lo),
+            spacing: k.spacing as f32,
+            domain_hi: f32x3(setup.domain.hi),
+            wall_top: setup.open_top.wall_top as f32,
+            tank_lo: f32x3(setup.tank.min),
+            open_top: u32::from(setup.open_top.open),
+            tank_hi: f32x3(setup.tank.max),
+            n_boxes: (boxes.len() / 2) as u32,
+            mass: mass as f32,
+            volume: (mass / ph.density) as f32,
+            scan_blocks: cells.div_ceil(256) as u32,
+            _pad: 0,
+        };
+        let groups = n.div_ceil(WIDE_WG as usize);
+        let mut buffers = Buffers::new(&dev, n, cells, boxes.len() / 2, groups);
+        let kernels = Kernels::new(&dev, &buffers);
+        buffers.write(&dev, BOXES, &boxes);
+        let staging = dev.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("partials"),
+            size: (groups.max(1) * std::mem::size_of::<Partial>()) as u64,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut step = GpuEmps {
+            staging,
+            dev,
+            buffers,
+            kernels,
+            params,
+            n,
+            viscous,
+            profile: false,
+            times: StageTimes::default(),
+        };
+        step.upload(p);
+        Ok(step)
+    }
+
+    /// Particles on the device.
+    pub fn len(&self) -> usize {
+        self.n
+    }
+
+    /// True when no particle is on the device.
+    pub fn is_empty(&self) -> bool {
+        self.n == 0
+    }
+
+    /// Replaces the device's particles by `p` (at most as many as at the start).
+    pub fn upload(&mut self, p: &Particles) {
+        assert!(
+            p.len() <= self.buffers.capacity,
+            "the GPU buffers were sized for fewer particles"
+        );
+        self.n = p.len();
+        self.params.n = self.n as u32;
+        self.buffers.upload(&self.dev, p);
+    }
+
+    /// Copies the device's particles into `p` (in the device's cell order).
+    pub fn download(&mut self, p: &mut Particles) {
+        self.buffers.download(&self.dev, self.n, p);
+    }
+
+    /// Bytes copied host → device and device → host since the start.
+    pub fn bytes_moved(&self) -> (u64, u64) {
+        (self.buffers.uploaded, self.buffers.downloaded)
+    }
+
+    /// Times every stage by waiting after it (slower; for the benchmark).
+    pub fn set_profile(&mut self, on: bool) {
+        self.profile = on;
+    }
+
+    /// Wall time per stage since the start (only with [`GpuEmps::set_profile`]; otherwise the
+    /// whole step is one stage "step").
+    pub fn stage_times(&self) -> &StageTimes {
+        &self.times
+    }
+
+    /// Advances the device's particles by `dt` and returns the device's reduction.
+    pub fn advance(&mut self, dt: f64) -> StepReport {
+        let t0 = self.times.start();
+        self.params.dt = dt as f32;
+        self.buffers.write_params(&self.dev, &self.params);
+        let (n, cells) = (self.n as u32, self.params.cells);
+        let groups = self.n.div_ceil(WIDE_WG as usize).max(1);
+        let mut rec = Recorder::new(self);
+        rec.passes("clear", |p, k| dispatch(p, k, &k.clear_sums, n, WG));
+        if rec.step.viscous {
+            rec.sort("neighbour search", n, cells);
+            rec.passes("viscous", |p, k| dispatch(p, k, &k.laplacian, n, WG));
+        }
+        rec.passes("predict", |p, k| dispatch(p, k, &k.predict, n, WG));
+        rec.sort("neighbour search", n, cells);
+        rec.passes("density and pressure", |p, k| dispatch(p, k, &k.density, n, WG));
+        rec.passes("pressure gradient", |p, k| {
+            dispatch(p, k, &k.gradient, n, WG);
+            dispatch(p, k, &k.correct, n, WG);
+        });
+        rec.passes("collision", |p, k| {
+            dispatch(p, k, &k.collide, n, WG);
+            dispatch(p, k, &k.apply_collisions, n, WG);
+        });
+        rec.passes("detector and totals", |p, k| {
+            dispatch(p, k, &k.reduce_step, n, WIDE_WG)
+        });
+        let bytes = (groups * std::mem::size_of::<Partial>()) as u64;
+        let (partials_buffer, staging) = (rec.step.buffers.at(PARTIALS), &rec.step.staging);
+        rec.enc
+            .copy_buffer_to_buffer(partials_buffer, 0, staging, 0, bytes);
+        rec.finish("detector and totals");
+        let partials: Vec<Partial> = map_read(&self.dev, &self.staging.slice(..bytes));
+        self.buffers.downloaded += bytes;
+        if !self.profile {
+            self.times.lap(t0, "step");
+        }
+        reduce::sum(&partials)
+    }
+}
+
+/// Records the step's passes into one command encoder, or (profiling) submits and times each.
+struct Recorder<'a> {
+    step: &'a mut GpuEmps,
+    enc: wgpu::CommandEncoder,
+    clock: std::time::Instant,
+}
+
+impl<'a> Recorder<'a> {
+    fn new(step: &'a mut GpuEmps) -> Recorder<'a> {
+        let enc = step
+            .dev
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("emps step"),
+            });
+        Recorder {
+            step,
+            enc,
+            clock: std::time::Instant::now(),
+        }
+    }
+
+    /// Records one compute pass filled by `f`, as stage `name`.
+    fn passes(&mut self, name: &'static str, f: impl FnOnce(&mut wgpu::ComputePass<'_>, &Kernels)) {
+        {
+            let mut pass = self.enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some(name),
+                timestamp_writes: None,
+            });
+            f(&mut pass, &self.step.kernels);
+        }
+        self.lap(name);
+    }
+
+    /// Records a cell sort, as stage `name`.
+    fn sort(&mut self, name: &'static str, n: u32, cells: u32) {
+        cell_sort::encode(&mut self.enc, &self.step.kernels, &self.step.buffers, n, cells);
+        self.lap(name);
+    }
+
+    /// Profiling: submits what was recorded, waits, and adds the time to stage `name`.
+    fn lap(&mut self, name: &'static str) {
+        if self.step.profile {
+            self.submit();
+            self.clock = self.step.times.lap(self.clock, name);
+        }
+    }
+
+    fn submit(&mut self) {
+        let dev = &self.step.dev;
+        let fresh = dev
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("emps step"),
+            });
+        let enc = std::mem::replace(&mut self.enc, fresh);
+        dev.queue.submit([enc.finish()]);
+        dev.wait();
+    }
+
+    /// Submits the rest; with profiling on, its time goes to stage `name`.
+    fn finish(mut self, name: &'static str) {
+        self.submit();
+        if self.step.profile {
+            self.step.times.lap(self.clock, name);
+        }
+    }
+}

@@ -1,0 +1,112 @@
+//! What the GPU path refuses: cases with features it does not run yet (by the case key or the
+//! command-line flag), and no adapter at all (exit code 2 with how to get one).
+
+mod gpu_common;
+
+use schemas::case::Case;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const GOOD: &str = r#"
+[case]
+name = "small"
+end_time = 0.004
+
+[fluid.water]
+backend = "gpu"
+spacing = 0.02
+time_step = 8.0e-4
+output_interval = 0.002
+tank = { min = [0.0, 0.0, 0.0], max = [0.2, 0.06, 0.3], lid = true }
+
+[[fluid.water.block]]
+min = [0.0, 0.0, 0.0]
+max = [0.1, 0.06, 0.2]
+"#;
+
+fn error_of(text: &str) -> String {
+    match Case::parse(Path::new("cases/small/case.toml"), text.to_string()) {
+        Ok(_) => panic!("the case should have been refused:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn gpu_backend_refuses_what_it_does_not_run_naming_the_feature() {
+    Case::parse(Path::new("cases/small/case.toml"), GOOD.to_string()).unwrap_or_else(|e| panic!("{e}"));
+    let e = error_of(&GOOD.replace("backend = \"gpu\"", "backend = \"cuda\""));
+    assert!(
+        e.contains("cases/small/case.toml") && e.contains("cpu") && e.contains("gpu"),
+        "{e}"
+    );
+    let e = error_of(&GOOD.replace("backend = \"gpu\"", "backend = \"gpu\"\nmethod = \"isph\""));
+    assert!(
+        e.contains("`fluid.water.backend`") && e.contains("isph") && e.contains("backend = \"cpu\""),
+        "{e}"
+    );
+    let body = "\n[[fluid.water.body]]\nname = \"box\"\nmin = [0.14, 0.0, 0.0]\nmax = [0.18, 0.06, 0.04]\n";
+    let e = error_of(&format!("{GOOD}{body}"));
+    assert!(
+        e.contains("`fluid.water.backend`") && e.contains("rigid bodies"),
+        "{e}"
+    );
+    let probe = "\n[[fluid.water.probe]]\nname = \"p\"\nkind = \"wall-pressure\"\nposition = [0.2, 0.03, 0.04]\nnormal = \"-x\"\ndiameter = 0.04\nwindow = 0.01\n";
+    let e = error_of(&format!("{GOOD}{probe}"));
+    assert!(
+        e.contains("`fluid.water.backend`") && e.contains("filtered probes"),
+        "{e}"
+    );
+}
+
+fn write_case(dir: &str, text: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(dir);
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+    let path = dir.join("case.toml");
+    std::fs::write(&path, text).unwrap_or_else(|e| panic!("{e}"));
+    path
+}
+
+/// With the Vulkan loader pointed at no driver, `--backend gpu` stops before any step with
+/// exit code 2 and says how to get a device or to use the CPU.
+#[test]
+fn no_adapter_is_a_clear_error_with_exit_code_2() {
+    let case = write_case("gpu_no_adapter", &GOOD.replace("backend = \"gpu\"\n", ""));
+    let out = Command::new(env!("CARGO_BIN_EXE_fluid-solver"))
+        .args(["run", &case.to_string_lossy(), "--backend", "gpu", "--out"])
+        .arg(case.with_file_name("out"))
+        .env("VK_DRIVER_FILES", "/nonexistent/icd.json")
+        .env("VK_ICD_FILENAMES", "/nonexistent/icd.json")
+        .output()
+        .unwrap_or_else(|e| panic!("{e}"));
+    let err = String::from_utf8_lossy(&out.stderr);
+    println!("{err}");
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("no GPU") && err.contains("mesa-vulkan-drivers") && err.contains("backend = \"cpu\""),
+        "{err}"
+    );
+}
+
+/// `backend = "gpu"` in the case: the run goes through on the device and writes its frames
+/// (positions copied back only for the frames).
+#[test]
+fn a_gpu_case_runs_through_the_command_line() {
+    if gpu_common::device().is_none() {
+        return;
+    }
+    let case = write_case("gpu_run", GOOD);
+    let out_dir = case.with_file_name("out");
+    let out = Command::new(env!("CARGO_BIN_EXE_fluid-solver"))
+        .args(["run", &case.to_string_lossy(), "--out"])
+        .arg(&out_dir)
+        .output()
+        .unwrap_or_else(|e| panic!("{e}"));
+    let err = String::from_utf8_lossy(&out.stderr);
+    println!("{err}");
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(err.contains("running on the GPU"), "{err}");
+    for k in 0..3 {
+        let frame = out_dir.join(format!("water_{k:05}.vtu"));
+        assert!(frame.is_file(), "missing {}", frame.display());
+    }
+}
