@@ -8,6 +8,7 @@ use crate::ledger::Ledger;
 use crate::out_folder::OutputFolder;
 use crate::progress::Progress;
 use crate::scheme::{Summary, Windows};
+use crate::stability::Detector;
 use crate::stack::{Launch, Stack};
 use schemas::case::{Case, Kind};
 use schemas::message::{Role, PROTOCOL_VERSION};
@@ -90,6 +91,9 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
     let estimate = Estimate::of(&case);
     estimate.check(&out, opts.max_output)?;
     eprintln!("estimate: {}", estimate.describe());
+    if let Some(line) = crate::stability::one_step::warning(&case) {
+        eprintln!("{line}");
+    }
     let folder = OutputFolder::take(&out, opts.overwrite)?;
     let out = folder.dir.clone();
     signals::install();
@@ -154,6 +158,11 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
             config: coupling,
             ledger,
             progress: Progress::new(),
+            detector: Detector::create(
+                &out.join("interface_energy.csv"),
+                &order,
+                coupling.created_energy_limit,
+            )?,
             reference: Default::default(),
         };
         windows.run(case.info.end_time, initial)
@@ -183,7 +192,7 @@ fn report(s: &Summary, wall: f64, out: &Path) {
         if s.balance_violations > 0 { format!(", {} windows above tolerance", s.balance_violations) } else { String::new() }
     );
     eprintln!(
-        "output: {}, {} (recording.rec, ledger.csv, one log and folder per participant)",
+        "output: {}, {} (recording.rec, ledger.csv, interface_energy.csv, one log and folder per participant)",
         out.display(),
         bytes_text(written as f64)
     );

@@ -15,6 +15,7 @@ use crate::error::CouplerError;
 use crate::interface::Interface;
 use crate::ledger::{Ledger, WindowEnd};
 use crate::progress::Progress;
+use crate::stability::Detector;
 use crate::stack::{variant, Stack};
 use crate::state;
 use schemas::case::coupling::{CouplingConfig, Predictor, Scheme};
@@ -39,6 +40,8 @@ pub struct Windows<'a> {
     pub config: &'a CouplingConfig,
     pub ledger: Ledger,
     pub progress: Progress,
+    /// The coupling-instability detector ([`crate::stability`]).
+    pub detector: Detector,
     /// Magnitude of each output field so far, the floor of the convergence measure.
     pub reference: state::Magnitudes,
 }
@@ -78,6 +81,8 @@ impl Windows<'_> {
                 residual,
             };
             self.ledger.window(end, self.interface, &inputs, &estimate)?;
+            self.detector
+                .window(w, &times, self.interface, &inputs, &estimate)?;
             for (p, session) in self.stack.sessions.iter().enumerate() {
                 if session.geometry != geometry_before[p] {
                     if let (Some(g), Some(outputs)) = (&session.geometry, estimate[p].last()) {
@@ -144,7 +149,11 @@ impl Windows<'_> {
                     h.len()
                 )));
             }
-            let (residual, block) = state::worst_residual(&x, &h, &blocks, &self.reference);
+            let law_scales: Vec<f64> = blocks
+                .iter()
+                .map(|b| self.interface.field_scale(b.participant, b.name, estimate))
+                .collect();
+            let (residual, block) = state::worst_residual(&x, &h, &blocks, &self.reference, &law_scales);
             if residual <= self.config.tolerance {
                 accelerator.end_window();
                 return Ok((inputs, k + 1, residual));
@@ -161,15 +170,14 @@ impl Windows<'_> {
                     field,
                 });
             }
-            if k == 0 {
-                scales = state::block_scales(&h, &blocks);
-            }
-            let next = accelerator.next(
-                &state::scale(&x, &blocks, &scales, false),
-                &state::scale(&h, &blocks, &scales, false),
-                k,
-            );
-            state::unflatten(&state::scale(&next, &blocks, &scales, true), &blocks, estimate);
+            state::grow_scales(&mut scales, &h, &blocks);
+            scales
+                .iter_mut()
+                .zip(&law_scales)
+                .for_each(|(s, l)| *s = s.max(*l));
+            let weights = state::weights(h.len(), &blocks, &scales);
+            let next = accelerator.next(&x, &h, &weights, k);
+            state::unflatten(&next, &blocks, estimate);
         }
         unreachable!("max_iterations ≥ 1 is checked when the case is loaded")
     }
