@@ -93,12 +93,13 @@ impl Interface {
     pub fn window_energy(&self, times: &[f64], inputs: &[Vec<Fields>], outputs: &[Vec<Fields>]) -> LawEnergy {
         let mut sum = LawEnergy {
             work: vec![0.0; self.names.len()],
-            stored: [0.0; 2],
+            ..LawEnergy::default()
         };
         for law in &self.laws {
             let e = law.window_energy(times, inputs, outputs);
             sum.work.iter_mut().zip(&e.work).for_each(|(s, w)| *s += w);
             (0..2).for_each(|k| sum.stored[k] += e.stored[k]);
+            sum.rounding += e.rounding;
         }
         sum
     }

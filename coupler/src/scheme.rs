@@ -105,6 +105,7 @@ impl Windows<'_> {
             self.progress.update(t1, end_time, w + 1, total);
         }
         self.progress.finish();
+        self.detector.finish();
         summary.worst_balance = self.ledger.worst_balance;
         summary.balance_violations = self.ledger.violations;
         Ok(summary)

@@ -79,19 +79,19 @@ fn a_stiff_spring_coupled_explicitly_is_stopped_in_its_first_window() {
     assert!(history.iter().flatten().all(|v| v.is_finite()));
 }
 
-/// k × 10 at window 0.02: the report found |u1| = 29.6 m at t = 0.19 s, beyond the energy bound
-/// √(1 + k_middle/k_left) = √41 = 6.4 m of this stiffness. Stopped at window 6 (t = 0.14 s),
-/// after a warning at window 1; every written displacement is still within the bound.
+/// k × 10 at window 0.02: the report found |u1| = 29.6 m, beyond the energy bound
+/// √(1 + k_middle/k_left) = √41 = 6.4 m of this stiffness. Stopped at window 10 (t = 0.22 s;
+/// C/S passed 10 at window 6 and stayed above it); every written displacement is still within
+/// the bound (largest 4.2 m).
 #[test]
 fn a_growing_instability_is_stopped_before_the_motion_leaves_its_energy_bound() {
     let changes = explicit("0.02", "linear");
     let (ok, err, energy, history) = run("instability-k10", 10.0, &borrowed(&changes));
     println!("{err}");
     assert!(!ok, "the run must fail");
-    assert!(err.contains("warning: coupling: by window"), "{err}");
     assert!(err.contains("coupling instability in window"), "{err}");
     let stopped = energy.last().map(|r| r[1]).unwrap_or(f64::NAN);
-    assert!(stopped < 0.19, "stopped at t = {stopped} s");
+    assert!(stopped < 0.25, "stopped at t = {stopped} s");
     let largest = history.iter().map(|r| r[1].abs()).fold(0.0, f64::max);
     assert!(largest <= 41f64.sqrt(), "|u1| reached {largest} m");
 }
@@ -109,8 +109,8 @@ fn the_implicit_twin_creates_no_energy() {
 
 /// The CI ladders' explicit rungs run to their end. The second-order linear predictor at window
 /// 0.02 creates at most 0.31 of the energy scale (no warning); the first-order constant predictor
-/// at 0.01, the error-0.59 rung of the README's table, gains 3.7 times it by t = 1 s: it warns and
-/// runs on (stop at 10: margin 2.7).
+/// at 0.01, the error-0.59 rung of the README's table, gains 3.7 times it by t = 1 s: it runs to
+/// its end (stop at 10: margin 2.7) and warns there.
 #[test]
 fn the_explicit_ladder_rungs_run_to_their_end() {
     let changes = explicit("0.02", "linear");
@@ -122,7 +122,7 @@ fn the_explicit_ladder_rungs_run_to_their_end() {
     let changes = explicit("0.01", "constant");
     let (ok, err, energy, _) = run("instability-constant", 1.0, &borrowed(&changes));
     assert!(ok, "{err}");
-    assert!(err.contains("warning: coupling: by window"), "{err}");
+    assert!(err.contains("warning: coupling: over the run"), "{err}");
     assert_eq!(energy.len(), 100);
     assert!(largest_ratio(&energy) < 5.0, "{}", largest_ratio(&energy));
 }

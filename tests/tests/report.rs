@@ -248,10 +248,13 @@ set = [{{ "case.end_time" = 1.0 }}, {{ "case.end_time" = 60.0 }}]
     let silent = state("explicit, detector off / 1 s");
     assert_eq!(silent["state"], "FAILED SILENTLY", "{silent:?}");
     assert!(silent["diagnostic"].contains("point-m1.csv"), "{silent:?}");
+    // Over 60 s it grows to 1e304 J, past even a limit of 1e300 energy scales, or to a value
+    // that is no longer finite: stopped either way, with what, where and when.
     let stopped = state("explicit, detector off / 60 s");
     assert_eq!(stopped["state"], "stopped", "{stopped:?}");
+    let d = &stopped["diagnostic"];
     assert!(
-        stopped["diagnostic"].contains("non-finite") && stopped["diagnostic"].contains("m1"),
+        (d.contains("non-finite") && d.contains("m1")) || d.contains("coupling instability in window"),
         "the diagnostic says what, where and when: {stopped:?}"
     );
     let md = std::fs::read_to_string(out.join("stability.md")).unwrap_or_default();

@@ -4,7 +4,7 @@
 //! took in `body_reaction`.
 
 use super::reference::{item_ref, Item, ItemRef};
-use super::{sum_vectors, trapezoid_work, Instant, Law, LawEnergy};
+use super::{sum_vectors, trapezoid_work, work_rounding, Instant, Law, LawEnergy};
 use crate::error::CouplerError;
 use schemas::case::coupling::BodyLink;
 use schemas::message::{Fields, InterfaceDecl};
@@ -112,6 +112,7 @@ impl Law for Bodies {
     /// fluid: work of the reaction it reports (`body_reaction`) along the pose it was handed.
     fn window_energy(&self, _times: &[f64], inputs: &[Vec<Fields>], outputs: &[Vec<Fields>]) -> LawEnergy {
         let mut work = vec![0.0; inputs.len()];
+        let mut rounding = 0.0;
         for b in &self.transfers {
             let (s, f) = (b.structure.participant, b.fluid.participant);
             let (si, fi) = (b.structure.index, b.fluid.index);
@@ -137,10 +138,18 @@ impl Law for Bodies {
                 .collect();
             work[s] += rigid_work(&on_structure);
             work[f] += rigid_work(&on_fluid);
+            rounding += [on_structure, on_fluid]
+                .iter()
+                .map(|samples| {
+                    let (f, x): (Vec<&[f64]>, Vec<&[f64]>) = samples.iter().copied().unzip();
+                    work_rounding(&f, &x, 6, 7)
+                })
+                .sum::<f64>();
         }
         LawEnergy {
             work,
             stored: [0.0; 2],
+            rounding,
         }
     }
 }

@@ -2,7 +2,7 @@
 //! `f_a = k (u_b − u_a)`, `f_b = −f_a` (u: displacements of the points).
 
 use super::reference::{item_ref, Item, ItemRef};
-use super::{sum_vectors, trapezoid_work, Instant, Law, LawEnergy};
+use super::{sum_vectors, trapezoid_work, work_rounding, Instant, Law, LawEnergy};
 use crate::error::CouplerError;
 use schemas::case::coupling::SpringLink;
 use schemas::message::{Fields, InterfaceDecl};
@@ -128,17 +128,27 @@ impl Law for Springs {
                 }
             })
             .collect();
+        let rounding = (0..inputs.len())
+            .filter(|&p| self.touches(p))
+            .map(|p| {
+                let f: Vec<&[f64]> = inputs[p].iter().map(|i| &i.point_force[..]).collect();
+                let x: Vec<&[f64]> = outputs[p].iter().map(|o| &o.point_displacement[..]).collect();
+                work_rounding(&f, &x, 3, 3)
+            })
+            .sum();
         let first: Vec<&Fields> = outputs.iter().filter_map(|o| o.first()).collect();
         let last: Vec<&Fields> = outputs.iter().filter_map(|o| o.last()).collect();
         if first.len() != outputs.len() || last.len() != outputs.len() {
             return LawEnergy {
                 work,
                 stored: [0.0; 2],
+                rounding,
             };
         }
         LawEnergy {
             work,
             stored: [self.stored(&first), self.stored(&last)],
+            rounding,
         }
     }
 }

@@ -13,7 +13,9 @@
 use schemas::case::Case;
 
 /// The `warning: ` line for a case whose implicit coupling has a fluid taking one step (or
-/// fewer) per window in a law that hands it the structure's motion or forces; None otherwise.
+/// fewer) per window with a resolved body; None otherwise. (The drag law is left out: there the
+/// structure reads the fluid's samples at the window end from the iterate, so its answer, though
+/// not the fluid's, does change with the iterations.)
 pub fn warning(case: &Case) -> Option<String> {
     let coupling = case.coupling.as_ref()?;
     if coupling.scheme != schemas::case::coupling::Scheme::Implicit {
@@ -22,8 +24,7 @@ pub fn warning(case: &Case) -> Option<String> {
     let fluids = coupling
         .body
         .iter()
-        .map(|b| b.fluid.split('/').next().unwrap_or_default().to_string())
-        .chain(coupling.drag.iter().map(|d| d.fluid.clone()));
+        .map(|b| b.fluid.split('/').next().unwrap_or_default().to_string());
     let one_step: Vec<String> = fluids
         .filter_map(|name| {
             let fluid = case.fluid.get(&name)?;
@@ -38,9 +39,8 @@ pub fn warning(case: &Case) -> Option<String> {
     }
     Some(format!(
         "warning: coupling: implicit iterations cannot change the answer of fluid {}: with coupling.window = {} s \
-         it takes one step per window and reads the body motion and reactions at that step's start, the window \
-         start, which the iterations do not change; the result is the explicit scheme's at the cost of the extra \
-         sweeps. Use coupling.scheme = \"explicit\", or a window of two or more fluid steps for the iterations to act",
+         it takes one step per window and reads the body motion at that step's start, the window start, which the \
+         iterations do not change; the result is the explicit scheme's at the cost of the extra sweeps. Use coupling.scheme = \"explicit\", or a window of two or more fluid steps for the iterations to act",
         one_step.join(", "),
         coupling.window
     ))

@@ -21,7 +21,7 @@ pub mod force;
 pub mod sub_members;
 
 use super::reference::participant_index;
-use super::{sum_vectors, trapezoid_work, Instant, Law, LawEnergy};
+use super::{sum_vectors, trapezoid_work, work_rounding, Instant, Law, LawEnergy};
 use crate::error::CouplerError;
 use coefficient::{attack_angle, DragTable};
 use nalgebra::Vector3;
@@ -309,9 +309,15 @@ impl Law for Drag {
             .zip(times.windows(2))
             .map(|(p, t)| 0.5 * (p[0] + p[1]) * (t[1] - t[0]))
             .sum::<f64>();
+        let f: Vec<&[f64]> = inputs[self.structure].iter().map(|i| &i.node_force[..]).collect();
+        let x: Vec<&[f64]> = outputs[self.structure]
+            .iter()
+            .map(|o| &o.node_position[..])
+            .collect();
         LawEnergy {
             work,
             stored: [0.0; 2],
+            rounding: work_rounding(&f, &x, 6, 3),
         }
     }
 
