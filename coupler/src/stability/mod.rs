@@ -53,8 +53,8 @@ const ROUNDING_MARGIN: f64 = 10.0;
 /// hands one side work the other is charged for a window later, which looks like creation
 /// against the scale of a body that had not moved (1e-11 J) until the physics catches up (the
 /// small bridge: C/S = 2e16 in the release window, 1.4 two windows later, 0.2 … 0.4 after).
-/// An instability keeps growing and is stopped two windows later than at first sight (the
-/// first window where there is no earlier one).
+/// An instability keeps growing and is stopped two windows later than at first sight; in the
+/// first two windows only against a scale known at t = 0 (a spring's stored energy).
 const HINDSIGHT: usize = 2;
 
 /// Windows over which the growth of the interface force is reported.
@@ -76,6 +76,8 @@ pub struct Detector {
     /// Window after which `created` was at its lowest (None: at t = 0).
     lowest_window: Option<u64>,
     scale: f64,
+    /// The energy the laws stored at t = 0.
+    initial: f64,
     /// `coupling.created_energy_limit`.
     stop: f64,
     /// Interface force amplitude at the end of each window.
@@ -117,6 +119,7 @@ impl Detector {
             rounding: 0.0,
             lowest_window: None,
             scale: 0.0,
+            initial: 0.0,
             stop,
             amplitude: Vec::new(),
             out,
@@ -136,7 +139,8 @@ impl Detector {
     ) -> Result<WindowEnergy, CouplerError> {
         let energy = interface.window_energy(times, inputs, outputs);
         if window == 0 {
-            self.scale = energy.stored[0];
+            self.initial = energy.stored[0];
+            self.scale = self.initial;
         }
         let created = energy.created();
         self.created += created;
@@ -183,7 +187,14 @@ impl Detector {
         // on its bearings at 100 m under 1e8 N "creates" 1e-7 J against a scale of 1e-11 J)
         let beyond = |c: f64| c > ROUNDING_MARGIN * self.rounding && c > self.stop * self.scale;
         self.nets.push(net);
-        let then = self.nets[self.nets.len().saturating_sub(1 + HINDSIGHT)];
+        let then = match self.nets.len() {
+            n if n > HINDSIGHT => self.nets[n - 1 - HINDSIGHT],
+            // no earlier window yet: only a scale known before anything moved (the energy the
+            // laws stored at t = 0) may judge at once; a body released from rest is charged to
+            // the fluid a window late against a scale of 0
+            _ if self.initial > 0.0 => net,
+            _ => 0.0,
+        };
         if beyond(net) && beyond(then) {
             return Err(CouplerError::Unstable {
                 window,
