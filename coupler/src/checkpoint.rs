@@ -38,6 +38,8 @@ pub struct CouplerState {
     pub windows: u64,
     pub iterations: u64,
     pub max_iterations: u32,
+    /// The coupling-instability detector's account ([`crate::stability::Detector::save`]).
+    pub detector: Vec<u8>,
 }
 
 /// A complete checkpoint: written after every participant's file.

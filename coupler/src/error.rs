@@ -24,6 +24,9 @@ pub enum CouplerError {
         residual: f64,
         field: String,
     },
+    /// The coupling created energy at the interface beyond the detector's threshold
+    /// ([`crate::stability`]).
+    Unstable { window: u64, time: f64, message: String },
     /// Ctrl-C or SIGTERM.
     Interrupted { window: Option<u64> },
     /// Output could not be written.
@@ -46,7 +49,9 @@ impl CouplerError {
     pub fn window(&self) -> Option<u64> {
         match self {
             CouplerError::Participant { window, .. } | CouplerError::Interrupted { window } => *window,
-            CouplerError::NotConverged { window, .. } => Some(*window),
+            CouplerError::NotConverged { window, .. } | CouplerError::Unstable { window, .. } => {
+                Some(*window)
+            }
             _ => None,
         }
     }
@@ -72,6 +77,9 @@ impl fmt::Display for CouplerError {
                  {residual:.3e} in `{field}`; raise coupling.max_iterations, shorten coupling.window or change \
                  coupling.acceleration"
             ),
+            CouplerError::Unstable { window, time, message } => {
+                write!(f, "coupling instability in window {window} (t = {time:.6} s): {message}")
+            }
             CouplerError::Interrupted { window } => write!(f, "interrupted{}; participants stopped", at(window)),
             CouplerError::Io(m) | CouplerError::Replay(m) => write!(f, "{m}"),
         }

@@ -9,7 +9,7 @@ use crate::error::CouplerError;
 use crate::laws::body::Bodies;
 use crate::laws::drag::Drag;
 use crate::laws::spring::Springs;
-use crate::laws::{Instant, Law};
+use crate::laws::{Instant, Law, LawEnergy};
 use schemas::case::Case;
 use schemas::message::{Fields, Geometry, InterfaceDecl};
 
@@ -87,6 +87,30 @@ impl Interface {
             .iter()
             .map(|law| law.window_work(p, inputs, outputs))
             .sum()
+    }
+
+    /// The energy account of one window over every law (see [`Law::window_energy`]).
+    pub fn window_energy(&self, times: &[f64], inputs: &[Vec<Fields>], outputs: &[Vec<Fields>]) -> LawEnergy {
+        let mut sum = LawEnergy {
+            work: vec![0.0; self.names.len()],
+            ..LawEnergy::default()
+        };
+        for law in &self.laws {
+            let e = law.window_energy(times, inputs, outputs);
+            sum.work.iter_mut().zip(&e.work).for_each(|(s, w)| *s += w);
+            (0..2).for_each(|k| sum.stored[k] += e.stored[k]);
+            sum.rounding += e.rounding;
+        }
+        sum
+    }
+
+    /// The largest magnitude any law compares participant `p`'s output `field` with (see
+    /// [`Law::field_scale`]); 0 where none sets one.
+    pub fn field_scale(&self, p: usize, field: &str, outputs: &[Vec<Fields>]) -> f64 {
+        self.laws
+            .iter()
+            .map(|law| law.field_scale(p, field, outputs))
+            .fold(0.0, f64::max)
     }
 
     /// Participant `p` declared a (new) member geometry; `outputs` are its outputs as it did.

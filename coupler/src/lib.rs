@@ -17,5 +17,6 @@ pub mod replay;
 pub mod report;
 pub mod run;
 pub mod scheme;
+pub mod stability;
 pub mod stack;
 pub mod state;

@@ -9,6 +9,7 @@ use crate::ledger::Ledger;
 use crate::out_folder::OutputFolder;
 use crate::progress::Progress;
 use crate::scheme::{CheckpointPlan, Summary, Windows};
+use crate::stability::Detector;
 use crate::stack::{Launch, Stack};
 use schemas::case::{Case, Kind};
 use schemas::message::{Role, PROTOCOL_VERSION};
@@ -96,6 +97,9 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
     let estimate = Estimate::of(&case);
     estimate.check(&out, opts.max_output)?;
     eprintln!("estimate: {}", estimate.describe());
+    if let Some(line) = crate::stability::one_step::warning(&case) {
+        eprintln!("{line}");
+    }
     let folder = match &opts.resume {
         Some(_) => OutputFolder::hold(&out)?,
         None => OutputFolder::take(&out, opts.overwrite)?,
@@ -197,6 +201,12 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
             config: coupling,
             ledger,
             progress: Progress::new(),
+            detector: Detector::create(
+                &out.join("interface_energy.csv"),
+                &order,
+                coupling.created_energy_limit,
+                resumed.is_some(),
+            )?,
             reference: Default::default(),
             checkpoints: coupling.checkpoint_windows().map(|every| CheckpointPlan {
                 every,
@@ -269,7 +279,7 @@ fn report(s: &Summary, wall: f64, out: &Path) {
         if s.balance_violations > 0 { format!(", {} windows above tolerance", s.balance_violations) } else { String::new() }
     );
     eprintln!(
-        "output: {}, {} (recording.rec, ledger.csv, one log and folder per participant)",
+        "output: {}, {} (recording.rec, ledger.csv, interface_energy.csv, one log and folder per participant)",
         out.display(),
         bytes_text(written as f64)
     );

@@ -16,6 +16,7 @@ use crate::error::CouplerError;
 use crate::interface::Interface;
 use crate::ledger::{Ledger, WindowEnd};
 use crate::progress::Progress;
+use crate::stability::Detector;
 use crate::stack::{variant, Stack};
 use crate::state;
 use schemas::case::coupling::{CouplingConfig, Predictor, Scheme};
@@ -40,6 +41,8 @@ pub struct Windows<'a> {
     pub config: &'a CouplingConfig,
     pub ledger: Ledger,
     pub progress: Progress,
+    /// The coupling-instability detector ([`crate::stability`]).
+    pub detector: Detector,
     /// Magnitude of each output field so far, the floor of the convergence measure.
     pub reference: state::Magnitudes,
     /// Checkpoints to take (`coupling.checkpoint_interval`), if any.
@@ -109,6 +112,9 @@ impl Windows<'_> {
         self.reference.restore(&state.magnitudes);
         self.ledger.worst_balance = state.worst_balance;
         self.ledger.violations = state.balance_violations;
+        self.detector
+            .restore(&state.detector)
+            .map_err(CouplerError::Usage)?;
         let summary = Summary {
             windows: state.windows,
             iterations: state.iterations,
@@ -149,6 +155,8 @@ impl Windows<'_> {
                 residual,
             };
             self.ledger.window(end, self.interface, &inputs, &estimate)?;
+            self.detector
+                .window(w, &times, self.interface, &inputs, &estimate)?;
             for (p, session) in self.stack.sessions.iter().enumerate() {
                 if session.geometry != geometry_before[p] {
                     if let (Some(g), Some(outputs)) = (&session.geometry, estimate[p].last()) {
@@ -176,6 +184,7 @@ impl Windows<'_> {
             }
         }
         self.progress.finish();
+        self.detector.finish();
         summary.worst_balance = self.ledger.worst_balance;
         summary.balance_violations = self.ledger.violations;
         Ok(summary)
@@ -221,6 +230,7 @@ impl Windows<'_> {
                 windows: summary.windows,
                 iterations: summary.iterations,
                 max_iterations: summary.max_iterations,
+                detector: self.detector.save(),
             },
             files: checkpoint::output_files(&out)?,
         };
@@ -273,7 +283,11 @@ impl Windows<'_> {
                     h.len()
                 )));
             }
-            let (residual, block) = state::worst_residual(&x, &h, &blocks, &self.reference);
+            let law_scales: Vec<f64> = blocks
+                .iter()
+                .map(|b| self.interface.field_scale(b.participant, b.name, estimate))
+                .collect();
+            let (residual, block) = state::worst_residual(&x, &h, &blocks, &self.reference, &law_scales);
             if residual <= self.config.tolerance {
                 accelerator.end_window();
                 return Ok((inputs, k + 1, residual));
@@ -290,15 +304,14 @@ impl Windows<'_> {
                     field,
                 });
             }
-            if k == 0 {
-                scales = state::block_scales(&h, &blocks);
-            }
-            let next = accelerator.next(
-                &state::scale(&x, &blocks, &scales, false),
-                &state::scale(&h, &blocks, &scales, false),
-                k,
-            );
-            state::unflatten(&state::scale(&next, &blocks, &scales, true), &blocks, estimate);
+            state::grow_scales(&mut scales, &h, &blocks);
+            scales
+                .iter_mut()
+                .zip(&law_scales)
+                .for_each(|(s, l)| *s = s.max(*l));
+            let weights = state::weights(h.len(), &blocks, &scales);
+            let next = accelerator.next(&x, &h, &weights, k);
+            state::unflatten(&next, &blocks, estimate);
         }
         unreachable!("max_iterations ≥ 1 is checked when the case is loaded")
     }

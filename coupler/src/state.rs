@@ -55,31 +55,31 @@ pub fn unflatten(x: &[f64], blocks: &[Block], outputs: &mut [Vec<Fields>]) {
     }
 }
 
-/// Scale of each block: the RMS of `h` on it (1 where it is zero), so fields of different
-/// units weigh alike in the acceleration.
-pub fn block_scales(h: &[f64], blocks: &[Block]) -> Vec<f64> {
-    blocks
-        .iter()
-        .map(|b| {
-            let rms = rms(&h[b.range.clone()]);
-            if rms > 0.0 && rms.is_finite() {
-                rms
-            } else {
-                1.0
-            }
-        })
-        .collect()
+/// Scale of each block: the largest RMS of `h` on it over the sweeps of this window so far (1
+/// where it has been zero), so fields of different units weigh alike in the acceleration.
+/// `scales` holds the earlier sweeps' scales (empty at the first sweep) and grows: a field that
+/// is still at rest in the first sweep (a structure the fluid's answer reaches one sweep later)
+/// must not keep a scale of round-off size, which would let its residual swamp every other field
+/// and stall Aitken's and IQN-ILS's step.
+pub fn grow_scales(scales: &mut Vec<f64>, h: &[f64], blocks: &[Block]) {
+    scales.resize(blocks.len(), 0.0);
+    for (s, b) in scales.iter_mut().zip(blocks) {
+        let rms = rms(&h[b.range.clone()]);
+        if rms.is_finite() {
+            *s = s.max(rms);
+        }
+    }
 }
 
-/// Divides (or with `inverse`, multiplies) each block by its scale.
-pub fn scale(x: &[f64], blocks: &[Block], scales: &[f64], inverse: bool) -> Vec<f64> {
-    let mut out = x.to_vec();
-    for (b, s) in blocks.iter().zip(scales) {
-        out[b.range.clone()]
-            .iter_mut()
-            .for_each(|v| *v = if inverse { *v * s } else { *v / s });
+/// One weight per entry of the flat vector: 1 / its block's scale (1 where the scale is 0).
+pub fn weights(len: usize, blocks: &[Block], scales: &[f64]) -> Vec<f64> {
+    let mut w = vec![1.0; len];
+    for (b, &s) in blocks.iter().zip(scales) {
+        if s > 0.0 {
+            w[b.range.clone()].iter_mut().for_each(|v| *v = 1.0 / s);
+        }
     }
-    out
+    w
 }
 
 /// Fraction of a field's largest RMS so far below which its own magnitude no longer sets the
@@ -131,15 +131,19 @@ fn rms(v: &[f64]) -> f64 {
     (v.iter().map(|x| x * x).sum::<f64>() / v.len().max(1) as f64).sqrt()
 }
 
-/// The largest relative residual `|h − x| / max(|h|, floor)` over the blocks, with its block.
+/// The largest relative residual `|h − x| / max(|h|, floor)` over the blocks, with its block;
+/// `law_scales` (one per block, an RMS per value; see [`crate::laws::Law::field_scale`]) raise
+/// the floor where a law sets one.
 pub fn worst_residual<'a>(
     x: &[f64],
     h: &[f64],
     blocks: &'a [Block],
     magnitudes: &Magnitudes,
+    law_scales: &[f64],
 ) -> (f64, Option<&'a Block>) {
     let mut worst: (f64, Option<&Block>) = (0.0, None);
-    for b in blocks {
+    for (k, b) in blocks.iter().enumerate() {
+        let law_floor = law_scales.get(k).copied().unwrap_or(0.0) * (b.range.len() as f64).sqrt();
         let r: f64 = b.range.clone().map(|i| (h[i] - x[i]).powi(2)).sum::<f64>().sqrt();
         let n: f64 = b
             .range
@@ -147,7 +151,8 @@ pub fn worst_residual<'a>(
             .map(|i| h[i] * h[i])
             .sum::<f64>()
             .sqrt()
-            .max(magnitudes.floor(b));
+            .max(magnitudes.floor(b))
+            .max(law_floor);
         let rel = if r == 0.0 {
             0.0
         } else if n > 0.0 {

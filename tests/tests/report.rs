@@ -202,8 +202,8 @@ family = "made to diverge"
 set = {{ "coupling.window" = 0.05, "coupling.samples" = 1, "coupling.spring.0.stiffness" = 1579.1367041742973 }}
 [[report.stability.axis]]
 name = "coupling"
-labels = ["implicit", "explicit"]
-set = [{{}}, {{ "coupling.scheme" = "explicit", "coupling.predictor" = "constant" }}]
+labels = ["implicit", "explicit", "explicit, detector off"]
+set = [{{}}, {{ "coupling.scheme" = "explicit", "coupling.predictor" = "constant" }}, {{ "coupling.scheme" = "explicit", "coupling.predictor" = "constant", "coupling.created_energy_limit" = 1e300 }}]
 [[report.stability.axis]]
 name = "end time"
 labels = ["1 s", "60 s"]
@@ -233,25 +233,40 @@ set = [{{ "case.end_time" = 1.0 }}, {{ "case.end_time" = 60.0 }}]
     };
     assert_eq!(state("implicit / 1 s")["state"], "stable");
     assert_eq!(state("implicit / 60 s")["state"], "stable");
-    let silent = state("explicit / 1 s");
+    // The coupler's instability detector stops the explicit runs in their first window, with
+    // the energy the coupling created.
+    for run in ["explicit / 1 s", "explicit / 60 s"] {
+        let stopped = state(run);
+        assert_eq!(stopped["state"], "stopped", "{stopped:?}");
+        assert!(
+            stopped["diagnostic"].contains("coupling instability in window 0")
+                && stopped["diagnostic"].contains("shorten coupling.window"),
+            "the diagnostic says what, where and when: {stopped:?}"
+        );
+    }
+    // With the detector switched off, the report still catches what the run does.
+    let silent = state("explicit, detector off / 1 s");
     assert_eq!(silent["state"], "FAILED SILENTLY", "{silent:?}");
     assert!(silent["diagnostic"].contains("point-m1.csv"), "{silent:?}");
-    let stopped = state("explicit / 60 s");
+    // Over 60 s it grows to 1e304 J, past even a limit of 1e300 energy scales, or to a value
+    // that is no longer finite: stopped either way, with what, where and when.
+    let stopped = state("explicit, detector off / 60 s");
     assert_eq!(stopped["state"], "stopped", "{stopped:?}");
+    let d = &stopped["diagnostic"];
     assert!(
-        stopped["diagnostic"].contains("non-finite") && stopped["diagnostic"].contains("m1"),
+        (d.contains("non-finite") && d.contains("m1")) || d.contains("coupling instability in window"),
         "the diagnostic says what, where and when: {stopped:?}"
     );
     let md = std::fs::read_to_string(out.join("stability.md")).unwrap_or_default();
     assert!(
-        md.contains("4 runs: 2 stable, 0 warned, 1 stopped, 0 refused by the case check, 1 failed silently."),
+        md.contains("6 runs: 2 stable, 0 warned, 3 stopped, 0 refused by the case check, 1 failed silently."),
         "{md}"
     );
     // The map: rows coupling × columns end time, one cell per run.
     let map = out.join("oscillator-made-to-diverge-map.png");
     assert!(png_size(&map).0 > 0);
     let cells = rows(&map.with_extension("plot.csv"));
-    assert_eq!(cells.len(), 4, "{cells:?}");
+    assert_eq!(cells.len(), 6, "{cells:?}");
     assert!(cells
         .iter()
         .any(|c| c["row"] == "explicit" && c["column"] == "60 s" && c["state"] == "stopped"));

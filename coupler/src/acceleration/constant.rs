@@ -8,7 +8,7 @@ pub struct ConstantRelaxation {
 }
 
 impl Accelerator for ConstantRelaxation {
-    fn next(&mut self, x: &[f64], h: &[f64], _iteration: u32) -> Vec<f64> {
+    fn next(&mut self, x: &[f64], h: &[f64], _weights: &[f64], _iteration: u32) -> Vec<f64> {
         relax(x, h, self.omega)
     }
 

@@ -2,8 +2,13 @@
 //! Degroote et al. 2009, as in preCICE): with `V` the differences of residuals and `W` the
 //! differences of outputs, `c = argmin |V c + r_k|`, `x ← H(x_k) + W c`. Columns that make
 //! `V` nearly dependent are dropped (QR filter); columns of `reuse` earlier windows are kept.
+//! Columns are kept unscaled; the least-squares problem weighs `V` and `r` by the present
+//! iteration's field weights (see [`super`]), `W c` is applied unscaled. A sweep that returns
+//! the residual of the sweep before (the model stepped back to an input it had tried: this
+//! happens when a field responds by a jump one sweep late, as a structure does to the drag
+//! law's wetting of a member) restarts the window's secant model with a relaxation step.
 
-use super::{relax, Accelerator};
+use super::{relax, stalled, Accelerator};
 use nalgebra::{DMatrix, DVector};
 
 #[derive(serde::Serialize, serde::Deserialize)]
@@ -44,7 +49,7 @@ impl IqnIls {
 }
 
 impl Accelerator for IqnIls {
-    fn next(&mut self, x: &[f64], h: &[f64], iteration: u32) -> Vec<f64> {
+    fn next(&mut self, x: &[f64], h: &[f64], weights: &[f64], iteration: u32) -> Vec<f64> {
         let r: Vec<f64> = h.iter().zip(x).map(|(h, x)| h - x).collect();
         if iteration == 0 {
             self.previous = None;
@@ -52,6 +57,13 @@ impl Accelerator for IqnIls {
         }
         if let Some((r_prev, h_prev)) = self.previous.take() {
             let dv: Vec<f64> = r.iter().zip(&r_prev).map(|(a, b)| a - b).collect();
+            if stalled(&dv, &r, weights) {
+                // The sweep gave the residual of the one before: the secant model sent the
+                // iteration back to an input it had tried, and would again. Restart it.
+                self.columns.clear();
+                self.previous = Some((r, h.to_vec()));
+                return relax(x, h, self.initial);
+            }
             let dw: Vec<f64> = h.iter().zip(&h_prev).map(|(a, b)| a - b).collect();
             self.columns.push((dv, dw));
         }
@@ -61,7 +73,7 @@ impl Accelerator for IqnIls {
             return relax(x, h, self.initial);
         }
         loop {
-            let v = DMatrix::from_fn(r.len(), cols.len(), |i, j| cols[j].0[i]);
+            let v = DMatrix::from_fn(r.len(), cols.len(), |i, j| weights[i] * cols[j].0[i]);
             let qr = v.qr();
             let rr = qr.r();
             let largest = (0..cols.len()).map(|j| rr[(j, j)].abs()).fold(0.0, f64::max);
@@ -75,7 +87,8 @@ impl Accelerator for IqnIls {
                 }
                 continue;
             }
-            let rhs = -(qr.q().transpose() * DVector::from_column_slice(&r));
+            let weighted: Vec<f64> = r.iter().zip(weights).map(|(r, w)| r * w).collect();
+            let rhs = -(qr.q().transpose() * DVector::from_column_slice(&weighted));
             let Some(c) = rr.solve_upper_triangular(&rhs) else {
                 return relax(x, h, self.initial);
             };

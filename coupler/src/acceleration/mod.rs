@@ -1,7 +1,11 @@
 //! Acceleration of the implicit coupling iteration `x ← H(x)` in one window.
 //!
 //! `x` is the interface data the sweep started from, `H(x)` what it produced, `r = H(x) − x`
-//! the residual. Vectors come already scaled per field (see [`crate::state`]).
+//! the residual. Vectors come unscaled; `weights` (one per entry, see [`crate::state::weights`])
+//! make fields of different units weigh alike in every inner product. The accelerators keep
+//! their history unscaled and weigh it with the weights of the present iteration, so a field
+//! whose magnitude is only known after a few sweeps (a structure that starts to move once the
+//! fluid's answer reaches it) does not leave earlier iterations measured in a wrong unit.
 
 mod aitken;
 mod constant;
@@ -15,8 +19,9 @@ use schemas::case::coupling::{AccelerationKind, CouplingConfig};
 
 /// A rule giving the next iterate from the last input and output of the sweep.
 pub trait Accelerator {
-    /// The next `x` from `x` and `h = H(x)`; `iteration` counts from 0 in each window.
-    fn next(&mut self, x: &[f64], h: &[f64], iteration: u32) -> Vec<f64>;
+    /// The next `x` from `x` and `h = H(x)`; `iteration` counts from 0 in each window;
+    /// `weights` scale each entry in inner products.
+    fn next(&mut self, x: &[f64], h: &[f64], weights: &[f64], iteration: u32) -> Vec<f64>;
     /// The window converged.
     fn end_window(&mut self);
     /// What it keeps across windows (relaxation, reused secant pairs), for a checkpoint.
@@ -55,6 +60,18 @@ fn relax(x: &[f64], h: &[f64], omega: f64) -> Vec<f64> {
     x.iter().zip(h).map(|(x, h)| x + omega * (h - x)).collect()
 }
 
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(a, b)| a * b).sum()
+/// `Σ (w_i a_i)(w_i b_i)`.
+fn weighted_dot(a: &[f64], b: &[f64], w: &[f64]) -> f64 {
+    a.iter().zip(b).zip(w).map(|((a, b), w)| w * a * w * b).sum()
+}
+
+/// A change of residual `dr` below this fraction of the residual `r` (weighted norms) means the
+/// sweep repeated the one before up to rounding (an input equal to the last but for the
+/// rounding of the accelerator's own sums, 1e-16 of the data against a residual ≥ 1e-10 of it
+/// while not converged): no new information, and a step that would not move the iteration.
+const STALLED: f64 = 1e-6;
+
+/// Whether the sweep that gave `r` repeated the one before (`dr`: the change of residual).
+fn stalled(dr: &[f64], r: &[f64], weights: &[f64]) -> bool {
+    weighted_dot(dr, dr, weights).sqrt() <= STALLED * weighted_dot(r, r, weights).sqrt()
 }

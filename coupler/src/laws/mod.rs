@@ -45,6 +45,20 @@ pub trait Law: Send {
     /// Work this law's forces did on participant `p` over a window (0 where it cannot tell).
     fn window_work(&self, p: usize, inputs: &[Fields], outputs: &[Fields]) -> f64;
 
+    /// The energy account of one window (`inputs[p][j]`, `outputs[p][j]` at the window's
+    /// sample `times[j]`, j = 0 the window start): the work this law's forces and motions did on each
+    /// participant and the energy stored in the law itself. For the [`crate::stability`] detector.
+    fn window_energy(&self, times: &[f64], inputs: &[Vec<Fields>], outputs: &[Vec<Fields>]) -> LawEnergy;
+
+    /// The magnitude this law compares participant `p`'s output array `field` with, over the
+    /// window's `outputs` (0 where it sets none): the implicit iteration measures that field's
+    /// residual and weighs it in the acceleration against at least this, so a field the law
+    /// reads only as a small correction (a member's velocity, subtracted from the flow's) is not
+    /// held to its own, tiny, magnitude.
+    fn field_scale(&self, _p: usize, _field: &str, _outputs: &[Vec<Fields>]) -> f64 {
+        0.0
+    }
+
     /// Participant `p` declared a (new) member geometry; `outputs` are its outputs as it did.
     fn geometry(&mut self, _p: usize, _geometry: &Geometry, _outputs: &Fields) -> Result<(), String> {
         Ok(())
@@ -58,6 +72,50 @@ pub trait Law: Send {
     /// The window was accepted with these outputs (`outputs[p][j]`, j over the window's samples):
     /// the law updates what it keeps across windows.
     fn accept(&mut self, _outputs: &[Vec<Fields>]) {}
+}
+
+/// What a law knows of the energy at the interface over one window.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct LawEnergy {
+    /// Work done on each participant (by index) by what the law handed it, or, where the law
+    /// hands a participant a motion, by the reaction that participant reports [J].
+    pub work: Vec<f64>,
+    /// Energy stored in the law at the window start and end [J] (a spring's ½ k d²; 0 else).
+    pub stored: [f64; 2],
+    /// Rounding of these sums [J]: ε Σ |f| |x| over the samples (see [`work_rounding`]).
+    pub rounding: f64,
+}
+
+impl LawEnergy {
+    /// Energy the coupling created in the window: Σ_p W_p + ΔE_stored. An exact (converged,
+    /// conservative) interface gives 0; partitioned coupling's lag gives the "artificial
+    /// interface energy" (Piperno & Farhat 2001).
+    pub fn created(&self) -> f64 {
+        self.work.iter().sum::<f64>() + self.stored[1] - self.stored[0]
+    }
+}
+
+/// Rounding of a trapezoidal work sum (arguments as [`trapezoid_work`]): ε Σ_j Σ_k |f_jk| |x_jk|.
+/// Positions are absolute, so a body held at 100 m under 1e8 N "moves" by 1e-14 m of rounding
+/// and seems to take 1e-6 J of work per sample.
+pub fn work_rounding(
+    forces: &[&[f64]],
+    positions: &[&[f64]],
+    force_stride: usize,
+    position_stride: usize,
+) -> f64 {
+    let norm = |v: &[f64]| v.iter().take(3).map(|a| a * a).sum::<f64>().sqrt();
+    forces
+        .iter()
+        .zip(positions)
+        .map(|(f, x)| {
+            f.chunks_exact(force_stride)
+                .zip(x.chunks_exact(position_stride))
+                .map(|(f, x)| norm(f) * norm(x))
+                .sum::<f64>()
+        })
+        .sum::<f64>()
+        * f64::EPSILON
 }
 
 /// Σ over 3-vectors stored at `offset` in chunks of `stride`.

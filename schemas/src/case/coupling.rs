@@ -99,6 +99,11 @@ pub struct CouplingConfig {
     /// Largest allowed relative action–reaction residual of the ledger.
     #[serde(default = "default_balance_tolerance")]
     pub balance_tolerance: f64,
+    /// Net energy the coupling may create at the interface, as a multiple of the run's physical
+    /// energy scale, before the coupler stops the run as unstable (the coupler's `stability`
+    /// module; default 10; a run warns above 1).
+    #[serde(default = "default_created_energy_limit")]
+    pub created_energy_limit: f64,
     /// Wall seconds a participant may take for one answer before it is taken as hung.
     #[serde(default = "default_timeout")]
     pub timeout: f64,
@@ -133,6 +138,9 @@ fn default_reuse() -> u32 {
 }
 fn default_balance_tolerance() -> f64 {
     1e-12
+}
+fn default_created_energy_limit() -> f64 {
+    10.0
 }
 fn default_timeout() -> f64 {
     120.0
@@ -203,6 +211,15 @@ impl CouplingConfig {
             return Err(FieldError::new("coupling.max_iterations", "must be ≥ 1, got 0"));
         }
         check::positive("coupling.balance_tolerance", self.balance_tolerance)?;
+        if !(self.created_energy_limit.is_finite() && self.created_energy_limit >= 1.0) {
+            return Err(FieldError::new(
+                "coupling.created_energy_limit",
+                format!(
+                    "must be a number ≥ 1 (a multiple of the run's physical energy scale; default 10), got {}",
+                    self.created_energy_limit
+                ),
+            ));
+        }
         check::positive("coupling.timeout", self.timeout)?;
         if let Some(interval) = self.checkpoint_interval {
             self.check_checkpoints(case, interval)?;
