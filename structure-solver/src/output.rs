@@ -81,6 +81,7 @@ impl Output {
             dir: dir.to_path_buf(),
             history,
             tables: None,
+            releases: None,
             vtu: None,
             vtu_interval: None,
             vtu_due: 0.0,

@@ -127,11 +127,9 @@ fn frame_case_writes_node_history_and_vtu_series() {
     // and Newmark's numerical damping leaves a residual vibration well below that.
     let out = scratch("cantilever");
     let o = run(&[&case("structure-cantilever"), Path::new("--out"), &out]);
-    assert!(
-        o.status.success(),
-        "stderr: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "stderr: {stderr}");
+    assert!(!stderr.contains("energy balance"), "stderr: {stderr}");
     let tip = rows(&out.join("node-5.csv"));
     let last = tip.last().expect("rows");
     assert_eq!(last[0], 1.0);
@@ -361,6 +359,16 @@ fn a_member_fractures_through_the_binary_and_the_run_goes_on() {
     let o = run(&[&path, Path::new("--out"), &out]);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "stderr: {stderr}");
+    // after the fracture the free piece tumbles, and one solve per step at 1e-4 s loses the energy
+    // balance (measured worst |residual| / W: 7.7 % at 1e-4 s, 3.7 % at 5e-5 s, 2.0 % at 2.5e-5 s;
+    // with equilibrium_tolerance = 1e-6, 0.16 % at 1e-4 s): the run says so once, when it happens,
+    // and again at the end
+    assert_eq!(
+        stderr.matches("energy balance is lost").count(),
+        2,
+        "stderr: {stderr}"
+    );
+    assert!(stderr.contains("equilibrium_tolerance"), "stderr: {stderr}");
     let tip = rows(&out.join("node-3.csv"));
     assert_eq!(tip.last().map(|r| r[0]), Some(0.4), "rows to the end time");
     // after the fracture the free piece is pushed by the 12 kN tip load alone: it falls far below
