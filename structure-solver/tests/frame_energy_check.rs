@@ -56,6 +56,7 @@ fn one_solve_steps_with_chattering_hinges_warn() {
         "equilibrium_tolerance",
         "time_step",
         "hinges formed or closed",
+        "undoing the change",
     ] {
         assert!(w.contains(part), "`{part}` in: {w}");
     }

@@ -176,7 +176,7 @@ impl Frame {
         }
         self.elapsed += dt;
         if motion_before.is_some() {
-            self.check_energy_balance();
+            self.check_energy_balance(dt);
         }
         if let Some(before) = &hinges_before {
             self.record_hinge_changes(before);
