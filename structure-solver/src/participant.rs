@@ -213,9 +213,13 @@ impl Participant for StructureParticipant {
                 l.add_fields(&inputs.at(tt))?;
                 Ok(l)
             };
+            let warned = self.structure.frame().and_then(Frame::energy_warning).is_some();
             self.structure
                 .advance(t, &loads)
                 .map_err(|e| format!("structure `{}`: {e}", self.name))?;
+            if let (false, Some(w)) = (warned, self.structure.frame().and_then(Frame::energy_warning)) {
+                eprintln!("warning: structure.{}.frame: {w}", self.name);
+            }
             outputs.push(self.outputs());
             if row {
                 self.pending.push(self.structure.clone());
@@ -233,8 +237,13 @@ impl Participant for StructureParticipant {
         for (body, t) in self.structure.releases() {
             println!("{}: body `{body}` released at t = {t} s", self.name);
         }
-        if let Some(w) = self.structure.frame().and_then(Frame::accuracy_warning) {
-            eprintln!("warning: structure.{}.frame: {w}", self.name);
+        if let Some(f) = self.structure.frame() {
+            for w in [f.accuracy_warning(), f.energy_warning().map(str::to_string)]
+                .into_iter()
+                .flatten()
+            {
+                eprintln!("warning: structure.{}.frame: {w}", self.name);
+            }
         }
         match &mut self.output {
             Some(o) => o.finish(&self.structure),

@@ -2,7 +2,8 @@
 //! prescribed loads, from t = 0 to `case.end_time`. Writes the declared CSV histories every
 //! `history.interval` (and at the end), the frame's VTU series at the same times (at the start
 //! and end without a history section), and `releases.csv` when there are supports; prints every
-//! washout release when it happens, and at the end what the user should know about the frame
+//! washout release when it happens and a lost energy balance (`frame/energy_check.rs`) at the
+//! history interval where it happened, and at the end what the user should know about the frame
 //! steps' accuracy.
 
 use crate::frame::Frame;
@@ -20,7 +21,8 @@ pub struct RunSummary {
     pub substeps: u64,
     /// Released bodies and their release times.
     pub releases: Vec<(String, f64)>,
-    /// What the user should know about the run's accuracy (see [`Frame::accuracy_warning`]).
+    /// What the user should know about the run's accuracy (see [`Frame::accuracy_warning`] and
+    /// [`Frame::energy_warning`]; the energy warning is also printed when it is set).
     pub warnings: Vec<String>,
 }
 
@@ -60,8 +62,13 @@ pub fn run(case_path: &Path, out: Option<&Path>) -> Result<RunSummary, String> {
     output.record(&structure)?;
     let loads = |t: f64| Ok(schedule.at(t));
     let mut reported = 0;
+    let energy_warning = |s: &Structure| s.frame().and_then(Frame::energy_warning).map(str::to_string);
     for &t in &stops {
+        let warned = energy_warning(&structure).is_some();
         let result = structure.advance(t, &loads);
+        if let (false, Some(w)) = (warned, energy_warning(&structure)) {
+            eprintln!("warning: {key}.frame: {w}");
+        }
         let releases = structure.releases();
         for (body, at) in releases.iter().skip(reported) {
             println!("{name}: body `{body}` released at t = {at} s");
@@ -81,9 +88,11 @@ pub fn run(case_path: &Path, out: Option<&Path>) -> Result<RunSummary, String> {
         .collect();
     let warnings = structure
         .frame()
-        .and_then(Frame::accuracy_warning)
-        .map(|w| format!("{key}.frame: {w}"))
+        .map(|f| [f.accuracy_warning(), f.energy_warning().map(str::to_string)])
         .into_iter()
+        .flatten()
+        .flatten()
+        .map(|w| format!("{key}.frame: {w}"))
         .collect();
     Ok(RunSummary {
         out_dir,

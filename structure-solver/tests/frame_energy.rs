@@ -60,6 +60,7 @@ fn free_vibration_with(
         let row = frame.energy().expect("recorded");
         rows.push((n as f64 * dt, frame.node_velocities()[6 * tip + 2], row));
     }
+    assert_eq!(frame.energy_warning(), None, "a balanced run does not warn");
     (start.strain, rows)
 }
 
@@ -178,6 +179,7 @@ fn plastic_collapse_dissipates_and_balances() {
         row.residual / row.external
     );
     assert!(first_hinge.is_some());
+    assert_eq!(frame.energy_warning(), None, "a balanced run does not warn");
     assert!(
         row.plastic > 0.1 * row.external,
         "D_p = {} of W = {}",

@@ -10,7 +10,9 @@
 //! - `plastic` D_p = Σ_steps Σ_hinges l ⟨σ⟩ · Δε_p with Δε_p = D⁻¹(σ_trial − σ) the plastic strain
 //!   increment of the normality flow (`hinge.rs`); kept through fractures.
 //! - `shift` S = Σ_elements the change of the element's U when ASI-Gauss moved its integration point
-//!   (a hinge forming or closing in its member: the end forces stay, the one-point U does not).
+//!   (a hinge forming or closing in its member: the end forces stay, the one-point U does not),
+//!   minus the strain energy a fracture released (the element's U, set to zero by the fracture:
+//!   `fracture.rs`).
 //! - `damping` D_d = Σ_steps [[u]]ᵀ C ⟨v⟩, C = a0 M + a1 K (tangent at the step's end).
 //! - `algorithmic` D_alg = Σ_steps −Δt (γ − ½) ⟨v⟩ᵀ M [[a]] + Δt² (β − γ/2) [[½ aᵀ M a]]: the energy
 //!   Newmark's β = 4/9, γ = 5/6 takes out. From `[[u]] = Δt⟨v⟩ + Δt²(β − γ/2)[[a]]` and
@@ -24,7 +26,7 @@
 //!   internal work `[[u]]ᵀ⟨R⟩` against ΔU + D_p (the co-rotational forces are not the exact
 //!   gradient of U, the trapezoid of a plastic step, moves of an integration point when a hinge
 //!   forms), the unbalanced force a one-solve step carries into the next, the change of the
-//!   spatial rotary inertia over a step, and the strain energy a fracture releases.
+//!   spatial rotary inertia over a step, and the work of the sudden unbalance a fracture leaves.
 //!
 //! Measured (`tests/frame_energy.rs`): a cantilever's elastic free vibration at Δt = T1/100 leaves
 //! a residual of 8e-12 of its initial energy over 5 periods with first-order elements
@@ -55,6 +57,8 @@ pub(super) struct EnergyAccount {
     algorithmic: f64,
     /// T, U, D_p and S when recording started.
     start: [f64; 4],
+    /// Set at the first step whose balance is lost (`energy_check.rs`).
+    warning: Option<String>,
 }
 
 impl EnergyAccount {
@@ -94,6 +98,7 @@ impl Frame {
                 self.plastic_dissipation(),
                 self.shift_energy(),
             ],
+            warning: None,
         });
     }
 
@@ -122,6 +127,27 @@ impl Frame {
             external: acc.external,
             residual,
         })
+    }
+
+    /// Why the energy balance of the steps taken so far is lost (`energy_check.rs`): set at the
+    /// first step whose balance residual exceeded [`super::energy_check::ENERGY_WARNING_SHARE`] of
+    /// the run's energy scale, with the time, the residual, the scale and what to change; `None`
+    /// while it holds or while the account is not kept.
+    pub fn energy_warning(&self) -> Option<&str> {
+        self.energy.as_ref()?.warning.as_deref()
+    }
+
+    pub(super) fn set_energy_warning(&mut self, warning: String) {
+        if let Some(acc) = self.energy.as_mut() {
+            acc.warning = Some(warning);
+        }
+    }
+
+    /// T + U when recording started (0 while not recorded).
+    pub(super) fn energy_start_mechanical(&self) -> f64 {
+        self.energy
+            .as_ref()
+            .map_or(0.0, |acc| acc.start[0] + acc.start[1])
     }
 
     /// Kinetic energy ½ vᵀ M v [J].

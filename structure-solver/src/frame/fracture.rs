@@ -76,7 +76,10 @@ impl Frame {
             self.nodes.push(node);
             let e = &mut self.elements[i];
             e.nodes[end.node()] = self.nodes.len() - 1;
-            let (dissipated, shifted) = (e.stress.dissipated, e.stress.shifted);
+            // the strain energy the fracture releases leaves the account as a shift (`energy.rs`):
+            // U drops by it without work
+            let released = e.stress.strain_energy(&self.sections[e.section], e.length0);
+            let (dissipated, shifted) = (e.stress.dissipated, e.stress.shifted - released);
             e.stress = StressState::elastic(e.stress.s);
             e.stress.hinge = None;
             e.stress.dissipated = dissipated;

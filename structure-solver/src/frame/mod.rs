@@ -18,6 +18,7 @@ pub mod contact;
 pub mod damping;
 pub mod element;
 pub mod energy;
+pub mod energy_check;
 pub mod equilibrium;
 pub mod factor_age;
 pub mod fracture;

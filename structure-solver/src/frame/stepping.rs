@@ -175,6 +175,9 @@ impl Frame {
             self.account_step(dt, loads, &du, before, internal_before.as_deref());
         }
         self.elapsed += dt;
+        if motion_before.is_some() {
+            self.check_energy_balance(dt);
+        }
         if let Some(before) = &hinges_before {
             self.record_hinge_changes(before);
         }
