@@ -23,6 +23,7 @@ fn settings(axial: bool, section_axis: Option<[f64; 3]>) -> DragSettings {
     DragSettings {
         density: RHO,
         gravity: [0.0, 0.0, -G],
+        width: None,
         sub_member_length: D_SUB,
         initial_flow: Some([1.0, 0.0, 0.0]),
         section_axis,

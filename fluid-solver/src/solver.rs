@@ -226,6 +226,11 @@ impl FluidSolver {
         &self.state.particles
     }
 
+    /// The cell list of the particles, sorted for their present order (point queries).
+    pub fn cell_grid(&self) -> &CellGrid {
+        &self.state.grid
+    }
+
     /// Mutable particles, e.g. to set initial velocities or body kinematics.
     pub fn particles_mut(&mut self) -> &mut Particles {
         &mut self.state.particles
@@ -347,8 +352,11 @@ impl FluidSolver {
             self.monitor.start(&st.particles);
             self.started = true;
         }
+        let balance = st.open_boundaries.balance();
         st.open_boundaries.apply(&mut st.particles, st.time, dt);
         let escaped = self.open_top.remove_escaped(&mut st.particles);
+        // particles added or removed: the cell list no longer matches their order
+        let reordered = escaped > 0 || st.open_boundaries.balance() != balance;
         if escaped > 0 {
             st.escaped += escaped;
             let removed = st.escaped + st.open_boundaries.balance().removed;
@@ -369,7 +377,7 @@ impl FluidSolver {
                 });
             }
         }
-        self.apply_point_reactions(dt);
+        self.apply_point_reactions(dt, reordered);
         let st = &mut self.state;
         let scales = self.method.scales(dt);
         let (bodies, pose, exchange) = (&self.bodies, &st.body_pose, &mut st.body_exchange);
@@ -422,14 +430,19 @@ impl FluidSolver {
     }
 
     /// The point reactions as accelerations over a step of `dt`: each fluid particle's velocity
-    /// changes by its share of the reactions (S2-24) / its mass × dt.
-    fn apply_point_reactions(&mut self, dt: f64) {
+    /// changes by its share of the reactions (S2-24) / its mass × dt. `reordered`: particles were
+    /// added or removed since the cell list was sorted (it is sorted again first).
+    fn apply_point_reactions(&mut self, dt: f64, reordered: bool) {
         let (reactions, samples) = &self.point_reactions;
         if reactions.is_empty() {
             return;
         }
+        let st = &mut self.state;
+        if reordered {
+            st.grid.sort(&mut st.particles, &mut Vec::new());
+        }
         let spread =
-            unresolved::spreading::spread(&self.state.particles, self.kernel.spacing, reactions, samples);
+            unresolved::spreading::spread(&st.particles, &st.grid, self.kernel.spacing, reactions, samples);
         let scale = dt / self.particle_mass();
         let p = &mut self.state.particles;
         for (i, f) in spread.force.chunks_exact(3).enumerate() {
@@ -445,7 +458,8 @@ impl FluidSolver {
 
     /// Velocity and λ_min at `points` (3 per point) for the unresolved coupling (3 and 1 per point).
     pub fn sample_points(&self, points: &[f64]) -> (Vec<f64>, Vec<f64>) {
-        let samples = unresolved::sampling::sample(&self.state.particles, self.kernel.spacing, points);
+        let st = &self.state;
+        let samples = unresolved::sampling::sample(&st.particles, &st.grid, self.kernel.spacing, points);
         (
             samples.iter().flat_map(|s| s.velocity).collect(),
             samples.iter().map(|s| s.lambda_min).collect(),

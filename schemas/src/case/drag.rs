@@ -8,6 +8,8 @@
 //! structure = "prism"                # structure participant with a [frame]
 //! initial_flow = [1.0, 0.0, 0.0]     # optional: flow direction before any velocity is sampled
 //! sub_member_length = 0.005          # optional [m]: default the fluid's particle size (S2 §4(1)c)
+//! width = 0.001                      # optional [m]: drag width D (and buoyancy area D²) of every
+//!                                    # member instead of its section's (S2 §5(2))
 //! section_axis = [1.0, 0.0, 0.0]     # optional: a face normal of the square section; without it
 //!                                    # the flow is taken to meet a face (attack angle 0)
 //! axial_drag = false                 # optional: drag along the member axis too (S2 §6, washout)
@@ -34,6 +36,11 @@ pub struct DragLink {
     /// Length of the sub-members [m]; default the fluid's particle size (S2 §4(1)c).
     #[serde(default)]
     pub sub_member_length: Option<f64>,
+    /// Width D [m] that drag (S2-19) and buoyancy (S2-21, area D²) use for every member instead
+    /// of its section's; the frame keeps its sections' stiffness and mass. S2 §5(2) varies D
+    /// this way at fixed stiffness ("the 0.05 m prism's section constants are used").
+    #[serde(default)]
+    pub width: Option<f64>,
     /// A face normal of the square section (projected onto the plane across each member); the
     /// attack angle is measured from it. Without it the attack angle is 0.
     #[serde(default)]
@@ -120,6 +127,9 @@ impl DragLink {
         }
         if let Some(l) = self.sub_member_length {
             check::positive(&format!("{key}.sub_member_length"), l)?;
+        }
+        if let Some(w) = self.width {
+            check::positive(&format!("{key}.width"), w)?;
         }
         self.validate_table(&format!("{key}.drag_coefficient"))
     }

@@ -44,6 +44,8 @@ pub struct DragSettings {
     pub gravity: [f64; 3],
     /// Sub-member length d [m] (S2 §4(1)c).
     pub sub_member_length: f64,
+    /// Drag width D and buoyancy area D² of every member instead of its section's.
+    pub width: Option<f64>,
     pub initial_flow: Option<[f64; 3]>,
     pub section_axis: Option<[f64; 3]>,
     pub axial_drag: bool,
@@ -63,6 +65,7 @@ impl DragSettings {
             density: fluid.density,
             gravity: fluid.gravity,
             sub_member_length: link.sub_member_length.unwrap_or(fluid.spacing),
+            width: link.width,
             initial_flow: link.initial_flow,
             section_axis: link.section_axis,
             axial_drag: link.axial_drag,
@@ -140,6 +143,11 @@ impl Drag {
     /// direction starts again from the case's `initial_flow`.
     pub fn set_geometry(&mut self, geometry: &Geometry, positions: &[f64]) -> Result<(), String> {
         self.pieces = sub_members::cut(geometry, positions, self.settings.sub_member_length)?;
+        if let Some(w) = self.settings.width {
+            for s in &mut self.pieces {
+                (s.width, s.area) = (w, w * w);
+            }
+        }
         let initial = self.settings.initial_flow.map(|v| Vector3::from(v).normalize());
         self.directions = vec![initial; self.pieces.len()];
         Ok(())
@@ -239,19 +247,25 @@ impl Law for Drag {
         }
     }
 
+    /// The structure's node arrays must hold the same nodes (3 and 6 values per node) and at
+    /// least the nodes declared so far: a fracture adds nodes within a window, and the law takes
+    /// them on when the structure re-declares its geometry at the window's end
+    /// ([`Law::geometry`]).
     fn check_outputs(&self, p: usize, outputs: &Fields) -> Result<(), String> {
         if p == self.structure {
-            let n = self.nodes;
-            for (name, len, per) in [
-                ("node_position", outputs.node_position.len(), 3),
-                ("node_velocity", outputs.node_velocity.len(), 6),
-            ] {
-                if len != per * n {
-                    return Err(format!(
-                        "{name} has {len} values; {n} declared frame nodes need {}",
-                        per * n
-                    ));
-                }
+            let (positions, velocities) = (outputs.node_position.len(), outputs.node_velocity.len());
+            let n = positions / 3;
+            if positions % 3 != 0 || velocities != 6 * n {
+                return Err(format!(
+                    "node_position has {positions} values and node_velocity {velocities}; 3 and 6 per frame node are needed"
+                ));
+            }
+            if n < self.nodes {
+                return Err(format!(
+                    "node_position has {positions} values; the {} declared frame nodes need {} (a frame may gain nodes by fracture, never lose them)",
+                    self.nodes,
+                    3 * self.nodes
+                ));
             }
         }
         if p == self.fluid && outputs.sampled_velocity.len() != 3 * outputs.sampled_lambda_min.len() {
@@ -285,9 +299,15 @@ impl Law for Drag {
         trapezoid_work(&f, &x, 6, 3)
     }
 
+    /// A (re-)declared geometry: at the start, and at the end of a window in which a fracture
+    /// split an element (new node, new connectivity). The node count becomes that of the
+    /// structure's outputs, and the sub-members are cut again; the next window's first
+    /// evaluation still holds the fluid's samples at the old sample points, which no longer
+    /// match the new cut, so that one evaluation gives no force (one window without drag).
     fn geometry(&mut self, p: usize, geometry: &Geometry, outputs: &Fields) -> Result<(), String> {
         if p == self.structure {
             self.set_geometry(geometry, &outputs.node_position)?;
+            self.nodes = outputs.node_position.len() / 3;
         }
         Ok(())
     }
