@@ -23,7 +23,7 @@ pub mod sub_members;
 use super::reference::participant_index;
 use super::{sum_vectors, trapezoid_work, Instant, Law};
 use crate::error::CouplerError;
-use coefficient::{attack_angle, DragTable};
+use coefficient::{attack_angle, projected_width, DragTable};
 use nalgebra::Vector3;
 use schemas::case::drag::DragLink;
 use schemas::case::Case;
@@ -188,10 +188,9 @@ impl Drag {
                     let v_rel = vec3(&fluid.sampled_velocity, 3 * i) - member_velocity;
                     let l = force::submerged_length(fluid.sampled_lambda_min[i], s.fraction * length);
                     let (across, along) = force::split(&v_rel, &axis);
-                    let cd = self
-                        .table
-                        .at(attack_angle(&across, &axis, self.section_axis.as_ref()));
-                    force += force::drag(cd, rho, &across, s.width, l);
+                    let alpha = attack_angle(&across, &axis, self.section_axis.as_ref());
+                    let cd = self.table.at(alpha);
+                    force += force::drag(cd, rho, &across, projected_width(s.width, alpha), l);
                     if self.settings.axial_drag {
                         force += force::drag(cd, rho, &along, s.width, l);
                     }
