@@ -31,8 +31,9 @@ use schemas::message::{Fields, Geometry, InterfaceDecl};
 use schemas::F64s;
 use sub_members::SubMember;
 
-/// A flow direction is taken from a sample only if its speed exceeds this [m/s] (a dry sample
-/// answers zero velocity; the direction stays what it was).
+/// A flow direction is taken from a wet sample (λ_min > 0) only if its speed relative to the
+/// member exceeds this [m/s]; at a dry sample the direction stays what it was (the member's own
+/// motion in air — its sway under gravity — is not a flow and must not turn the sample point).
 const DIRECTION_MIN_SPEED: f64 = 1e-9;
 
 /// The settings of one drag link, resolved against the case.
@@ -334,7 +335,7 @@ impl Law for Drag {
             let member = vec3(&s.node_velocity, 6 * a) * (0.5 * (1.0 - piece.xi))
                 + vec3(&s.node_velocity, 6 * b) * (0.5 * (1.0 + piece.xi));
             let v = vec3(&f.sampled_velocity, 3 * i) - member;
-            if v.norm() > DIRECTION_MIN_SPEED {
+            if f.sampled_lambda_min[i] > 0.0 && v.norm() > DIRECTION_MIN_SPEED {
                 *dir = Some(v.normalize());
             }
         }
