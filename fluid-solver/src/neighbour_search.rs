@@ -159,11 +159,6 @@ impl CellGrid {
     /// any point: one outside the grid sees the particles of the border cells within `radius`
     /// (spray above the grid is kept in its top layer, see [`crate::layout::GRID_HEADROOM`]).
     /// Used for sampling the fluid at points that are not particles (probes, coupling samples).
-    ///
-    /// For a point inside the grid only the cells that reach within `reach · cell` of it are
-    /// read (about 217 of the 343 cells of a 7³ block at the kernel's reach of 3 cells): a
-    /// particle still found if it moved by up to `reach · cell − radius` since the sort, in any
-    /// direction, as the full block guaranteed along the axes.
     pub fn for_each_near_point(
         &self,
         p: &Particles,
@@ -171,70 +166,28 @@ impl CellGrid {
         radius: f64,
         mut f: impl FnMut(usize, f64),
     ) {
-        let r2max = radius * radius;
-        self.for_each_point_row(at, radius, |first, end| {
-            for j in self.start[first] as usize..self.start[end] as usize {
-                let d = [p.x[j] - at[0], p.y[j] - at[1], p.z[j] - at[2]];
-                let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-                if r2 < r2max {
-                    f(j, r2);
-                }
-            }
-        });
-    }
-
-    /// Whether any fluid particle lies in the cells [`CellGrid::for_each_near_point`] reads for
-    /// `at` and `radius` (a few look-ups per row of cells: a dry point is told without reading
-    /// a particle).
-    pub fn fluid_near_point(&self, at: [f64; 3], radius: f64) -> bool {
-        let mut any = false;
-        self.for_each_point_row(at, radius, |first, end| {
-            any |= self.fluid_before[end] > self.fluid_before[first]
-        });
-        any
-    }
-
-    /// Calls `f(first cell, one past the last cell)` for each run of cells along x that
-    /// [`CellGrid::for_each_near_point`] reads.
-    #[inline(always)]
-    fn for_each_point_row(&self, at: [f64; 3], radius: f64, mut f: impl FnMut(usize, usize)) {
         let reach = self.reach(radius) as i64;
         let centre = self.cell_index(at) as usize;
         let nx = self.dims[0];
         let nxy = nx * self.dims[1];
         let c = [centre % nx, (centre / nx) % self.dims[1], centre / nxy];
+        let r2max = radius * radius;
         let span = |a: usize| {
             let lo = (c[a] as i64 - reach).max(0) as usize;
             let hi = (c[a] as i64 + reach).min(self.dims[a] as i64 - 1) as usize;
             (lo, hi)
         };
         let ((x0, x1), (y0, y1), (z0, z1)) = (span(0), span(1), span(2));
-        // In cell units from the grid's origin (≥ 0 inside: truncation is the floor).
-        let u: [f64; 3] = std::array::from_fn(|a| (at[a] - self.origin[a]) * self.inv_cell);
-        // Cells trimmed to those within `reach` cells of the point, when it lies in its cell
-        // (not clamped onto the border).
-        let inside = (0..3).all(|a| (0.0..=1.0).contains(&(u[a] - c[a] as f64)));
-        let rho2 = (reach * reach) as f64;
-        // squared distance [cells²] from the point along axis a to cell k's slab
-        let gap2 = |a: usize, k: usize| {
-            let d = (k as f64 - u[a]).max(u[a] - k as f64 - 1.0).max(0.0);
-            d * d
-        };
         for cz in z0..=z1 {
-            let dz2 = if inside { gap2(2, cz) } else { 0.0 };
             for cy in y0..=y1 {
-                let (mut xa, mut xb) = (x0, x1);
-                if inside {
-                    let d2 = dz2 + gap2(1, cy);
-                    if d2 > rho2 {
-                        continue;
-                    }
-                    let w = (rho2 - d2).sqrt();
-                    xa = xa.max((u[0] - w).max(0.0) as usize);
-                    xb = xb.min((u[0] + w) as usize);
-                }
                 let row = cz * nxy + cy * nx;
-                f(row + xa, row + xb + 1);
+                for j in self.start[row + x0] as usize..self.start[row + x1 + 1] as usize {
+                    let d = [p.x[j] - at[0], p.y[j] - at[1], p.z[j] - at[2]];
+                    let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+                    if r2 < r2max {
+                        f(j, r2);
+                    }
+                }
             }
         }
     }

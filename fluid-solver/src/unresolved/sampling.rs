@@ -52,9 +52,6 @@ pub fn sample_at(p: &Particles, grid: &CellGrid, kernel: &Wendland, volume: f64,
         velocity: [0.0; 3],
         lambda_min: 0.0,
     };
-    if !grid.fluid_near_point(x, kernel.radius) {
-        return dry;
-    }
     let mut u = [0.0; 3];
     let mut weight = 0.0;
     // the moment matrix is symmetric (a radial kernel): its upper triangle
