@@ -7,6 +7,11 @@
 //! Per coupling window of one fluid step (samples = 1) the stack evaluates the law 4 times (two
 //! participants × two window times), samples once (the window end; the window start repeats
 //! the last window's end samples) and spreads once (every fluid step). `cargo bench -p coupler --bench drag_cost`.
+//!
+//! `DRAG_COST_AT` (s, default 0.3) and `DRAG_COST_REPS` (default 15) shorten it, e.g. to count
+//! instructions under `valgrind --tool=callgrind` (wall times on a shared machine are noisy);
+//! `DRAG_COST_ONLY` = law, sampling, spreading or step runs that part alone (the difference of
+//! two instruction counts with different `DRAG_COST_REPS` is then that part's count).
 
 use coupler::laws::drag::{Drag, DragSettings};
 use coupler::laws::Law;
@@ -43,8 +48,15 @@ fn main() {
         std::process::exit(2)
     };
     let threads = rayon::current_num_threads();
+    let env = |name: &str, default: f64| {
+        std::env::var(name)
+            .ok()
+            .and_then(|v| v.parse::<f64>().ok())
+            .unwrap_or(default)
+    };
+    let at = env("DRAG_COST_AT", 0.3);
     let mut solver = FluidSolver::new(cfg);
-    if let Err(e) = solver.advance_to(0.3) {
+    if let Err(e) = solver.advance_to(at) {
         eprintln!("error: {e}");
         std::process::exit(1)
     }
@@ -73,6 +85,7 @@ fn main() {
     let settings = DragSettings {
         density: cfg.density,
         gravity: cfg.gravity,
+        width: None,
         sub_member_length: cfg.spacing,
         initial_flow: Some([1.0, 0.0, 0.0]),
         section_axis: None,
@@ -103,30 +116,45 @@ fn main() {
         .flat_map(|l| l.centroid.iter().copied().chain(l.force.iter().map(|f| -f)))
         .collect();
     // The parts are timed in turn within each repetition, so a busy machine slows them alike.
-    let reps = 15;
+    let reps = env("DRAG_COST_REPS", 15.0).max(1.0) as usize;
     let dt = cfg.time_step;
     let mut times = vec![Vec::new(); 4];
+    let only = std::env::var("DRAG_COST_ONLY").ok();
+    let runs = |part: &str| only.as_deref().is_none_or(|o| o == part);
+    let mut timed = |k: usize, part: &str, f: &mut dyn FnMut()| {
+        if runs(part) {
+            times[k].push(time_ms(f));
+        } else {
+            times[k].push(f64::NAN);
+        }
+    };
     for _ in 0..reps {
-        times[0].push(time_ms(|| {
+        timed(0, "law", &mut || {
             std::hint::black_box(law.evaluate(&structure, &fluid));
-        }));
-        times[1].push(time_ms(|| {
+        });
+        timed(1, "sampling", &mut || {
             std::hint::black_box(solver.sample_points(&points));
-        }));
-        times[2].push(time_ms(|| {
-            std::hint::black_box(spread(solver.particles(), cfg.spacing, &reactions, &points));
-        }));
-        times[3].push(time_ms(|| {
+        });
+        timed(2, "spreading", &mut || {
+            std::hint::black_box(spread(
+                solver.particles(),
+                solver.cell_grid(),
+                cfg.spacing,
+                &reactions,
+                &points,
+            ));
+        });
+        timed(3, "step", &mut || {
             if let Err(e) = solver.step(dt) {
                 eprintln!("error: {e}");
                 std::process::exit(1)
             }
-        }));
+        });
     }
     let [law_ms, sample_ms, spread_ms, step_ms] = [0, 1, 2, 3].map(|k| median(times[k].clone()));
     let window = 4.0 * law_ms + sample_ms + spread_ms;
     println!(
-        "Drag coupling cost, dam-break tank Δs = {} m at t = 0.3 s ({} particles), {threads} threads, median of {reps}:",
+        "Drag coupling cost, dam-break tank Δs = {} m at t = {at} s ({} particles), {threads} threads, median of {reps}:",
         cfg.spacing,
         solver.particles().len()
     );

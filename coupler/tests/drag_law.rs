@@ -23,6 +23,7 @@ fn settings(axial: bool, section_axis: Option<[f64; 3]>) -> DragSettings {
     DragSettings {
         density: RHO,
         gravity: [0.0, 0.0, -G],
+        width: None,
         sub_member_length: D_SUB,
         initial_flow: Some([1.0, 0.0, 0.0]),
         section_axis,
@@ -182,10 +183,21 @@ fn sample_points_sit_one_width_upstream_and_follow_the_accepted_flow() {
         "after a +y flow: {s:?}"
     );
     assert!(fs[1] > 0.0);
-    // A dry sample (zero velocity) keeps the direction.
-    law.accept(&[vec![uniform_flow(&law, [0.0; 3], 0.0)], vec![structure.clone()]]);
+    // A dry sample (zero velocity) keeps the direction, even while the member sways in the air
+    // (relative velocity −v_member ≠ 0): a member moving in air is no flow. (Taking that sway
+    // for the flow turned the sample points of the prism dam break downstream or below the
+    // floor before the surge came, so wide prisms took no drag.)
+    let mut swaying = structure.clone();
+    swaying.node_velocity = F64s(vec![
+        0.0, 0.0, -1e-3, 0.0, 0.0, 0.0, 0.0, 0.0, -2e-3, 0.0, 0.0, 0.0,
+    ]);
+    law.accept(&[vec![uniform_flow(&law, [0.0; 3], 0.0)], vec![swaying]]);
     let (to_fluid, _, _, _) = apply(&law, &structure, &fluid);
-    assert!(close(to_fluid.sample_point[1], -WIDTH, WIDTH));
+    assert!(
+        to_fluid.sample_point[0] == 0.0 && close(to_fluid.sample_point[1], -WIDTH, WIDTH),
+        "{:?}",
+        to_fluid.sample_point
+    );
 }
 
 #[test]
@@ -199,7 +211,8 @@ fn a_member_carried_with_the_flow_takes_drag_on_the_relative_velocity() {
 
 #[test]
 fn the_attack_angle_picks_the_table_row() {
-    // The section's face normal at 45° to the flow: C_D(45°) = 1.6; at 13°: the table's minimum 1.5.
+    // The section's face normal at 45° to the flow: C_D(45°) = 1.6; at 13°: the table's minimum
+    // 1.5; both on S2-18's projected width D = side (cos α + sin α) (90° folds onto 0°).
     for (deg, cd) in [(45.0_f64, 1.6), (13.0, 1.5), (0.0, 2.1), (90.0, 2.1)] {
         let a = deg.to_radians();
         let (law, structure) = member(
@@ -208,7 +221,8 @@ fn the_attack_angle_picks_the_table_row() {
             settings(false, Some([a.cos(), a.sin(), 0.0])),
         );
         let (_, _, fs, _) = apply(&law, &structure, &uniform_flow(&law, [1.0, 0.0, 0.0], 1.0));
-        let expected = 0.5 * cd * RHO * WIDTH * 0.005;
+        let folded = deg.min(90.0 - deg).to_radians();
+        let expected = 0.5 * cd * RHO * WIDTH * (folded.cos() + folded.sin()) * 0.005;
         assert!(
             close(fs[0], expected, expected),
             "{deg}°: {} vs {expected}",

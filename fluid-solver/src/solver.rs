@@ -252,6 +252,11 @@ impl FluidSolver {
             .map_or(self.state.particles.len(), |d| d.len())
     }
 
+    /// The cell list of the particles, sorted for their present order (point queries).
+    pub fn cell_grid(&self) -> &CellGrid {
+        &self.state.grid
+    }
+
     /// Mutable particles, e.g. to set initial velocities or body kinematics (on the GPU path
     /// they are copied back first and go to the device before the next step).
     pub fn particles_mut(&mut self) -> &mut Particles {
@@ -379,15 +384,18 @@ impl FluidSolver {
             self.monitor.start(&st.particles);
             self.started = true;
         }
+        let balance = st.open_boundaries.balance();
         st.open_boundaries.apply(&mut st.particles, st.time, dt);
-        self.remove_escaped()?;
-        self.apply_point_reactions(dt);
+        let escaped = self.remove_escaped()?;
+        // particles added or removed: the cell list no longer matches their order
+        let reordered = escaped > 0 || self.state.open_boundaries.balance() != balance;
+        self.apply_point_reactions(dt, reordered);
         self.step_on_host(dt)
     }
 
-    /// Removes the fluid that left through the open top ([`crate::escape`]); stops when more
-    /// than `max_removed_fraction` of the fluid has left.
-    pub(crate) fn remove_escaped(&mut self) -> Result<(), Instability> {
+    /// Removes the fluid that left through the open top ([`crate::escape`]) and returns how many
+    /// particles left; stops when more than `max_removed_fraction` of the fluid has left.
+    pub(crate) fn remove_escaped(&mut self) -> Result<u64, Instability> {
         let escaped = self.open_top.remove_escaped(&mut self.state.particles);
         if escaped > 0 {
             let st = &mut self.state;
@@ -410,7 +418,7 @@ impl FluidSolver {
                 });
             }
         }
-        Ok(())
+        Ok(escaped)
     }
 
     /// The rest of [`FluidSolver::step`] on the CPU.
@@ -467,14 +475,19 @@ impl FluidSolver {
     }
 
     /// The point reactions as accelerations over a step of `dt`: each fluid particle's velocity
-    /// changes by its share of the reactions (S2-24) / its mass × dt.
-    fn apply_point_reactions(&mut self, dt: f64) {
+    /// changes by its share of the reactions (S2-24) / its mass × dt. `reordered`: particles were
+    /// added or removed since the cell list was sorted (it is sorted again first).
+    fn apply_point_reactions(&mut self, dt: f64, reordered: bool) {
         let (reactions, samples) = &self.point_reactions;
         if reactions.is_empty() {
             return;
         }
+        let st = &mut self.state;
+        if reordered {
+            st.grid.sort(&mut st.particles, &mut Vec::new());
+        }
         let spread =
-            unresolved::spreading::spread(&self.state.particles, self.kernel.spacing, reactions, samples);
+            unresolved::spreading::spread(&st.particles, &st.grid, self.kernel.spacing, reactions, samples);
         let scale = dt / self.particle_mass();
         let p = &mut self.state.particles;
         for (i, f) in spread.force.chunks_exact(3).enumerate() {
@@ -490,7 +503,8 @@ impl FluidSolver {
 
     /// Velocity and λ_min at `points` (3 per point) for the unresolved coupling (3 and 1 per point).
     pub fn sample_points(&self, points: &[f64]) -> (Vec<f64>, Vec<f64>) {
-        let samples = unresolved::sampling::sample(self.particles(), self.kernel.spacing, points);
+        let samples =
+            unresolved::sampling::sample(self.particles(), &self.state.grid, self.kernel.spacing, points);
         (
             samples.iter().flat_map(|s| s.velocity).collect(),
             samples.iter().map(|s| s.lambda_min).collect(),

@@ -3,6 +3,7 @@
 //! particle lattices: water below z = 0 (top particle layer at −Δs/2, so the free surface of the
 //! particle water is at z = 0), a floor of wall particles below z = −H.
 
+use fluid_solver::neighbour_search::CellGrid;
 use fluid_solver::particles::Particles;
 use fluid_solver::unresolved::kernel::Wendland;
 use fluid_solver::unresolved::sampling::{sample, smallest_eigenvalue};
@@ -16,7 +17,7 @@ const HALF: i32 = 8;
 
 /// Water in |x|, |y| < HALF Δs, −DEPTH Δs < z < 0, on a floor 3 layers thick; every fluid
 /// particle moves with `velocity(position)`.
-fn pool(velocity: impl Fn([f64; 3]) -> [f64; 3]) -> Particles {
+fn pool(velocity: impl Fn([f64; 3]) -> [f64; 3]) -> (Particles, CellGrid) {
     let mut p = Particles::default();
     let c = |i: i32| (f64::from(i) + 0.5) * DS;
     for i in -HALF..HALF {
@@ -34,7 +35,11 @@ fn pool(velocity: impl Fn([f64; 3]) -> [f64; 3]) -> Particles {
             }
         }
     }
-    p
+    // the cell list over the pool and the air above it (sorting reorders the particles)
+    let (h, d) = (f64::from(HALF) * DS, f64::from(DEPTH + 3) * DS);
+    let mut grid = CellGrid::new([-h, -h, -d], [h, h, 6.0 * DS], DS);
+    grid.sort(&mut p, &mut Vec::new());
+    (p, grid)
 }
 
 /// Points on a vertical line through the middle, from the floor to just over the surface.
@@ -53,9 +58,9 @@ fn column() -> Vec<f64> {
 #[test]
 fn a_uniform_field_is_sampled_exactly_at_the_surface_and_the_wall() {
     let u = [0.7, -0.3, 0.2];
-    let p = pool(|_| u);
+    let (p, grid) = pool(|_| u);
     let points = column();
-    for (s, x) in sample(&p, DS, &points).iter().zip(points.chunks_exact(3)) {
+    for (s, x) in sample(&p, &grid, DS, &points).iter().zip(points.chunks_exact(3)) {
         // Shepard weights sum to one: the error is the rounding of ~60 terms.
         let exact = s.velocity.iter().zip(&u).all(|(a, b)| (a - b).abs() <= 1e-14);
         assert!(exact, "at {x:?}: {:?}", s.velocity);
@@ -84,14 +89,14 @@ fn a_linear_field_stays_within_the_centroid_shift_bound_near_the_surface_and_the
     // beyond its last particle layer, which adds at most Δs/2, and a point a height h over the
     // surface is h farther from the water: |e| ≤ G (d + Δs/2 + max(h, 0)).
     let g = 2.0;
-    let p = pool(|x| [g * x[2], 0.0, 0.0]);
+    let (p, grid) = pool(|x| [g * x[2], 0.0, 0.0]);
     let kernel = Wendland::for_spacing(DS);
     let d = half_space_shift(&kernel);
     let bound = g * (d + 0.5 * DS);
     let points = column();
     let mut worst: f64 = 0.0;
     let mut inside: f64 = 0.0;
-    for (s, x) in sample(&p, DS, &points).iter().zip(points.chunks_exact(3)) {
+    for (s, x) in sample(&p, &grid, DS, &points).iter().zip(points.chunks_exact(3)) {
         let e = (s.velocity[0] - g * x[2]).abs();
         worst = worst.max(e);
         if x[2] > -f64::from(DEPTH) * DS + kernel.radius && x[2] < -kernel.radius {
@@ -113,8 +118,8 @@ fn a_linear_field_stays_within_the_centroid_shift_bound_near_the_surface_and_the
 
 #[test]
 fn lambda_min_is_one_inside_one_half_on_the_surface_and_zero_in_the_air() {
-    let p = pool(|_| [0.0; 3]);
-    let at = |z: f64| sample(&p, DS, &[0.1 * DS, -0.2 * DS, z])[0].lambda_min;
+    let (p, grid) = pool(|_| [0.0; 3]);
+    let at = |z: f64| sample(&p, &grid, DS, &[0.1 * DS, -0.2 * DS, z])[0].lambda_min;
     let (inside, surface, floor, air) = (at(-4.0 * DS), at(0.0), at(-f64::from(DEPTH) * DS), at(3.0 * DS));
     eprintln!(
         "λ_min: inside {inside:.4}, on the surface {surface:.4}, on the floor {floor:.4}, in the air {air}"
@@ -132,7 +137,7 @@ fn lambda_min_is_one_inside_one_half_on_the_surface_and_zero_in_the_air() {
 
 #[test]
 fn a_spread_reaction_sums_to_the_reaction_near_a_wall_and_the_surface() {
-    let p = pool(|_| [0.0; 3]);
+    let (p, grid) = pool(|_| [0.0; 3]);
     let f = [3.0, -1.5, 40.0];
     for (what, x) in [
         ("at the surface", [0.0, 0.0, -0.3 * DS]),
@@ -144,7 +149,7 @@ fn a_spread_reaction_sums_to_the_reaction_near_a_wall_and_the_surface() {
         ("inside", [0.0, 0.0, -4.0 * DS]),
     ] {
         let reactions = [x[0], x[1], x[2], f[0], f[1], f[2]];
-        let s = spread(&p, DS, &reactions, &[]);
+        let s = spread(&p, &grid, DS, &reactions, &[]);
         let mut sum = [0.0; 3];
         for (i, fi) in s.force.chunks_exact(3).enumerate() {
             if p.kind[i] != Kind::Fluid.code() {
@@ -165,11 +170,11 @@ fn a_spread_reaction_sums_to_the_reaction_near_a_wall_and_the_surface() {
 
 #[test]
 fn a_reaction_with_no_water_near_its_centroid_goes_to_its_sample_point_or_is_reported() {
-    let p = pool(|_| [0.0; 3]);
+    let (p, grid) = pool(|_| [0.0; 3]);
     let f = [1.0, 2.0, 3.0];
     let dry = [0.0, 0.0, 5.0 * DS];
     let wet = [0.0, 0.0, -2.0 * DS];
-    let s = spread(&p, DS, &[dry[0], dry[1], dry[2], f[0], f[1], f[2]], &wet);
+    let s = spread(&p, &grid, DS, &[dry[0], dry[1], dry[2], f[0], f[1], f[2]], &wet);
     let sum: Vec<f64> = (0..3)
         .map(|c| s.force.chunks_exact(3).map(|fi| fi[c]).sum())
         .collect();
@@ -178,7 +183,7 @@ fn a_reaction_with_no_water_near_its_centroid_goes_to_its_sample_point_or_is_rep
         sum.iter().zip(&f).all(|(a, b)| (a - b).abs() <= 1e-14 * 3.0),
         "{sum:?}"
     );
-    let s = spread(&p, DS, &[dry[0], dry[1], dry[2], f[0], f[1], f[2]], &dry);
+    let s = spread(&p, &grid, DS, &[dry[0], dry[1], dry[2], f[0], f[1], f[2]], &dry);
     assert_eq!((s.unapplied, s.unapplied_force), (1, f));
     assert!(s.force.iter().all(|&v| v == 0.0));
 }

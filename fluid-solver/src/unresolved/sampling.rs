@@ -15,10 +15,13 @@
 //! weighted centroid of the particles present, so its error is `G·(x̄ − x)`: at most |G| R
 //! anywhere, and inside the water about zero (the centroid of a full, symmetric support is the
 //! point itself); see the sampling tests for the bound near a surface or a wall.
+//!
+//! The particles near a point come from the step's own cell list ([`CellGrid::for_each_near_point`]),
+//! so no second grid is built: see [`super`] for when that list is valid.
 
 use super::kernel::Wendland;
-use super::point_grid::PointGrid;
 use crate::kind::{Kind, FLUID};
+use crate::neighbour_search::CellGrid;
 use crate::particles::Particles;
 use rayon::prelude::*;
 
@@ -32,48 +35,41 @@ pub struct Sample {
     pub lambda_min: f64,
 }
 
-/// Samples the flow at `points` (3 per point) for particles of spacing `spacing` (volume Δs³).
-pub fn sample(p: &Particles, spacing: f64, points: &[f64]) -> Vec<Sample> {
+/// Samples the flow at `points` (3 per point) for particles of spacing `spacing` (volume Δs³);
+/// `grid` is the cell list sorted for `p`.
+pub fn sample(p: &Particles, grid: &CellGrid, spacing: f64, points: &[f64]) -> Vec<Sample> {
     let kernel = Wendland::for_spacing(spacing);
-    let grid = PointGrid::build(
-        p,
-        |i| p.kind[i] != Kind::Gate.code(),
-        |i| p.kind[i] == FLUID,
-        points,
-        kernel.radius,
-    );
     points
         .par_chunks_exact(3)
         .with_min_len(64)
-        .map(|x| sample_at(&grid, &kernel, spacing.powi(3), [x[0], x[1], x[2]]))
+        .map(|x| sample_at(p, grid, &kernel, spacing.powi(3), [x[0], x[1], x[2]]))
         .collect()
 }
 
-/// The flow at `x` (`grid` marks the fluid particles).
-pub fn sample_at(grid: &PointGrid, kernel: &Wendland, volume: f64, x: [f64; 3]) -> Sample {
+/// The flow at `x`.
+pub fn sample_at(p: &Particles, grid: &CellGrid, kernel: &Wendland, volume: f64, x: [f64; 3]) -> Sample {
     let dry = Sample {
         velocity: [0.0; 3],
         lambda_min: 0.0,
     };
-    if !grid.marked_near(x) {
-        return dry;
-    }
     let mut u = [0.0; 3];
     let mut weight = 0.0;
     // the moment matrix is symmetric (a radial kernel): its upper triangle
     let mut m = [0.0; 6];
-    let radius2 = kernel.radius * kernel.radius;
-    grid.for_each_near(x, |e| {
-        let d = [e.position[0] - x[0], e.position[1] - x[1], e.position[2] - x[2]];
-        let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-        if r2 >= radius2 {
+    let gate = Kind::Gate.code();
+    grid.for_each_near_point(p, x, kernel.radius, |j, r2| {
+        let kind = p.kind[j];
+        if kind == gate {
             return;
         }
+        let d = [p.x[j] - x[0], p.y[j] - x[1], p.z[j] - x[2]];
         let r = r2.sqrt();
-        if e.marked {
+        if kind == FLUID {
             let w = volume * kernel.value(r);
             weight += w;
-            (0..3).for_each(|c| u[c] += w * e.velocity[c]);
+            u[0] += w * p.vx[j];
+            u[1] += w * p.vy[j];
+            u[2] += w * p.vz[j];
         }
         if r > 0.0 {
             // V (x_j − x) ⊗ ∇_x W(x − x_j) = −V W'(r)/r (d ⊗ d), d = x_j − x

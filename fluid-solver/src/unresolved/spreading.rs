@@ -10,10 +10,13 @@
 //! water. Where no fluid is near either point, nothing can take it: the reaction is not applied
 //! and is returned as `unapplied`, which the solver adds up and the participant reports as a
 //! warning with its impulse.
+//!
+//! The particles near a point come from the step's own cell list ([`CellGrid::for_each_near_point`]),
+//! so no second grid is built: see [`super`] for when that list is valid.
 
 use super::kernel::Wendland;
-use super::point_grid::PointGrid;
 use crate::kind::FLUID;
+use crate::neighbour_search::CellGrid;
 use crate::particles::Particles;
 use rayon::prelude::*;
 
@@ -32,18 +35,17 @@ pub struct Spread {
 }
 
 /// Spreads `reactions` (6 per reaction: point, force) over the fluid particles of spacing
-/// `spacing`; `sample_points` (3 per reaction, or empty) are the fall-back points.
-pub fn spread(p: &Particles, spacing: f64, reactions: &[f64], sample_points: &[f64]) -> Spread {
+/// `spacing`; `sample_points` (3 per reaction, or empty) are the fall-back points; `grid` is the
+/// cell list sorted for `p`.
+pub fn spread(
+    p: &Particles,
+    grid: &CellGrid,
+    spacing: f64,
+    reactions: &[f64],
+    sample_points: &[f64],
+) -> Spread {
     let kernel = Wendland::for_spacing(spacing);
-    let mut points: Vec<f64> = reactions
-        .chunks_exact(6)
-        .flat_map(|r| [r[0], r[1], r[2]])
-        .collect();
     let paired = sample_points.len() * 2 == reactions.len();
-    if paired {
-        points.extend_from_slice(sample_points);
-    }
-    let grid = PointGrid::build(p, |i| p.kind[i] == FLUID, |_| true, &points, kernel.radius);
     let shares: Vec<(Vec<(u32, f64)>, bool)> = reactions
         .par_chunks_exact(6)
         .enumerate()
@@ -52,10 +54,10 @@ pub fn spread(p: &Particles, spacing: f64, reactions: &[f64], sample_points: &[f
             if r[3..6].iter().all(|&f| f == 0.0) {
                 return (Vec::new(), false);
             }
-            let around = shares_around(&grid, &kernel, [r[0], r[1], r[2]]);
+            let around = shares_around(p, grid, &kernel, [r[0], r[1], r[2]]);
             if around.is_empty() && paired {
                 let s = &sample_points[3 * k..3 * k + 3];
-                (shares_around(&grid, &kernel, [s[0], s[1], s[2]]), true)
+                (shares_around(p, grid, &kernel, [s[0], s[1], s[2]]), true)
             } else {
                 (around, false)
             }
@@ -87,19 +89,16 @@ pub fn spread(p: &Particles, spacing: f64, reactions: &[f64], sample_points: &[f
 
 /// The normalised shares `V_k W_ik / Σ_j V_j W_ij` of the fluid particles around `x` (equal
 /// volumes cancel); empty when none is within the support.
-fn shares_around(grid: &PointGrid, kernel: &Wendland, x: [f64; 3]) -> Vec<(u32, f64)> {
+fn shares_around(p: &Particles, grid: &CellGrid, kernel: &Wendland, x: [f64; 3]) -> Vec<(u32, f64)> {
     let mut share = Vec::new();
     let mut sum = 0.0;
-    let radius2 = kernel.radius * kernel.radius;
-    grid.for_each_near(x, |e| {
-        let q = e.position;
-        let r2 = (q[0] - x[0]).powi(2) + (q[1] - x[1]).powi(2) + (q[2] - x[2]).powi(2);
-        if r2 >= radius2 {
+    grid.for_each_near_point(p, x, kernel.radius, |j, r2| {
+        if p.kind[j] != FLUID {
             return;
         }
         let w = kernel.value(r2.sqrt());
         if w > 0.0 {
-            share.push((e.index, w));
+            share.push((j as u32, w));
             sum += w;
         }
     });

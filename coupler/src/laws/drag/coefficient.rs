@@ -29,6 +29,13 @@ impl DragTable {
     }
 }
 
+/// S2-18's D, the width of a square section of side `side` projected across the flow at attack
+/// angle `alpha` [deg]: `side (cos α + sin α)` (√2 side corner-on). C_D tables are taken on it.
+pub fn projected_width(side: f64, alpha: f64) -> f64 {
+    let a = alpha.to_radians();
+    side * (a.cos() + a.sin())
+}
+
 /// Attack angle [deg] of the cross-flow `v_normal` (already normal to the member axis `axis`) on
 /// a square section with face normal `section_axis`: the angle between `v_normal` and the face
 /// normal projected across the member, folded into [0°, 45°] by the square's symmetry. Without

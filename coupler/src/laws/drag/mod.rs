@@ -23,7 +23,7 @@ pub mod sub_members;
 use super::reference::participant_index;
 use super::{sum_vectors, trapezoid_work, work_rounding, Instant, Law, LawEnergy};
 use crate::error::CouplerError;
-use coefficient::{attack_angle, DragTable};
+use coefficient::{attack_angle, projected_width, DragTable};
 use nalgebra::Vector3;
 use schemas::case::drag::DragLink;
 use schemas::case::Case;
@@ -31,8 +31,9 @@ use schemas::message::{Fields, Geometry, InterfaceDecl};
 use schemas::F64s;
 use sub_members::SubMember;
 
-/// A flow direction is taken from a sample only if its speed exceeds this [m/s] (a dry sample
-/// answers zero velocity; the direction stays what it was).
+/// A flow direction is taken from a wet sample (λ_min > 0) only if its speed relative to the
+/// member exceeds this [m/s]; at a dry sample the direction stays what it was (the member's own
+/// motion in air — its sway under gravity — is not a flow and must not turn the sample point).
 const DIRECTION_MIN_SPEED: f64 = 1e-9;
 
 /// The settings of one drag link, resolved against the case.
@@ -44,6 +45,8 @@ pub struct DragSettings {
     pub gravity: [f64; 3],
     /// Sub-member length d [m] (S2 §4(1)c).
     pub sub_member_length: f64,
+    /// Drag width D and buoyancy area D² of every member instead of its section's.
+    pub width: Option<f64>,
     pub initial_flow: Option<[f64; 3]>,
     pub section_axis: Option<[f64; 3]>,
     pub axial_drag: bool,
@@ -63,6 +66,7 @@ impl DragSettings {
             density: fluid.density,
             gravity: fluid.gravity,
             sub_member_length: link.sub_member_length.unwrap_or(fluid.spacing),
+            width: link.width,
             initial_flow: link.initial_flow,
             section_axis: link.section_axis,
             axial_drag: link.axial_drag,
@@ -140,6 +144,11 @@ impl Drag {
     /// direction starts again from the case's `initial_flow`.
     pub fn set_geometry(&mut self, geometry: &Geometry, positions: &[f64]) -> Result<(), String> {
         self.pieces = sub_members::cut(geometry, positions, self.settings.sub_member_length)?;
+        if let Some(w) = self.settings.width {
+            for s in &mut self.pieces {
+                (s.width, s.area) = (w, w * w);
+            }
+        }
         let initial = self.settings.initial_flow.map(|v| Vector3::from(v).normalize());
         self.directions = vec![initial; self.pieces.len()];
         Ok(())
@@ -180,10 +189,9 @@ impl Drag {
                     let v_rel = vec3(&fluid.sampled_velocity, 3 * i) - member_velocity;
                     let l = force::submerged_length(fluid.sampled_lambda_min[i], s.fraction * length);
                     let (across, along) = force::split(&v_rel, &axis);
-                    let cd = self
-                        .table
-                        .at(attack_angle(&across, &axis, self.section_axis.as_ref()));
-                    force += force::drag(cd, rho, &across, s.width, l);
+                    let alpha = attack_angle(&across, &axis, self.section_axis.as_ref());
+                    let cd = self.table.at(alpha);
+                    force += force::drag(cd, rho, &across, projected_width(s.width, alpha), l);
                     if self.settings.axial_drag {
                         force += force::drag(cd, rho, &along, s.width, l);
                     }
@@ -239,19 +247,25 @@ impl Law for Drag {
         }
     }
 
+    /// The structure's node arrays must hold the same nodes (3 and 6 values per node) and at
+    /// least the nodes declared so far: a fracture adds nodes within a window, and the law takes
+    /// them on when the structure re-declares its geometry at the window's end
+    /// ([`Law::geometry`]).
     fn check_outputs(&self, p: usize, outputs: &Fields) -> Result<(), String> {
         if p == self.structure {
-            let n = self.nodes;
-            for (name, len, per) in [
-                ("node_position", outputs.node_position.len(), 3),
-                ("node_velocity", outputs.node_velocity.len(), 6),
-            ] {
-                if len != per * n {
-                    return Err(format!(
-                        "{name} has {len} values; {n} declared frame nodes need {}",
-                        per * n
-                    ));
-                }
+            let (positions, velocities) = (outputs.node_position.len(), outputs.node_velocity.len());
+            let n = positions / 3;
+            if positions % 3 != 0 || velocities != 6 * n {
+                return Err(format!(
+                    "node_position has {positions} values and node_velocity {velocities}; 3 and 6 per frame node are needed"
+                ));
+            }
+            if n < self.nodes {
+                return Err(format!(
+                    "node_position has {positions} values; the {} declared frame nodes need {} (a frame may gain nodes by fracture, never lose them)",
+                    self.nodes,
+                    3 * self.nodes
+                ));
             }
         }
         if p == self.fluid && outputs.sampled_velocity.len() != 3 * outputs.sampled_lambda_min.len() {
@@ -341,9 +355,15 @@ impl Law for Drag {
         (values.iter().map(|v| v * v).sum::<f64>() / values.len() as f64).sqrt()
     }
 
+    /// A (re-)declared geometry: at the start, and at the end of a window in which a fracture
+    /// split an element (new node, new connectivity). The node count becomes that of the
+    /// structure's outputs, and the sub-members are cut again; the next window's first
+    /// evaluation still holds the fluid's samples at the old sample points, which no longer
+    /// match the new cut, so that one evaluation gives no force (one window without drag).
     fn geometry(&mut self, p: usize, geometry: &Geometry, outputs: &Fields) -> Result<(), String> {
         if p == self.structure {
             self.set_geometry(geometry, &outputs.node_position)?;
+            self.nodes = outputs.node_position.len() / 3;
         }
         Ok(())
     }
@@ -371,7 +391,7 @@ impl Law for Drag {
             let member = vec3(&s.node_velocity, 6 * a) * (0.5 * (1.0 - piece.xi))
                 + vec3(&s.node_velocity, 6 * b) * (0.5 * (1.0 + piece.xi));
             let v = vec3(&f.sampled_velocity, 3 * i) - member;
-            if v.norm() > DIRECTION_MIN_SPEED {
+            if f.sampled_lambda_min[i] > 0.0 && v.norm() > DIRECTION_MIN_SPEED {
                 *dir = Some(v.normalize());
             }
         }

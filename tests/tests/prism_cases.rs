@@ -1,0 +1,117 @@
+//! CI twins of `cases/prism-dam-break` and `cases/prism-washout` (issue 13, S2 §5–6): the same
+//! scenes at particle size 0.02 m instead of 0.005 m (the time steps scaled alike, as
+//! `cases/prism-dam-break/sweep.py --spacing 0.02` does), run through the real processes.
+
+use stack_tests::{coupler_run, csv_rows, out_dir, stderr, workspace};
+use std::path::{Path, PathBuf};
+
+/// `cases/NAME/FILE` at particle size 0.02 m (Δt 8e-4 s) ending at `end`, written into `dir`.
+fn coarse_case(name: &str, file: &str, dir: &Path, end: f64) -> PathBuf {
+    let source = workspace().join("cases").join(name).join(file);
+    let text =
+        std::fs::read_to_string(&source).unwrap_or_else(|e| panic!("cannot read {}: {e}", source.display()));
+    for key in ["spacing = 0.005", "2.0e-4", "end_time = 0.5"] {
+        assert!(text.contains(key), "{}: no `{key}` to scale", source.display());
+    }
+    let text = text
+        .replace("spacing = 0.005", "spacing = 0.02")
+        .replace("2.0e-4", "8.0e-4")
+        .replace("end_time = 0.5", &format!("end_time = {end}"));
+    let path = dir.join(file);
+    std::fs::write(&path, text).unwrap_or_else(|e| panic!("cannot write {}: {e}", path.display()));
+    path
+}
+
+/// Runs `case`; the ledger's rows and its column `name`.
+fn run(case: &Path, out: &Path) -> (Vec<Vec<f64>>, Vec<String>) {
+    let run = coupler_run(case, out);
+    assert!(
+        run.status.success(),
+        "{}: coupler failed:\n{}",
+        case.display(),
+        stderr(&run)
+    );
+    let ledger = out.join("ledger.csv");
+    let header = std::fs::read_to_string(&ledger)
+        .unwrap_or_default()
+        .lines()
+        .next()
+        .unwrap_or_default()
+        .split(',')
+        .map(str::to_string)
+        .collect();
+    (csv_rows(&ledger), header)
+}
+
+fn column(header: &[String], name: &str) -> usize {
+    header
+        .iter()
+        .position(|h| h == name)
+        .unwrap_or_else(|| panic!("no column {name} in {header:?}"))
+}
+
+/// ∫ F_x dt over the run [N s].
+fn impulse_x(rows: &[Vec<f64>], fx: usize) -> f64 {
+    rows.windows(2)
+        .map(|w| 0.5 * (w[0][fx] + w[1][fx]) * (w[1][1] - w[0][1]))
+        .sum()
+}
+
+/// S2 §5(1): the 0.05 m prism, unresolved (drag law) against resolved (body particles), to
+/// 0.3 s (the surge reaches the prism at about 0.15 s). The ledger balances to round-off (the
+/// ledger's own 1e-12), and the X impulse per unit width of the unresolved prism lies within
+/// [0.4, 1.6] of the resolved one. Why so loose: at Δs = 0.02 m the resolved prism is 2.5
+/// particles wide and the unresolved sample points sit 2.5 particles upstream, so neither is
+/// converged; measured 0.63 here (0.69 at Δs = 0.01 m, see the case's README). A factor off by more
+/// (a lost width factor, drag on the wrong side, no submersion) leaves the bound.
+#[test]
+fn the_unresolved_prism_takes_the_impulse_of_the_resolved_one_within_the_coarse_bound() {
+    let dir = out_dir("prism-dam-break-ci");
+    let unresolved = coarse_case("prism-dam-break", "case.toml", &dir, 0.3);
+    let resolved = coarse_case("prism-dam-break", "resolved.toml", &dir, 0.3);
+    let (rows, header) = run(&unresolved, &dir.join("unresolved"));
+    let (ref_rows, ref_header) = run(&resolved, &dir.join("resolved"));
+    let balance = column(&header, "balance");
+    let worst = rows.iter().map(|r| r[balance]).fold(0.0, f64::max);
+    assert!(worst <= 1e-12, "ledger balance {worst:e}");
+    let width = 0.05;
+    let j = impulse_x(&rows, column(&header, "prism_fx")) / width;
+    let j_ref = impulse_x(&ref_rows, column(&ref_header, "prism_fx")) / width;
+    eprintln!(
+        "impulse per unit width: unresolved {j:.4} N s/m, resolved {j_ref:.4} N s/m, ratio {:.3}",
+        j / j_ref
+    );
+    assert!(
+        j_ref > 1.0,
+        "the surge must load the resolved prism: {j_ref} N s/m"
+    );
+    assert!((0.4..=1.6).contains(&(j / j_ref)), "ratio {}", j / j_ref);
+}
+
+/// S2 §6: with the lowered yield stress the drag breaks the prism (at 0.239 s at Δs = 0.02 m)
+/// and the coupled run goes on through the fracture (the structure re-declares its geometry,
+/// the drag law cuts the new members) with the ledger balanced to round-off.
+#[test]
+fn the_washout_prism_fractures_and_the_coupled_run_goes_on() {
+    let dir = out_dir("prism-washout-ci");
+    let case = coarse_case("prism-washout", "case.toml", &dir, 0.26);
+    let out = dir.join("out");
+    let (rows, header) = run(&case, &out);
+    let balance = column(&header, "balance");
+    let worst = rows.iter().map(|r| r[balance]).fold(0.0, f64::max);
+    assert!(worst <= 1e-12, "ledger balance {worst:e}");
+    let events = std::fs::read_to_string(out.join("prism").join("hinge-events.csv")).unwrap_or_default();
+    let fractures: Vec<&str> = events.lines().filter(|l| l.contains(",fracture,")).collect();
+    eprintln!("{} fractures, first: {:?}", fractures.len(), fractures.first());
+    assert!(!fractures.is_empty(), "no fracture:\n{events}");
+    let first: f64 = fractures[0]
+        .split(',')
+        .next()
+        .and_then(|t| t.parse().ok())
+        .unwrap_or(f64::NAN);
+    let last_window = rows.last().map_or(0.0, |r| r[1]);
+    assert!(
+        last_window > first,
+        "the run must go on after the fracture at {first} s (ended at {last_window} s)"
+    );
+}
