@@ -146,8 +146,8 @@ impl CouplingConfig {
     }
 
     /// `checkpoint_interval` must be a whole number of windows, and every participant must be able
-    /// to write its state (frames and the drag law cannot yet).
-    fn check_checkpoints(&self, case: &Case, interval: f64) -> Result<(), FieldError> {
+    /// to write its state (the drag law cannot yet).
+    fn check_checkpoints(&self, interval: f64) -> Result<(), FieldError> {
         const KEY: &str = "coupling.checkpoint_interval";
         check::positive(KEY, interval)?;
         let windows = interval / self.window;
@@ -159,14 +159,6 @@ impl CouplingConfig {
                     "{interval} s is not a whole number of coupling windows ({} s); use {} s ({whole} windows)",
                     self.window,
                     whole * self.window
-                ),
-            ));
-        }
-        if let Some((name, _)) = case.structure.iter().find(|(_, s)| s.frame.is_some()) {
-            return Err(FieldError::new(
-                KEY,
-                format!(
-                    "structure `{name}` has a frame, and frames cannot write checkpoints yet; remove {KEY}"
                 ),
             ));
         }
@@ -205,7 +197,7 @@ impl CouplingConfig {
         check::positive("coupling.balance_tolerance", self.balance_tolerance)?;
         check::positive("coupling.timeout", self.timeout)?;
         if let Some(interval) = self.checkpoint_interval {
-            self.check_checkpoints(case, interval)?;
+            self.check_checkpoints(interval)?;
         }
         let names = case.participants();
         for (i, name) in self.order.iter().enumerate() {
