@@ -38,6 +38,8 @@ pub struct CouplerState {
     pub windows: u64,
     pub iterations: u64,
     pub max_iterations: u32,
+    /// What each interface law keeps across windows ([`crate::laws::Law::save`]).
+    pub laws: Vec<Vec<u8>>,
 }
 
 /// A complete checkpoint: written after every participant's file.

@@ -102,6 +102,9 @@ impl Windows<'_> {
             }
             self.stack.sessions[p].geometry = g;
         }
+        self.interface
+            .restore_laws(&state.laws)
+            .map_err(|e| CouplerError::Usage(format!("--resume: {e}")))?;
         let mut accelerator = acceleration::from_config(self.config);
         accelerator
             .restore(&state.accelerator)
@@ -221,6 +224,7 @@ impl Windows<'_> {
                 windows: summary.windows,
                 iterations: summary.iterations,
                 max_iterations: summary.max_iterations,
+                laws: self.interface.save_laws(),
             },
             files: checkpoint::output_files(&out)?,
         };

@@ -30,7 +30,9 @@ impl FrameTables {
     pub fn create(dir: &Path, section_forces: bool, energy: bool) -> io::Result<Self> {
         let open = |name: &str, header: &str| -> io::Result<BufWriter<File>> {
             let mut w = BufWriter::new(File::create(dir.join(name))?);
+            // on disk at once: a run that ends (or is checkpointed) before the first row has it
             writeln!(w, "{header}")?;
+            w.flush()?;
             Ok(w)
         };
         Ok(Self {

@@ -145,8 +145,7 @@ impl CouplingConfig {
             .map(|i| (i / self.window).round().max(1.0) as u64)
     }
 
-    /// `checkpoint_interval` must be a whole number of windows, and every participant must be able
-    /// to write its state (the drag law cannot yet).
+    /// `checkpoint_interval` must be a whole number of windows.
     fn check_checkpoints(&self, interval: f64) -> Result<(), FieldError> {
         const KEY: &str = "coupling.checkpoint_interval";
         check::positive(KEY, interval)?;
@@ -160,12 +159,6 @@ impl CouplingConfig {
                     self.window,
                     whole * self.window
                 ),
-            ));
-        }
-        if !self.drag.is_empty() {
-            return Err(FieldError::new(
-                KEY,
-                format!("the drag coupling cannot write checkpoints yet; remove {KEY}"),
             ));
         }
         Ok(())
