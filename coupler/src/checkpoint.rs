@@ -40,6 +40,8 @@ pub struct CouplerState {
     pub max_iterations: u32,
     /// The coupling-instability detector's account ([`crate::stability::Detector::save`]).
     pub detector: Vec<u8>,
+    /// What each interface law keeps across windows ([`crate::laws::Law::save`]).
+    pub laws: Vec<Vec<u8>>,
 }
 
 /// A complete checkpoint: written after every participant's file.

@@ -40,6 +40,26 @@ impl Interface {
         })
     }
 
+    /// What each law keeps across windows ([`Law::save`]), for a checkpoint.
+    pub fn save_laws(&self) -> Vec<Vec<u8>> {
+        self.laws.iter().map(|l| l.save()).collect()
+    }
+
+    /// Puts back what [`Interface::save_laws`] gave.
+    pub fn restore_laws(&mut self, saved: &[Vec<u8>]) -> Result<(), String> {
+        if saved.len() != self.laws.len() {
+            return Err(format!(
+                "the checkpoint holds the state of {} interface laws, the case has {}",
+                saved.len(),
+                self.laws.len()
+            ));
+        }
+        self.laws
+            .iter_mut()
+            .zip(saved)
+            .try_for_each(|(law, s)| law.restore(s))
+    }
+
     /// Inputs of participant `p` at one instant. Two-sided laws read `start`, the outputs as
     /// they stood when the sweep began, so both ends get the same `±f`; one-way transfers read
     /// `current`, which holds the fresh outputs of the participants already advanced in this sweep.

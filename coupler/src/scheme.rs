@@ -105,6 +105,9 @@ impl Windows<'_> {
             }
             self.stack.sessions[p].geometry = g;
         }
+        self.interface
+            .restore_laws(&state.laws)
+            .map_err(|e| CouplerError::Usage(format!("--resume: {e}")))?;
         let mut accelerator = acceleration::from_config(self.config);
         accelerator
             .restore(&state.accelerator)
@@ -231,6 +234,7 @@ impl Windows<'_> {
                 iterations: summary.iterations,
                 max_iterations: summary.max_iterations,
                 detector: self.detector.save(),
+                laws: self.interface.save_laws(),
             },
             files: checkpoint::output_files(&out)?,
         };

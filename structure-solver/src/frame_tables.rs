@@ -30,7 +30,9 @@ impl FrameTables {
     pub fn create(dir: &Path, section_forces: bool, energy: bool) -> io::Result<Self> {
         let open = |name: &str, header: &str| -> io::Result<BufWriter<File>> {
             let mut w = BufWriter::new(File::create(dir.join(name))?);
+            // on disk at once: a run that ends (or is checkpointed) before the first row has it
             writeln!(w, "{header}")?;
+            w.flush()?;
             Ok(w)
         };
         Ok(Self {
@@ -51,6 +53,25 @@ impl FrameTables {
                 .transpose()?,
             events_written: 0,
         })
+    }
+
+    /// Continues the tables of a resumed run in `dir` (cut back to their length at the checkpoint),
+    /// `events_written` hinge events being in `hinge-events.csv` already.
+    pub fn append(dir: &Path, section_forces: bool, energy: bool, events_written: usize) -> io::Result<Self> {
+        let open = |name: &str| -> io::Result<BufWriter<File>> {
+            Ok(BufWriter::new(schemas::checkpoint::append(&dir.join(name))?))
+        };
+        Ok(Self {
+            section_forces: section_forces.then(|| open("section-forces.csv")).transpose()?,
+            hinge_events: open("hinge-events.csv")?,
+            energy: energy.then(|| open("energy.csv")).transpose()?,
+            events_written,
+        })
+    }
+
+    /// Hinge events written so far.
+    pub fn events_written(&self) -> usize {
+        self.events_written
     }
 
     /// Writes the section forces of `frame` at time `t` (a history row) and its new hinge events.

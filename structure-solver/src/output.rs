@@ -15,6 +15,19 @@ use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
+/// Where each output of a structure participant stands at a checkpoint.
+#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
+pub struct OutputState {
+    /// Hinge events written to `hinge-events.csv`.
+    events_written: usize,
+    /// Time and file of each frame snapshot listed in `frame.pvd`.
+    vtu_frames: Vec<(f64, String)>,
+    /// The next time a snapshot is due (with `vtu_interval`).
+    vtu_due: f64,
+    /// Which supports' releases `releases.csv` has.
+    releases_written: Vec<bool>,
+}
+
 /// The output folder of one structure participant.
 pub struct Output {
     dir: PathBuf,
@@ -68,43 +81,68 @@ impl Output {
         })
     }
 
-    /// Continues the output of a resumed run in `dir`: the histories are appended to. Structures
-    /// with a frame do not resume (see [`crate::structure::Structure`]), so there are no frame
-    /// tables or VTU series to continue.
-    pub fn resume(dir: &Path, cfg: &StructureConfig, s: &Structure) -> Result<Self, String> {
+    /// Where each output stands, for a checkpoint: what [`Output::resume`] continues from.
+    pub fn state(&self) -> OutputState {
+        OutputState {
+            events_written: self.tables.as_ref().map_or(0, FrameTables::events_written),
+            vtu_frames: self.vtu.as_ref().map(|v| v.frames().to_vec()).unwrap_or_default(),
+            vtu_due: self.vtu_due,
+            releases_written: self.releases.as_ref().map(|(_, w)| w.clone()).unwrap_or_default(),
+        }
+    }
+
+    /// Continues the output of a resumed run in `dir` from `state` (the coupler has cut every file
+    /// back to its length at the checkpoint): the histories, the frame tables and `releases.csv`
+    /// are appended to, and the frame's `.pvd` is rewritten to list the snapshots written before
+    /// the checkpoint.
+    pub fn resume(
+        dir: &Path,
+        cfg: &StructureConfig,
+        s: &Structure,
+        state: &OutputState,
+    ) -> Result<Self, String> {
         let history = cfg
             .history
             .as_ref()
             .map(|h| HistoryWriter::append(dir, h, s))
             .transpose()?;
+        let h = cfg.history.as_ref();
+        let tables = s
+            .frame()
+            .map(|f| {
+                FrameTables::append(
+                    dir,
+                    h.is_some_and(|h| h.section_forces),
+                    f.energy().is_some(),
+                    state.events_written,
+                )
+            })
+            .transpose()
+            .map_err(|e| format!("cannot continue the frame tables in {}: {e}", dir.display()))?;
+        let vtu = s
+            .frame()
+            .filter(|_| h.is_none_or(|h| h.vtu))
+            .map(|_| VtuSeries::resumed(dir, state.vtu_frames.clone()))
+            .transpose()
+            .map_err(|e| format!("cannot continue the frame series in {}: {e}", dir.display()))?;
         let releases = (!s.supports().is_empty())
-            .then(|| Self::append_releases(dir, s))
+            .then(|| -> std::io::Result<_> {
+                let w = BufWriter::new(schemas::checkpoint::append(&dir.join("releases.csv"))?);
+                let mut written = state.releases_written.clone();
+                written.resize(s.supports().len(), false);
+                Ok((w, written))
+            })
             .transpose()
             .map_err(|e| format!("cannot continue {}: {e}", dir.join("releases.csv").display()))?;
         Ok(Self {
             dir: dir.to_path_buf(),
             history,
-            tables: None,
+            tables,
             releases,
-            vtu: None,
-            vtu_interval: None,
-            vtu_due: 0.0,
+            vtu,
+            vtu_interval: h.and_then(|h| h.vtu_interval),
+            vtu_due: state.vtu_due,
         })
-    }
-
-    /// Opens `releases.csv` (already cut back to the checkpoint) for appending; the bodies it
-    /// already names count as written.
-    fn append_releases(dir: &Path, s: &Structure) -> std::io::Result<(BufWriter<File>, Vec<bool>)> {
-        let path = dir.join("releases.csv");
-        let text = std::fs::read_to_string(&path)?;
-        let named: Vec<&str> = text.lines().skip(1).filter_map(|l| l.split(',').next()).collect();
-        let written = s
-            .supports()
-            .iter()
-            .map(|support| named.contains(&s.bodies()[support.body].name.as_str()))
-            .collect();
-        let file = std::fs::OpenOptions::new().append(true).open(&path)?;
-        Ok((BufWriter::new(file), written))
     }
 
     pub fn dir(&self) -> &Path {

@@ -27,10 +27,8 @@ use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use schemas::case::structure::{StructureConfig, GROUND};
 use schemas::case::FieldError;
 
-/// The state of one structure participant; `Clone` is its checkpoint.
-///
-/// A checkpoint file holds it without its frame (`frame` is skipped): frames are not written to
-/// checkpoint files yet, and a structure with a frame refuses to write one.
+/// The state of one structure participant; `Clone` is its checkpoint, and so is its serde form
+/// (a frame's without its caches: see [`Structure::drop_caches`]).
 #[derive(Clone, serde::Serialize, serde::Deserialize)]
 pub struct Structure {
     time: f64,
@@ -40,7 +38,6 @@ pub struct Structure {
     springs: Vec<Spring>,
     bodies: Vec<RigidBody>,
     supports: Vec<Support>,
-    #[serde(skip)]
     frame: Option<Frame>,
     /// Frame nodes before any fracture: loads may leave out the nodes made since (see
     /// [`Structure::advance`]).
@@ -170,6 +167,15 @@ impl Structure {
 
     pub fn body_index(&self, name: &str) -> Option<usize> {
         self.bodies.iter().position(|b| b.name == name)
+    }
+
+    /// Drops what the frame caches to go faster (its factorisation), as a checkpoint file holds it
+    /// without: the structure is then exactly the one read back from it (`frame/checkpoint.rs`).
+    pub fn drop_caches(&mut self) -> Result<(), String> {
+        match &mut self.frame {
+            Some(f) => f.drop_caches(),
+            None => Ok(()),
+        }
     }
 
     /// The ASI-Gauss frame, if the participant has one.

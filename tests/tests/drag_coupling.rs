@@ -9,87 +9,8 @@
 //! - (explicit, constant predictor: the reaction is constant over each one-step window) have
 //!   the fluid take exactly the impulse the coupler gave, Σ_w F_w Δt_w, to 1e-9 relative.
 
-use stack_tests::{coupler_run, csv_rows, out_dir, stderr};
+use stack_tests::{coupler_run, csv_rows, out_dir, stderr, DRAG_COLUMN_CASE as CASE};
 use std::path::Path;
-
-/// Tank 0.4 × 0.1 × 0.3 m, Δs = 0.01 m, a water column 0.1 × 0.1 × 0.1 m behind a board at
-/// x = 0.1; the column at x = 0.25 from the floor to z = 0.15. Δt = 5e-4 s (c Δt/Δs = 0.6 with
-/// c = 12.1 m/s), one fluid step per window, 0.2 s: the surge (≈ 1.5 m/s) passes the column at
-/// about 0.1 s.
-const CASE: &str = r#"
-[case]
-name = "drag-column"
-description = "Issue 13: a thin fixed column in a small dam break, unresolved drag coupling."
-end_time = 0.2
-
-[fluid.water]
-spacing = 0.01
-time_step = 5.0e-4
-viscosity_term = false
-sound_speed = 12.1
-output_interval = 0.1
-tank = { min = [0.0, 0.0, 0.0], max = [0.4, 0.1, 0.3], lid = true }
-
-[[fluid.water.block]]
-min = [0.0, 0.0, 0.0]
-max = [0.1, 0.1, 0.1]
-
-[[fluid.water.gate]]
-min = [0.1, 0.0, 0.0]
-max = [0.13, 0.1, 0.1]
-
-[structure.column]
-max_step = 5.0e-4
-
-[structure.column.frame]
-time_step = 5.0e-4
-gravity = [0.0, 0.0, -9.8]
-
-[structure.column.frame.material]
-young_modulus = 2.0e11
-poisson = 0.3
-density = 7850.0
-yield_stress = 2.35e8
-
-[[structure.column.frame.section]]
-name = "bar"
-kind = "rectangle"
-width = 0.002
-depth = 0.002
-
-[[structure.column.frame.node]]
-id = 1
-position = [0.25, 0.05, 0.0]
-
-[[structure.column.frame.node]]
-id = 2
-position = [0.25, 0.05, 0.15]
-
-[[structure.column.frame.member]]
-nodes = [1, 2]
-section = "bar"
-orientation = [1.0, 0.0, 0.0]
-
-[[structure.column.frame.support]]
-node = 1
-fixed = ["x", "y", "z", "rx", "ry", "rz"]
-
-[[structure.column.frame.support]]
-node = 2
-fixed = ["x", "y", "z", "rx", "ry", "rz"]
-
-[coupling]
-window = 5.0e-4
-scheme = "SCHEME"
-order = ["water", "column"]
-predictor = "constant"
-TOLERANCE
-
-[[coupling.drag]]
-fluid = "water"
-structure = "column"
-initial_flow = [1.0, 0.0, 0.0]
-"#;
 
 /// Mass of the water: 10 × 10 × 10 particles of 1000 × 0.01³ kg.
 const MASS: f64 = 1.0;

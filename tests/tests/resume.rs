@@ -1,14 +1,15 @@
 //! Issue 16 item 10: checkpoint and resume through the real processes. Each case runs once
 //! uninterrupted, and once killed (SIGKILL to the coupler and both participants, at a random moment
 //! after the first checkpoint) and resumed with `coupler run CASE --resume OUT`; every output file of
-//! the two runs must then be equal byte for byte. Excluded, because they hold wall-clock time or
+//! the two runs must then be equal byte for byte. The fracturing frame is also resumed from each of
+//! its two checkpoints, one before and one after the fracture. Excluded, because they hold wall-clock time or
 //! the run's identity: the logs (`NAME.log`, appended to by the resumed run), the checkpoint folder,
 //! and in `recording.rec` each frame's wall time, the run id (header, `Welcome`) and the pid in each `Hello`
 //! (the recording is compared frame by frame on everything else).
 
 use schemas::message::{FromParticipant, ToParticipant};
 use schemas::recording::{Message, Recording};
-use stack_tests::{binary, case_from, coupler, coupler_run, out_dir, stderr};
+use stack_tests::{binary, case_from, coupler, coupler_run, csv_rows, out_dir, stderr, DRAG_COLUMN_CASE};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -192,6 +193,22 @@ fn assert_same_outputs(a: &Path, b: &Path) {
     );
 }
 
+/// Runs `coupler run CASE --resume OUT` to its end; returns its stderr (it says which checkpoint
+/// it resumed from).
+fn resume(case: &Path, out: &Path) -> String {
+    let again = coupler(&[
+        "run",
+        case.to_str().unwrap_or_default(),
+        "--resume",
+        out.to_str().unwrap_or_default(),
+    ]);
+    let err = stderr(&again);
+    println!("{err}");
+    assert!(again.status.success(), "the resumed run failed:\n{err}");
+    assert!(err.contains("resuming from the checkpoint of window"), "{err}");
+    err
+}
+
 /// Runs `case` uninterrupted into `dir/whole`, then killed and resumed into `dir/resumed`, and
 /// compares the two.
 fn killed_and_resumed_equals_uninterrupted(dir: &Path, case: &Path) {
@@ -200,16 +217,7 @@ fn killed_and_resumed_equals_uninterrupted(dir: &Path, case: &Path) {
     assert!(run.status.success(), "{}", stderr(&run));
     let resumed = dir.join("resumed");
     let killed = run_and_kill(case, &resumed, &dir.join("killed.txt"));
-    let again = coupler(&[
-        "run",
-        case.to_str().unwrap_or_default(),
-        "--resume",
-        resumed.to_str().unwrap_or_default(),
-    ]);
-    let err = stderr(&again);
-    println!("{err}");
-    assert!(again.status.success(), "the resumed run failed:\n{err}");
-    assert!(err.contains("resuming from the checkpoint of window"), "{err}");
+    resume(case, &resumed);
     assert_same_outputs(&whole, &resumed);
     if !killed {
         println!("the run ended before the kill: the resumed run continued from its last checkpoint");
@@ -333,69 +341,228 @@ fn a_checkpoint_interval_that_is_not_a_whole_number_of_windows_is_refused_by_che
     );
 }
 
-#[test]
-fn checkpoints_of_a_case_with_a_frame_are_refused_by_check_until_frames_can_write_them() {
-    let dir = out_dir("resume-frame");
-    let case = dir.join("case.toml");
-    let text = r#"
+/// A fracturing frame in a coupled run: the two-part cantilever of
+/// `structure-solver/tests/frame_fracture.rs` (a strong member from the clamped base to x = 1 m, a
+/// weak one to the tip, critical curvature 0.2 1/m, a tip load in −z ramped to 12 kN over 0.06 s),
+/// in a participant that also holds a point mass joined by a coupling spring to a point mass of a
+/// second participant. Standalone, its weak member hinges at t = 0.0349 s and fractures at
+/// 0.0618 s (one new node). Checkpoints at 0.04 s (a hinge, before the fracture) and 0.08 s (after
+/// it); the run ends at 0.1 s, so both stay in the folder (two are kept). Histories of both frame
+/// nodes, section forces, hinge events, the energy account and snapshots every 0.02 s.
+const FRACTURING_FRAME: &str = r#"
 [case]
-name = "frame-in-tank"
-end_time = 0.01
+name = "fracturing-frame"
+end_time = 0.1
 
-[fluid.water]
-spacing = 0.02
-time_step = 5.0e-4
-output_interval = 0.01
-tank = { min = [0.0, 0.0, 0.0], max = [0.2, 0.1, 0.2], lid = true }
+[structure.cantilever]
+max_step = 1.0e-3
 
-[[fluid.water.block]]
-min = [0.0, 0.0, 0.0]
-max = [0.1, 0.1, 0.1]
+[[structure.cantilever.point_mass]]
+name = "m1"
+mass = 1.0
+position = [0.0, 1.0, 0.0]
+displacement = [0.01, 0.0, 0.0]
 
-[structure.column.frame]
-time_step = 5.0e-4
-gravity = [0.0, 0.0, -9.8]
+[[structure.cantilever.spring]]
+a = "m1"
+b = "ground"
+stiffness = 400.0
 
-[structure.column.frame.material]
-young_modulus = 2.0e11
+[structure.cantilever.frame]
+time_step = 1e-4
+gravity = [0.0, 0.0, 0.0]
+
+[structure.cantilever.frame.material]
+young_modulus = 200e9
 poisson = 0.3
 density = 7850.0
-yield_stress = 2.35e8
+yield_stress = 235e6
+fracture_curvature = [0.2, 0.2]
 
-[[structure.column.frame.section]]
-name = "bar"
+[[structure.cantilever.frame.section]]
+name = "strong"
 kind = "rectangle"
-width = 0.002
-depth = 0.002
+width = 0.1
+depth = 0.1
 
-[[structure.column.frame.node]]
+[[structure.cantilever.frame.section]]
+name = "weak"
+kind = "rectangle"
+width = 0.05
+depth = 0.05
+
+[[structure.cantilever.frame.node]]
 id = 1
-position = [0.15, 0.05, 0.0]
+position = [0.0, 0.0, 0.0]
 
-[[structure.column.frame.node]]
+[[structure.cantilever.frame.node]]
 id = 2
-position = [0.15, 0.05, 0.15]
+position = [1.0, 0.0, 0.0]
 
-[[structure.column.frame.member]]
+[[structure.cantilever.frame.node]]
+id = 3
+position = [2.0, 0.0, 0.0]
+
+[[structure.cantilever.frame.member]]
 nodes = [1, 2]
-section = "bar"
-orientation = [1.0, 0.0, 0.0]
+section = "strong"
+orientation = [0.0, 1.0, 0.0]
 
-[[structure.column.frame.support]]
+[[structure.cantilever.frame.member]]
+nodes = [2, 3]
+section = "weak"
+orientation = [0.0, 1.0, 0.0]
+
+[[structure.cantilever.frame.support]]
 node = 1
 fixed = ["x", "y", "z", "rx", "ry", "rz"]
+
+[[structure.cantilever.load]]
+node = 3
+value = [0.0, 0.0, -12000.0, 0.0, 0.0, 0.0]
+history = "ramp"
+start = 0.0
+end = 0.06
+
+[structure.cantilever.history]
+interval = 0.01
+points = ["m1"]
+nodes = [2, 3]
+vtu_interval = 0.02
+
+[structure.mass]
+max_step = 1.0e-3
+
+[[structure.mass.point_mass]]
+name = "m2"
+mass = 1.0
+position = [1.0, 1.0, 0.0]
+
+[[structure.mass.spring]]
+a = "m2"
+b = "ground"
+stiffness = 400.0
+
+[structure.mass.history]
+interval = 0.01
+points = ["m2"]
 
 [coupling]
 window = 5.0e-4
 scheme = "explicit"
-checkpoint_interval = 5.0e-3
+order = ["cantilever", "mass"]
+checkpoint_interval = 0.04
+
+[[coupling.spring]]
+a = "cantilever/m1"
+b = "mass/m2"
+stiffness = 100.0
 "#;
-    std::fs::write(&case, text).unwrap_or_else(|e| panic!("{e}"));
+
+/// Copies the files of folder `from` into a new folder `to`.
+fn copy_folder(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap_or_else(|e| panic!("{e}"));
+    for e in std::fs::read_dir(from)
+        .into_iter()
+        .flatten()
+        .filter_map(Result::ok)
+    {
+        let target = to.join(e.file_name());
+        if e.path().is_dir() {
+            copy_folder(&e.path(), &target);
+        } else {
+            std::fs::copy(e.path(), &target).unwrap_or_else(|err| panic!("{err}"));
+        }
+    }
+}
+
+/// The checkpoint manifests in `out`, oldest first.
+fn manifests(out: &Path) -> Vec<PathBuf> {
+    let mut found: Vec<PathBuf> = std::fs::read_dir(out.join("checkpoint"))
+        .into_iter()
+        .flatten()
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .filter(|p| {
+            p.file_name()
+                .and_then(|n| n.to_str())
+                .is_some_and(|n| n.starts_with("coupler-") && n.ends_with(".bin"))
+        })
+        .collect();
+    found.sort();
+    found
+}
+
+#[test]
+fn a_fracturing_frame_killed_and_resumed_writes_the_same_outputs() {
+    let dir = out_dir("resume-frame");
+    let case = dir.join("case.toml");
+    std::fs::write(&case, FRACTURING_FRAME).unwrap_or_else(|e| panic!("{e}"));
     let check = coupler(&["check", case.to_str().unwrap_or_default()]);
-    let err = stderr(&check);
-    assert_eq!(check.status.code(), Some(2), "{err}");
+    assert!(check.status.success(), "{}", stderr(&check));
+    // killed at a random moment after the first checkpoint, resumed from the last one
+    killed_and_resumed_equals_uninterrupted(&dir, &case);
+    let whole = dir.join("whole");
+    let events = std::fs::read_to_string(whole.join("cantilever/hinge-events.csv")).unwrap_or_default();
+    let fracture_time: f64 = events
+        .lines()
+        .find(|l| l.contains(",fracture,"))
+        .and_then(|l| l.split(',').next())
+        .and_then(|t| t.parse().ok())
+        .unwrap_or_else(|| panic!("the weak member fractured: {events}"));
     assert!(
-        err.contains("coupling.checkpoint_interval") && err.contains("has a frame"),
-        "{err}"
+        fracture_time > 0.04 && fracture_time < 0.08,
+        "the fracture at {fracture_time} s is between the checkpoints"
     );
+    let last = std::fs::read_to_string(whole.join("cantilever/frame-00005.vtu")).unwrap_or_default();
+    assert!(
+        last.contains("NumberOfPoints=\"6\" NumberOfCells=\"4\""),
+        "the last snapshot has the node made by the fracture"
+    );
+    // the uninterrupted run kept both checkpoints: resume from each of them
+    let kept = manifests(&whole);
+    assert_eq!(kept.len(), 2, "checkpoints at 0.04 and 0.08 s: {kept:?}");
+    // from 0.08 s: the fractured topology (6 nodes, the split element) is read back
+    let after = dir.join("from-after-the-fracture");
+    copy_folder(&whole, &after);
+    let err = resume(&case, &after);
+    assert!(err.contains("t = 0.08"), "{err}");
+    assert_same_outputs(&whole, &after);
+    // from 0.04 s (the later manifest gone, as when a run dies while writing it): a hinge is read
+    // back and the fracture happens again in the resumed run
+    let before = dir.join("from-before-the-fracture");
+    copy_folder(&whole, &before);
+    std::fs::remove_file(manifests(&before)[1].as_path()).unwrap_or_else(|e| panic!("{e}"));
+    let err = resume(&case, &before);
+    assert!(err.contains("t = 0.04"), "{err}");
+    assert_same_outputs(&whole, &before);
+}
+
+#[test]
+fn the_drag_column_resumed_after_the_surge_writes_the_same_outputs() {
+    let dir = out_dir("resume-drag");
+    let case = dir.join("case.toml");
+    // checkpoints at 0.06, 0.12 and 0.18 s; the surge reaches the column at 0.152 s. The run
+    // whole, then resumed from its last checkpoint, when the law has taken its sub-members' flow
+    // directions from the surge (a random kill is left to the other cases: this one takes 3 s a run)
+    let text = DRAG_COLUMN_CASE
+        .replace("SCHEME", "explicit")
+        .replace("TOLERANCE", "checkpoint_interval = 0.06");
+    std::fs::write(&case, text).unwrap_or_else(|e| panic!("{e}"));
+    let whole = dir.join("whole");
+    let run = coupler_run(&case, &whole);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let last = dir.join("from-the-last-checkpoint");
+    copy_folder(&whole, &last);
+    let err = resume(&case, &last);
+    assert!(err.contains("t = 0.18"), "{err}");
+    assert_same_outputs(&whole, &last);
+    let ledger = csv_rows(&whole.join("ledger.csv"));
+    // window,time,iterations,residual,water_fx,…,column_fx (8): drag before the last checkpoint
+    let first = ledger
+        .iter()
+        .find(|r| r[8] != 0.0)
+        .map_or(f64::INFINITY, |r| r[1]);
+    println!("the column first took drag at t = {first} s");
+    assert!(first < 0.18, "the column took no drag before the last checkpoint");
 }

@@ -11,7 +11,8 @@
 //!
 //! State across windows: a law changes only in [`Law::geometry`] and [`Law::accept`], which the
 //! scheme calls once a window is accepted; the iterations of an implicit window use `&self`
-//! only, so a checkpoint/restore of the participants never meets a law that moved on.
+//! only, so a checkpoint/restore of the participants never meets a law that moved on. What a law
+//! keeps goes into the coupler's checkpoint manifest ([`Law::save`], [`Law::restore`]).
 
 pub mod body;
 pub mod drag;
@@ -72,6 +73,17 @@ pub trait Law: Send {
     /// The window was accepted with these outputs (`outputs[p][j]`, j over the window's samples):
     /// the law updates what it keeps across windows.
     fn accept(&mut self, _outputs: &[Vec<Fields>]) {}
+
+    /// What this law keeps across windows, for a checkpoint (empty for a law that keeps nothing
+    /// beyond its binding).
+    fn save(&self) -> Vec<u8> {
+        Vec::new()
+    }
+
+    /// Puts back what [`Law::save`] gave, after the geometry of the checkpoint was declared again.
+    fn restore(&mut self, _saved: &[u8]) -> Result<(), String> {
+        Ok(())
+    }
 }
 
 /// What a law knows of the energy at the interface over one window.

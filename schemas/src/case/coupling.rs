@@ -153,9 +153,8 @@ impl CouplingConfig {
             .map(|i| (i / self.window).round().max(1.0) as u64)
     }
 
-    /// `checkpoint_interval` must be a whole number of windows, and every participant must be able
-    /// to write its state (frames and the drag law cannot yet).
-    fn check_checkpoints(&self, case: &Case, interval: f64) -> Result<(), FieldError> {
+    /// `checkpoint_interval` must be a whole number of windows.
+    fn check_checkpoints(&self, interval: f64) -> Result<(), FieldError> {
         const KEY: &str = "coupling.checkpoint_interval";
         check::positive(KEY, interval)?;
         let windows = interval / self.window;
@@ -168,20 +167,6 @@ impl CouplingConfig {
                     self.window,
                     whole * self.window
                 ),
-            ));
-        }
-        if let Some((name, _)) = case.structure.iter().find(|(_, s)| s.frame.is_some()) {
-            return Err(FieldError::new(
-                KEY,
-                format!(
-                    "structure `{name}` has a frame, and frames cannot write checkpoints yet; remove {KEY}"
-                ),
-            ));
-        }
-        if !self.drag.is_empty() {
-            return Err(FieldError::new(
-                KEY,
-                format!("the drag coupling cannot write checkpoints yet; remove {KEY}"),
             ));
         }
         Ok(())
@@ -222,7 +207,7 @@ impl CouplingConfig {
         }
         check::positive("coupling.timeout", self.timeout)?;
         if let Some(interval) = self.checkpoint_interval {
-            self.check_checkpoints(case, interval)?;
+            self.check_checkpoints(interval)?;
         }
         let names = case.participants();
         for (i, name) in self.order.iter().enumerate() {

@@ -11,7 +11,7 @@ use schemas::case::frame::{ContactConfig, WallConfig};
 use std::collections::HashMap;
 
 /// Contact parameters and walls of a frame.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct Contact {
     stiffness: f64,
     damping_ratio: f64,

@@ -156,7 +156,7 @@ pub fn move_integration_point(length: f64, s: f64, s_new: f64, sigma: &mut Resul
 }
 
 /// Current co-rotational frame of an element and its natural deformations.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, serde::Serialize, serde::Deserialize)]
 pub struct Corotated {
     /// Columns: local x (the chord), y, z in global axes.
     pub frame: Matrix3<f64>,

@@ -47,7 +47,7 @@ use super::Frame;
 use nalgebra::{Matrix3, Vector3};
 
 /// Running sums of the energy account.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub(super) struct EnergyAccount {
     /// f_n: the loads with the weights at the end of the last step, 6 per node (`None`: the
     /// balancing load, worked out at the first step).

@@ -8,7 +8,7 @@ use super::Frame;
 use schemas::case::frame::MaterialConfig;
 
 /// Critical strains of S2-17; a term whose critical value is not given is left out.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, serde::Serialize, serde::Deserialize)]
 pub struct FractureCriterion {
     /// `[axial ε, γy, γz, twist (never checked), κy, κz]`; infinity where not checked.
     critical: Resultants,

@@ -6,7 +6,7 @@ use super::element::{moments_at, move_integration_point, strains, ELEMENT_DOFS};
 use super::section::{Resultants, Section, YIELDING};
 
 /// The end of an element where a hinge sits.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum End {
     /// ξ = −1, the element's first node.
     Start,
@@ -39,7 +39,7 @@ impl End {
 
 /// Stress state of one element: resultants at its stress-evaluation point, where that point is, and
 /// the hinge if any.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, serde::Serialize, serde::Deserialize)]
 pub struct StressState {
     /// Integration point ξ = s; resultants are read at r = −s.
     pub s: f64,

@@ -9,7 +9,7 @@ use super::section_forces::end_forces;
 use super::Frame;
 
 /// What happened at a hinge.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum HingeEventKind {
     Forming,
     Closing,
@@ -27,7 +27,7 @@ impl HingeEventKind {
 }
 
 /// One hinge event.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct HingeEvent {
     /// Time since the frame was built [s] (the sum of its steps).
     pub time: f64,

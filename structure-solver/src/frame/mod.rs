@@ -12,6 +12,7 @@
 //! (x, y, z, rx, ry, rz; global axes).
 
 pub mod assembly;
+pub mod checkpoint;
 pub mod condensation;
 pub mod condensed_system;
 pub mod contact;
@@ -58,8 +59,10 @@ use section::Section;
 use std::collections::BTreeMap;
 use topology::{Element, Node};
 
-/// An ASI-Gauss frame and its state; a clone is a checkpoint.
-#[derive(Clone)]
+/// An ASI-Gauss frame and its state; a clone is a checkpoint, and so is its serde form (without
+/// its caches, `checkpoint.rs`).
+#[derive(Clone, serde::Serialize, serde::Deserialize)]
+#[serde(into = "checkpoint::FrameFile", try_from = "checkpoint::FrameFile")]
 pub struct Frame {
     time_step: f64,
     gravity: Vector3<f64>,

@@ -17,7 +17,7 @@ pub const YIELDING: [usize; 3] = [0, 4, 5];
 const RECTANGLE_SHEAR_COEFFICIENT: f64 = 5.0 / 6.0;
 
 /// Properties of one section made of the frame's material.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct Section {
     pub area: f64,
     pub iy: f64,

@@ -70,7 +70,7 @@ pub const PERSISTENCE_WINDOW: u32 = 20;
 pub const PERSISTENT_UNCONVERGED: u32 = 10;
 
 /// What a step does with the unbalanced force its linear solve leaves.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Equilibrium {
     /// ASI-Gauss's one linear solve per step (S2-14): the unbalanced force carries into the next
     /// step, whose internal forces R are evaluated at the state this one reached.

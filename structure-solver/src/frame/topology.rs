@@ -9,7 +9,7 @@ use schemas::case::FieldError;
 use std::collections::BTreeMap;
 
 /// A node: 3 translations and 3 rotations.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct Node {
     /// Its id in the config; `None` for member mid nodes and nodes made by fracture.
     pub id: Option<u32>,
@@ -40,7 +40,7 @@ impl Node {
 }
 
 /// One half of a member.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct Element {
     pub nodes: [usize; 2],
     pub member: usize,

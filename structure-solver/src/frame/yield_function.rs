@@ -16,7 +16,7 @@ const RECTANGLE_BIAXIAL_EXPONENT: f64 = 1.7;
 const GRADIENT_STEP: f64 = 6e-6;
 
 /// Which interaction a section yields by.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum YieldFunction {
     /// The solid rectangle's exact `|m| + n² = 1` about either axis, biaxial
     /// `(|my|^1.7 + |mz|^1.7)^(1/1.7) + n² − 1` (see [`RECTANGLE_BIAXIAL_EXPONENT`]).

@@ -1,11 +1,12 @@
 //! Checkpoints of a structure participant and the run resumed from one: the [`Structure`] (point
-//! masses, springs, rigid bodies with their supports, clock) and the geometry version sent, so
-//! that the resumed run writes the same history rows as a run that never stopped. A structure
-//! with a frame refuses to write a checkpoint (its factorisations and kept element states are not
-//! written to files yet).
+//! masses, springs, rigid bodies with their supports, the frame with its fractured topology,
+//! hinges and Newmark history, clock; `frame/checkpoint.rs`), the geometry version sent and where
+//! each output stands, so that the resumed run writes the same rows, events and snapshots as a run
+//! that never stopped. Writing a checkpoint drops the frame's factorisation (a resumed run starts
+//! without one), so that both runs do the same arithmetic from there.
 
 use super::StructureParticipant;
-use crate::output::Output;
+use crate::output::{Output, OutputState};
 use crate::structure::Structure;
 use schemas::case::Case;
 use serde::{Deserialize, Serialize};
@@ -18,23 +19,23 @@ struct Saved {
     name: String,
     structure: Structure,
     geometry_sent: Option<u64>,
+    /// Where the outputs stand (`None` without an output folder).
+    output: Option<OutputState>,
 }
 
 impl StructureParticipant {
     /// Writes the history rows kept back from the accepted window, then the state to `path`.
     pub(super) fn checkpoint_to(&mut self, path: &Path) -> Result<u64, String> {
-        if self.structure.frame().is_some() {
-            return Err(format!(
-                "structure `{}`: a structure with a frame cannot write checkpoints yet; remove \
-                 coupling.checkpoint_interval from the case",
-                self.name
-            ));
-        }
         self.commit()?;
+        // the resumed run starts without the frame's factorisation: so does this one from here
+        self.structure
+            .drop_caches()
+            .map_err(|e| format!("structure `{}`: {e}", self.name))?;
         let saved = Saved {
             name: self.name.clone(),
             structure: self.structure.clone(),
             geometry_sent: self.geometry_sent,
+            output: self.output.as_ref().map(Output::state),
         };
         schemas::checkpoint::write(path, &saved).map_err(|e| {
             format!(
@@ -57,11 +58,6 @@ impl StructureParticipant {
             ));
         }
         let mut p = StructureParticipant::from_case(case, name, None)?;
-        if p.structure.frame().is_some() {
-            return Err(format!(
-                "structure `{name}`: a structure with a frame cannot resume from a checkpoint yet"
-            ));
-        }
         let cfg = case
             .structure
             .get(name)
@@ -69,7 +65,8 @@ impl StructureParticipant {
         p.structure = saved.structure;
         p.geometry_sent = saved.geometry_sent;
         if let Some(dir) = out {
-            p.output = Some(Output::resume(dir, cfg, &p.structure)?);
+            let state = saved.output.unwrap_or_default();
+            p.output = Some(Output::resume(dir, cfg, &p.structure, &state)?);
             p.history = cfg.history.as_ref().map(|h| (h.interval, case.info.end_time));
         }
         eprintln!(

@@ -396,4 +396,25 @@ impl Law for Drag {
             }
         }
     }
+
+    /// The sub-members (cut with the positions of when the geometry was declared, which a resumed
+    /// run does not have) and their flow directions.
+    fn save(&self) -> Vec<u8> {
+        let state = (&self.pieces, &self.directions);
+        // encoding into a Vec cannot fail
+        bincode::serde::encode_to_vec(state, bincode::config::standard()).unwrap_or_default()
+    }
+
+    fn restore(&mut self, saved: &[u8]) -> Result<(), String> {
+        type Saved = (Vec<SubMember>, Vec<Option<Vector3<f64>>>);
+        let ((pieces, directions), _): (Saved, usize) =
+            bincode::serde::decode_from_slice(saved, bincode::config::standard())
+                .map_err(|e| format!("the drag law's state does not read back: {e}"))?;
+        if pieces.len() != directions.len() || pieces.iter().any(|p| p.nodes.iter().any(|&n| n >= self.nodes))
+        {
+            return Err("the drag law's state does not fit the structure's frame".into());
+        }
+        (self.pieces, self.directions) = (pieces, directions);
+        Ok(())
+    }
 }

@@ -6,7 +6,7 @@
 use schemas::message::Geometry;
 
 /// One sub-member: where it sits in its member and the member's section.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SubMember {
     /// The member's end nodes (frame node indices).
     pub nodes: [usize; 2],
