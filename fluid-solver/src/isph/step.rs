@@ -4,7 +4,8 @@
 //! 1. neighbour search and list;
 //! 2. density ratio ρ̂/ρ0 (S2-7) and free-surface flags ([`super::free_surface`], S2-10 … S2-13);
 //! 3. `v* = v^n + (ν∇²v^n + g)Δt` (S2-3, S2-9);
-//! 4. the PPE `∇²p = (ρ/Δt)∇·v* + α_d(ρ0 − ρ̂)/Δt²` (S2-5) with p = 0 on surface particles and
+//! 4. the PPE `∇²p = (ρ/Δt)∇·v* + α_d(ρ0 − ρ̂)/Δt²` (S2-5) with p = 0 on the free surface (half a
+//!    spacing beyond the surface particles, [`free_surface::surface_pressure`]) and
 //!    the walls' Neumann differences ([`super::walls`]), assembled and solved ([`super::ppe`]);
 //! 5. the walls' pressure by Adami's extrapolation (for outputs and probes; the gradient reads the
 //!    per-pair wall pressure of [`super::walls`]);
@@ -67,6 +68,8 @@ pub struct IsphStep {
     accel: VectorField,
     ppe: PpeSystem,
     solution: Vec<f64>,
+    /// The Dirichlet pressure of each surface particle ([`free_surface::surface_pressure`]).
+    dirichlet: Vec<f64>,
     times: StageTimes,
 }
 
@@ -95,6 +98,7 @@ impl IsphStep {
             accel: VectorField::default(),
             ppe: PpeSystem::default(),
             solution: Vec::new(),
+            dirichlet: Vec::new(),
             times: StageTimes::default(),
         }
     }
@@ -305,6 +309,16 @@ impl IsphStep {
                 *s = SURFACE;
             }
         }
+        free_surface::surface_pressure(
+            &k,
+            list,
+            p,
+            &self.takes_part,
+            surface,
+            self.physics.density,
+            self.physics.gravity,
+            &mut self.dirichlet,
+        );
         let ppe = &mut self.ppe;
         ppe.row_of.clear();
         ppe.row_of.resize(p.len(), NOT_AN_UNKNOWN);
@@ -323,7 +337,7 @@ impl IsphStep {
             normals: &self.normals,
         };
         let (rho, alpha) = (self.physics.density, self.settings.alpha_d);
-        let (row_of, ratio, div) = (&ppe.row_of, &self.ratio, &self.divergence);
+        let (row_of, ratio, div, dirichlet) = (&ppe.row_of, &self.ratio, &self.divergence, &self.dirichlet);
         let rows: Vec<Row> = ppe
             .particle
             .par_iter()
@@ -345,6 +359,8 @@ impl IsphStep {
                         diag += f;
                         if row_of[j] != NOT_AN_UNKNOWN {
                             entries.push((row_of[j], -f));
+                        } else {
+                            rhs += f * dirichlet[j];
                         }
                     } else {
                         rhs += f * pair.difference(i, j);
@@ -371,7 +387,7 @@ impl IsphStep {
     }
 
     /// Solves the PPE warm-started from the particles' pressure and writes the fluid pressures
-    /// (0 on the surface).
+    /// (the Dirichlet value on the surface).
     fn solve_ppe(&mut self, p: &mut Particles) -> Result<PpeReport, PpeFailure> {
         let ppe = &self.ppe;
         self.solution.clear();
@@ -384,7 +400,7 @@ impl IsphStep {
             s.ppe_tolerance,
             s.ppe_max_iterations,
         )?;
-        let (row_of, x) = (&ppe.row_of, &self.solution);
+        let (row_of, x, dirichlet) = (&ppe.row_of, &self.solution, &self.dirichlet);
         (&mut p.pressure, &p.kind)
             .into_par_iter()
             .enumerate()
@@ -392,7 +408,7 @@ impl IsphStep {
             .filter(|(_, t)| *t.1 == FLUID)
             .for_each(|(i, (pr, _))| {
                 *pr = if row_of[i] == NOT_AN_UNKNOWN {
-                    0.0
+                    dirichlet[i]
                 } else {
                     x[row_of[i] as usize]
                 };
