@@ -68,6 +68,8 @@ pub struct IsphStep {
     accel: VectorField,
     ppe: PpeSystem,
     solution: Vec<f64>,
+    /// The bodies' face forces of the last pressure solve ([`pair_laws::body_faces`]).
+    faces: pair_laws::BodyFaces,
     /// The Dirichlet pressure of each surface particle ([`free_surface::surface_pressure`]).
     dirichlet: Vec<f64>,
     times: StageTimes,
@@ -99,6 +101,7 @@ impl IsphStep {
             ppe: PpeSystem::default(),
             solution: Vec::new(),
             dirichlet: Vec::new(),
+            faces: pair_laws::BodyFaces::default(),
             times: StageTimes::default(),
         }
     }
@@ -126,7 +129,7 @@ impl IsphStep {
     /// The pressure pair law on the present pressures (at rest: the fluid's velocities are
     /// taken as the step's start).
     pub fn pressure_law<'a>(&'a self, p: &'a Particles) -> PairLaw<'a> {
-        pair_laws::pressure(&self.kernel, self.neumann(p, self.time_step))
+        pair_laws::pressure(&self.kernel, self.neumann(p, self.time_step), &self.faces)
     }
 
     /// The walls' Neumann differences for a step of `dt` with v* in the particles.
@@ -196,9 +199,10 @@ impl IsphStep {
             &mut self.accel,
         );
         (0..3).for_each(|a| totals.force_from_walls[a] -= self.kernel.volume * pass.from_non_fluid[a]);
+        pair_laws::body_faces(&self.kernel, &self.list, &walls, &mut self.faces);
         bodies(
             Exchange::Pressure,
-            &pair_laws::pressure(&self.kernel, self.neumann(p, dt)),
+            &pair_laws::pressure(&self.kernel, self.neumann(p, dt), &self.faces),
             grid,
             p,
         );
@@ -231,6 +235,14 @@ impl IsphStep {
         self.assemble(p, state, dt);
         let solved = self.solve_ppe(p);
         self.wall_pressure(p, dt);
+        let walls = NeumannPair {
+            density: self.physics.density,
+            gravity: self.physics.gravity,
+            dt,
+            p,
+            normals: &self.normals,
+        };
+        pair_laws::body_faces(&self.kernel, &self.list, &walls, &mut self.faces);
         (p.vx, p.vy, p.vz) = v;
         state.ppe = solved?;
         Ok(())
