@@ -196,22 +196,11 @@ impl FluidSolver {
     }
 
     /// What this run's settings are known to get wrong, for a `warning: ` line at the start and
-    /// the end of the run (the coupler passes those on). ISPH with resolved bodies: a floating
-    /// box placed below its draft sinks instead of rising (the ignored test in
-    /// `tests/tests/isph_floating.rs` records it), so body motion under ISPH is not to be trusted
-    /// yet.
+    /// the end of the run (the coupler passes those on). None at present: ISPH with resolved
+    /// bodies was warned of until its floating box rose to its draft (issue 12; measured in
+    /// `tests/tests/isph_floating.rs`).
     pub fn known_defects(&self) -> Vec<String> {
-        let mut defects = Vec::new();
-        if matches!(self.method, FluidMethod::Isph(_)) && !self.bodies.names().is_empty() {
-            defects.push(
-                "ISPH with resolved bodies is not validated: a floating box placed below its draft sinks \
-                 instead of rising to it (the free surface's p = 0 sits half a spacing low, and the body's \
-                 pressure load depends on the fluid–body particle gap); the body's motion may be wrong. \
-                 Use method = \"emps\" for bodies"
-                    .to_string(),
-            );
-        }
-        defects
+        Vec::new()
     }
 
     /// Fluid particles removed after leaving through the open top ([`crate::escape`]).

@@ -42,9 +42,8 @@ fn isph_pressure_is_rho_g_h_and_the_water_stays_still() {
     let mut solver = FluidSolver::new(&cfg);
     let fluid = solver.particles().count(Kind::Fluid);
     // The projection has no acoustic transient to wait for: 0.1 s (50 steps), then the floor force
-    // averaged over the next 0.1 s (printed only: p = 0 is held on the top layer, whose own
-    // weight the walls' pair law does not see in full; measured −3.3 %). The same tank run for
-    // 1 s: `isph_tank_stays_still_for_one_second`.
+    // averaged over the next 0.1 s (printed only). The same tank run for 1 s:
+    // `isph_tank_stays_still_for_one_second`.
     solver.advance_to(0.1).unwrap_or_else(|e| panic!("{e}"));
     let before = solver.totals().wall_impulse[2];
     solver.advance_to(0.2).unwrap_or_else(|e| panic!("{e}"));
@@ -55,13 +54,14 @@ fn isph_pressure_is_rho_g_h_and_the_water_stays_still() {
     let ids: Vec<usize> = (0..p.len())
         .filter(|&i| p.kind[i] == Kind::Fluid.code())
         .collect();
-    // p = 0 is imposed on the surface particles: depth is measured from their mean height.
+    // p = 0 holds half a spacing above the surface particles (the top of the water block):
+    // depth is measured from there.
     let tops: Vec<f64> = ids
         .iter()
         .filter(|&&i| surface[i] == SURFACE)
         .map(|&i| p.z[i])
         .collect();
-    let z_s = tops.iter().sum::<f64>() / tops.len() as f64;
+    let z_s = tops.iter().sum::<f64>() / tops.len() as f64 + 0.5 * ds;
     let bound = 1e-3 * (cfg.gravity_magnitude() * h).sqrt();
     let (mut fastest, mut worst): (f64, f64) = (0.0, 0.0);
     for &i in &ids {
@@ -112,7 +112,7 @@ fn isph_tank_stays_still_for_one_second() {
             .filter(|&&i| surface[i] == SURFACE)
             .map(|&i| p.z[i])
             .collect();
-        let z_s = tops.iter().sum::<f64>() / tops.len() as f64;
+        let z_s = tops.iter().sum::<f64>() / tops.len() as f64 + 0.5 * cfg.spacing;
         let (mut fastest, mut worst): (f64, f64) = (0.0, 0.0);
         for &i in &ids {
             fastest = fastest.max(p.velocity(i).iter().map(|v| v * v).sum::<f64>().sqrt());

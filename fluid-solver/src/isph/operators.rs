@@ -131,8 +131,8 @@ pub fn laplacian(
 /// near 0.9 s); with S2-8 the same tank holds ρgh to 0.01 %.
 ///
 /// `from_non_fluid` is Σ over fluid–solid pairs of the symmetric pair term
-/// `V (p_i + p_j^(i)) ∇W_ij`, the walls' and bodies' load by the pair law of
-/// [`super::pair_laws`] (the difference form's solid part is not a load: its fluid pairs are not
+/// `V (p_i + p_j^(i)) ∇W_ij`, the walls' load by the pair law of [`super::pair_laws`] (bodies
+/// take theirs from the face law there) (the difference form's solid part is not a load: its fluid pairs are not
 /// antisymmetric, so the walls would not carry the water's weight).
 pub fn pressure_gradient(
     k: &Wendland,

@@ -1,28 +1,118 @@
 //! The ISPH fluid–body pair laws, as force on body particle j from fluid particle i (the fluid
-//! gets the reverse in the exchange's bookkeeping). Pressure: the symmetric pair term
-//! `V² (p_i + p_j^(i)) ∇_i W_ij`, antisymmetric in the pair, so a body's load is
-//! `−Σ_body V ⟨∇p⟩` (buoyancy on a submerged body, ρgV) and walls' loads sum to the water's
-//! weight; the fluid's own acceleration uses S2-8's corrected difference form instead
-//! ([`super::operators::pressure_gradient`], which says why). Viscous, with no-slip walls: the
-//! pair terms of [`super::operators::laplacian`]. Body particles carry the pressure
-//! extrapolated onto them ([`super::walls`]) for outputs; the pair laws read the per-pair
-//! pressure `p_i + Δp_ij` that fluid particle i's PPE saw.
+//! gets the reverse in the exchange's bookkeeping).
+//!
+//! Pressure on a body: pressure × area over the body's faces ([`body_faces`]), each body
+//! particle's force `F_j = −Σ_faces max(0, p_j + ρ g·e Δs/2) e Δs²` (the faces e of its
+//! lattice cell that no other body particle covers, p_j the Adami extrapolation onto it), shared
+//! among its fluid neighbours i in proportion to Adami's weights, `F_ij = F_j W_ij / Σ_f W_fj`,
+//! so the load and the reaction are one law (action = reaction pair by pair). A hydrostatic
+//! field gives ρgV on a submerged box whatever the fluid–body gap: Adami's extrapolation is
+//! exact for a linear field wherever the fluid sits. The symmetric pair term used before,
+//! `V² (p_i + p_j^(i)) ∇_i W_ij`, gives ρgV only with the fluid exactly one spacing from the
+//! body: a box held 0.25 Δs above its lattice site got 6.2 N for 9.0 N, and a box rising at
+//! 0.02 m/s 10.3 → 12 N, since nothing in S2-8's fluid gradient holds the gap at Δs.
+//!
+//! Walls (and the wall-pressure sensors) keep the symmetric pair term, antisymmetric in the
+//! pair, so the walls' loads sum to the water's weight; the fluid's own acceleration uses S2-8's
+//! corrected difference form ([`super::operators::pressure_gradient`], which says why). Viscous,
+//! with no-slip walls: the pair terms of [`super::operators::laplacian`]. The pair laws read the
+//! per-pair pressure `p_i + Δp_ij` that fluid particle i's PPE saw ([`super::walls`]).
 
 use super::kernel::Wendland;
+use super::neighbour_list::NeighbourList;
 use super::walls::NeumannPair;
+use crate::kind::{Kind, FLUID};
 use crate::pair_law::{ExchangeScales, PairLaw};
 use crate::particles::Particles;
+use rayon::prelude::*;
 
-/// `V² (p_i + p_j^(i)) ∇_i W_ij`, p_j^(i) = p_i + Δp_ij the body particle's pressure as fluid
-/// particle i's PPE saw it ([`super::walls`]): the reverse of the fluid's pressure force from j.
-pub fn pressure<'a>(k: &Wendland, walls: NeumannPair<'a>) -> PairLaw<'a> {
+/// Each body particle's pressure force and the sum of its fluid neighbours' weights (both 0 for
+/// other particles), in the present particle order.
+#[derive(Debug, Clone, Default)]
+pub struct BodyFaces {
+    pub force: Vec<[f64; 3]>,
+    pub weight: Vec<f64>,
+}
+
+/// The pressure force on each body particle from its exposed faces (module doc), with the
+/// fluid pressures and the velocities v* the step moves the fluid by. A face is exposed when
+/// no body particle sits one spacing away across it: the lattice directions to the body
+/// neighbours at Δs (±10 %) are the covered faces, and the opposite of a covered direction
+/// whose own opposite is not covered is an exposed one (a body one particle thin along an axis
+/// has neither and gets no load along it). A face's pressure is the extrapolated pressure
+/// carried hydrostatically to the face's centre, never below 0 (no tension where the face is
+/// above the water).
+pub fn body_faces(k: &Wendland, list: &NeighbourList, walls: &NeumannPair, out: &mut BodyFaces) {
+    let p = walls.p;
+    let body = Kind::Body.code();
+    let (ds, r2max) = (k.spacing, k.radius * k.radius);
+    let (g, rho) = (walls.gravity, walls.density);
+    out.force.resize(p.len(), [0.0; 3]);
+    out.weight.resize(p.len(), 0.0);
+    (&mut out.force, &mut out.weight)
+        .into_par_iter()
+        .enumerate()
+        .with_min_len(4096)
+        .for_each(|(j, (force, weight))| {
+            (*force, *weight) = ([0.0; 3], 0.0);
+            if p.kind[j] != body {
+                return;
+            }
+            let (mut num, mut den) = (0.0, 0.0);
+            let mut covered: Vec<[f64; 3]> = Vec::with_capacity(6);
+            for &i in list.of(j) {
+                let i = i as usize;
+                let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
+                let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+                if p.kind[i] == FLUID && r2 < r2max {
+                    let w = k.w(r2.sqrt());
+                    num += w * (p.pressure[i] + walls.difference(i, j));
+                    den += w;
+                } else if p.kind[i] == body && (r2 - ds * ds).abs() < 0.21 * ds * ds {
+                    let r = r2.sqrt();
+                    covered.push(d.map(|v| v / r));
+                }
+            }
+            if den <= 0.0 {
+                return;
+            }
+            let pj = num / den;
+            let mut f = [0.0; 3];
+            for u in &covered {
+                let dot = |v: &[f64; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+                if covered.iter().any(|v| dot(v) < -0.9) {
+                    continue;
+                }
+                // Exposed face e = −u, its centre Δs/2 from the particle.
+                let e = u.map(|v| -v);
+                let face = (pj + rho * (g[0] * e[0] + g[1] * e[1] + g[2] * e[2]) * 0.5 * ds).max(0.0);
+                (0..3).for_each(|a| f[a] -= face * e[a] * ds * ds);
+            }
+            (*force, *weight) = (f, den);
+        });
+}
+
+/// On a body particle j: its share `F_j W_ij / Σ_f W_fj` of the face force of [`body_faces`]
+/// (computed on the same state). On a wall particle: `V² (p_i + p_j^(i)) ∇_i W_ij`,
+/// p_j^(i) = p_i + Δp_ij the wall particle's pressure as fluid particle i's PPE saw it
+/// ([`super::walls`]).
+pub fn pressure<'a>(k: &Wendland, walls: NeumannPair<'a>, faces: &'a BodyFaces) -> PairLaw<'a> {
     let k = *k;
     let p = walls.p;
+    let body = Kind::Body.code();
     PairLaw::new(k.radius, move |i, j| {
         let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
         let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
         if !(r2 < k.radius * k.radius && r2 > 0.0) {
             return None;
+        }
+        if p.kind[j] == body {
+            let den = *faces.weight.get(j)?;
+            if den <= 0.0 {
+                return None;
+            }
+            let share = k.w(r2.sqrt()) / den;
+            return Some(faces.force[j].map(|f| f * share));
         }
         let c = k.volume * k.volume * (2.0 * p.pressure[i] + walls.difference(i, j)) * k.dw_over_r(r2.sqrt());
         Some(d.map(|v| c * v))

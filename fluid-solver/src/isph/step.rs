@@ -4,7 +4,8 @@
 //! 1. neighbour search and list;
 //! 2. density ratio ρ̂/ρ0 (S2-7) and free-surface flags ([`super::free_surface`], S2-10 … S2-13);
 //! 3. `v* = v^n + (ν∇²v^n + g)Δt` (S2-3, S2-9);
-//! 4. the PPE `∇²p = (ρ/Δt)∇·v* + α_d(ρ0 − ρ̂)/Δt²` (S2-5) with p = 0 on surface particles and
+//! 4. the PPE `∇²p = (ρ/Δt)∇·v* + α_d(ρ0 − ρ̂)/Δt²` (S2-5) with p = 0 on the free surface (half a
+//!    spacing beyond the surface particles, [`free_surface::surface_pressure`]) and
 //!    the walls' Neumann differences ([`super::walls`]), assembled and solved ([`super::ppe`]);
 //! 5. the walls' pressure by Adami's extrapolation (for outputs and probes; the gradient reads the
 //!    per-pair wall pressure of [`super::walls`]);
@@ -67,6 +68,10 @@ pub struct IsphStep {
     accel: VectorField,
     ppe: PpeSystem,
     solution: Vec<f64>,
+    /// The bodies' face forces of the last pressure solve ([`pair_laws::body_faces`]).
+    faces: pair_laws::BodyFaces,
+    /// The Dirichlet pressure of each surface particle ([`free_surface::surface_pressure`]).
+    dirichlet: Vec<f64>,
     times: StageTimes,
 }
 
@@ -95,6 +100,8 @@ impl IsphStep {
             accel: VectorField::default(),
             ppe: PpeSystem::default(),
             solution: Vec::new(),
+            dirichlet: Vec::new(),
+            faces: pair_laws::BodyFaces::default(),
             times: StageTimes::default(),
         }
     }
@@ -122,7 +129,7 @@ impl IsphStep {
     /// The pressure pair law on the present pressures (at rest: the fluid's velocities are
     /// taken as the step's start).
     pub fn pressure_law<'a>(&'a self, p: &'a Particles) -> PairLaw<'a> {
-        pair_laws::pressure(&self.kernel, self.neumann(p, self.time_step))
+        pair_laws::pressure(&self.kernel, self.neumann(p, self.time_step), &self.faces)
     }
 
     /// The walls' Neumann differences for a step of `dt` with v* in the particles.
@@ -192,9 +199,10 @@ impl IsphStep {
             &mut self.accel,
         );
         (0..3).for_each(|a| totals.force_from_walls[a] -= self.kernel.volume * pass.from_non_fluid[a]);
+        pair_laws::body_faces(&self.kernel, &self.list, &walls, &mut self.faces);
         bodies(
             Exchange::Pressure,
-            &pair_laws::pressure(&self.kernel, self.neumann(p, dt)),
+            &pair_laws::pressure(&self.kernel, self.neumann(p, dt), &self.faces),
             grid,
             p,
         );
@@ -227,6 +235,14 @@ impl IsphStep {
         self.assemble(p, state, dt);
         let solved = self.solve_ppe(p);
         self.wall_pressure(p, dt);
+        let walls = NeumannPair {
+            density: self.physics.density,
+            gravity: self.physics.gravity,
+            dt,
+            p,
+            normals: &self.normals,
+        };
+        pair_laws::body_faces(&self.kernel, &self.list, &walls, &mut self.faces);
         (p.vx, p.vy, p.vz) = v;
         state.ppe = solved?;
         Ok(())
@@ -305,6 +321,16 @@ impl IsphStep {
                 *s = SURFACE;
             }
         }
+        free_surface::surface_pressure(
+            &k,
+            list,
+            p,
+            &self.takes_part,
+            surface,
+            self.physics.density,
+            self.physics.gravity,
+            &mut self.dirichlet,
+        );
         let ppe = &mut self.ppe;
         ppe.row_of.clear();
         ppe.row_of.resize(p.len(), NOT_AN_UNKNOWN);
@@ -323,7 +349,7 @@ impl IsphStep {
             normals: &self.normals,
         };
         let (rho, alpha) = (self.physics.density, self.settings.alpha_d);
-        let (row_of, ratio, div) = (&ppe.row_of, &self.ratio, &self.divergence);
+        let (row_of, ratio, div, dirichlet) = (&ppe.row_of, &self.ratio, &self.divergence, &self.dirichlet);
         let rows: Vec<Row> = ppe
             .particle
             .par_iter()
@@ -345,6 +371,8 @@ impl IsphStep {
                         diag += f;
                         if row_of[j] != NOT_AN_UNKNOWN {
                             entries.push((row_of[j], -f));
+                        } else {
+                            rhs += f * dirichlet[j];
                         }
                     } else {
                         rhs += f * pair.difference(i, j);
@@ -371,7 +399,7 @@ impl IsphStep {
     }
 
     /// Solves the PPE warm-started from the particles' pressure and writes the fluid pressures
-    /// (0 on the surface).
+    /// (the Dirichlet value on the surface).
     fn solve_ppe(&mut self, p: &mut Particles) -> Result<PpeReport, PpeFailure> {
         let ppe = &self.ppe;
         self.solution.clear();
@@ -384,7 +412,7 @@ impl IsphStep {
             s.ppe_tolerance,
             s.ppe_max_iterations,
         )?;
-        let (row_of, x) = (&ppe.row_of, &self.solution);
+        let (row_of, x, dirichlet) = (&ppe.row_of, &self.solution, &self.dirichlet);
         (&mut p.pressure, &p.kind)
             .into_par_iter()
             .enumerate()
@@ -392,7 +420,7 @@ impl IsphStep {
             .filter(|(_, t)| *t.1 == FLUID)
             .for_each(|(i, (pr, _))| {
                 *pr = if row_of[i] == NOT_AN_UNKNOWN {
-                    0.0
+                    dirichlet[i]
                 } else {
                     x[row_of[i] as usize]
                 };
