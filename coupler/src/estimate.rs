@@ -19,7 +19,11 @@
 //! 875 kB estimated (11 215 particles; the first frame also holds the gate), ledger 97.5 kB against
 //! 95.6 kB, recording 418 kB against 240 kB (the lower bound leaves out the handshake and message
 //! framing).
-//! - structure histories: one row per interval per file, at least 10 bytes per value.
+//! - structure histories: one row per interval per file, at least 10 bytes per value;
+//! - `interface_energy.csv` (coupled runs): about 100 bytes per window;
+//! - checkpoints (`coupling.checkpoint_interval`): the last two are kept, each at least 86 bytes
+//!   per written fluid particle (measured: 1.9 MB for 21 919 particles, README "Checkpoint and
+//!   resume") and the coupler's manifest, about 1 kB; the structure's are small.
 
 use crate::error::CouplerError;
 use schemas::case::{Case, FluidConfig};
@@ -27,6 +31,15 @@ use std::path::Path;
 
 /// Bytes per written particle in a VTU frame.
 const VTU_BYTES_PER_PARTICLE: f64 = 78.0;
+
+/// Bytes per fluid particle in a checkpoint.
+const CHECKPOINT_BYTES_PER_PARTICLE: f64 = 86.0;
+
+/// Bytes of the coupler's manifest in a checkpoint (measured: about 1 kB).
+const CHECKPOINT_MANIFEST_BYTES: f64 = 1000.0;
+
+/// Bytes per window of `interface_energy.csv`.
+const INTERFACE_ENERGY_BYTES_PER_WINDOW: f64 = 100.0;
 
 /// What a run will write, at least.
 #[derive(Debug, Clone, Default)]
@@ -37,8 +50,11 @@ pub struct Estimate {
     pub fluid: Vec<(f64, f64, f64)>,
     pub surface_meshes: bool,
     pub recording: f64,
+    /// `ledger.csv` and `interface_energy.csv`.
     pub ledger: f64,
     pub histories: f64,
+    /// The checkpoints kept at once ([`crate::checkpoint::KEEP`]).
+    pub checkpoints: f64,
 }
 
 impl Estimate {
@@ -77,14 +93,24 @@ impl Estimate {
             let per_window = participants * 2.0 * (40.0 + samples * 22.0) + samples * 8.0 * values as f64;
             e.windows = Some(windows);
             e.recording = windows * per_window;
-            e.ledger = windows * (30.0 + 19.0 * (4.0 * participants + 3.0));
+            e.ledger = windows * (30.0 + 19.0 * (4.0 * participants + 3.0))
+                + windows * INTERFACE_ENERGY_BYTES_PER_WINDOW;
+            if c.checkpoint_interval.is_some() {
+                let particles: f64 = e.fluid.iter().map(|f| f.1).sum();
+                e.checkpoints = crate::checkpoint::KEEP as f64
+                    * (CHECKPOINT_MANIFEST_BYTES + particles * CHECKPOINT_BYTES_PER_PARTICLE);
+            }
         }
         e
     }
 
     /// Bytes in all.
     pub fn total(&self) -> f64 {
-        self.fluid.iter().map(|f| f.2).sum::<f64>() + self.recording + self.ledger + self.histories
+        self.fluid.iter().map(|f| f.2).sum::<f64>()
+            + self.recording
+            + self.ledger
+            + self.histories
+            + self.checkpoints
     }
 
     /// One line for the user: windows, total and its parts.
@@ -105,7 +131,10 @@ impl Estimate {
         }
         if self.windows.is_some() {
             parts.push(format!("recording {}", bytes_text(self.recording)));
-            parts.push(format!("ledger {}", bytes_text(self.ledger)));
+            parts.push(format!("ledger and interface energy {}", bytes_text(self.ledger)));
+        }
+        if self.checkpoints > 0.0 {
+            parts.push(format!("checkpoints {}", bytes_text(self.checkpoints)));
         }
         if self.histories > 0.0 {
             parts.push(format!("structure histories {}", bytes_text(self.histories)));

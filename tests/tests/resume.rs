@@ -214,7 +214,12 @@ fn resume(case: &Path, out: &Path) -> String {
 fn killed_and_resumed_equals_uninterrupted(dir: &Path, case: &Path) {
     let whole = dir.join("whole");
     let run = coupler_run(case, &whole);
-    assert!(run.status.success(), "{}", stderr(&run));
+    let err = stderr(&run);
+    assert!(run.status.success(), "{err}");
+    assert!(
+        err.contains("checkpoints "),
+        "the output estimate counts the checkpoints: {err}"
+    );
     let resumed = dir.join("resumed");
     let killed = run_and_kill(case, &resumed, &dir.join("killed.txt"));
     resume(case, &resumed);
