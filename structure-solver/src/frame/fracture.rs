@@ -46,6 +46,7 @@ impl FractureCriterion {
 impl Frame {
     /// S2-17 at every hinge; a fractured element is split off its hinge node onto a new node (same
     /// position and motion), left unstressed, and the condensation and the sparse pattern are rebuilt.
+    /// An element's free end (a node no other element and no support holds) is not split.
     pub(super) fn split_fractured(&mut self) -> Result<(), String> {
         let Some(criterion) = self.fracture else {
             return Ok(());
@@ -58,6 +59,17 @@ impl Frame {
                 continue;
             }
             let old = e.nodes[end.node()];
+            // a free end (no other element, no support) is already apart: splitting it again would
+            // only add a node, step after step, while the hinge there keeps its strain
+            let shared = self
+                .elements
+                .iter()
+                .enumerate()
+                .any(|(j, other)| j != i && other.nodes.contains(&old));
+            if !shared && !self.nodes[old].fixed.iter().any(|&f| f) {
+                continue;
+            }
+            let e = &self.elements[i];
             if let Some(events) = &mut self.events {
                 let forces = super::section_forces::end_forces(e)[end.node()];
                 events.push(HingeEvent {
