@@ -4,76 +4,8 @@
 //! within 5 % (the issue's bound) and its heave must die out. Gravity acts once on each side:
 //! the fluid reports pressure and contact forces only, the structure applies the box's weight.
 
-use stack_tests::{coupler_run, csv_rows, out_dir, stderr};
+use stack_tests::{coupler_run, csv_rows, out_dir, stderr, FLOATING_POOL_CASE};
 use std::path::Path;
-
-/// Δs = 0.02 m, a 0.4 × 0.4 m tank with water 0.2 m deep; a 16 × 16 × 8 cm box (8 × 8 × 4
-/// particles) of 400 kg/m³, centred in plan, placed with its bottom 4 cm under the surface (its
-/// hydrostatic draft is 0.4 × 8 = 3.2 cm, so it has to rise 8 mm and settle). c = 12.1 m/s,
-/// Δt = 8e-4 s (c Δt/Δs = 0.48). 2 s ≈ 5 heave periods.
-const CASE: &str = r#"
-[case]
-name = "floating-at-rest"
-description = "Issue 5: a box of 400 kg/m³ floating in still water settles at its hydrostatic draft."
-end_time = 2.0
-
-[fluid.pool]
-spacing = 0.02
-time_step = 8.0e-4
-viscosity_term = false
-sound_speed = 12.1
-output_interval = 0.5
-tank = { min = [0.0, 0.0, 0.0], max = [0.4, 0.4, 0.32] }
-
-[[fluid.pool.block]]
-min = [0.0, 0.0, 0.0]
-max = [0.4, 0.4, 0.16]
-
-[[fluid.pool.block]]
-min = [0.0, 0.0, 0.16]
-max = [0.12, 0.4, 0.2]
-
-[[fluid.pool.block]]
-min = [0.28, 0.0, 0.16]
-max = [0.4, 0.4, 0.2]
-
-[[fluid.pool.block]]
-min = [0.12, 0.0, 0.16]
-max = [0.28, 0.12, 0.2]
-
-[[fluid.pool.block]]
-min = [0.12, 0.28, 0.16]
-max = [0.28, 0.4, 0.2]
-
-[[fluid.pool.body]]
-name = "box"
-min = [0.12, 0.12, 0.16]
-max = [0.28, 0.28, 0.24]
-
-[structure.float]
-max_step = 1.0e-4
-gravity = [0.0, 0.0, -9.8]
-
-[[structure.float.body]]
-name = "box"
-mass = 0.8192
-centre = [0.2, 0.2, 0.2]
-inertia = { box = [0.16, 0.16, 0.08] }
-
-[structure.float.history]
-interval = 0.01
-bodies = ["box"]
-
-[coupling]
-window = 8.0e-4
-scheme = "explicit"
-order = ["pool", "float"]
-predictor = "linear"
-
-[[coupling.body]]
-fluid = "pool/box"
-structure = "float/box"
-"#;
 
 const SPACING: f64 = 0.02;
 const HEIGHT: f64 = 0.08;
@@ -132,7 +64,7 @@ fn fluid_particles(vtu: &Path) -> Vec<([f64; 3], f64)> {
 fn a_box_floats_at_its_hydrostatic_draft_and_its_heave_settles() {
     let dir = out_dir("floating-at-rest");
     let case = dir.join("case.toml");
-    std::fs::write(&case, CASE).unwrap_or_else(|e| panic!("{e}"));
+    std::fs::write(&case, FLOATING_POOL_CASE).unwrap_or_else(|e| panic!("{e}"));
     let out = dir.join("out");
     let run = coupler_run(&case, &out);
     let err = stderr(&run);

@@ -7,81 +7,37 @@
 //! (With the water level falling as the box rises, 0.0256/0.1344 of its rise, the equilibrium
 //! is z = 0.2067 m.)
 
-use stack_tests::{coupler_run, csv_rows, out_dir, stderr};
+use stack_tests::{coupler_run, csv_rows, out_dir, replaced, stderr, FLOATING_POOL_CASE};
 
-/// Δs = 0.02 m, a 0.4 × 0.4 m tank with water 0.2 m deep; a 16 × 16 × 8 cm box of 400 kg/m³
-/// with its bottom 4 cm under the surface.
-const CASE: &str = r#"
-[case]
-name = "isph-floating"
-description = "Issue 12: the floating box of issue 5 with the ISPH fluid, a short run."
-end_time = 0.3
-
-[fluid.pool]
-method = "isph"
-spacing = 0.02
-time_step = 2.0e-3
-viscosity_term = false
-output_interval = 0.1
-tank = { min = [0.0, 0.0, 0.0], max = [0.4, 0.4, 0.32] }
-
-[[fluid.pool.block]]
-min = [0.0, 0.0, 0.0]
-max = [0.4, 0.4, 0.16]
-
-[[fluid.pool.block]]
-min = [0.0, 0.0, 0.16]
-max = [0.12, 0.4, 0.2]
-
-[[fluid.pool.block]]
-min = [0.28, 0.0, 0.16]
-max = [0.4, 0.4, 0.2]
-
-[[fluid.pool.block]]
-min = [0.12, 0.0, 0.16]
-max = [0.28, 0.12, 0.2]
-
-[[fluid.pool.block]]
-min = [0.12, 0.28, 0.16]
-max = [0.28, 0.4, 0.2]
-
-[[fluid.pool.body]]
-name = "box"
-min = [0.12, 0.12, 0.16]
-max = [0.28, 0.28, 0.24]
-
-[structure.float]
-max_step = 1.0e-4
-gravity = [0.0, 0.0, -9.8]
-
-[[structure.float.body]]
-name = "box"
-mass = 0.8192
-centre = [0.2, 0.2, 0.2]
-inertia = { box = [0.16, 0.16, 0.08] }
-
-[structure.float.history]
-interval = 0.01
-bodies = ["box"]
-
-[coupling]
-window = 2.0e-3
-scheme = "explicit"
-order = ["pool", "float"]
-predictor = "linear"
-
-[[coupling.body]]
-fluid = "pool/box"
-structure = "float/box"
-"#;
+/// The case of `floating_at_rest.rs` with the ISPH fluid: Δs = 0.02 m, a 0.4 × 0.4 m tank with
+/// water 0.2 m deep; a 16 × 16 × 8 cm box of 400 kg/m³ with its bottom 4 cm under the surface;
+/// Δt = 2e-3 s, one fluid step per window, ending at `end_time`.
+fn isph_case(end_time: &str) -> String {
+    let end = format!("end_time = {end_time}");
+    replaced(
+        FLOATING_POOL_CASE,
+        &[
+            ("name = \"floating-at-rest\"", "name = \"isph-floating\""),
+            (
+                "description = \"Issue 5: a box of 400 kg/m³ floating in still water settles at its hydrostatic draft.\"",
+                "description = \"Issue 12: the floating box of issue 5 with the ISPH fluid, a short run.\"",
+            ),
+            ("end_time = 2.0", &end),
+            (
+                "spacing = 0.02\ntime_step = 8.0e-4\nviscosity_term = false\nsound_speed = 12.1\noutput_interval = 0.5",
+                "method = \"isph\"\nspacing = 0.02\ntime_step = 2.0e-3\nviscosity_term = false\noutput_interval = 0.1",
+            ),
+            ("window = 8.0e-4", "window = 2.0e-3"),
+        ],
+    )
+}
 
 /// Runs the case and returns the box's history (t, x, y, z, qw, …) and the lowest and highest
 /// centre height.
 fn run_case(test: &str, end_time: &str) -> (Vec<Vec<f64>>, f64, f64) {
     let dir = out_dir(test);
     let case = dir.join("case.toml");
-    let text = CASE.replace("end_time = 0.3", &format!("end_time = {end_time}"));
-    std::fs::write(&case, text).unwrap_or_else(|e| panic!("{e}"));
+    std::fs::write(&case, isph_case(end_time)).unwrap_or_else(|e| panic!("{e}"));
     let out = dir.join("out");
     let run = coupler_run(&case, &out);
     let err = stderr(&run);
