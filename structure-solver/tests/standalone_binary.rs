@@ -286,74 +286,22 @@ fn plastic_collapse_case_gives_eight_mp_over_l_and_three_hinges() {
 /// The two-part cantilever of `tests/frame_fracture.rs` as a case: a strong member (0.1 × 0.1 m) from
 /// the clamped base to x = 1 m, a weak one (0.05 × 0.05 m) to the tip, critical curvature 0.2 1/m, a
 /// tip load in −z ramped to 12 kN over 0.06 s (the weak member's plastic collapse load is 7.3 kN).
-const FRACTURING_CANTILEVER: &str = r#"
+const FRACTURING_CANTILEVER: &str = concat!(
+    r#"
 [case]
 name = "fracturing-cantilever"
 end_time = 0.4
 
-[structure.c]
+[structure.cantilever]
 
-[structure.c.frame]
-time_step = 1e-4
-gravity = [0.0, 0.0, 0.0]
-
-[structure.c.frame.material]
-young_modulus = 200e9
-poisson = 0.3
-density = 7850.0
-yield_stress = 235e6
-fracture_curvature = [0.2, 0.2]
-
-[[structure.c.frame.section]]
-name = "strong"
-kind = "rectangle"
-width = 0.1
-depth = 0.1
-
-[[structure.c.frame.section]]
-name = "weak"
-kind = "rectangle"
-width = 0.05
-depth = 0.05
-
-[[structure.c.frame.node]]
-id = 1
-position = [0.0, 0.0, 0.0]
-
-[[structure.c.frame.node]]
-id = 2
-position = [1.0, 0.0, 0.0]
-
-[[structure.c.frame.node]]
-id = 3
-position = [2.0, 0.0, 0.0]
-
-[[structure.c.frame.member]]
-nodes = [1, 2]
-section = "strong"
-orientation = [0.0, 1.0, 0.0]
-
-[[structure.c.frame.member]]
-nodes = [2, 3]
-section = "weak"
-orientation = [0.0, 1.0, 0.0]
-
-[[structure.c.frame.support]]
-node = 1
-fixed = ["x", "y", "z", "rx", "ry", "rz"]
-
-[[structure.c.load]]
-node = 3
-value = [0.0, 0.0, -12000.0, 0.0, 0.0, 0.0]
-history = "ramp"
-start = 0.0
-end = 0.06
-
-[structure.c.history]
+"#,
+    include_str!("data/fracturing_cantilever_frame.toml"),
+    r#"[structure.cantilever.history]
 interval = 0.01
 nodes = [2, 3]
 vtu_interval = 0.1
-"#;
+"#
+);
 
 /// A member fractures in a run driven by `Structure` (the load schedule, the history and the VTU
 /// series follow the node made by the fracture) and the run goes on to its end time. The case has

@@ -354,7 +354,8 @@ fn a_checkpoint_interval_that_is_not_a_whole_number_of_windows_is_refused_by_che
 /// 0.0618 s (one new node). Checkpoints at 0.04 s (a hinge, before the fracture) and 0.08 s (after
 /// it); the run ends at 0.1 s, so both stay in the folder (two are kept). Histories of both frame
 /// nodes, section forces, hinge events, the energy account and snapshots every 0.02 s.
-const FRACTURING_FRAME: &str = r#"
+const FRACTURING_FRAME: &str = concat!(
+    r#"
 [case]
 name = "fracturing-frame"
 end_time = 0.1
@@ -373,63 +374,9 @@ a = "m1"
 b = "ground"
 stiffness = 400.0
 
-[structure.cantilever.frame]
-time_step = 1e-4
-gravity = [0.0, 0.0, 0.0]
-
-[structure.cantilever.frame.material]
-young_modulus = 200e9
-poisson = 0.3
-density = 7850.0
-yield_stress = 235e6
-fracture_curvature = [0.2, 0.2]
-
-[[structure.cantilever.frame.section]]
-name = "strong"
-kind = "rectangle"
-width = 0.1
-depth = 0.1
-
-[[structure.cantilever.frame.section]]
-name = "weak"
-kind = "rectangle"
-width = 0.05
-depth = 0.05
-
-[[structure.cantilever.frame.node]]
-id = 1
-position = [0.0, 0.0, 0.0]
-
-[[structure.cantilever.frame.node]]
-id = 2
-position = [1.0, 0.0, 0.0]
-
-[[structure.cantilever.frame.node]]
-id = 3
-position = [2.0, 0.0, 0.0]
-
-[[structure.cantilever.frame.member]]
-nodes = [1, 2]
-section = "strong"
-orientation = [0.0, 1.0, 0.0]
-
-[[structure.cantilever.frame.member]]
-nodes = [2, 3]
-section = "weak"
-orientation = [0.0, 1.0, 0.0]
-
-[[structure.cantilever.frame.support]]
-node = 1
-fixed = ["x", "y", "z", "rx", "ry", "rz"]
-
-[[structure.cantilever.load]]
-node = 3
-value = [0.0, 0.0, -12000.0, 0.0, 0.0, 0.0]
-history = "ramp"
-start = 0.0
-end = 0.06
-
-[structure.cantilever.history]
+"#,
+    include_str!("../../structure-solver/tests/data/fracturing_cantilever_frame.toml"),
+    r#"[structure.cantilever.history]
 interval = 0.01
 points = ["m1"]
 nodes = [2, 3]
@@ -462,7 +409,8 @@ checkpoint_interval = 0.04
 a = "cantilever/m1"
 b = "mass/m2"
 stiffness = 100.0
-"#;
+"#
+);
 
 /// Copies the files of folder `from` into a new folder `to`.
 fn copy_folder(from: &Path, to: &Path) {
