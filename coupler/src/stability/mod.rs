@@ -37,6 +37,7 @@ pub mod one_step;
 use crate::error::CouplerError;
 use crate::interface::Interface;
 use schemas::message::Fields;
+use serde::{Deserialize, Serialize};
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -63,6 +64,16 @@ const GROWTH_WINDOWS: usize = 5;
 /// The detector's state over a run.
 pub struct Detector {
     names: Vec<String>,
+    account: Account,
+    /// `coupling.created_energy_limit`.
+    stop: f64,
+    out: BufWriter<File>,
+    path: PathBuf,
+}
+
+/// What the detector keeps from window to window (and a checkpoint keeps).
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+struct Account {
     /// Work done on each participant through the interface since t = 0.
     cumulative: Vec<f64>,
     created: f64,
@@ -78,12 +89,8 @@ pub struct Detector {
     scale: f64,
     /// The energy the laws stored at t = 0.
     initial: f64,
-    /// `coupling.created_energy_limit`.
-    stop: f64,
     /// Interface force amplitude at the end of each window.
     amplitude: Vec<f64>,
-    out: BufWriter<File>,
-    path: PathBuf,
 }
 
 /// One window's numbers.
@@ -117,17 +124,11 @@ impl Detector {
         };
         Ok(Detector {
             names: names.to_vec(),
-            cumulative: vec![0.0; names.len()],
-            created: 0.0,
-            lowest: 0.0,
-            most: 0.0,
-            nets: Vec::new(),
-            rounding: 0.0,
-            lowest_window: None,
-            scale: 0.0,
-            initial: 0.0,
+            account: Account {
+                cumulative: vec![0.0; names.len()],
+                ..Account::default()
+            },
             stop,
-            amplitude: Vec::new(),
             out,
             path: path.to_path_buf(),
         })
@@ -135,59 +136,24 @@ impl Detector {
 
     /// The account kept across windows, for a checkpoint.
     pub fn save(&self) -> Vec<u8> {
-        let account = (
-            &self.cumulative,
-            self.created,
-            self.lowest,
-            self.most,
-            &self.nets,
-            self.rounding,
-            self.lowest_window,
-            self.scale,
-            self.initial,
-            &self.amplitude,
-        );
         // encoding into a Vec cannot fail
-        bincode::encode_to_vec(account, bincode::config::standard()).unwrap_or_default()
+        bincode::serde::encode_to_vec(&self.account, bincode::config::standard()).unwrap_or_default()
     }
 
     /// Takes over the account of [`Detector::save`].
     pub fn restore(&mut self, bytes: &[u8]) -> Result<(), String> {
-        type Account = (
-            Vec<f64>,
-            f64,
-            f64,
-            f64,
-            Vec<f64>,
-            f64,
-            Option<u64>,
-            f64,
-            f64,
-            Vec<f64>,
-        );
-        let (account, _): (Account, usize) = bincode::decode_from_slice(bytes, bincode::config::standard())
-            .map_err(|e| {
-            format!("--resume: the checkpoint's interface energy account does not read back: {e}")
-        })?;
-        if account.0.len() != self.names.len() {
+        let (account, _): (Account, usize) =
+            bincode::serde::decode_from_slice(bytes, bincode::config::standard()).map_err(|e| {
+                format!("--resume: the checkpoint's interface energy account does not read back: {e}")
+            })?;
+        if account.cumulative.len() != self.names.len() {
             return Err(format!(
                 "--resume: the checkpoint's interface energy account is of {} participants, the case has {}",
-                account.0.len(),
+                account.cumulative.len(),
                 self.names.len()
             ));
         }
-        (
-            self.cumulative,
-            self.created,
-            self.lowest,
-            self.most,
-            self.nets,
-            self.rounding,
-            self.lowest_window,
-            self.scale,
-            self.initial,
-            self.amplitude,
-        ) = account;
+        self.account = account;
         Ok(())
     }
 
@@ -203,24 +169,25 @@ impl Detector {
     ) -> Result<WindowEnergy, CouplerError> {
         let energy = interface.window_energy(times, inputs, outputs);
         if window == 0 {
-            self.initial = energy.stored[0];
-            self.scale = self.initial;
+            self.account.initial = energy.stored[0];
+            self.account.scale = self.account.initial;
         }
         let created = energy.created();
-        self.created += created;
-        self.cumulative
+        self.account.created += created;
+        self.account
+            .cumulative
             .iter_mut()
             .zip(&energy.work)
             .for_each(|(c, w)| *c += w);
-        if self.created < self.lowest {
-            self.lowest = self.created;
-            self.lowest_window = Some(window);
+        if self.account.created < self.account.lowest {
+            self.account.lowest = self.account.created;
+            self.account.lowest_window = Some(window);
         }
-        self.rounding += energy.rounding;
-        let net = self.created - self.lowest;
-        self.most = self.most.max(net);
-        let level = energy.stored[1] + 0.5 * self.cumulative.iter().map(|w| w.abs()).sum::<f64>();
-        self.scale = self.scale.max(level - self.most);
+        self.account.rounding += energy.rounding;
+        let net = self.account.created - self.account.lowest;
+        self.account.most = self.account.most.max(net);
+        let level = energy.stored[1] + 0.5 * self.account.cumulative.iter().map(|w| w.abs()).sum::<f64>();
+        self.account.scale = self.account.scale.max(level - self.account.most);
         let amplitude = inputs
             .iter()
             .zip(outputs)
@@ -230,33 +197,38 @@ impl Detector {
                 _ => 0.0,
             })
             .sum();
-        self.amplitude.push(amplitude);
+        self.account.amplitude.push(amplitude);
         let time = times.last().copied().unwrap_or(0.0);
-        let ratio = if self.scale > 0.0 { net / self.scale } else { 0.0 };
+        let ratio = if self.account.scale > 0.0 {
+            net / self.account.scale
+        } else {
+            0.0
+        };
         let io = |e: std::io::Error| CouplerError::Io(format!("cannot write {}: {e}", self.path.display()));
         writeln!(
             self.out,
             "{window},{time:.9e},{created:.6e},{:.6e},{net:.6e},{:.6e},{ratio:.6e},{amplitude:.6e}",
-            self.created, self.scale
+            self.account.created, self.account.scale
         )
         .and_then(|_| self.out.flush())
         .map_err(io)?;
         let numbers = WindowEnergy {
             created,
             net,
-            scale: self.scale,
+            scale: self.account.scale,
             amplitude,
         };
         // a creation within ROUNDING_MARGIN times the work sums' rounding is rounding (a deck held
         // on its bearings at 100 m under 1e8 N "creates" 1e-7 J against a scale of 1e-11 J)
-        let beyond = |c: f64| c > ROUNDING_MARGIN * self.rounding && c > self.stop * self.scale;
-        self.nets.push(net);
-        let then = match self.nets.len() {
-            n if n > HINDSIGHT => self.nets[n - 1 - HINDSIGHT],
+        let beyond =
+            |c: f64| c > ROUNDING_MARGIN * self.account.rounding && c > self.stop * self.account.scale;
+        self.account.nets.push(net);
+        let then = match self.account.nets.len() {
+            n if n > HINDSIGHT => self.account.nets[n - 1 - HINDSIGHT],
             // no earlier window yet: only a scale known before anything moved (the energy the
             // laws stored at t = 0) may judge at once; a body released from rest is charged to
             // the fluid a window late against a scale of 0
-            _ if self.initial > 0.0 => net,
+            _ if self.account.initial > 0.0 => net,
             _ => 0.0,
         };
         if beyond(net) && beyond(then) {
@@ -272,20 +244,20 @@ impl Detector {
     /// The run reached its end: a `warning: ` line when the coupling has created more than
     /// [`WARN`] times the physical energy scale.
     pub fn finish(&self) {
-        let net = self.nets.last().copied().unwrap_or(0.0);
-        if net > ROUNDING_MARGIN * self.rounding && net > WARN * self.scale {
+        let net = self.account.nets.last().copied().unwrap_or(0.0);
+        if net > ROUNDING_MARGIN * self.account.rounding && net > WARN * self.account.scale {
             eprintln!(
                 "warning: coupling: over the run the coupling created {net:.3e} J at the interface, {:.3} times the \
                  run's physical energy scale {:.3e} J: the coupled motion holds energy the physics did not give it. \
                  Shorten coupling.window or use coupling.scheme = \"implicit\" (interface_energy.csv has every window)",
-                net / self.scale,
-                self.scale
+                net / self.account.scale,
+                self.account.scale
             );
         }
     }
 
     fn diagnostic(&self, window: u64, e: &WindowEnergy, work: &[f64]) -> String {
-        let since = match self.lowest_window {
+        let since = match self.account.lowest_window {
             Some(w) => format!("since window {w}"),
             None => "since the start".to_string(),
         };
@@ -296,12 +268,12 @@ impl Detector {
             .map(|(n, w)| format!("{n} {w:.3e} J"))
             .collect::<Vec<_>>()
             .join(", ");
-        let n = self.amplitude.len();
-        let growth = if n > GROWTH_WINDOWS && self.amplitude[n - 1 - GROWTH_WINDOWS] > 0.0 {
+        let n = self.account.amplitude.len();
+        let growth = if n > GROWTH_WINDOWS && self.account.amplitude[n - 1 - GROWTH_WINDOWS] > 0.0 {
             format!(
                 "; the interface force grew ×{:.3} over the last {GROWTH_WINDOWS} windows (to {:.3e} N)",
-                self.amplitude[n - 1] / self.amplitude[n - 1 - GROWTH_WINDOWS],
-                self.amplitude[n - 1]
+                self.account.amplitude[n - 1] / self.account.amplitude[n - 1 - GROWTH_WINDOWS],
+                self.account.amplitude[n - 1]
             )
         } else {
             format!("; interface force {:.3e} N at the window end", e.amplitude)
