@@ -1,9 +1,16 @@
-//! The part of a frame's state that an increment changes — node positions and rotations, element
-//! frames and stress states — kept to go back to: the start of a one-solve step that is taken back
-//! and cut (`stepping.rs`), and the committed state every equilibrium correction starts again from
-//! (`equilibrium.rs`). Kept apart from the nodes and elements, so that keeping and restoring it copy
-//! only what an increment changes (a third of an element, a third of a node) and the elements stay
-//! small in the per-step passes; its storage is reused from step to step.
+//! The part of a frame's state that an increment changes, kept to go back to: the start of a
+//! one-solve step that is taken back and cut (`stepping.rs`), and the committed state every
+//! equilibrium correction starts again from (`equilibrium.rs`). Kept apart from the nodes and
+//! elements, so that keeping and restoring it copy only what an increment changes and the elements
+//! stay small in the per-step passes; its storage is reused from step to step.
+//!
+//! A one-solve step keeps the nodes' positions and rotations and the elements' stress states only:
+//! an element's co-rotational frame is a function of its nodes' positions and rotations
+//! ([`Element::kinematics`]), which a take-back makes anew from the restored nodes, bit for bit the
+//! frame the element had (every step ends with the frames made from its nodes). Not copying the
+//! frames (176 of an element's 304 bytes of state) every step saves most of the memory traffic of
+//! keeping. An iterated step restores its committed state once per correction and keeps the frames
+//! too.
 
 use super::element::Corotated;
 use super::hinge::StressState;
@@ -13,9 +20,12 @@ use nalgebra::{UnitQuaternion, Vector3};
 #[derive(Debug, Clone, Default)]
 pub struct KeptState {
     /// Position and rotation of every node.
-    pub nodes: Vec<(Vector3<f64>, UnitQuaternion<f64>)>,
-    /// Co-rotational frame and stress state of every element.
-    pub elements: Vec<(Corotated, StressState)>,
+    nodes: Vec<(Vector3<f64>, UnitQuaternion<f64>)>,
+    /// Stress state of every element.
+    stresses: Vec<StressState>,
+    /// Co-rotational frame of every element, or none: [`KeptState::restore`] then makes them from
+    /// the restored nodes.
+    frames: Vec<Corotated>,
 }
 
 impl KeptState {
@@ -25,26 +35,40 @@ impl KeptState {
         self.nodes.extend(nodes.iter().map(|n| (n.position, n.rotation)));
     }
 
-    /// Keeps the elements' frames and stress states.
-    pub fn keep_elements(&mut self, elements: &[Element]) {
-        self.elements.clear();
-        self.elements
-            .extend(elements.iter().map(|e| (e.current, e.stress)));
-    }
-
-    /// Keeps the nodes' and the elements' state.
+    /// Keeps the nodes' state and the elements' frames and stress states.
     pub fn keep(&mut self, nodes: &[Node], elements: &[Element]) {
         self.keep_nodes(nodes);
-        self.keep_elements(elements);
+        self.stresses.clear();
+        self.stresses.extend(elements.iter().map(|e| e.stress));
+        self.frames.clear();
+        self.frames.extend(elements.iter().map(|e| e.current));
     }
 
-    /// Puts the nodes and elements back in the kept state.
+    /// Room for the stress states of `count` elements, for the caller to write (in the pass that
+    /// updates them); the frames are not kept.
+    pub fn stress_slots(&mut self, count: usize) -> &mut [StressState] {
+        self.frames.clear();
+        self.stresses.resize(count, StressState::elastic(0.0));
+        &mut self.stresses
+    }
+
+    /// Puts the nodes and elements back in the kept state; frames that were not kept are made from
+    /// the restored nodes.
     pub fn restore(&self, nodes: &mut [Node], elements: &mut [Element]) {
         for (n, kept) in nodes.iter_mut().zip(&self.nodes) {
             (n.position, n.rotation) = *kept;
         }
-        for (e, kept) in elements.iter_mut().zip(&self.elements) {
-            (e.current, e.stress) = *kept;
+        for (e, kept) in elements.iter_mut().zip(&self.stresses) {
+            e.stress = *kept;
+        }
+        if self.frames.is_empty() {
+            for e in elements.iter_mut() {
+                e.current = e.kinematics(nodes);
+            }
+        } else {
+            for (e, kept) in elements.iter_mut().zip(&self.frames) {
+                e.current = *kept;
+            }
         }
     }
 }

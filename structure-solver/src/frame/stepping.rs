@@ -6,7 +6,7 @@
 
 use super::assembly::NODE_DOFS;
 use super::condensation::Block;
-use super::element::{corotate, linear_kinematics, ELEMENT_DOFS};
+use super::element::ELEMENT_DOFS;
 use super::energy;
 use super::factor_age::{Staleness, CG_PRODUCTS_LIMIT};
 use super::global_system::{end_mass, mass_block, tangent_stiffness, Contribution, Motion, NodalForces};
@@ -401,8 +401,8 @@ impl Frame {
     }
 
     /// [`Frame::update_elements`] and, in the same pass, the elements' contributions at the new
-    /// state without stiffness; with `keep`, also the elements' state before it, into the kept
-    /// state (`kept_state.rs`).
+    /// state without stiffness; with `keep`, also the elements' stress states before it, into the
+    /// kept state (`kept_state.rs`: their frames are made again from the nodes on a take-back).
     fn update_elements_with_forces(&mut self, keep: bool) -> Vec<Contribution> {
         let (nodes, sections, density) = (&self.nodes, &self.sections, self.density);
         let update = |e: &mut Element| {
@@ -417,16 +417,13 @@ impl Frame {
                 .map(update)
                 .collect();
         }
-        if self.kept.elements.len() != self.elements.len() {
-            // sized once (and after a fracture); the values are written below
-            self.kept.keep_elements(&self.elements);
-        }
+        let kept = self.kept.stress_slots(self.elements.len());
         self.elements
             .par_iter_mut()
-            .zip(self.kept.elements.par_iter_mut())
+            .zip(kept.par_iter_mut())
             .with_min_len(PARALLEL_CHUNK)
             .map(|(e, kept)| {
-                *kept = (e.current, e.stress);
+                *kept = e.stress;
                 update(e)
             })
             .collect()
@@ -494,29 +491,7 @@ impl Frame {
 /// Brings element `e` to the current node positions and rotations: its co-rotational frame, natural
 /// deformation increment and resultants.
 fn update_element(e: &mut Element, nodes: &[Node], sections: &[Section]) {
-    let [a, b] = e.nodes;
-    let (na, nb) = (&nodes[a], &nodes[b]);
-    let now = if e.linear {
-        linear_kinematics(
-            &na.position,
-            &nb.position,
-            &na.initial,
-            &nb.initial,
-            &na.rotation,
-            &nb.rotation,
-            &e.reference,
-            e.length0,
-        )
-    } else {
-        corotate(
-            &na.position,
-            &nb.position,
-            &na.rotation,
-            &nb.rotation,
-            &e.reference,
-            e.length0,
-        )
-    };
+    let now = e.kinematics(nodes);
     let mut dd = [0.0; ELEMENT_DOFS];
     for (i, d) in dd.iter_mut().enumerate() {
         *d = now.deformation[i] - e.current.deformation[i];

@@ -1,7 +1,7 @@
 //! Nodes and elements of a frame, built from its config: each member becomes two ASI-Gauss elements
 //! joined at a new mid node.
 
-use super::element::{corotate, initial_frame, quaternion_of, Corotated, S_GAUSS};
+use super::element::{corotate, initial_frame, linear_kinematics, quaternion_of, Corotated, S_GAUSS};
 use super::hinge::StressState;
 use nalgebra::{UnitQuaternion, Vector3};
 use schemas::case::frame::{FrameConfig, Geometry, DOF_NAMES};
@@ -69,6 +69,34 @@ impl Element {
             (true, _) => 0.0,
             (false, 0) => S_GAUSS,
             (false, _) => -S_GAUSS,
+        }
+    }
+
+    /// The co-rotational frame and natural deformations of this element at its nodes' current
+    /// positions and rotations (first-order kinematics for a `linear` element).
+    pub fn kinematics(&self, nodes: &[Node]) -> Corotated {
+        let [a, b] = self.nodes;
+        let (na, nb) = (&nodes[a], &nodes[b]);
+        if self.linear {
+            linear_kinematics(
+                &na.position,
+                &nb.position,
+                &na.initial,
+                &nb.initial,
+                &na.rotation,
+                &nb.rotation,
+                &self.reference,
+                self.length0,
+            )
+        } else {
+            corotate(
+                &na.position,
+                &nb.position,
+                &na.rotation,
+                &nb.rotation,
+                &self.reference,
+                self.length0,
+            )
         }
     }
 }
