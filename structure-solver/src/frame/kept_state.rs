@@ -7,10 +7,11 @@
 //! A one-solve step keeps the nodes' positions and rotations and the elements' stress states only:
 //! an element's co-rotational frame is a function of its nodes' positions and rotations
 //! ([`Element::kinematics`]), which a take-back makes anew from the restored nodes, bit for bit the
-//! frame the element had (every step ends with the frames made from its nodes). Not copying the
-//! frames (176 of an element's 304 bytes of state) every step saves most of the memory traffic of
-//! keeping. An iterated step restores its committed state once per correction and keeps the frames
-//! too.
+//! frame the element had (every step ends with the frames made from its nodes; checked by
+//! `tests/frame_one_solve_step.rs`). Not copying the frames (176 of an element's 304 bytes of
+//! state) cuts what a step copies of its elements from 0.84 to 0.34 MB on the benchmark's 7 × 7 × 7
+//! building, and halves the cache misses keeping costs. An iterated step restores its committed
+//! state once per correction and keeps the frames too.
 
 use super::element::Corotated;
 use super::hinge::StressState;
