@@ -126,7 +126,9 @@ impl FluidSolver {
         let mut grid = grid;
         let (mut method, mut method_state) = match cfg.method {
             FluidMethodName::Emps => (
-                FluidMethod::Emps(Box::new(EmpsStep::new(kernel, physics))),
+                FluidMethod::Emps(Box::new(
+                    EmpsStep::new(kernel, physics).with_artificial_viscosity(cfg.artificial_viscosity),
+                )),
                 MethodState::Emps,
             ),
             FluidMethodName::Isph => {

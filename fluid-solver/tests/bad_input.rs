@@ -110,6 +110,23 @@ fn other_bad_keys_name_what_is_allowed() {
     );
     let e = error_of(&GOOD.replace("output_interval = 0.05", "output_interval = 0.05\nspeed = 3"));
     assert!(e.contains("speed"), "{e}");
+    let damped = |value: &str| {
+        GOOD.replace(
+            "spacing = 0.02",
+            &format!("spacing = 0.02\nartificial_viscosity = {value}"),
+        )
+    };
+    parse(&damped("0.05")).unwrap_or_else(|e| panic!("{e}"));
+    let e = error_of(&damped("-0.1"));
+    assert!(
+        e.contains("`fluid.water.artificial_viscosity`") && e.contains("[0, 1]"),
+        "{e}"
+    );
+    let e = error_of(&damped("0.05\nmethod = \"isph\""));
+    assert!(
+        e.contains("`fluid.water.artificial_viscosity`") && e.contains("E-MPS option"),
+        "{e}"
+    );
     let probe =
         format!("{GOOD}\n[[fluid.water.probe]]\nname = \"p\"\nkind = \"pressure\"\nposition = [0.1, 0.1]\n");
     let e = error_of(&probe);

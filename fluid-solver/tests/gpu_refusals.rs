@@ -50,6 +50,14 @@ fn gpu_backend_refuses_what_it_does_not_run_naming_the_feature() {
         e.contains("`fluid.water.backend`") && e.contains("rigid bodies"),
         "{e}"
     );
+    let e = error_of(&GOOD.replace(
+        "backend = \"gpu\"",
+        "backend = \"gpu\"\nartificial_viscosity = 0.05",
+    ));
+    assert!(
+        e.contains("`fluid.water.backend`") && e.contains("artificial viscosity"),
+        "{e}"
+    );
     let probe = "\n[[fluid.water.probe]]\nname = \"p\"\nkind = \"wall-pressure\"\nposition = [0.2, 0.03, 0.04]\nnormal = \"-x\"\ndiameter = 0.04\nwindow = 0.01\n";
     let e = error_of(&format!("{GOOD}{probe}"));
     assert!(

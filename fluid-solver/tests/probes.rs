@@ -32,11 +32,18 @@ fn sensor(name: &str, position: [f64; 3], normal: &str, diameter: f64, window: O
 /// off by up to 2 %). Bounds: the floor sensor 1 % (issue 15: the floor carries the whole
 /// weight, `hydrostatic.rs` checks that total within 1 %, measured −0.5 %). The side walls carry
 /// no weight, so nothing forces their reading onto the weight above: measured, opposite pairs
-/// read −0.3 % (z = 0.08 m) and −1.6 % (z = 0.16 m, both pairs there), single sensors scatter up
-/// to −2.8 % from a residual antisymmetric mode that the pair's mean cancels. That is the E-MPS
-/// column's own stress (its particle lattice carries a slightly smaller horizontal than vertical
-/// stress), not the sensor's: the bounds are 2 % on a pair's mean and 3 % on a single side
-/// sensor, the point probe's bound in `hydrostatic.rs`.
+/// read −0.65 % (z = 0.08 m) and −1.63 % (z = 0.16 m), single sensors +0.2 … −2.8 %. Issue 15
+/// asks 1 % of a single side sensor; this is not the sensor's error but the settled E-MPS
+/// column's static stress, which is not isotropic (the particles jam on their lattice and carry
+/// some shear; wall by wall it differs), measured with eight side sensors (all four walls, both
+/// depths): mean −1.0 %, x1 wall +0.1 … +0.2 %, x0 −0.8 % and −2.8 %; a 1.0 s window instead of
+/// 0.5 s moves no sensor by more than 0.7 % (so it is no sloshing mode the window could
+/// average); the staircase reference N(z_i > z) and one that spreads each particle over Δs differ
+/// by at most 0.3 % at the side sensors' heights; the lattice anisotropy of S1-3 on a column
+/// compressed vertically by ε, Σ x²/r² w_grad / Σ z²/r² w_grad = 1 − 0.55 ε, accounts for only
+/// 0.5 % at ε = 1 %. With `artificial_viscosity = 0.01` the same sensors read +0.01, −1.16,
+/// +1.03 and +0.66 %. The bounds are 2 % on a pair's mean and 3 % on a single side sensor, the
+/// point probe's bound in `hydrostatic.rs`.
 #[test]
 fn a_wall_sensor_on_a_hydrostatic_tank_reads_rho_g_h() {
     let (_, mut cfg): (_, FluidConfig) = common::load_case("hydrostatic-tank");

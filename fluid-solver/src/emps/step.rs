@@ -7,7 +7,7 @@
 //! 15 m/s after a near contact.
 
 use super::kernel::Kernel;
-use super::{operators, pair_laws};
+use super::{artificial_viscosity, operators, pair_laws};
 use crate::collision::{self, COLLISION_DISTANCE, RESTITUTION};
 use crate::kind::{Kind, FLUID};
 use crate::method::StepTotals;
@@ -24,6 +24,8 @@ use rayon::prelude::*;
 pub struct EmpsStep {
     pub kernel: Kernel,
     pub physics: Physics,
+    /// α of the optional artificial viscosity ([`artificial_viscosity`]); 0: off.
+    alpha: f64,
     scratch: Vec<f64>,
     accel: VectorField,
     times: StageTimes,
@@ -35,10 +37,17 @@ impl EmpsStep {
         EmpsStep {
             kernel,
             physics,
+            alpha: 0.0,
             scratch: Vec::new(),
             accel: VectorField::default(),
             times: StageTimes::default(),
         }
+    }
+
+    /// The same step with the artificial viscosity α (0, the default, is off).
+    pub fn with_artificial_viscosity(mut self, alpha: f64) -> EmpsStep {
+        self.alpha = alpha;
+        self
     }
 
     /// Wall time per stage since the start.
@@ -80,6 +89,7 @@ impl EmpsStep {
         self.equation_of_state(p); // S1-14
         let t = self.times.lap(t, "density and pressure");
         self.pressure_gradient(grid, p, &mut totals); // S1-3
+        self.artificial_viscosity(grid, p, &mut totals);
         bodies(Exchange::Pressure, &pair_laws::pressure(&self.kernel, p), grid, p);
         self.correct(p, dt); // S1-12, S1-13
         let t = self.times.lap(t, "pressure gradient");
@@ -128,6 +138,22 @@ impl EmpsStep {
             totals.force_from_walls[a] -= volume * t.from_non_fluid[a];
         }
         totals.candidates += t.candidates;
+    }
+
+    /// The optional artificial viscosity's ⟨∇q⟩, added to ⟨∇P⟩ at r*, u* (fluid pairs only, so
+    /// the walls' force is unchanged).
+    fn artificial_viscosity(&mut self, grid: &CellGrid, p: &Particles, totals: &mut StepTotals) {
+        if self.alpha > 0.0 {
+            totals.candidates += artificial_viscosity::add_gradient(
+                grid,
+                &self.kernel,
+                p,
+                self.alpha,
+                self.physics.density,
+                self.physics.sound_speed,
+                &mut self.accel,
+            );
+        }
     }
 
     /// Collisions of close approaching particles (see the module doc), applied like S1-13.

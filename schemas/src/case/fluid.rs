@@ -8,6 +8,7 @@
 //! spacing = 0.01            # Δs [m]
 //! time_step = 5e-4          # Δt [s], checked against the acoustic and viscous limits
 //! sound_speed = 12.1        # c [m/s]; default u_max / 0.2 with u_max = √(2gH) (S1-16)
+//! artificial_viscosity = 0.0 # α of Monaghan's artificial viscosity (E-MPS only; default off)
 //! viscosity_term = false    # switch ν⟨∇²u⟩ off when ν is far below the numerical dissipation
 //! output_interval = 0.05
 //! surface_mesh = true       # also a free-surface mesh (VTP) per frame; default false
@@ -394,6 +395,11 @@ pub struct FluidConfig {
     /// of the highest water block's top above the tank floor.
     #[serde(default)]
     pub max_velocity: Option<f64>,
+    /// E-MPS only: α of Monaghan's artificial viscosity between fluid particles (issue 15:
+    /// pressure noise at wall sensors); 0 (default) is off, WCSPH codes use 0.01 … 0.1. See
+    /// `fluid-solver/src/emps/artificial_viscosity.rs`.
+    #[serde(default)]
+    pub artificial_viscosity: f64,
     /// Wall particle layers (≥ 4): the two inner ones carry pressure, the others fill the number density.
     #[serde(default = "default_wall_layers")]
     pub wall_layers: u32,
@@ -468,6 +474,7 @@ impl FluidConfig {
         check::positive(&k("time_step"), self.time_step)?;
         check::positive(&k("density"), self.density)?;
         check::non_negative(&k("viscosity"), self.viscosity)?;
+        check::within(&k("artificial_viscosity"), self.artificial_viscosity, 0.0, 1.0)?;
         check::finite(&k("gravity"), &self.gravity)?;
         check::positive(&k("output_interval"), self.output_interval)?;
         if let Some(p) = self.probe_interval {
@@ -612,6 +619,12 @@ impl FluidConfig {
                 self.validate_time_step(key)
             }
             FluidMethodName::Isph => {
+                if self.artificial_viscosity != 0.0 {
+                    return Err(FieldError::new(
+                        k("artificial_viscosity"),
+                        "the artificial viscosity is an E-MPS option (it is scaled by the sound speed, which ISPH has not): remove artificial_viscosity or use method = \"emps\"",
+                    ));
+                }
                 if self.sound_speed.is_some() {
                     return Err(FieldError::new(
                         k("sound_speed"),
@@ -636,6 +649,9 @@ impl FluidConfig {
         };
         if self.method != FluidMethodName::Emps {
             return refuse("method = \"isph\" (only E-MPS is on the GPU)");
+        }
+        if self.artificial_viscosity != 0.0 {
+            return refuse("the E-MPS artificial viscosity (artificial_viscosity > 0)");
         }
         if !self.body.is_empty() {
             return refuse("rigid bodies ([[body]])");
