@@ -4,9 +4,13 @@
 //! (each method at its own largest stable Δt: E-MPS acoustic, ISPH advective), and the RMS of the
 //! step-to-step change of a pressure probe on the far wall.
 //!
-//! `cargo bench -p fluid-solver --bench isph_vs_emps -- [spacing] [end time] [ppe solver]`;
-//! defaults Δs = L/20 = 0.0073 m (8 000 fluid particles), 0.5 s (past the impact on the far wall
-//! at about 0.3 s), "jacobi-pcg" (or "faer-cholesky").
+//! Then each method's stages (the step's stage timers) with their share, and the load average
+//! before and after (wall times on a shared machine mean little without it).
+//!
+//! `cargo bench -p fluid-solver --bench isph_vs_emps -- [spacing] [end time] [ppe solver]
+//! [--s2] [--only=isph|emps]`; defaults Δs = L/20 = 0.0073 m (8 000 fluid particles), 0.5 s (past
+//! the impact on the far wall at about 0.3 s), "jacobi-pcg" (or "faer-cholesky"). `--s2` is S2's
+//! scale (Table 1): Δs = 5 mm and a slab 76 Δs deep, 127 832 fluid particles (S2: 128 000).
 
 use fluid_solver::probes;
 use fluid_solver::{FluidSolver, Kind};
@@ -15,7 +19,7 @@ use schemas::case::Case;
 use std::path::PathBuf;
 use std::time::Instant;
 
-fn case(ds: f64) -> FluidConfig {
+fn case(ds: f64, layers: f64) -> FluidConfig {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../cases/dam-break-koshizuka/case.toml");
     let case = Case::load(&path).unwrap_or_else(|e| {
         eprintln!("error: {e}");
@@ -27,7 +31,7 @@ fn case(ds: f64) -> FluidConfig {
         .next()
         .cloned()
         .unwrap_or_else(|| std::process::exit(1));
-    let depth = 10.0 * ds;
+    let depth = layers * ds;
     cfg.spacing = ds;
     cfg.tank.max = [0.584, depth, 0.438];
     cfg.block[0].max = [0.146, depth, 0.292];
@@ -37,6 +41,7 @@ fn case(ds: f64) -> FluidConfig {
 
 struct Row {
     name: String,
+    stages: Vec<(&'static str, f64)>,
     dt: f64,
     steps: u64,
     fluid: usize,
@@ -73,6 +78,7 @@ fn run(name: &str, cfg: &FluidConfig, end: f64) -> Row {
     let ppe = times.seconds("PPE assembly") + times.seconds("PPE solve");
     Row {
         name: name.into(),
+        stages: times.stages().to_vec(),
         dt: cfg.time_step,
         steps: solver.steps(),
         fluid,
@@ -87,20 +93,35 @@ fn run(name: &str, cfg: &FluidConfig, end: f64) -> Row {
     }
 }
 
+/// The 1-minute load average (other processes share the cores).
+fn load_average() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .ok()
+        .and_then(|s| s.split_whitespace().next().map(str::to_owned))
+        .unwrap_or_else(|| "?".into())
+}
+
 fn main() {
-    let args: Vec<String> = std::env::args()
-        .skip(1)
-        .filter(|a| !a.starts_with("--"))
-        .collect();
-    let ds: f64 = args.first().and_then(|s| s.parse().ok()).unwrap_or(0.0073);
+    let all: Vec<String> = std::env::args().skip(1).collect();
+    let s2 = all.iter().any(|a| a == "--s2");
+    let only = all
+        .iter()
+        .find_map(|a| a.strip_prefix("--only="))
+        .map(str::to_owned);
+    let args: Vec<&String> = all.iter().filter(|a| !a.starts_with("--")).collect();
+    let ds: f64 = args
+        .first()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(if s2 { 0.005 } else { 0.0073 });
     let end: f64 = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(0.5);
-    let solver = match args.get(2).map(String::as_str) {
+    let solver = match args.get(2).map(|s| s.as_str()) {
         Some("faer-cholesky") => PpeSolver::FaerCholesky,
         _ => PpeSolver::JacobiPcg,
     };
-    let mut emps = case(ds);
+    let layers = if s2 { 76.0 } else { 10.0 };
+    let mut emps = case(ds, layers);
     emps.time_step = 0.45 * ds / emps.sound_speed(); // acoustic Courant 0.45, as the case file
-    let mut isph = case(ds);
+    let mut isph = case(ds, layers);
     isph.method = FluidMethodName::Isph;
     isph.sound_speed = None;
     isph.isph = Some(IsphConfig {
@@ -115,11 +136,22 @@ fn main() {
         }
     }
     println!(
-        "dam break, Δs = {ds} m, end {end} s, {} threads",
-        rayon::current_num_threads()
+        "dam break, Δs = {ds} m, slab {layers} Δs deep, end {end} s, {} threads, load average {}",
+        rayon::current_num_threads(),
+        load_average()
     );
+    let mut rows = Vec::new();
+    for (name, cfg) in [("E-MPS", &emps), ("ISPH", &isph)] {
+        if only
+            .as_deref()
+            .is_none_or(|o| o.eq_ignore_ascii_case(&name.replace('-', "")))
+        {
+            rows.push(run(name, cfg, end));
+        }
+    }
+    println!("load average after: {}", load_average());
     println!("method  Δt [s]    steps  fluid   wall [s]  fluid-steps/s  PPE it/step  PPE share  wall-probe RMS Δp [Pa]");
-    for row in [run("E-MPS", &emps, end), run("ISPH", &isph, end)] {
+    for row in &rows {
         println!(
             "{:6}  {:.2e}  {:5}  {:6}  {:8.2}  {:13.3e}  {:11.1}  {:8.1} %  {:.2}",
             row.name,
@@ -132,5 +164,16 @@ fn main() {
             100.0 * row.ppe_share,
             row.probe_rms
         );
+    }
+    for row in &rows {
+        let total: f64 = row.stages.iter().map(|s| s.1).sum();
+        println!("{} stages (wall time per step, share of the step):", row.name);
+        for (stage, secs) in &row.stages {
+            println!(
+                "  {stage:34} {:9.2} ms  {:5.1} %",
+                1e3 * secs / row.steps.max(1) as f64,
+                100.0 * secs / total.max(f64::MIN_POSITIVE)
+            );
+        }
     }
 }
