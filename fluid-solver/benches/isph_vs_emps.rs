@@ -5,11 +5,13 @@
 //! step-to-step change of a pressure probe on the far wall.
 //!
 //! Then each method's stages (the step's stage timers) with their share, and the load average
-//! before and after (wall times on a shared machine mean little without it).
+//! before and after and the process's CPU time (wall times on a shared machine mean little
+//! without them; "per CPU-s × threads" is the rate the threads would give with the cores to
+//! themselves).
 //!
 //! `cargo bench -p fluid-solver --bench isph_vs_emps -- [spacing] [end time] [ppe solver]
 //! [--s2] [--only=isph|emps]`; defaults Δs = L/20 = 0.0073 m (8 000 fluid particles), 0.5 s (past
-//! the impact on the far wall at about 0.3 s), "jacobi-pcg" (or "faer-cholesky"). `--s2` is S2's
+//! the impact on the far wall at about 0.3 s), "jacobi-pcg" (or "sgs-pcg", "faer-cholesky"). `--s2` is S2's
 //! scale (Table 1): Δs = 5 mm and a slab 76 Δs deep, 127 832 fluid particles (S2: 128 000).
 
 use fluid_solver::probes;
@@ -46,6 +48,7 @@ struct Row {
     steps: u64,
     fluid: usize,
     wall: f64,
+    cpu: f64,
     ppe_iterations: u64,
     ppe_share: f64,
     probe_rms: f64,
@@ -63,6 +66,7 @@ fn run(name: &str, cfg: &FluidConfig, end: f64) -> Row {
     let tank = solver.tank();
     let (mut last, mut sum2, mut n) = (0.0, 0.0, 0u64);
     let start = Instant::now();
+    let cpu0 = cpu_seconds();
     while let Some(dt) = solver.next_step_towards(end) {
         if let Err(e) = solver.step(dt) {
             eprintln!("{name}: {e}");
@@ -74,6 +78,7 @@ fn run(name: &str, cfg: &FluidConfig, end: f64) -> Row {
         n += 1;
     }
     let wall = start.elapsed().as_secs_f64();
+    let cpu = cpu_seconds() - cpu0;
     let times = solver.stage_times();
     let ppe = times.seconds("PPE assembly") + times.seconds("PPE solve");
     Row {
@@ -83,6 +88,7 @@ fn run(name: &str, cfg: &FluidConfig, end: f64) -> Row {
         steps: solver.steps(),
         fluid,
         wall,
+        cpu,
         ppe_iterations: solver.totals().ppe_iterations,
         ppe_share: if times.total() > 0.0 {
             ppe / times.total()
@@ -91,6 +97,20 @@ fn run(name: &str, cfg: &FluidConfig, end: f64) -> Row {
         },
         probe_rms: (sum2 / n.max(1) as f64).sqrt(),
     }
+}
+
+/// CPU seconds this process has used (user + system, from /proc/self/stat; 0 where absent):
+/// on a loaded machine the wall time counts other processes' turns, the CPU time does not.
+fn cpu_seconds() -> f64 {
+    let ticks_per_second = 100.0; // USER_HZ on Linux
+    std::fs::read_to_string("/proc/self/stat")
+        .ok()
+        .and_then(|s| {
+            let rest = &s[s.rfind(')')? + 2..];
+            let f: Vec<&str> = rest.split_whitespace().collect();
+            Some((f.get(11)?.parse::<f64>().ok()? + f.get(12)?.parse::<f64>().ok()?) / ticks_per_second)
+        })
+        .unwrap_or(0.0)
 }
 
 /// The 1-minute load average (other processes share the cores).
@@ -116,6 +136,7 @@ fn main() {
     let end: f64 = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(0.5);
     let solver = match args.get(2).map(|s| s.as_str()) {
         Some("faer-cholesky") => PpeSolver::FaerCholesky,
+        Some("sgs-pcg") => PpeSolver::SgsPcg,
         _ => PpeSolver::JacobiPcg,
     };
     let layers = if s2 { 76.0 } else { 10.0 };
@@ -150,16 +171,19 @@ fn main() {
         }
     }
     println!("load average after: {}", load_average());
-    println!("method  Δt [s]    steps  fluid   wall [s]  fluid-steps/s  PPE it/step  PPE share  wall-probe RMS Δp [Pa]");
+    let threads = rayon::current_num_threads() as f64;
+    println!("method  Δt [s]    steps  fluid    wall [s]  CPU [s]  fluid-steps/s  per CPU-s × threads  PPE it/step  PPE share  wall-probe RMS Δp [Pa]");
     for row in &rows {
         println!(
-            "{:6}  {:.2e}  {:5}  {:6}  {:8.2}  {:13.3e}  {:11.1}  {:8.1} %  {:.2}",
+            "{:6}  {:.2e}  {:5}  {:6}  {:9.2}  {:7.2}  {:13.3e}  {:19.3e}  {:11.1}  {:8.1} %  {:.2}",
             row.name,
             row.dt,
             row.steps,
             row.fluid,
             row.wall,
+            row.cpu,
             row.fluid as f64 * row.steps as f64 / row.wall,
+            row.fluid as f64 * row.steps as f64 * threads / row.cpu.max(1e-9),
             row.ppe_iterations as f64 / row.steps.max(1) as f64,
             100.0 * row.ppe_share,
             row.probe_rms

@@ -326,12 +326,18 @@ impl IsphStep {
         let list = &self.list;
         let surface = &mut state.surface;
         // Unknowns: fluid, not on the surface, with at least one fluid neighbour.
-        for (i, s) in surface.iter_mut().enumerate() {
-            if p.kind[i] == FLUID && *s != SURFACE && !list.of(i).iter().any(|&j| p.kind[j as usize] == FLUID)
-            {
-                *s = SURFACE;
-            }
-        }
+        surface
+            .par_iter_mut()
+            .enumerate()
+            .with_min_len(4096)
+            .for_each(|(i, s)| {
+                if p.kind[i] == FLUID
+                    && *s != SURFACE
+                    && !list.of(i).iter().any(|&j| p.kind[j as usize] == FLUID)
+                {
+                    *s = SURFACE;
+                }
+            });
         free_surface::surface_pressure(
             &k,
             list,
