@@ -46,6 +46,8 @@ struct Row {
     stages: Vec<(&'static str, f64)>,
     dt: f64,
     steps: u64,
+    /// Time reached (short of the end time when the run stopped).
+    reached: f64,
     fluid: usize,
     wall: f64,
     cpu: f64,
@@ -86,6 +88,7 @@ fn run(name: &str, cfg: &FluidConfig, end: f64) -> Row {
         stages: times.stages().to_vec(),
         dt: cfg.time_step,
         steps: solver.steps(),
+        reached: solver.time(),
         fluid,
         wall,
         cpu,
@@ -172,12 +175,13 @@ fn main() {
     }
     println!("load average after: {}", load_average());
     let threads = rayon::current_num_threads() as f64;
-    println!("method  Δt [s]    steps  fluid    wall [s]  CPU [s]  fluid-steps/s  per CPU-s × threads  PPE it/step  PPE share  wall-probe RMS Δp [Pa]");
+    println!("method  Δt [s]    t [s]   steps  fluid    wall [s]  CPU [s]  fluid-steps/s  per CPU-s × threads  PPE it/step  PPE share  wall-probe RMS Δp [Pa]");
     for row in &rows {
         println!(
-            "{:6}  {:.2e}  {:5}  {:6}  {:9.2}  {:7.2}  {:13.3e}  {:19.3e}  {:11.1}  {:8.1} %  {:.2}",
+            "{:6}  {:.2e}  {:6.4}  {:5}  {:6}  {:9.2}  {:7.2}  {:13.3e}  {:19.3e}  {:11.1}  {:8.1} %  {:.2}",
             row.name,
             row.dt,
+            row.reached,
             row.steps,
             row.fluid,
             row.wall,
