@@ -4,9 +4,15 @@
 //! (each method at its own largest stable Δt: E-MPS acoustic, ISPH advective), and the RMS of the
 //! step-to-step change of a pressure probe on the far wall.
 //!
-//! `cargo bench -p fluid-solver --bench isph_vs_emps -- [spacing] [end time] [ppe solver]`;
-//! defaults Δs = L/20 = 0.0073 m (8 000 fluid particles), 0.5 s (past the impact on the far wall
-//! at about 0.3 s), "jacobi-pcg" (or "faer-cholesky").
+//! Then each method's stages (the step's stage timers) with their share, and the load average
+//! before and after and the process's CPU time (wall times on a shared machine mean little
+//! without them; "per CPU-s × threads" is the rate the threads would give with the cores to
+//! themselves).
+//!
+//! `cargo bench -p fluid-solver --bench isph_vs_emps -- [spacing] [end time] [ppe solver]
+//! [--s2] [--only=isph|emps]`; defaults Δs = L/20 = 0.0073 m (8 000 fluid particles), 0.5 s (past
+//! the impact on the far wall at about 0.3 s), "jacobi-pcg" (or "sgs-pcg", "faer-cholesky"). `--s2` is S2's
+//! scale (Table 1): Δs = 5 mm and a slab 76 Δs deep, 127 832 fluid particles (S2: 128 000).
 
 use fluid_solver::probes;
 use fluid_solver::{FluidSolver, Kind};
@@ -15,7 +21,7 @@ use schemas::case::Case;
 use std::path::PathBuf;
 use std::time::Instant;
 
-fn case(ds: f64) -> FluidConfig {
+fn case(ds: f64, layers: f64) -> FluidConfig {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../cases/dam-break-koshizuka/case.toml");
     let case = Case::load(&path).unwrap_or_else(|e| {
         eprintln!("error: {e}");
@@ -27,7 +33,7 @@ fn case(ds: f64) -> FluidConfig {
         .next()
         .cloned()
         .unwrap_or_else(|| std::process::exit(1));
-    let depth = 10.0 * ds;
+    let depth = layers * ds;
     cfg.spacing = ds;
     cfg.tank.max = [0.584, depth, 0.438];
     cfg.block[0].max = [0.146, depth, 0.292];
@@ -37,10 +43,14 @@ fn case(ds: f64) -> FluidConfig {
 
 struct Row {
     name: String,
+    stages: Vec<(&'static str, f64)>,
     dt: f64,
     steps: u64,
+    /// Time reached (short of the end time when the run stopped).
+    reached: f64,
     fluid: usize,
     wall: f64,
+    cpu: f64,
     ppe_iterations: u64,
     ppe_share: f64,
     probe_rms: f64,
@@ -58,6 +68,7 @@ fn run(name: &str, cfg: &FluidConfig, end: f64) -> Row {
     let tank = solver.tank();
     let (mut last, mut sum2, mut n) = (0.0, 0.0, 0u64);
     let start = Instant::now();
+    let cpu0 = cpu_seconds();
     while let Some(dt) = solver.next_step_towards(end) {
         if let Err(e) = solver.step(dt) {
             eprintln!("{name}: {e}");
@@ -69,14 +80,18 @@ fn run(name: &str, cfg: &FluidConfig, end: f64) -> Row {
         n += 1;
     }
     let wall = start.elapsed().as_secs_f64();
+    let cpu = cpu_seconds() - cpu0;
     let times = solver.stage_times();
     let ppe = times.seconds("PPE assembly") + times.seconds("PPE solve");
     Row {
         name: name.into(),
+        stages: times.stages().to_vec(),
         dt: cfg.time_step,
         steps: solver.steps(),
+        reached: solver.time(),
         fluid,
         wall,
+        cpu,
         ppe_iterations: solver.totals().ppe_iterations,
         ppe_share: if times.total() > 0.0 {
             ppe / times.total()
@@ -87,20 +102,50 @@ fn run(name: &str, cfg: &FluidConfig, end: f64) -> Row {
     }
 }
 
+/// CPU seconds this process has used (user + system, from /proc/self/stat; 0 where absent):
+/// on a loaded machine the wall time counts other processes' turns, the CPU time does not.
+fn cpu_seconds() -> f64 {
+    let ticks_per_second = 100.0; // USER_HZ on Linux
+    std::fs::read_to_string("/proc/self/stat")
+        .ok()
+        .and_then(|s| {
+            let rest = &s[s.rfind(')')? + 2..];
+            let f: Vec<&str> = rest.split_whitespace().collect();
+            Some((f.get(11)?.parse::<f64>().ok()? + f.get(12)?.parse::<f64>().ok()?) / ticks_per_second)
+        })
+        .unwrap_or(0.0)
+}
+
+/// The 1-minute load average (other processes share the cores).
+fn load_average() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .ok()
+        .and_then(|s| s.split_whitespace().next().map(str::to_owned))
+        .unwrap_or_else(|| "?".into())
+}
+
 fn main() {
-    let args: Vec<String> = std::env::args()
-        .skip(1)
-        .filter(|a| !a.starts_with("--"))
-        .collect();
-    let ds: f64 = args.first().and_then(|s| s.parse().ok()).unwrap_or(0.0073);
+    let all: Vec<String> = std::env::args().skip(1).collect();
+    let s2 = all.iter().any(|a| a == "--s2");
+    let only = all
+        .iter()
+        .find_map(|a| a.strip_prefix("--only="))
+        .map(str::to_owned);
+    let args: Vec<&String> = all.iter().filter(|a| !a.starts_with("--")).collect();
+    let ds: f64 = args
+        .first()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(if s2 { 0.005 } else { 0.0073 });
     let end: f64 = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(0.5);
-    let solver = match args.get(2).map(String::as_str) {
+    let solver = match args.get(2).map(|s| s.as_str()) {
         Some("faer-cholesky") => PpeSolver::FaerCholesky,
+        Some("sgs-pcg") => PpeSolver::SgsPcg,
         _ => PpeSolver::JacobiPcg,
     };
-    let mut emps = case(ds);
+    let layers = if s2 { 76.0 } else { 10.0 };
+    let mut emps = case(ds, layers);
     emps.time_step = 0.45 * ds / emps.sound_speed(); // acoustic Courant 0.45, as the case file
-    let mut isph = case(ds);
+    let mut isph = case(ds, layers);
     isph.method = FluidMethodName::Isph;
     isph.sound_speed = None;
     isph.isph = Some(IsphConfig {
@@ -115,22 +160,48 @@ fn main() {
         }
     }
     println!(
-        "dam break, Δs = {ds} m, end {end} s, {} threads",
-        rayon::current_num_threads()
+        "dam break, Δs = {ds} m, slab {layers} Δs deep, end {end} s, {} threads, load average {}",
+        rayon::current_num_threads(),
+        load_average()
     );
-    println!("method  Δt [s]    steps  fluid   wall [s]  fluid-steps/s  PPE it/step  PPE share  wall-probe RMS Δp [Pa]");
-    for row in [run("E-MPS", &emps, end), run("ISPH", &isph, end)] {
+    let mut rows = Vec::new();
+    for (name, cfg) in [("E-MPS", &emps), ("ISPH", &isph)] {
+        if only
+            .as_deref()
+            .is_none_or(|o| o.eq_ignore_ascii_case(&name.replace('-', "")))
+        {
+            rows.push(run(name, cfg, end));
+        }
+    }
+    println!("load average after: {}", load_average());
+    let threads = rayon::current_num_threads() as f64;
+    println!("method  Δt [s]    t [s]   steps  fluid    wall [s]  CPU [s]  fluid-steps/s  per CPU-s × threads  PPE it/step  PPE share  wall-probe RMS Δp [Pa]");
+    for row in &rows {
         println!(
-            "{:6}  {:.2e}  {:5}  {:6}  {:8.2}  {:13.3e}  {:11.1}  {:8.1} %  {:.2}",
+            "{:6}  {:.2e}  {:6.4}  {:5}  {:6}  {:9.2}  {:7.2}  {:13.3e}  {:19.3e}  {:11.1}  {:8.1} %  {:.2}",
             row.name,
             row.dt,
+            row.reached,
             row.steps,
             row.fluid,
             row.wall,
+            row.cpu,
             row.fluid as f64 * row.steps as f64 / row.wall,
+            row.fluid as f64 * row.steps as f64 * threads / row.cpu.max(1e-9),
             row.ppe_iterations as f64 / row.steps.max(1) as f64,
             100.0 * row.ppe_share,
             row.probe_rms
         );
+    }
+    for row in &rows {
+        let total: f64 = row.stages.iter().map(|s| s.1).sum();
+        println!("{} stages (wall time per step, share of the step):", row.name);
+        for (stage, secs) in &row.stages {
+            println!(
+                "  {stage:34} {:9.2} ms  {:5.1} %",
+                1e3 * secs / row.steps.max(1) as f64,
+                100.0 * secs / total.max(f64::MIN_POSITIVE)
+            );
+        }
     }
 }

@@ -160,6 +160,64 @@ impl CellGrid {
         });
     }
 
+    /// As [`CellGrid::for_each_range`] for particle `i` at `at`, leaving out the cells whose box
+    /// lies `radius` or farther from `at` (whole rows of cells, and the ends of the others): in
+    /// 3D about 2.5× fewer candidates at r_e = 2.4 Δs. Every particle closer than `radius` is
+    /// still in a visited range: a particle clamped onto the border cells lies beyond its cell's
+    /// box, farther from an inner point than the box, and a clamped `at` visits every range.
+    #[inline(always)]
+    pub fn for_each_range_within(
+        &self,
+        i: usize,
+        at: [f64; 3],
+        radius: f64,
+        reach: usize,
+        mut f: impl FnMut(usize, usize),
+    ) {
+        let c = self.cell_of[i] as usize;
+        let nx = self.dims[0];
+        let nxy = nx * self.dims[1];
+        let cc = [c % nx, (c / nx) % self.dims[1], c / nxy];
+        let u: [f64; 3] = std::array::from_fn(|a| (at[a] - self.origin[a]) * self.inv_cell);
+        if (0..3).any(|a| u[a].floor() != cc[a] as f64) {
+            return self.for_each_range(i, reach, f);
+        }
+        // Squared distance (in cells) from `at` to the cells at offset o along axis a.
+        let gap2 = |a: usize, o: i64| {
+            let k = cc[a] as f64 + o as f64;
+            let g = if o < 0 {
+                u[a] - (k + 1.0)
+            } else if o > 0 {
+                k - u[a]
+            } else {
+                0.0
+            };
+            g * g
+        };
+        let rr = (radius * self.inv_cell).powi(2) * (1.0 + 1e-9);
+        let r = reach as i64;
+        for dz in -r..=r {
+            let gz = gap2(2, dz);
+            if gz > rr {
+                continue;
+            }
+            for dy in -r..=r {
+                let rest = rr - gz - gap2(1, dy);
+                if rest < 0.0 {
+                    continue;
+                }
+                let lo = (-r..=0).find(|&o| gap2(0, o) <= rest).unwrap_or(0);
+                let hi = (0..=r).rev().find(|&o| gap2(0, o) <= rest).unwrap_or(0);
+                let row = ((cc[2] as i64 + dz) as usize) * nxy + ((cc[1] as i64 + dy) as usize) * nx;
+                let (a, b) = (
+                    row + (cc[0] as i64 + lo) as usize,
+                    row + (cc[0] as i64 + hi) as usize + 1,
+                );
+                f(self.start[a] as usize, self.start[b] as usize);
+            }
+        }
+    }
+
     /// Calls `f(j, |r_j − at|²)` for every particle j within `radius` of the point `at` (strictly
     /// closer; valid after [`CellGrid::sort`], until particles are added or removed). `at` may be
     /// any point: one outside the grid sees the particles of the border cells within `radius`

@@ -2,12 +2,16 @@
 //! fluid within reach, the indices of the particles within the support r_e, built once per step
 //! from the cell grid. Every later pass of the step (density, moments, divergence, PPE assembly,
 //! wall pressure, gradient) walks ~60 true neighbours instead of the ~300 candidates of the
-//! surrounding cells.
+//! surrounding cells; the cells wholly beyond r_e are not visited
+//! ([`CellGrid::for_each_range_within`]).
 
 use crate::kind::FLUID;
 use crate::neighbour_search::CellGrid;
 use crate::particles::Particles;
 use rayon::prelude::*;
+
+/// Particles per block of the parallel build.
+const BLOCK: usize = 512;
 
 /// Neighbours of particle i are `index[start[i] .. start[i + 1]]` (i itself excluded).
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -22,41 +26,40 @@ impl NeighbourList {
         let reach = grid.reach(radius);
         let r2max = radius * radius;
         let (x, y, z, kind) = (&p.x, &p.y, &p.z, &p.kind);
-        let lists: Vec<(Vec<u32>, u64)> = (0..p.len())
+        // Blocks of BLOCK particles, each block's lists contiguous (one allocation per block),
+        // then concatenated.
+        let n = p.len();
+        let blocks: Vec<(Vec<u32>, Vec<u32>, u64)> = (0..n.div_ceil(BLOCK))
             .into_par_iter()
-            .with_min_len(512)
-            .map(|i| {
-                let mut out = Vec::new();
-                if kind[i] != FLUID && !grid.fluid_near(i, reach) {
-                    return (out, 0);
-                }
-                let (xi, yi, zi) = (x[i], y[i], z[i]);
-                let mut seen = 0u64;
-                grid.for_each_range(i, reach, |s, e| {
-                    seen += (e - s) as u64;
-                    for j in s..e {
-                        let (dx, dy, dz) = (x[j] - xi, y[j] - yi, z[j] - zi);
-                        let r2 = dx * dx + dy * dy + dz * dz;
-                        if r2 < r2max && j != i {
-                            out.push(j as u32);
-                        }
+            .map(|b| {
+                let (mut index, mut end, mut seen) = (Vec::new(), Vec::new(), 0u64);
+                for i in b * BLOCK..((b + 1) * BLOCK).min(n) {
+                    if kind[i] == FLUID || grid.fluid_near(i, reach) {
+                        let (xi, yi, zi) = (x[i], y[i], z[i]);
+                        grid.for_each_range_within(i, [xi, yi, zi], radius, reach, |s, e| {
+                            seen += (e - s) as u64;
+                            for j in s..e {
+                                let (dx, dy, dz) = (x[j] - xi, y[j] - yi, z[j] - zi);
+                                let r2 = dx * dx + dy * dy + dz * dz;
+                                if r2 < r2max && j != i {
+                                    index.push(j as u32);
+                                }
+                            }
+                        });
                     }
-                });
-                (out, seen)
+                    end.push(index.len() as u32);
+                }
+                (index, end, seen)
             })
             .collect();
         self.start.clear();
         self.start.push(0);
-        let mut total = 0u32;
-        for (l, _) in &lists {
-            total += l.len() as u32;
-            self.start.push(total);
-        }
         self.index.clear();
-        self.index.reserve(total as usize);
         let mut seen = 0;
-        for (l, s) in lists {
-            self.index.extend_from_slice(&l);
+        for (index, end, s) in blocks {
+            let offset = self.index.len() as u32;
+            self.start.extend(end.iter().map(|e| offset + e));
+            self.index.extend_from_slice(&index);
             seen += s;
         }
         seen

@@ -34,8 +34,19 @@ use crate::vector_field::VectorField;
 use rayon::prelude::*;
 use schemas::case::fluid::{IsphConfig, WallSlip};
 
-/// One assembled PPE row: off-diagonal entries (unknown, value), diagonal, right-hand side.
-type Row = (Vec<(u32, f64)>, f64, f64);
+/// Unknowns per block of the parallel PPE assembly.
+const ROW_BLOCK: usize = 256;
+
+/// Assembled PPE rows of one block: off-diagonal entries (unknown, value) contiguous, the end of
+/// each row's entries, its diagonal and right-hand side.
+#[derive(Default)]
+struct RowBlock {
+    col: Vec<u32>,
+    val: Vec<f64>,
+    end: Vec<u32>,
+    diag: Vec<f64>,
+    rhs: Vec<f64>,
+}
 
 /// What ISPH keeps between steps beyond the particles (whose pressure is the PPE's warm start).
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -315,12 +326,18 @@ impl IsphStep {
         let list = &self.list;
         let surface = &mut state.surface;
         // Unknowns: fluid, not on the surface, with at least one fluid neighbour.
-        for (i, s) in surface.iter_mut().enumerate() {
-            if p.kind[i] == FLUID && *s != SURFACE && !list.of(i).iter().any(|&j| p.kind[j as usize] == FLUID)
-            {
-                *s = SURFACE;
-            }
-        }
+        surface
+            .par_iter_mut()
+            .enumerate()
+            .with_min_len(4096)
+            .for_each(|(i, s)| {
+                if p.kind[i] == FLUID
+                    && *s != SURFACE
+                    && !list.of(i).iter().any(|&j| p.kind[j as usize] == FLUID)
+                {
+                    *s = SURFACE;
+                }
+            });
         free_surface::surface_pressure(
             &k,
             list,
@@ -350,35 +367,43 @@ impl IsphStep {
         };
         let (rho, alpha) = (self.physics.density, self.settings.alpha_d);
         let (row_of, ratio, div, dirichlet) = (&ppe.row_of, &self.ratio, &self.divergence, &self.dirichlet);
-        let rows: Vec<Row> = ppe
+        // Rows in blocks of ROW_BLOCK unknowns, each block's entries contiguous (one allocation
+        // per block, not per row), then concatenated into the CSR arrays.
+        let blocks: Vec<RowBlock> = ppe
             .particle
-            .par_iter()
-            .with_min_len(256)
-            .map(|&i| {
-                let i = i as usize;
-                let mut entries = Vec::with_capacity(list.of(i).len());
-                let (mut diag, mut rhs) = (
-                    0.0,
-                    -(rho / dt * div[i] + alpha * rho * (1.0 - ratio[i]) / (dt * dt)),
-                );
-                for &j in list.of(i) {
-                    let j = j as usize;
-                    let r =
-                        ((p.x[j] - p.x[i]).powi(2) + (p.y[j] - p.y[i]).powi(2) + (p.z[j] - p.z[i]).powi(2))
-                            .sqrt();
-                    let f = -2.0 * k.volume * k.dw_over_r(r);
-                    if p.kind[j] == FLUID {
-                        diag += f;
-                        if row_of[j] != NOT_AN_UNKNOWN {
-                            entries.push((row_of[j], -f));
+            .par_chunks(ROW_BLOCK)
+            .map(|block| {
+                let mut out = RowBlock::default();
+                for &i in block {
+                    let i = i as usize;
+                    let (mut diag, mut rhs) = (
+                        0.0,
+                        -(rho / dt * div[i] + alpha * rho * (1.0 - ratio[i]) / (dt * dt)),
+                    );
+                    for &j in list.of(i) {
+                        let j = j as usize;
+                        let r = ((p.x[j] - p.x[i]).powi(2)
+                            + (p.y[j] - p.y[i]).powi(2)
+                            + (p.z[j] - p.z[i]).powi(2))
+                        .sqrt();
+                        let f = -2.0 * k.volume * k.dw_over_r(r);
+                        if p.kind[j] == FLUID {
+                            diag += f;
+                            if row_of[j] != NOT_AN_UNKNOWN {
+                                out.col.push(row_of[j]);
+                                out.val.push(-f);
+                            } else {
+                                rhs += f * dirichlet[j];
+                            }
                         } else {
-                            rhs += f * dirichlet[j];
+                            rhs += f * pair.difference(i, j);
                         }
-                    } else {
-                        rhs += f * pair.difference(i, j);
                     }
+                    out.end.push(out.col.len() as u32);
+                    out.diag.push(diag);
+                    out.rhs.push(rhs);
                 }
-                (entries, diag, rhs)
+                out
             })
             .collect();
         ppe.start.clear();
@@ -387,14 +412,13 @@ impl IsphStep {
         ppe.diag.clear();
         ppe.rhs.clear();
         ppe.start.push(0);
-        for (entries, diag, rhs) in rows {
-            for (c, v) in entries {
-                ppe.col.push(c);
-                ppe.val.push(v);
-            }
-            ppe.start.push(ppe.col.len() as u32);
-            ppe.diag.push(diag);
-            ppe.rhs.push(rhs);
+        for b in blocks {
+            let offset = ppe.col.len() as u32;
+            ppe.start.extend(b.end.iter().map(|e| offset + e));
+            ppe.col.extend_from_slice(&b.col);
+            ppe.val.extend_from_slice(&b.val);
+            ppe.diag.extend_from_slice(&b.diag);
+            ppe.rhs.extend_from_slice(&b.rhs);
         }
     }
 

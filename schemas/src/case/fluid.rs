@@ -268,6 +268,9 @@ pub enum PpeSolver {
     JacobiPcg,
     /// faer's sparse Cholesky factorisation of the assembled matrix, every step.
     FaerCholesky,
+    /// Conjugate gradient preconditioned by symmetric Gauss–Seidel within fixed blocks of rows
+    /// (block Jacobi between them), warm-started from the last pressure.
+    SgsPcg,
 }
 
 /// `[fluid.NAME.isph]`: settings of the ISPH method (all optional).
@@ -278,7 +281,7 @@ pub enum PpeSolver {
 /// influence_radius = 2.4    # kernel support in spacings (S2, Table 1)
 /// ppe_tolerance = 1e-6      # relative residual |r|/|b| the PPE must reach every step
 /// ppe_max_iterations = 1000 # beyond this the run stops with the residual
-/// ppe_solver = "jacobi-pcg" # or "faer-cholesky"
+/// ppe_solver = "jacobi-pcg" # or "faer-cholesky", "sgs-pcg"
 /// wall_slip = "free-slip"   # or "no-slip"
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
