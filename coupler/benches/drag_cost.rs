@@ -158,7 +158,10 @@ fn main() {
         cfg.spacing,
         solver.particles().len()
     );
-    println!("  sub-members {subs} ({wet} wet)");
+    println!(
+        "  sub-members {subs} ({wet} wet); particles' drift from their cells since the sort {:.3} Δs",
+        solver.cell_grid().drift(solver.particles()) / cfg.spacing
+    );
     println!(
         "{:>34} {:>10} {:>8} {:>12}",
         "part", "ms", "× window", "% of step"

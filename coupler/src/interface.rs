@@ -146,11 +146,11 @@ impl Interface {
         Ok(())
     }
 
-    /// Completes participant `p`'s initial outputs with what the laws read but `p` cannot give
-    /// before its first window (see [`Law::complete_initial`]).
-    pub fn complete_initial(&self, p: usize, outputs: &mut Fields) {
+    /// Completes participant `p`'s outputs with what the laws read but `p` cannot give yet:
+    /// before its first window, and after a re-declared geometry (see [`Law::complete_outputs`]).
+    pub fn complete_outputs(&self, p: usize, outputs: &mut Fields) {
         for law in &self.laws {
-            law.complete_initial(p, outputs);
+            law.complete_outputs(p, outputs);
         }
     }
 

@@ -179,7 +179,7 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
         }
         let mut initial = initial;
         for (p, fields) in initial.iter_mut().enumerate() {
-            interface.complete_initial(p, fields);
+            interface.complete_outputs(p, fields);
         }
         for (p, fields) in initial.iter().enumerate() {
             interface

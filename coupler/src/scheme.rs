@@ -160,11 +160,22 @@ impl Windows<'_> {
             self.ledger.window(end, self.interface, &inputs, &estimate)?;
             self.detector
                 .window(w, &times, self.interface, &inputs, &estimate)?;
+            let mut redeclared = false;
             for (p, session) in self.stack.sessions.iter().enumerate() {
                 if session.geometry != geometry_before[p] {
                     if let (Some(g), Some(outputs)) = (&session.geometry, estimate[p].last()) {
                         self.interface.geometry(p, g, outputs)?;
+                        redeclared = true;
                     }
+                }
+            }
+            if redeclared {
+                // what the laws read and the new geometry changed the shape of starts neutral
+                // (e.g. dry samples at new sample points), so the next window keeps one shape
+                for (p, samples) in estimate.iter_mut().enumerate() {
+                    samples
+                        .iter_mut()
+                        .for_each(|fields| self.interface.complete_outputs(p, fields));
                 }
             }
             self.interface.accept(&estimate);
@@ -255,6 +266,14 @@ impl Windows<'_> {
     }
 
     /// Repeats the window until every output block's relative residual is below the tolerance.
+    ///
+    /// A sweep in which a participant re-declares its member geometry (a frame fractured: new
+    /// nodes, new connectivity) ends the window, not converged: a fracture is a discrete event
+    /// that a fixed-point iteration cannot converge across (a repeated sweep restores the unbroken
+    /// structure, which may or may not break again, and every vector of the interface changes
+    /// length). The coupler keeps that sweep, as explicit coupling would keep its one sweep; the
+    /// geometry is declared to the laws at the window end ([`Windows::run_from`]) and the next
+    /// window iterates on the new topology.
     fn implicit(
         &mut self,
         w: u64,
@@ -278,6 +297,23 @@ impl Windows<'_> {
                 Checkpoint::Restore
             };
             let inputs = self.sweep(w, k, checkpoint, times, estimate)?;
+            let changed = self
+                .stack
+                .sessions
+                .iter()
+                .zip(&start_geometry)
+                .position(|(s, g)| s.geometry != *g);
+            if let Some(p) = changed {
+                // a topology change ends the window with the sweep that made it
+                accelerator.end_window();
+                eprintln!(
+                    "note: window {w}: {}'s member geometry changed (a fracture) in sweep {}; the window ends with \
+                     that sweep, not converged (residual NaN in coupling.csv)",
+                    self.stack.sessions[p].name,
+                    k + 1
+                );
+                return Ok((inputs, k + 1, f64::NAN));
+            }
             let (h, after) = state::flatten(estimate);
             if h.len() != x.len() || after.len() != blocks.len() {
                 return Err(CouplerError::Usage(format!(

@@ -256,6 +256,132 @@ impl CellGrid {
         }
     }
 
+    /// How far the particles have moved out of the cells they were sorted into: the largest
+    /// distance, along any axis, from a particle to its cell's box [m] (0 right after
+    /// [`CellGrid::sort`]; a particle outside the grid, kept in a border cell, counts its whole
+    /// distance). One pass over the particles, shared by every point query of a call.
+    pub fn drift(&self, p: &Particles) -> f64 {
+        let nx = self.dims[0];
+        let nxy = nx * self.dims[1];
+        let n = p.len().min(self.cell_of.len());
+        let inner = |a: usize, i: i64| i >= PAD as i64 && i < (self.dims[a] - PAD) as i64;
+        p.x[..n]
+            .par_iter()
+            .zip(&p.y[..n])
+            .zip(&p.z[..n])
+            .zip(&self.cell_of[..n])
+            .with_min_len(4096)
+            .map(|(((&x, &y), &z), &c)| {
+                let (i, j, k) = (self.coord(0, x), self.coord(1, y), self.coord(2, z));
+                let c = c as usize;
+                if inner(0, i)
+                    && inner(1, j)
+                    && inner(2, k)
+                    && i as usize + j as usize * nx + k as usize * nxy == c
+                {
+                    return 0.0;
+                }
+                let cell = [c % nx, (c / nx) % self.dims[1], c / nxy];
+                let mut out: f64 = 0.0;
+                for (a, pa) in [x, y, z].into_iter().enumerate() {
+                    let lo = self.origin[a] + cell[a] as f64 * self.cell;
+                    out = out.max(lo - pa).max(pa - lo - self.cell);
+                }
+                out
+            })
+            .reduce(|| 0.0, f64::max)
+    }
+
+    /// Cell coordinate of position `v` along axis `a`, unclamped (a floor without a libm call).
+    #[inline(always)]
+    fn coord(&self, a: usize, v: f64) -> i64 {
+        let t = (v - self.origin[a]) * self.inv_cell;
+        let i = t as i64;
+        i - i64::from((i as f64) > t)
+    }
+
+    /// As [`CellGrid::for_each_near_point`], visiting only the cells that can hold a particle
+    /// within `radius` of `at` given that no particle is farther than `drift` ([`CellGrid::drift`])
+    /// from its cell: along each axis the cells covering `at ± (radius + drift)`, and in each
+    /// non-empty row along x only the cells within `√(radius² − d_yz²) + drift`, d_yz the row's
+    /// distance across x (rows with d_yz ≥ radius are skipped). Never more than the 7³ block of
+    /// [`CellGrid::for_each_near_point`], and the same particles in the same order wherever that
+    /// block sees all of them, so sums over them are equal to the last bit. `fluid_rows`: skip
+    /// rows holding no fluid particle (for sums over water only).
+    pub fn for_each_near_point_trimmed(
+        &self,
+        p: &Particles,
+        at: [f64; 3],
+        radius: f64,
+        drift: f64,
+        fluid_rows: bool,
+        mut f: impl FnMut(usize, f64),
+    ) {
+        let reach = self.reach(radius) as i64;
+        let centre = self.cell_index(at) as usize;
+        let nx = self.dims[0];
+        let nxy = nx * self.dims[1];
+        let c = [centre % nx, (centre / nx) % self.dims[1], centre / nxy];
+        let r2max = radius * radius;
+        // a margin for the rounding of cell borders
+        let drift = drift + 1e-9 * self.cell;
+        // cells along axis a whose box, widened by `drift`, comes within `half` of `at`, within
+        // the block of `reach` around the centre cell
+        let span = |a: usize, half: f64| {
+            let lo = (c[a] as i64 - reach).max(self.coord(a, at[a] - half - drift));
+            let hi = (c[a] as i64 + reach).min(self.coord(a, at[a] + half + drift));
+            (lo.max(0) as usize, hi.min(self.dims[a] as i64 - 1))
+        };
+        // distance from `at` along axis a to cell i's box widened by `drift`
+        let gap = |a: usize, i: usize| {
+            let lo = self.origin[a] + i as f64 * self.cell - drift;
+            let hi = lo + self.cell + 2.0 * drift;
+            if at[a] < lo {
+                lo - at[a]
+            } else if at[a] > hi {
+                at[a] - hi
+            } else {
+                0.0
+            }
+        };
+        let (x0, x1) = span(0, radius);
+        let ((y0, y1), (z0, z1)) = (span(1, radius), span(2, radius));
+        if x1 < x0 as i64 || y1 < y0 as i64 || z1 < z0 as i64 {
+            return;
+        }
+        let (x1, y1, z1) = (x1 as usize, y1 as usize, z1 as usize);
+        for cz in z0..=z1 {
+            let gz = gap(2, cz);
+            for cy in y0..=y1 {
+                let row = cz * nxy + cy * nx;
+                let (lo, hi) = (row + x0, row + x1 + 1);
+                if self.start[lo] == self.start[hi]
+                    || (fluid_rows && self.fluid_before[lo] == self.fluid_before[hi])
+                {
+                    continue;
+                }
+                let gy = gap(1, cy);
+                let across = gz * gz + gy * gy;
+                if across >= r2max {
+                    continue;
+                }
+                let (a, b) = span(0, (r2max - across).sqrt());
+                if b < a as i64 {
+                    continue;
+                }
+                let range = self.start[row + a] as usize..self.start[row + b as usize + 1] as usize;
+                let (xs, ys, zs) = (&p.x[range.clone()], &p.y[range.clone()], &p.z[range.clone()]);
+                for (k, ((x, y), z)) in xs.iter().zip(ys).zip(zs).enumerate() {
+                    let d = [x - at[0], y - at[1], z - at[2]];
+                    let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+                    if r2 < r2max {
+                        f(range.start + k, r2);
+                    }
+                }
+            }
+        }
+    }
+
     /// The particles within `radius` of the point `at` (see [`CellGrid::for_each_near_point`]).
     pub fn particles_near(&self, p: &Particles, at: [f64; 3], radius: f64) -> Vec<usize> {
         let mut out = Vec::new();

@@ -171,7 +171,10 @@ pub enum FromParticipant {
         geometry: Option<Geometry>,
     },
     /// The window is done: the header's time is the time the solver reached, and the outputs
-    /// are given at each input time.
+    /// are given at each input time. `geometry`: the member geometry after a fracture in this
+    /// window (nodes a fracture adds take no load until then); it takes effect at the window end.
+    /// In implicit coupling the sweep that brings it ends its window, not converged (the coupler
+    /// does not repeat a sweep across a topology change).
     Advanced {
         header: Header,
         outputs: Waveform,

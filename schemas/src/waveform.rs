@@ -44,7 +44,8 @@ impl Waveform {
     }
 
     /// The data extrapolated to `t` (after the window) along the line through the last two
-    /// samples; the last sample where there is only one.
+    /// samples; the last sample where there is only one, and for an array whose length differs
+    /// between the two (a fracture re-declared the geometry in between: no line to extend).
     pub fn extrapolate(&self, t: f64) -> Fields {
         let n = self.times.len().min(self.samples.len());
         if n < 2 {
@@ -55,9 +56,11 @@ impl Waveform {
         let sources = [self.samples[n - 2].arrays(), self.samples[n - 1].arrays()];
         let mut out = self.samples[n - 1].clone();
         for (a, (_, array)) in out.arrays_mut().into_iter().enumerate() {
-            for (k, value) in array.iter_mut().enumerate() {
-                let v0 = sources[0][a].1.get(k).copied().unwrap_or(0.0);
-                let v1 = sources[1][a].1.get(k).copied().unwrap_or(0.0);
+            let (s0, s1) = (sources[0][a].1, sources[1][a].1);
+            if s0.len() != s1.len() {
+                continue;
+            }
+            for ((value, v0), v1) in array.iter_mut().zip(s0.iter()).zip(s1.iter()) {
                 *value = weights[0] * v0 + weights[1] * v1;
             }
         }

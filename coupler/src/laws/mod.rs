@@ -65,10 +65,11 @@ pub trait Law: Send {
         Ok(())
     }
 
-    /// Completes participant `p`'s initial outputs (t = 0) with the arrays this law reads that
-    /// `p` cannot produce before its first window, at their neutral value, so that every window
-    /// of an implicit run has outputs of one shape.
-    fn complete_initial(&self, _p: usize, _outputs: &mut Fields) {}
+    /// Completes participant `p`'s outputs with the arrays this law reads that `p` cannot produce
+    /// yet, at their neutral value: its initial outputs (t = 0, before its first window), and
+    /// its last outputs after a geometry was re-declared (arrays whose length follows the
+    /// geometry), so that every window of an implicit run has outputs of one shape.
+    fn complete_outputs(&self, _p: usize, _outputs: &mut Fields) {}
 
     /// The window was accepted with these outputs (`outputs[p][j]`, j over the window's samples):
     /// the law updates what it keeps across windows.

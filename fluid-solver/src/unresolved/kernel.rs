@@ -43,6 +43,21 @@ impl Wendland {
         }
     }
 
+    /// W(r) and dW/dr together (the same operations as [`Wendland::value`] and
+    /// [`Wendland::derivative`], q computed once).
+    #[inline]
+    pub fn value_and_derivative(&self, r: f64) -> (f64, f64) {
+        let q = r / self.radius;
+        if q >= 1.0 {
+            (0.0, 0.0)
+        } else {
+            (
+                self.norm * (1.0 - q).powi(4) * (1.0 + 4.0 * q),
+                -20.0 * self.norm * q * (1.0 - q).powi(3) / self.radius,
+            )
+        }
+    }
+
     /// dW/dr (≤ 0).
     #[inline]
     pub fn derivative(&self, r: f64) -> f64 {

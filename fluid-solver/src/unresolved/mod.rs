@@ -6,18 +6,22 @@
 //! - [`spreading`]: a point reaction spread over the fluid particles around it (S2-24).
 //!
 //! Both find the particles near a point in the step's own cell list
-//! ([`crate::neighbour_search::CellGrid::for_each_near_point`]) instead of a second grid over
-//! the query points (which copied every particle near them each call). Measured on the drag
-//! cost bench (`coupler/benches/drag_cost.rs`, callgrind, 10 080 sub-members, 3 271 wet):
-//! sampling 82.5 M instructions against 77.6 M with the second grid, spreading 55.1 M against
-//! 49.3 M — the shared list reads 343 cells per point where the second grid read 125 half-size
-//! ones — while the bench's wall time per window fell from 17.5 % to 14.1 % of a fluid step (one
-//! run each on a shared machine): no copy of the particles. Trimming the 7³ block to the cells within reach (217) cost more
-//! per row of cells than it saved. That list must be sorted for the particles' present
-//! order (the solver re-sorts it when particles were added or removed since the step's sort);
-//! positions may have moved since the sort by less than the cells' slack: the 7 × 7 × 7 cells of
-//! 1.05 Δs around a point reach 3.15 Δs, 0.75 Δs beyond the support, while a stable step moves a
-//! particle by a fraction of Δs (Courant number well below 1).
+//! ([`crate::neighbour_search::CellGrid::for_each_near_point_trimmed`]) instead of a second grid
+//! over the query points (which copied every particle near them each call). The list must be
+//! sorted for the particles' present order (the solver re-sorts it when particles were added or
+//! removed since the step's sort); positions may have moved since the sort: one pass per call
+//! measures how far ([`crate::neighbour_search::CellGrid::drift`], 0 at the window end of an
+//! E-MPS step), and each point visits only the cells that can hold a particle within the
+//! kernel's support given that drift (rows trimmed to the sphere, empty rows skipped, rows
+//! without water skipped for the spreading): the same particles in the same order as the 7³
+//! block of 1.05 Δs cells around the point, so the sums are equal to the last bit (test
+//! `the_trimmed_point_query_sees_what_the_full_block_sees_after_particles_drifted`).
+//!
+//! Cost, callgrind on the drag cost bench (`coupler/benches/drag_cost.rs`, t = 0.004 s, 1
+//! thread, 10 080 sub-members, 3 270 wet), per call: sampling 78.2 M instructions (82.5 M on the
+//! 7³ block: 0.52 M particles read instead of ~1.3 M, but the ~0.22 M within the support cost
+//! ~140 instructions each and now dominate), spreading 49.9 M (55.1 M). With the law (3.4 M × 4)
+//! a window costs 17.5 % of the fluid step's 813 M (18.6 % before); the issue asks for 10 %.
 
 pub mod kernel;
 pub mod sampling;

@@ -39,15 +39,23 @@ pub struct Sample {
 /// `grid` is the cell list sorted for `p`.
 pub fn sample(p: &Particles, grid: &CellGrid, spacing: f64, points: &[f64]) -> Vec<Sample> {
     let kernel = Wendland::for_spacing(spacing);
+    let drift = grid.drift(p);
     points
         .par_chunks_exact(3)
         .with_min_len(64)
-        .map(|x| sample_at(p, grid, &kernel, spacing.powi(3), [x[0], x[1], x[2]]))
+        .map(|x| sample_at(p, grid, drift, &kernel, spacing.powi(3), [x[0], x[1], x[2]]))
         .collect()
 }
 
-/// The flow at `x`.
-pub fn sample_at(p: &Particles, grid: &CellGrid, kernel: &Wendland, volume: f64, x: [f64; 3]) -> Sample {
+/// The flow at `x`; `drift` is the grid's [`CellGrid::drift`] for `p`.
+pub fn sample_at(
+    p: &Particles,
+    grid: &CellGrid,
+    drift: f64,
+    kernel: &Wendland,
+    volume: f64,
+    x: [f64; 3],
+) -> Sample {
     let dry = Sample {
         velocity: [0.0; 3],
         lambda_min: 0.0,
@@ -57,15 +65,16 @@ pub fn sample_at(p: &Particles, grid: &CellGrid, kernel: &Wendland, volume: f64,
     // the moment matrix is symmetric (a radial kernel): its upper triangle
     let mut m = [0.0; 6];
     let gate = Kind::Gate.code();
-    grid.for_each_near_point(p, x, kernel.radius, |j, r2| {
+    grid.for_each_near_point_trimmed(p, x, kernel.radius, drift, false, |j, r2| {
         let kind = p.kind[j];
         if kind == gate {
             return;
         }
         let d = [p.x[j] - x[0], p.y[j] - x[1], p.z[j] - x[2]];
         let r = r2.sqrt();
+        let (value, derivative) = kernel.value_and_derivative(r);
         if kind == FLUID {
-            let w = volume * kernel.value(r);
+            let w = volume * value;
             weight += w;
             u[0] += w * p.vx[j];
             u[1] += w * p.vy[j];
@@ -73,7 +82,7 @@ pub fn sample_at(p: &Particles, grid: &CellGrid, kernel: &Wendland, volume: f64,
         }
         if r > 0.0 {
             // V (x_j − x) ⊗ ∇_x W(x − x_j) = −V W'(r)/r (d ⊗ d), d = x_j − x
-            let s = -volume * kernel.derivative(r) / r;
+            let s = -volume * derivative / r;
             for (k, (a, b)) in UPPER.iter().enumerate() {
                 m[k] += s * d[*a] * d[*b];
             }

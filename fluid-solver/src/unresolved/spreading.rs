@@ -46,6 +46,7 @@ pub fn spread(
 ) -> Spread {
     let kernel = Wendland::for_spacing(spacing);
     let paired = sample_points.len() * 2 == reactions.len();
+    let drift = grid.drift(p);
     let shares: Vec<(Vec<(u32, f64)>, bool)> = reactions
         .par_chunks_exact(6)
         .enumerate()
@@ -54,10 +55,10 @@ pub fn spread(
             if r[3..6].iter().all(|&f| f == 0.0) {
                 return (Vec::new(), false);
             }
-            let around = shares_around(p, grid, &kernel, [r[0], r[1], r[2]]);
+            let around = shares_around(p, grid, drift, &kernel, [r[0], r[1], r[2]]);
             if around.is_empty() && paired {
                 let s = &sample_points[3 * k..3 * k + 3];
-                (shares_around(p, grid, &kernel, [s[0], s[1], s[2]]), true)
+                (shares_around(p, grid, drift, &kernel, [s[0], s[1], s[2]]), true)
             } else {
                 (around, false)
             }
@@ -89,10 +90,17 @@ pub fn spread(
 
 /// The normalised shares `V_k W_ik / Σ_j V_j W_ij` of the fluid particles around `x` (equal
 /// volumes cancel); empty when none is within the support.
-fn shares_around(p: &Particles, grid: &CellGrid, kernel: &Wendland, x: [f64; 3]) -> Vec<(u32, f64)> {
-    let mut share = Vec::new();
+fn shares_around(
+    p: &Particles,
+    grid: &CellGrid,
+    drift: f64,
+    kernel: &Wendland,
+    x: [f64; 3],
+) -> Vec<(u32, f64)> {
+    // a full support holds about 60 particles: one allocation
+    let mut share = Vec::with_capacity(96);
     let mut sum = 0.0;
-    grid.for_each_near_point(p, x, kernel.radius, |j, r2| {
+    grid.for_each_near_point_trimmed(p, x, kernel.radius, drift, true, |j, r2| {
         if p.kind[j] != FLUID {
             return;
         }

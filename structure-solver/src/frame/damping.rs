@@ -54,8 +54,10 @@ impl Frame {
         inertia
     }
 
-    /// Subtracts the stiffness-proportional damping force `a1 K (δ/(βΔt) Δu + v̂)` from `loads`.
-    pub(super) fn add_stiffness_damping(&self, loads: &mut [f64], du: &[f64], dt: f64) {
+    /// Subtracts the stiffness-proportional damping force `a1 K (δ/(βΔt) Δu + v̂)` from `loads`
+    /// (extended with zero loads for nodes that a fracture added within the step).
+    pub(super) fn add_stiffness_damping(&self, loads: &mut Vec<f64>, du: &[f64], dt: f64) {
+        loads.resize(loads.len().max(self.nodes.len() * NODE_DOFS), 0.0);
         let a1 = self.damping.1;
         if a1 == 0.0 {
             return;

@@ -196,7 +196,9 @@ impl Frame {
             let g = v * NODE_DOFS;
             let mut f = [0.0; NODE_DOFS];
             for (k, fk) in f.iter_mut().enumerate() {
-                *fk = loads[g + k] - nodal.internal[v][k]
+                // a node that a fracture added within this step (in a cut part) has no load
+                // until the structure re-declares its geometry at the window end
+                *fk = loads.get(g + k).copied().unwrap_or(0.0) - nodal.internal[v][k]
                     + if k < 3 {
                         nodal.mass[v] * self.gravity[k]
                     } else {

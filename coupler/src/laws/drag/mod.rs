@@ -357,9 +357,10 @@ impl Law for Drag {
 
     /// A (re-)declared geometry: at the start, and at the end of a window in which a fracture
     /// split an element (new node, new connectivity). The node count becomes that of the
-    /// structure's outputs, and the sub-members are cut again; the next window's first
-    /// evaluation still holds the fluid's samples at the old sample points, which no longer
-    /// match the new cut, so that one evaluation gives no force (one window without drag).
+    /// structure's outputs, and the sub-members are cut again; the fluid's samples at the old
+    /// sample points no longer match the new cut and are completed dry ([`Law::complete_outputs`]),
+    /// so the next window's first sweep gives no force: an explicit window without drag; an
+    /// implicit window's later sweeps have the fluid's answer at the new points.
     fn geometry(&mut self, p: usize, geometry: &Geometry, outputs: &Fields) -> Result<(), String> {
         if p == self.structure {
             self.set_geometry(geometry, &outputs.node_position)?;
@@ -368,10 +369,14 @@ impl Law for Drag {
         Ok(())
     }
 
-    /// The fluid has no sample point before its first window: its samples start dry
-    /// (velocity 0, λ_min 0, so no force at t = 0).
-    fn complete_initial(&self, p: usize, outputs: &mut Fields) {
-        if p == self.fluid && outputs.sampled_lambda_min.is_empty() {
+    /// The fluid has no sample point before its first window, nor at the new sample points of a
+    /// re-cut geometry: its samples start dry (velocity 0, λ_min 0, so no force at t = 0 and for
+    /// the first sweep after a fracture; an implicit window's later sweeps have the fluid's answer).
+    fn complete_outputs(&self, p: usize, outputs: &mut Fields) {
+        if p == self.fluid
+            && (outputs.sampled_lambda_min.len() != self.pieces.len()
+                || outputs.sampled_velocity.len() != 3 * self.pieces.len())
+        {
             outputs.sampled_velocity = F64s::zeros(3 * self.pieces.len());
             outputs.sampled_lambda_min = F64s::zeros(self.pieces.len());
         }
