@@ -97,9 +97,6 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
     let estimate = Estimate::of(&case);
     estimate.check(&out, opts.max_output)?;
     eprintln!("estimate: {}", estimate.describe());
-    if let Some(line) = crate::stability::one_step::warning(&case) {
-        eprintln!("{line}");
-    }
     let folder = match &opts.resume {
         Some(_) => OutputFolder::hold(&out)?,
         None => OutputFolder::take(&out, opts.overwrite)?,

@@ -96,10 +96,12 @@ impl RigidBodies {
             .map(|k| &self.members[k])
     }
 
-    /// Places every body particle by its body's pose and gives it the rigid velocity
-    /// `V + ω × (r − c)` (S1-21). `pose`: 7 per body (centre, quaternion w x y z);
-    /// `velocity`: 6 per body (V, ω).
-    pub fn set_kinematics(&self, p: &mut Particles, pose: &[f64], velocity: &[f64]) {
+    /// Gives every body particle the rigid velocity `u = V + ω × (r − c)` (S1-21) of its body at
+    /// `pose` and places it at `r − u·lead`, r its place at `pose`: a step of length `lead`, which
+    /// moves body particles by `u Δt` (S1-11; S2-4 in ISPH), ends with them at `pose` (`lead` = 0
+    /// places them there). `pose`: 7 per body (centre, quaternion w x y z); `velocity`: 6 per
+    /// body (V, ω).
+    pub fn set_kinematics(&self, p: &mut Particles, pose: &[f64], velocity: &[f64], lead: f64) {
         (
             &mut p.x, &mut p.y, &mut p.z, &mut p.vx, &mut p.vy, &mut p.vz, &p.kind, &p.id,
         )
@@ -113,11 +115,15 @@ impl RigidBodies {
                 let c = [pose[7 * b], pose[7 * b + 1], pose[7 * b + 2]];
                 let q = [pose[7 * b + 3], pose[7 * b + 4], pose[7 * b + 5], pose[7 * b + 6]];
                 let arm = rotate(q, offset);
-                (*x, *y, *z) = (c[0] + arm[0], c[1] + arm[1], c[2] + arm[2]);
                 let vel = [velocity[6 * b], velocity[6 * b + 1], velocity[6 * b + 2]];
                 let omega = [velocity[6 * b + 3], velocity[6 * b + 4], velocity[6 * b + 5]];
                 let spin = cross(omega, arm);
                 (*u, *v, *w) = (vel[0] + spin[0], vel[1] + spin[1], vel[2] + spin[2]);
+                (*x, *y, *z) = (
+                    c[0] + arm[0] - *u * lead,
+                    c[1] + arm[1] - *v * lead,
+                    c[2] + arm[2] - *w * lead,
+                );
             });
     }
 

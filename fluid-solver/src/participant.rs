@@ -1,15 +1,17 @@
 //! [`FluidParticipant`]: the fluid solver taking part in a coupled run through
 //! [`schemas::participant::serve`].
 //!
-//! Inputs: `body_pose` (7 per body) and `body_velocity` (6 per body), read at the start of each
-//! substep by the window's interpolation. Outputs at every exchange time: `body_force` (6 per
+//! Inputs: `body_pose` (7 per body) and `body_velocity` (6 per body), read from the window's
+//! samples ([`body_motion`]): in an implicit window for the END of each substep, so that each
+//! step ends with the bodies at the pose the structure returned for that time and the fluid's
+//! answer follows the structure's latest iterate; in an explicit window for its start. Outputs at every exchange time: `body_force` (6 per
 //! body: force and moment about the body's centre of the fluid's pressure, collision and, when
 //! on, viscous pair terms, and of the walls' contact; see [`FluidSolver::body_loads`]) and
 //! `body_reaction` (what the body exerted on the water and the walls: the fluid's pair terms
 //! summed from the fluid's side, for the action–reaction ledger). Save/restore keep a copy of
 //! the particle arrays. `advance` steps from the window start to exactly its end, shortening
 //! the last substep before each exchange time. The unresolved drag coupling (S2): `reaction`
-//! (6 per point: point, force) is read at the start of each substep like the body motion and
+//! (6 per point: point, force) is read at the start of each substep and
 //! spread over the fluid (S2-24, [`crate::unresolved::spreading`]); `sampled_velocity` (3 per
 //! point) and `sampled_lambda_min` are answered at every exchange time for that time's
 //! `sample_point`s ([`crate::unresolved::sampling`]). With an output folder, VTU frames (and surface meshes) are written at the first
@@ -18,6 +20,7 @@
 //! go to the participant's log at the case's `progress_interval`, and `finish` writes the run's
 //! summary there.
 
+mod body_motion;
 mod resume;
 
 use crate::probes::{ProbeFile, ProbeSet};
@@ -104,6 +107,10 @@ pub struct FluidParticipant {
     initial_momentum: [f64; 3],
     /// The samples answered at the end of the last window stepped (time, velocity, λ_min).
     end_samples: Option<(f64, F64s, F64s)>,
+    /// Whether the window about to be stepped is an implicit iterate (a checkpoint was saved or
+    /// restored for it): its body motion is read at each substep's end, else at its start (see
+    /// [`body_motion`]). Set by every implicit window's message, cleared by `advance`.
+    iterated: bool,
 }
 
 impl FluidParticipant {
@@ -170,6 +177,7 @@ impl FluidParticipant {
             name: name.to_string(),
             initial_momentum: solver.fluid_momentum(),
             end_samples: None,
+            iterated: false,
             solver,
             checkpoint: None,
             frames,
@@ -334,6 +342,7 @@ impl Participant for FluidParticipant {
     }
 
     fn save_checkpoint(&mut self) {
+        self.iterated = true;
         self.checkpoint = Some(self.solver.save_state());
         if let Some(p) = &mut self.probes {
             p.saved = Some(p.probes.clone());
@@ -341,6 +350,7 @@ impl Participant for FluidParticipant {
     }
 
     fn restore_checkpoint(&mut self) -> Result<(), String> {
+        self.iterated = true;
         if let Some(f) = &mut self.frames {
             f.pending = None;
         }
@@ -373,15 +383,22 @@ impl Participant for FluidParticipant {
         let bodies = self.solver.body_names().len();
         let reactions = inputs.samples.iter().any(|s| !s.reaction.is_empty());
         let unapplied_before = self.solver.totals().unapplied_impulse;
+        let motion_at_end = std::mem::take(&mut self.iterated);
         let mut outputs = vec![self.window_start_outputs(inputs.samples.first())];
         for (j, &t) in inputs.times.iter().enumerate().skip(1) {
             while let Some(dt) = self.solver.next_step_towards(t) {
-                if bodies > 0 || reactions {
-                    let f = inputs.at(self.solver.time());
-                    if !f.body_pose.is_empty() || !f.body_velocity.is_empty() {
-                        self.solver.set_body_motion(&f.body_pose, &f.body_velocity)?;
+                if bodies > 0 {
+                    let (read_at, lead) = match motion_at_end {
+                        true => (self.solver.time() + dt, dt),
+                        false => (self.solver.time(), 0.0),
+                    };
+                    let (pose, velocity) = body_motion::at(inputs, read_at);
+                    if !pose.is_empty() || !velocity.is_empty() {
+                        self.solver.set_body_motion(&pose, &velocity, lead)?;
                     }
-                    self.set_point_reactions(&f)?;
+                }
+                if bodies > 0 || reactions {
+                    self.set_point_reactions(&inputs.at(self.solver.time()))?;
                 }
                 self.solver
                     .step(dt)

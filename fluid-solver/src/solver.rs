@@ -296,9 +296,13 @@ impl FluidSolver {
         self.bodies.names()
     }
 
-    /// Moves the bodies' particles to `pose` (7 per body: centre, quaternion w x y z relative to
-    /// the initial placement) with `velocity` (6 per body: V, ω); held until the next call.
-    pub fn set_body_motion(&mut self, pose: &[f64], velocity: &[f64]) -> Result<(), String> {
+    /// Gives the bodies' particles the rigid velocity of `velocity` (6 per body: V, ω) and places
+    /// them so that a step of length `lead` ends with them at `pose` (7 per body: centre,
+    /// quaternion w x y z relative to the initial placement; see
+    /// [`crate::bodies::RigidBodies::set_kinematics`]); `lead` = 0 places them at `pose`. The
+    /// pose is the one the bodies' loads and the detector's inside-a-body check refer to; held
+    /// until the next call.
+    pub fn set_body_motion(&mut self, pose: &[f64], velocity: &[f64], lead: f64) -> Result<(), String> {
         let n = self.bodies.names().len();
         if pose.len() != 7 * n || velocity.len() != 6 * n {
             return Err(format!(
@@ -316,7 +320,7 @@ impl FluidSolver {
         self.state.body_pose.copy_from_slice(pose);
         self.state.body_velocity.copy_from_slice(velocity);
         self.bodies
-            .set_kinematics(&mut self.state.particles, pose, velocity);
+            .set_kinematics(&mut self.state.particles, pose, velocity, lead);
         Ok(())
     }
 
@@ -327,9 +331,9 @@ impl FluidSolver {
         self.state.body_exchange.reaction.clone()
     }
 
-    /// Force and moment of the fluid on each body in the last step, about the body's centre at
-    /// the step's start (6 per body): S1-4's viscous pair forces (when the term is on), S1-3's
-    /// pressure pair forces at r* and the fluid–body collision impulses / Δt (see
+    /// Force and moment of the fluid on each body in the last step, about the centre of the pose
+    /// last set by [`FluidSolver::set_body_motion`], the step's end (6 per body): S1-4's viscous
+    /// pair forces (when the term is on), S1-3's pressure pair forces at r* and the fluid–body collision impulses / Δt (see
     /// [`crate::bodies`]), exactly the momentum the fluid gave up to the bodies, plus the walls'
     /// contact ([`crate::body_wall_contact`]). No gravity: the body's weight is the structure
     /// solver's.

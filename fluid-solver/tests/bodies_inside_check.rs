@@ -24,7 +24,7 @@ fn step_with_particle_at(offset: [f64; 3]) -> Result<(), fluid_solver::Instabili
     let half_turn = std::f64::consts::FRAC_1_SQRT_2;
     let pose = [centre[0], centre[1], centre[2], half_turn, 0.0, 0.0, half_turn];
     solver
-        .set_body_motion(&pose, &[0.0; 6])
+        .set_body_motion(&pose, &[0.0; 6], 0.0)
         .unwrap_or_else(|e| panic!("{e}"));
     let p = solver.particles_mut();
     let i = (0..p.len())
@@ -78,7 +78,7 @@ fn a_body_pushed_through_a_wall_stops_the_run() {
     let mut solver = FluidSolver::new(&tank_with_body([0.4, 0.4, 0.4], 0.02, 8.0e-4, pool, body));
     let pose = [0.4, 0.3, 0.24, 1.0, 0.0, 0.0, 0.0];
     solver
-        .set_body_motion(&pose, &[0.0; 6])
+        .set_body_motion(&pose, &[0.0; 6], 0.0)
         .unwrap_or_else(|e| panic!("{e}"));
     let err = solver
         .step(8.0e-4)

@@ -42,7 +42,7 @@ fn submerged_box_load(offset: f64) {
     let mut solver = FluidSolver::new(&cfg);
     if offset != 0.0 {
         solver
-            .set_body_motion(&[0.14, 0.14, 0.14 + offset, 1.0, 0.0, 0.0, 0.0], &[0.0; 6])
+            .set_body_motion(&[0.14, 0.14, 0.14 + offset, 1.0, 0.0, 0.0, 0.0], &[0.0; 6], 0.0)
             .unwrap_or_else(|e| panic!("{e}"));
     }
     let volume: f64 = (0..3).map(|a| body.max[a] - body.min[a]).product();

@@ -92,38 +92,59 @@ fn coupled_dam_break_runs_closes_the_ledger_and_replays() {
     assert!(text.contains("PASS"), "{text}");
 }
 
-/// Runs the CI-sized floating box for 0.15 s with a box of `density` and the given scheme;
-/// returns (success, stderr, the box's history rows).
-fn light_box(scheme: &str, density: f64) -> (bool, String, Vec<Vec<f64>>) {
+/// Runs the CI-sized floating box for 0.05 s with a box of `density`, coupled by `scheme` with
+/// the coupling lines `more`; returns (success, stderr, the box's history rows, the ledger's sweeps per window, the
+/// interface-energy detector's last ratio of created energy to the run's energy scale).
+fn light_box(scheme: &str, density: f64, more: &str) -> (bool, String, Vec<Vec<f64>>, Vec<f64>, f64) {
     let dir = out_dir(&format!("light-box-{scheme}"));
     let mass = density * 0.14 * 0.14 * 0.04;
     let case = ci_case(
         &dir,
-        "0.15",
-        &[("mass", &mass.to_string()), ("scheme", &format!("\"{scheme}\""))],
+        "0.05",
+        &[
+            ("mass", &mass.to_string()),
+            ("scheme", &format!("\"{scheme}\"")),
+            ("predictor", &format!("\"linear\"\n{more}")),
+        ],
     );
     let out = dir.join("out");
     let run = coupler_run(&case, &out);
     let rows = csv_rows(&out.join("floater/body-box.csv"));
-    (run.status.success(), stderr(&run), rows)
+    let sweeps = csv_rows(&out.join("ledger.csv")).iter().map(|r| r[2]).collect();
+    let ratio = csv_rows(&out.join("interface_energy.csv"))
+        .last()
+        .map_or(f64::NAN, |r| r[6]);
+    (run.status.success(), stderr(&run), rows, sweeps, ratio)
 }
 
 /// A very light box (100 kg/m³, a quarter of the seed's) is where partitioned coupling meets
-/// added-mass trouble. Recorded outcome: with one fluid step per window, explicit coupling runs
-/// stably, and implicit coupling converges (3 sweeps per window) to the same trajectory, because
-/// the explicit fluid reads the body's kinematics at the start of its step, so a window's force
-/// depends only on the state at the window start.
+/// added-mass trouble, at one fluid step per window. The fluid steps its bodies to the pose the
+/// structure returns for the step's END, so the implicit iterations change its answer: IQN-ILS
+/// converges (to 1e-4) in several sweeps per window to a trajectory of its own, on which the
+/// coupling creates no energy at the interface, while the explicit scheme (linear predictor)
+/// creates some. (Before, the fluid read the pose at its step's start, the window start, and
+/// implicit coupling reproduced the explicit run bit for bit at ~3 sweeps per window.)
+/// Measured over 0.05 s: explicit creates 2.8e-3 of the run's energy scale, implicit 2.3e-10
+/// (3.7 sweeps per window); the box histories differ by up to 3e-3 (angular velocity, rad/s).
 #[test]
-fn a_very_light_box_runs_stably_with_explicit_and_implicit_coupling() {
-    let (ok_e, err_e, explicit) = light_box("explicit", 100.0);
+fn implicit_coupling_of_a_very_light_box_iterates_the_fluid_to_its_own_trajectory() {
+    let (ok_e, err_e, explicit, _, created_e) = light_box("explicit", 100.0, "");
     println!("explicit: {}", err_e.lines().last().unwrap_or_default());
     assert!(
-        ok_e || err_e.contains("stopped") || err_e.contains("unstable"),
-        "explicit coupling either runs or is stopped with a diagnostic: {err_e}"
+        ok_e,
+        "explicit coupling runs at one fluid step per window: {err_e}"
     );
-    let (ok_i, err_i, implicit) = light_box("implicit", 100.0);
+    let iqn = "acceleration = \"iqn-ils\"\ntolerance = 1.0e-4";
+    let (ok_i, err_i, implicit, sweeps, created_i) = light_box("implicit", 100.0, iqn);
     println!("implicit: {}", err_i.lines().last().unwrap_or_default());
-    assert!(ok_i, "implicit coupling runs stably: {err_i}");
+    assert!(ok_i, "implicit coupling converges every window: {err_i}");
+    assert!(
+        !err_i.contains("warning: coupling"),
+        "no coupling warning on a converged implicit run: {err_i}"
+    );
+    let mean = sweeps.iter().sum::<f64>() / sweeps.len().max(1) as f64;
+    println!("implicit: {mean:.2} sweeps per window; created energy / energy scale: explicit {created_e:.3e}, implicit {created_i:.3e}");
+    assert!(mean > 2.0, "the iterations act: {mean} sweeps per window");
     let speed = |row: &Vec<f64>| (row[8] * row[8] + row[9] * row[9] + row[10] * row[10]).sqrt();
     let fastest = implicit.iter().map(speed).fold(0.0, f64::max);
     // The collapsing column moves at most √(2 g H) ≈ 2.3 m/s in this time; a box faster than
@@ -133,25 +154,37 @@ fn a_very_light_box_runs_stably_with_explicit_and_implicit_coupling() {
         implicit.iter().all(|r| (0.0..0.4).contains(&r[3])),
         "implicit: the box stays in the tank"
     );
-    if ok_e {
-        let last = |h: &Vec<Vec<f64>>| h.last().cloned().unwrap_or_default();
-        let (a, b) = (last(&explicit), last(&implicit));
-        let gap = a.iter().zip(&b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
-        println!("explicit and implicit box states differ by {gap:.2e} at the end");
-        assert!(
-            gap < 1e-9,
-            "explicit and implicit reach the same trajectory: {gap}"
-        );
-    }
+    let gap = explicit
+        .iter()
+        .zip(&implicit)
+        .flat_map(|(a, b)| a.iter().zip(b).map(|(x, y)| (x - y).abs()))
+        .fold(0.0, f64::max);
+    println!("explicit and implicit box histories differ by up to {gap:.2e}");
+    assert!(gap > 1e-6, "the implicit run has a trajectory of its own: {gap}");
+    // Bounds: a converged implicit window creates energy of the order of its residual squared
+    // (measured 2.3e-10); the explicit run's lag creates 2.8e-3 (measured); 1e-6 and 1e-4 are
+    // decades away from both.
+    assert!(created_i < 1e-6, "implicit: created energy ratio {created_i}");
+    assert!(created_e > 1e-4, "explicit: created energy ratio {created_e}");
 }
 
 /// The coupled fluid writes its probe CSV like a standalone run: one row at each probe time
-/// (every 0.01 s here), sampled after the window is accepted, never twice for an implicit window.
+/// (every 0.01 s here), sampled after the window is accepted, never twice for an implicit window
+/// (IQN-ILS: the fluid's answer follows the iterated body pose, and Aitken's relaxation does not
+/// converge on this box's windows, see the light-box test).
 #[test]
 fn the_coupled_fluid_writes_its_probes_once_per_probe_time() {
     for scheme in ["explicit", "implicit"] {
         let dir = out_dir(&format!("floating-box-probes-{scheme}"));
-        let case = ci_case(&dir, "0.05", &[("scheme", &format!("\"{scheme}\""))]);
+        let coupling = match scheme {
+            "implicit" => "\"linear\"\nacceleration = \"iqn-ils\"\ntolerance = 1.0e-4",
+            _ => "\"linear\"",
+        };
+        let case = ci_case(
+            &dir,
+            "0.05",
+            &[("scheme", &format!("\"{scheme}\"")), ("predictor", coupling)],
+        );
         let out = dir.join("out");
         let run = coupler_run(&case, &out);
         assert!(run.status.success(), "{}", stderr(&run));

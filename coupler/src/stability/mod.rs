@@ -32,8 +32,6 @@
 //! as 0.59), the floating box 1e-4, the drag dam break 0 (drag dissipates); unstable explicit
 //! runs pass 10 within 1 to 20 windows and keep growing.
 
-pub mod one_step;
-
 use crate::error::CouplerError;
 use crate::interface::Interface;
 use schemas::message::Fields;
