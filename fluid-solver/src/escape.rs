@@ -2,7 +2,11 @@
 //!
 //! A tank without a lid lets splash rise over its walls: a particle that has left the domain
 //! (the walls' outer faces, and [`crate::layout::SPLASH_HEADROOM`] tank heights above the top)
-//! while above the walls' top has left through the open top. Such particles are removed at the
+//! while above the walls' top, less half a spacing, has left through the open top. The half
+//! spacing is the allowance every wall face gets ([`crate::stability`]): a particle centre may
+//! come to the centres of a wall's first layer, which on the walls' top face lie half a spacing
+//! below it; so a splash particle that landed on a wall's top and slides off its outer edge has
+//! passed over the wall, not through it. Such particles are removed at the
 //! start of the next step and counted; the run stops only when they pass the case's
 //! `max_removed_fraction` of the fluid. A particle leaving any other way (through a closed wall,
 //! the floor or a lid) is an instability ([`crate::stability`]).
@@ -18,6 +22,8 @@ pub struct OpenTop {
     pub domain: Domain,
     /// z of the walls' top (the tank's inner top face).
     pub wall_top: f64,
+    /// Particle spacing Δs (the walls' top face allows half of it, module doc).
+    pub spacing: f64,
     /// False for a tank with a lid: nothing may leave.
     pub open: bool,
 }
@@ -26,7 +32,7 @@ impl OpenTop {
     /// Whether a particle at `r` has left the domain through the open top.
     pub fn has_left(&self, r: [f64; 3]) -> bool {
         let outside = (0..3).any(|a| r[a] < self.domain.lo[a] || r[a] > self.domain.hi[a]);
-        self.open && outside && r[2] > self.wall_top
+        self.open && outside && r[2] > self.wall_top - 0.5 * self.spacing
     }
 
     /// Removes the fluid particles that have left through the open top (the others keep their

@@ -82,6 +82,7 @@ impl FluidSolver {
         let open_top = OpenTop {
             domain: layout.domain,
             wall_top: layout.tank.max[2],
+            spacing: cfg.spacing,
             open: !cfg.tank.lid,
         };
         let kernel = Kernel::new(cfg.spacing);

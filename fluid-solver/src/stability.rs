@@ -278,14 +278,25 @@ impl StabilityMonitor {
 }
 
 impl StabilityMonitor {
-    /// Whether `r` lies inside a wall: more than half a spacing beyond the tank's faces (below
-    /// its top), or inside a wall block; the message says which and where.
+    /// Whether `r` lies inside a wall: more than half a spacing beyond the tank's faces, i.e.
+    /// behind the centres of the walls' first layer, or inside a wall block; the message says
+    /// which and where. Every face of a wall gets that half spacing, the top face of an open
+    /// tank's walls too: a splash particle resting on a wall's top sits there, as one resting on
+    /// the floor sits half a spacing above the floor's first layer. Beyond the walls' outer faces
+    /// an open tank's fluid has passed over the walls ([`OpenTop::has_left`]), not into them.
+    /// A lidded tank's walls run from the floor up to the tank's top (its lid is checked by the
+    /// domain).
     fn inside_wall(&self, r: [f64; 3]) -> Option<String> {
         let h = 0.5 * self.spacing;
-        let below_top = r[2] <= self.tank.max[2];
+        let in_wall_height = if self.open_top.open {
+            let within_outer_faces = (0..2).all(|a| r[a] >= self.domain.lo[a] && r[a] <= self.domain.hi[a]);
+            r[2] < self.tank.max[2] - h && within_outer_faces
+        } else {
+            r[2] <= self.tank.max[2]
+        };
         let outside = (0..2).any(|a| r[a] < self.tank.min[a] - h || r[a] > self.tank.max[a] + h)
             || r[2] < self.tank.min[2] - h;
-        if outside && below_top {
+        if outside && in_wall_height {
             return Some(format!(
                 "inside a wall: r = {r:?} is more than half a spacing beyond the tank faces {:?} … {:?}",
                 self.tank.min, self.tank.max

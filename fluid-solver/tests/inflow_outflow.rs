@@ -114,11 +114,40 @@ fn particle_balance_closes_exactly_and_ids_stay_unique() {
 
 #[test]
 fn inflow_rate_matches_u_in_times_area() {
-    let cfg = channel();
-    let mut s = FluidSolver::new(&cfg);
+    inflow_rate_of(&channel(), 2.0);
+}
+
+/// The channel with ISPH (issue 12: inflow and outflow with either method): the same rate
+/// within the same 2 %, measured over [1.0, 1.5] s (10 spacings of strip travel), and the
+/// particle balance exact (fluid thrown over the channel's open top counted too). Measured:
+/// 0.15000 m³/s through the plane, 0.14921 m³/s carried (−0.5 %); about 40 s in release, so
+/// ignored in CI.
+#[test]
+#[ignore]
+fn inflow_rate_matches_u_in_times_area_with_isph() {
+    let mut cfg = channel();
+    cfg.method = schemas::case::fluid::FluidMethodName::Isph;
+    cfg.isph = Some(schemas::case::fluid::IsphConfig::default());
+    cfg.sound_speed = None;
+    cfg.validate("fluid.river").unwrap_or_else(|e| panic!("{e:?}"));
+    let n0 = FluidSolver::new(&cfg).particles().len() as i64;
+    let s = inflow_rate_of(&cfg, 1.5);
+    let b = s.open_boundaries().balance();
+    let (n, f, i) = counts(&s);
+    let (ins, ent) = (b.inserted as i64, b.entered as i64);
+    let rem = s.removed() as i64;
+    println!("{b:?}, {} over the open top", s.escaped());
+    assert_eq!((n, f, i), (n0 + ins - rem, ent - rem, 200 + ins - ent), "{b:?}");
+    assert!(b.removed > 0, "water reached the outflow: {b:?}");
+}
+
+/// Runs `cfg` (the channel) to `end` and checks the inflow rate over [1, end] s against
+/// u_in × area.
+fn inflow_rate_of(cfg: &FluidConfig, end: f64) -> FluidSolver {
+    let mut s = FluidSolver::new(cfg);
     // The level is at its maximum from 0.4 s, and the water just inside the plane stops slowing
     // down by 0.9 s (it decelerates while the flow downstream builds up); measure over
-    // [1.0, 2.0] s: 20 spacings of strip travel, so the count holds whole layers.
+    // [1.0, 2.0] s: 20 spacings of strip travel, so the count holds whole layers (ISPH: 1.5 s).
     let start = 1.0;
     s.advance_to(start).unwrap_or_else(|e| panic!("{e}"));
     let entered0 = s.open_boundaries().balance().entered;
@@ -129,7 +158,7 @@ fn inflow_rate_matches_u_in_times_area() {
     // at the start of the next one.
     let slab = 2.0 * SPACING;
     let (mut flux_sum, mut samples) = (0.0, 0);
-    while s.time() < 2.0 - 1e-9 {
+    while s.time() < end - 1e-9 {
         s.step(s.time_step()).unwrap_or_else(|e| panic!("{e}"));
         let p = s.particles();
         let q: f64 = (0..p.len())
@@ -157,6 +186,7 @@ fn inflow_rate_matches_u_in_times_area() {
         );
     }
     assert_eq!(U_IN, cfg.inflow.as_ref().map_or(0.0, |i| i.velocity));
+    s
 }
 
 #[test]

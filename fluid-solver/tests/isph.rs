@@ -309,3 +309,101 @@ fn a_restored_checkpoint_continues_bit_identically_with_either_method() {
     });
     continuation_is_bit_identical(&dam);
 }
+
+/// Free-surface detection on a dam-break snapshot (issue 12): the CI ISPH dam break
+/// (`isph_dam_break.rs`: Δs = L/10, a slab 4 particles deep, 800 fluid particles) at t = 0.15 s,
+/// the surge running along the floor, against a geometric truth found by brute force over 400
+/// directions d (a Fibonacci sphere), every other particle (fluid, walls, dummies) counting as
+/// occupied space:
+/// - a fluid particle MUST be on the surface when, along some d, a ball of radius 1.5 Δs centred
+///   2 Δs away (from 0.5 Δs to 3.5 Δs from it) is empty: a hole larger than a particle opens
+///   within the kernel's support (2.4 Δs), as next to any flat or curved free surface;
+/// - it MUST NOT be marked when, along every d, a ball of radius 0.9 Δs centred 1.5 Δs away
+///   holds a particle: 0.9 Δs is just above the largest distance from a point to the nearest
+///   site of a simple cubic lattice (√3/2 Δs), so a lattice-like neighbourhood fills it in every
+///   direction and no gap of a particle's size lies next to it;
+/// - the others (a one-particle gap, a dent) may go either way; they are counted.
+///
+/// Measured: 124 surface particles, 480 interior, 196 either way; 0 interior marked (asserted).
+/// Known defect, measured and left open: the detector misses 12 of the 124 surface particles,
+/// 8 of the 70 within 1.5 Δs of a solid (the top surface's particles next to the slab's side
+/// walls, open upwards and away from the wall, and the surge's toe on the floor) and 4 of the 54
+/// away from the solids (in the toe, 2 Δs above the floor); counted and printed, not asserted.
+#[test]
+fn free_surface_of_a_dam_break_snapshot() {
+    let (_, mut cfg) = common::load_case("dam-break-koshizuka");
+    cfg.method = FluidMethodName::Isph;
+    cfg.isph = Some(IsphConfig::default());
+    cfg.sound_speed = None;
+    cfg.spacing = 0.0146;
+    cfg.tank.max = [0.584, 0.0584, 0.438];
+    cfg.block[0].max = [0.146, 0.0584, 0.292];
+    cfg.time_step = 1.6e-3;
+    cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
+    let ds = cfg.spacing;
+    let mut solver = FluidSolver::new(&cfg);
+    solver.advance_to(0.15).unwrap_or_else(|e| panic!("{e}"));
+    // The flags of the last step were found at its start: recompute them on the present
+    // positions with the solver's own detector, on all particles (walls included).
+    let mut p = solver.particles().clone();
+    let k = Wendland::new(ds, 2.4);
+    let d = solver.domain();
+    let mut grid = CellGrid::new(d.lo, [d.hi[0], d.hi[1], 1.0], ds);
+    grid.sort(&mut p, &mut Vec::new());
+    let flags = {
+        let mut list = NeighbourList::default();
+        list.build(&grid, &p, k.radius);
+        let (mut fill, mut takes_part, mut lambda, mut flags) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        operators::density_ratio(&k, &list, &p, &mut fill);
+        free_surface::fill_flags(&p, &fill, &mut takes_part);
+        free_surface::lambda_min(&k, &list, &p, &takes_part, &mut lambda);
+        free_surface::detect(&k, &list, &p, &takes_part, &lambda, &mut flags);
+        flags
+    };
+    let directions: Vec<[f64; 3]> = (0..400)
+        .map(|k| {
+            let z = 1.0 - (2.0 * f64::from(k) + 1.0) / 400.0;
+            let r = (1.0 - z * z).sqrt();
+            let phi = f64::from(k) * std::f64::consts::PI * (3.0 - 5f64.sqrt());
+            [r * phi.cos(), r * phi.sin(), z]
+        })
+        .collect();
+    let occupied = |i: usize, c: [f64; 3], radius: f64| {
+        let mut any = false;
+        grid.for_each_near_point(&p, c, radius, |j, _| any |= j != i);
+        any
+    };
+    let (mut surface, mut interior, mut missed, mut wrong, mut either) = (0, 0, 0, 0, 0);
+    let (mut contact_surface, mut contact_missed) = (0, 0);
+    for i in (0..p.len()).filter(|&i| p.kind[i] == Kind::Fluid.code()) {
+        let x = p.position(i);
+        let at = |d: &[f64; 3], a: f64| [x[0] + a * d[0], x[1] + a * d[1], x[2] + a * d[2]];
+        let open = directions.iter().any(|d| !occupied(i, at(d, 2.0 * ds), 1.5 * ds));
+        let enclosed = directions.iter().all(|d| occupied(i, at(d, 1.5 * ds), 0.9 * ds));
+        let marked = flags[i] == SURFACE;
+        let mut at_contact = false;
+        grid.for_each_near_point(&p, x, 1.5 * ds, |j, _| {
+            at_contact |= p.kind[j] != Kind::Fluid.code()
+        });
+        surface += usize::from(open);
+        interior += usize::from(enclosed);
+        either += usize::from(!open && !enclosed);
+        missed += usize::from(open && !marked && !at_contact);
+        let mut at_contact = false;
+        grid.for_each_near_point(&p, x, 1.5 * ds, |j, _| {
+            at_contact |= p.kind[j] != Kind::Fluid.code()
+        });
+        if open && at_contact {
+            contact_surface += 1;
+            contact_missed += usize::from(!marked);
+        }
+        wrong += usize::from(enclosed && marked);
+    }
+    println!(
+        "dam break at t = 0.15 s: {surface} surface particles (geometric), {missed} missed away from solids, {contact_missed} of {contact_surface} missed within 1.5 Δs of a solid; {interior} interior, {wrong} marked; {either} either way; {} marked in all",
+        flags.iter().zip(&p.kind).filter(|(f, k)| **f == SURFACE && **k == Kind::Fluid.code()).count()
+    );
+    assert!(surface > 100 && interior > 100, "the snapshot has both");
+    assert_eq!(wrong, 0, "no interior particle marked");
+}

@@ -42,7 +42,12 @@ fn finding(i: u32, left: ptr<function, bool>) -> u32 {
         return 0u;
     }
     let h = 0.5 * prm.spacing;
-    let below_top = p.z <= prm.tank_hi.z;
+    // the walls' height (StabilityMonitor::inside_wall): an open tank's wall top gets half a
+    // spacing like every face, and beyond its outer faces the particle passed over the walls
+    let open = prm.open_top != 0u;
+    let within_outer = p.x >= prm.domain_lo.x && p.x <= prm.domain_hi.x && p.y >= prm.domain_lo.y
+        && p.y <= prm.domain_hi.y;
+    let below_top = select(p.z <= prm.tank_hi.z, p.z < prm.tank_hi.z - h && within_outer, open);
     let out_tank = p.x < prm.tank_lo.x - h || p.x > prm.tank_hi.x + h || p.y < prm.tank_lo.y - h
         || p.y > prm.tank_hi.y + h || p.z < prm.tank_lo.z - h;
     if out_tank && below_top {
@@ -57,7 +62,7 @@ fn finding(i: u32, left: ptr<function, bool>) -> u32 {
         return 0u;
     }
     let out_domain = outside(p, prm.domain_lo, prm.domain_hi);
-    if prm.open_top != 0u && out_domain && p.z > prm.wall_top {
+    if open && out_domain && p.z > prm.wall_top - h {
         *left = true;
         return 0u;
     }
