@@ -637,9 +637,6 @@ impl FluidConfig {
         if self.method != FluidMethodName::Emps {
             return refuse("method = \"isph\" (only E-MPS is on the GPU)");
         }
-        if !self.body.is_empty() {
-            return refuse("rigid bodies ([[body]])");
-        }
         if self.inflow.is_some() || self.outflow.is_some() {
             return refuse("inflow or outflow boundaries");
         }

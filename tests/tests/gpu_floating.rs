@@ -1,0 +1,130 @@
+//! Issue 17: the floating box of issue 5 (`floating_at_rest.rs`) with the fluid on the GPU
+//! path (`backend = "gpu"`), through the real processes: `coupler run`, the fluid participant
+//! placing the box's particles on the device from the pose the coupler hands it each window and
+//! reducing the box's force and moment there, the rigid-body structure solver, explicit
+//! coupling. CI has no GPU: it runs on lavapipe (`.ci/run` installs it and sets `REQUIRE_GPU=1`,
+//! under which a run that finds no adapter fails instead of skipping).
+
+use stack_tests::{coupler_run, csv_rows, out_dir, replaced, stderr, FLOATING_POOL_CASE};
+
+/// The floating box case with the GPU fluid, ending at `end_time`, frames every
+/// `output_interval` s.
+fn gpu_case(backend: &str, end_time: &str, output_interval: &str) -> String {
+    replaced(
+        FLOATING_POOL_CASE,
+        &[
+            ("end_time = 2.0", &format!("end_time = {end_time}")),
+            (
+                "[fluid.pool]\n",
+                &format!("[fluid.pool]\nbackend = \"{backend}\"\n"),
+            ),
+            (
+                "output_interval = 0.5",
+                &format!("output_interval = {output_interval}"),
+            ),
+        ],
+    )
+}
+
+/// Runs the case on `backend`; `None` when there is no GPU and `REQUIRE_GPU` is not 1 (skip).
+/// Returns the box's history (t, x, y, z, qw, …) and the ledger's rows.
+fn run(test: &str, backend: &str, end_time: &str, output_interval: &str) -> Option<(Vec<Vec<f64>>, String)> {
+    let dir = out_dir(test);
+    let case = dir.join("case.toml");
+    std::fs::write(&case, gpu_case(backend, end_time, output_interval)).unwrap_or_else(|e| panic!("{e}"));
+    let out = dir.join("out");
+    let t = std::time::Instant::now();
+    let run = coupler_run(&case, &out);
+    let err = stderr(&run);
+    println!("{backend}: {:.1} s\n{err}", t.elapsed().as_secs_f64());
+    if !run.status.success()
+        && err.contains("no GPU for backend")
+        && std::env::var("REQUIRE_GPU").as_deref() != Ok("1")
+    {
+        eprintln!("skipped (set REQUIRE_GPU=1 to fail instead): no GPU adapter");
+        return None;
+    }
+    assert!(run.status.success(), "{err}");
+    let ledger = std::fs::read_to_string(out.join("ledger.csv")).unwrap_or_default();
+    Some((csv_rows(&out.join("float/body-box.csv")), ledger))
+}
+
+/// CI size: 0.024 s (30 windows of one fluid step) on the GPU and on the CPU. The box's centre
+/// height on the GPU follows the CPU's within 1e-5 m: loads within the f32 bound of
+/// `fluid-solver/tests/gpu_bodies.rs`, 1e-3 of ρgV (ρgV of this box's 2.05e-3 m³ is 20 N),
+/// move the box of 0.82 kg by at most 1e-3 · 20 N / 0.82 kg · (0.024 s)²/2 = 7e-6 m; the
+/// loads' measured 3e-5 of ρgV would give 2e-7 m. Measured over 0.04 s: 3.4e-8 m (the box
+/// falls 2.8 mm while the water's pressure builds up). The ledger balances every window (on the
+/// GPU path by construction: the fluid's reaction is the negated body-side sum, see the README).
+#[test]
+fn the_floating_box_runs_with_the_gpu_fluid_through_the_stack() {
+    let Some((gpu, ledger)) = run("gpu-floating", "gpu", "0.024", "0.012") else {
+        return;
+    };
+    let rows: Vec<&str> = ledger.lines().skip(1).collect();
+    assert_eq!(rows.len(), 30, "one ledger row per window:\n{ledger}");
+    assert!(
+        rows.iter().all(|r| r.ends_with(",ok")),
+        "every window balances:\n{ledger}"
+    );
+    let Some((cpu, _)) = run("gpu-floating-cpu", "cpu", "0.024", "0.012") else {
+        return;
+    };
+    assert_eq!(gpu.len(), cpu.len(), "history rows");
+    let worst = gpu
+        .iter()
+        .zip(&cpu)
+        .map(|(g, c)| (g[3] - c[3]).abs())
+        .fold(0.0f64, f64::max);
+    let last = (gpu.last().cloned(), cpu.last().cloned());
+    println!(
+        "box centre z: GPU vs CPU differ by at most {worst:.3e} m over {} rows; last rows {last:?}",
+        gpu.len()
+    );
+    assert!(
+        gpu.iter().flatten().all(|v| v.is_finite()),
+        "the box's state is not finite"
+    );
+    assert!(
+        worst < 1e-5,
+        "the box's height on the GPU differs from the CPU's by {worst} m (bound 1e-5 m)"
+    );
+}
+
+/// The CPU test's whole run (`floating_at_rest.rs`, 2 s, 2 500 steps: about 20 minutes on
+/// lavapipe): the box settles at its hydrostatic draft within 5 % (the CPU test's band) and its
+/// heave over the last 0.5 s is below a tenth of the draft.
+#[test]
+#[ignore]
+fn the_gpu_fluid_floats_the_box_at_its_draft() {
+    let Some((rows, ledger)) = run("gpu-floating-draft", "gpu", "2.0", "0.5") else {
+        return;
+    };
+    assert!(
+        ledger.lines().skip(1).all(|r| r.ends_with(",ok")),
+        "every window balances"
+    );
+    let late: Vec<&Vec<f64>> = rows.iter().filter(|r| r[0] >= 1.5).collect();
+    let z_mean = late.iter().map(|r| r[3]).sum::<f64>() / late.len() as f64;
+    let (z_lo, z_hi) = late
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(lo, hi), r| (lo.min(r[3]), hi.max(r[3])));
+    // The box's bottom is 0.04 m below its centre; the water level with the box at its draft
+    // is 0.2 m + the volume it displaces spread over the tank (measured on the CPU as the
+    // pressure field's P = 0 height): as in `floating_at_rest.rs` the draft is 0.032 m, and the
+    // centre's equilibrium height 0.2067 m (`isph_floating.rs`).
+    let expected = 0.2067;
+    println!(
+        "t ≥ 1.5 s: centre z mean {z_mean:.5} m, range {:.2} mm",
+        1e3 * (z_hi - z_lo)
+    );
+    assert!(
+        (z_mean - expected).abs() < 0.05 * 0.032,
+        "centre height {z_mean} m vs {expected} m (5 % of the draft 0.032 m)"
+    );
+    assert!(
+        z_hi - z_lo < 0.1 * 0.032,
+        "heave range {} m over the last 0.5 s",
+        z_hi - z_lo
+    );
+}
