@@ -101,6 +101,10 @@ fn the_floating_box_runs_with_the_gpu_fluid_through_the_stack() {
 /// lavapipe here): the box settles at its hydrostatic draft (0.4 × 0.08 m) within 5 %, measured
 /// as the CPU test does from the free surface where the pressure field's P = 0, and its heave
 /// over the last 0.5 s is below a tenth of the draft.
+///
+/// Measured 2026-11-24 on lavapipe (46 min beside other work): draft 33.09 mm for 32.00 mm
+/// (+3.42 %), free surface 0.19653 m, centre z mean 0.20363 m over t ≥ 1.5 s, heave range
+/// 1.32 mm, tilt ≤ 0.87°, the box drifted 1 mm sideways; all 2 500 windows balanced.
 #[test]
 #[ignore]
 fn the_gpu_fluid_floats_the_box_at_its_draft() {
