@@ -89,6 +89,12 @@ impl RigidBodies {
         self.centres[b]
     }
 
+    /// (particle id, body index, offset from the body's initial centre) of every body particle,
+    /// sorted by id (the GPU path's member table).
+    pub fn members(&self) -> &[(u32, usize, [f64; 3])] {
+        &self.members
+    }
+
     fn member(&self, id: u32) -> Option<&(u32, usize, [f64; 3])> {
         self.members
             .binary_search_by_key(&id, |m| m.0)

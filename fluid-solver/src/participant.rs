@@ -23,12 +23,14 @@
 mod body_motion;
 mod resume;
 
+use crate::gpu::GpuDevice;
 use crate::probes::{ProbeFile, ProbeSet};
 use crate::progress::{peak_memory_bytes, Progress, RunSummary};
 use crate::solver::FluidSolver;
 use crate::state::FluidState;
 use crate::vtp::SurfaceFrames;
 use crate::vtu;
+use schemas::case::fluid::FluidBackend;
 use schemas::case::Case;
 use schemas::f64s::F64s;
 use schemas::message::{Fields, InterfaceDecl, Role, Waveform};
@@ -151,6 +153,16 @@ impl FluidParticipant {
             None => None,
         };
         solver.remove_gates();
+        if cfg.backend == FluidBackend::Gpu {
+            let dev = GpuDevice::open().map_err(|e| format!("fluid `{name}`: {e}"))?;
+            solver
+                .to_device(cfg, dev)
+                .map_err(|e| format!("fluid `{name}`: {e}"))?;
+            eprintln!(
+                "fluid `{name}`: on the GPU: {}",
+                solver.device().map_or(String::new(), |d| d.dev.description())
+            );
+        }
         let probes = match out {
             Some(dir) if !cfg.probe.is_empty() => {
                 let path = dir.join(format!("{name}_probes.csv"));
@@ -343,6 +355,7 @@ impl Participant for FluidParticipant {
 
     fn save_checkpoint(&mut self) {
         self.iterated = true;
+        self.solver.sync_host();
         self.checkpoint = Some(self.solver.save_state());
         if let Some(p) = &mut self.probes {
             p.saved = Some(p.probes.clone());
@@ -408,24 +421,22 @@ impl Participant for FluidParticipant {
                     p.probes.observe(&self.solver, next);
                 }
                 let s = &self.solver;
-                self.progress.update(
-                    s.time(),
-                    s.steps(),
-                    s.totals().particle_steps,
-                    s.particles().len(),
-                );
+                self.progress
+                    .update(s.time(), s.steps(), s.totals().particle_steps, s.particle_count());
                 self.progress.note_escapes(s.time(), s.escaped());
             }
             self.solver.land_on(t);
             outputs.push(self.outputs_at(inputs.samples.get(j)));
             if let Some(p) = &mut self.probes {
                 if p.due(t) {
+                    self.solver.sync_host();
                     p.sample(&self.solver);
                 }
             }
             if let Some(f) = &mut self.frames {
                 let due = f.next as f64 * f.interval - 1e-9 * f.interval;
                 if f.pending.is_none() && t >= due {
+                    self.solver.sync_host();
                     f.pending = Some(self.solver.particles().clone());
                     f.pending_time = t;
                 }
@@ -450,6 +461,7 @@ impl Participant for FluidParticipant {
     }
 
     fn finish(&mut self) -> Result<(), String> {
+        self.solver.sync_host();
         if self.solver.open_boundaries().is_active() {
             let (b, p) = (self.solver.open_boundaries().balance(), self.solver.particles());
             eprintln!(

@@ -55,7 +55,7 @@ pub struct FluidSolver {
     pub(crate) started: bool,
     pub(crate) domain: Domain,
     pub(crate) tank: Aabb,
-    bodies: RigidBodies,
+    pub(crate) bodies: RigidBodies,
     /// Where fluid may leave (removed and counted), and the most that may leave.
     pub(crate) open_top: OpenTop,
     max_removed_fraction: f64,
@@ -320,8 +320,13 @@ impl FluidSolver {
         }
         self.state.body_pose.copy_from_slice(pose);
         self.state.body_velocity.copy_from_slice(velocity);
-        self.bodies
-            .set_kinematics(&mut self.state.particles, pose, velocity, lead);
+        match self.device.as_deref_mut() {
+            // placed on the device at the next step's start, from the same pose
+            Some(dev) => dev.set_body_motion(pose, velocity, lead),
+            None => self
+                .bodies
+                .set_kinematics(&mut self.state.particles, pose, velocity, lead),
+        }
         Ok(())
     }
 

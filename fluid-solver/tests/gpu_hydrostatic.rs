@@ -9,6 +9,15 @@
 //! the trajectory has forgotten its start, and the 3 % bound lies inside the scatter of the
 //! 0.5 s time average near the surface, on the CPU as on the GPU. The bound is left as the CPU
 //! test's until that test's averaging is settled; this test fails with it.
+//!
+//! Why (measured 2026-11-24, CPU f64, five starts): at z = 0.22 m the CPU's error is +2.26 %
+//! (the test's start), +2.87 % (positions rounded to f32, what the GPU's upload does), +2.43 %
+//! and +3.20 % (every 97th / 89th fluid particle moved by 1e-7 m) and +3.70 % (one particle
+//! moved): a near-surface bias of about +2.9 % with a scatter of about 0.6 % (one standard
+//! deviation) of the 0.5 s mean. The GPU's 4.18 % is 2 standard deviations above that mean;
+//! f32 is not seen (the f32-rounded start is inside the CPU's scatter) and the walls are not in
+//! it (the floor force is right to 0.06 %). The 3 % bound sits on the CPU's own mean there, so
+//! the CPU test passes by chance too (2 of the 5 starts are above it).
 
 mod common;
 mod gpu_common;

@@ -392,3 +392,73 @@ pub fn replaced(text: &str, replace: &[(&str, &str)]) -> String {
         t.replacen(from, to, 1)
     })
 }
+
+/// Position and pressure of the fluid particles in a VTU frame written by the fluid (raw
+/// appended data, UInt64 block headers, Float64 positions and pressures, UInt8 kinds; fluid =
+/// kind 0).
+pub fn fluid_particles(vtu: &Path) -> Vec<([f64; 3], f64)> {
+    let bytes = std::fs::read(vtu).unwrap_or_else(|e| panic!("cannot read {}: {e}", vtu.display()));
+    let text = String::from_utf8_lossy(&bytes[..bytes.len().min(4096)]).into_owned();
+    let offset = |name: &str| -> usize {
+        let at = text
+            .find(&format!("Name=\"{name}\""))
+            .unwrap_or_else(|| panic!("no {name} array"));
+        let rest = &text[at..];
+        let start = rest
+            .find("offset=\"")
+            .unwrap_or_else(|| panic!("no offset for {name}"))
+            + 8;
+        let end = rest[start..].find('"').unwrap_or(0) + start;
+        rest[start..end]
+            .parse()
+            .unwrap_or_else(|e| panic!("offset of {name}: {e}"))
+    };
+    let marker = text
+        .find("<AppendedData encoding=\"raw\">")
+        .unwrap_or_else(|| panic!("no appended data"));
+    let data = marker + text[marker..].find('_').unwrap_or(0) + 1;
+    let block = |name: &str| -> &[u8] {
+        let at = data + offset(name);
+        let len = u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap_or_default()) as usize;
+        &bytes[at + 8..at + 8 + len]
+    };
+    let kinds = block("kind");
+    let (position, pressure) = (block("position"), block("pressure"));
+    let float = |b: &[u8], i: usize| f64::from_le_bytes(b[8 * i..8 * i + 8].try_into().unwrap_or_default());
+    (0..kinds.len())
+        .filter(|&i| kinds[i] == 0)
+        .map(|i| {
+            (
+                [
+                    float(position, 3 * i),
+                    float(position, 3 * i + 1),
+                    float(position, 3 * i + 2),
+                ],
+                float(pressure, i),
+            )
+        })
+        .collect()
+}
+
+/// The free surface of the floating pool (`FLOATING_POOL_CASE`) in a fluid VTU frame, away from
+/// the box (farther than 2 Δs from it in plan): as in the hydrostatic tank test, the height where
+/// the pressure field's P = 0, S = mean(z + P/ρg) over the particles deeper than r_e = 3.1 Δs
+/// below the highest one. (The top particle layer packs tighter than the lattice and sits lower:
+/// its height + Δs/2 was 6 mm below S, which would read as a draft 19 % short.) Returns S, the
+/// highest particle's height and how many particles the mean took.
+pub fn pool_level(vtu: &Path) -> (f64, f64, usize) {
+    const SPACING: f64 = 0.02;
+    const RHO_G: f64 = 1000.0 * 9.8;
+    let water: Vec<([f64; 3], f64)> = fluid_particles(vtu)
+        .into_iter()
+        .filter(|(r, _)| (r[0] - 0.2).abs() > 0.12 || (r[1] - 0.2).abs() > 0.12)
+        .collect();
+    let top = water.iter().map(|(r, _)| r[2]).fold(f64::MIN, f64::max);
+    let interior: Vec<f64> = water
+        .iter()
+        .filter(|(r, _)| r[2] < top - 3.1 * SPACING)
+        .map(|(r, p)| r[2] + p / RHO_G)
+        .collect();
+    let level = interior.iter().sum::<f64>() / interior.len().max(1) as f64;
+    (level, top, interior.len())
+}

@@ -4,61 +4,10 @@
 //! within 5 % (the issue's bound) and its heave must die out. Gravity acts once on each side:
 //! the fluid reports pressure and contact forces only, the structure applies the box's weight.
 
-use stack_tests::{coupler_run, csv_rows, out_dir, stderr, FLOATING_POOL_CASE};
-use std::path::Path;
+use stack_tests::{coupler_run, csv_rows, out_dir, pool_level, stderr, FLOATING_POOL_CASE};
 
-const SPACING: f64 = 0.02;
 const HEIGHT: f64 = 0.08;
 const DENSITY_RATIO: f64 = 0.4;
-/// ρ g of the water [Pa/m].
-const RHO_G: f64 = 1000.0 * 9.8;
-
-/// Position and pressure of the fluid particles in a VTU frame written by the fluid (raw
-/// appended data, UInt64 block headers, Float64 positions and pressures, UInt8 kinds; fluid =
-/// kind 0).
-fn fluid_particles(vtu: &Path) -> Vec<([f64; 3], f64)> {
-    let bytes = std::fs::read(vtu).unwrap_or_else(|e| panic!("cannot read {}: {e}", vtu.display()));
-    let text = String::from_utf8_lossy(&bytes[..bytes.len().min(4096)]).into_owned();
-    let offset = |name: &str| -> usize {
-        let at = text
-            .find(&format!("Name=\"{name}\""))
-            .unwrap_or_else(|| panic!("no {name} array"));
-        let rest = &text[at..];
-        let start = rest
-            .find("offset=\"")
-            .unwrap_or_else(|| panic!("no offset for {name}"))
-            + 8;
-        let end = rest[start..].find('"').unwrap_or(0) + start;
-        rest[start..end]
-            .parse()
-            .unwrap_or_else(|e| panic!("offset of {name}: {e}"))
-    };
-    let marker = text
-        .find("<AppendedData encoding=\"raw\">")
-        .unwrap_or_else(|| panic!("no appended data"));
-    let data = marker + text[marker..].find('_').unwrap_or(0) + 1;
-    let block = |name: &str| -> &[u8] {
-        let at = data + offset(name);
-        let len = u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap_or_default()) as usize;
-        &bytes[at + 8..at + 8 + len]
-    };
-    let kinds = block("kind");
-    let (position, pressure) = (block("position"), block("pressure"));
-    let float = |b: &[u8], i: usize| f64::from_le_bytes(b[8 * i..8 * i + 8].try_into().unwrap_or_default());
-    (0..kinds.len())
-        .filter(|&i| kinds[i] == 0)
-        .map(|i| {
-            (
-                [
-                    float(position, 3 * i),
-                    float(position, 3 * i + 1),
-                    float(position, 3 * i + 2),
-                ],
-                float(pressure, i),
-            )
-        })
-        .collect()
-}
 
 #[test]
 fn a_box_floats_at_its_hydrostatic_draft_and_its_heave_settles() {
@@ -84,23 +33,9 @@ fn a_box_floats_at_its_hydrostatic_draft_and_its_heave_settles() {
         .map(|r| 2.0 * (r[5] * r[5] + r[6] * r[6]).sqrt().asin())
         .fold(0.0, f64::max);
 
-    // The free surface at the end, away from the box (farther than 2 Δs from it in plan): as in
-    // the hydrostatic tank test, the height where the pressure field's P = 0, S = mean(z + P/ρg)
-    // over the particles deeper than r_e = 3.1 Δs below the highest one. (The top particle
-    // layer packs tighter than the lattice and sits lower: its height + Δs/2 was 6 mm below S
-    // here, which would read as a draft 19 % short.)
-    let water: Vec<([f64; 3], f64)> = fluid_particles(&out.join("pool/pool_00004.vtu"))
-        .into_iter()
-        .filter(|(r, _)| (r[0] - 0.2).abs() > 0.12 || (r[1] - 0.2).abs() > 0.12)
-        .collect();
-    let top = water.iter().map(|(r, _)| r[2]).fold(f64::MIN, f64::max);
-    let interior: Vec<f64> = water
-        .iter()
-        .filter(|(r, _)| r[2] < top - 3.1 * SPACING)
-        .map(|(r, p)| r[2] + p / RHO_G)
-        .collect();
-    assert!(interior.len() > 1000, "interior particles: {}", interior.len());
-    let level = interior.iter().sum::<f64>() / interior.len() as f64;
+    // The free surface at the end, away from the box, where the pressure field's P = 0.
+    let (level, top, interior) = pool_level(&out.join("pool/pool_00004.vtu"));
+    assert!(interior > 1000, "interior particles: {interior}");
     let last = rows.last().cloned().unwrap_or_default();
     let bottom = last[3] - 0.5 * HEIGHT;
     let draft = level - bottom;

@@ -4,7 +4,11 @@
 //! (4 B), number density + pressure `vec2<f32>` (8 B), the pair pass's result `vec4<f32>` (16 B),
 //! the force from non-fluid neighbours `vec4<f32>` (16 B), candidates `u32` (4 B), cell before and
 //! after the sort and the permutation 3 × `u32` (12 B), and the sort's spare position, velocity
-//! and id (36 B): 128 B. Per cell: start, count, fluid count 3 × `u32` (12 B).
+//! and id (36 B): 128 B. Per cell: start, count, fluid count 3 × `u32` (12 B). Resolved bodies
+//! (`shaders/bodies.wgsl`): per body particle its offset from the body's initial centre (f32),
+//! id and body (32 B); per body its pose and velocity (f32, 64 B), its load (f32, 32 B) and one
+//! partial load per reduction group (f32, 32 B). A body particle's load of one exchange lives in
+//! its `acc` slot, so bodies add nothing per particle.
 
 use super::device::GpuDevice;
 use super::reduce::Partial;
@@ -17,7 +21,7 @@ pub const BYTES_PER_PARTICLE: u64 = 128;
 /// Device bytes per cell.
 pub const BYTES_PER_CELL: u64 = 12;
 
-/// Every storage buffer of the step, in binding order 1 … 19 (0 is the uniform block).
+/// Every storage buffer of the step, in binding order 1 … 23 (0 is the uniform block).
 pub struct Buffers {
     pub params: wgpu::Buffer,
     pub storage: Vec<wgpu::Buffer>,
@@ -38,13 +42,25 @@ pub const SPARE_VEL: usize = 15;
 pub const SPARE_ID: usize = 16;
 pub const BOXES: usize = 18;
 pub const PARTIALS: usize = 19;
+pub const MEMBERS: usize = 20;
+pub const BODY_KIN: usize = 21;
+pub const BODY_LOADS: usize = 23;
 
 impl Buffers {
-    /// Buffers for `n` particles, `cells` cells, `boxes` wall blocks and `groups` reduction groups.
-    pub fn new(dev: &GpuDevice, n: usize, cells: usize, boxes: usize, groups: usize) -> Buffers {
+    /// Buffers for `n` particles, `cells` cells, `boxes` wall blocks, `groups` reduction groups,
+    /// `bodies` bodies and `members` body particles.
+    pub fn new(
+        dev: &GpuDevice,
+        n: usize,
+        cells: usize,
+        boxes: usize,
+        groups: usize,
+        (bodies, members): (usize, usize),
+    ) -> Buffers {
         let n = n.max(1) as u64;
         let cells = cells as u64;
-        let sizes: [u64; 19] = [
+        let (bodies, members) = (bodies.max(1) as u64, members.max(1) as u64);
+        let sizes: [u64; 23] = [
             16 * n,                                                  // 1 pos
             16 * n,                                                  // 2 vel
             4 * n,                                                   // 3 id
@@ -64,6 +80,10 @@ impl Buffers {
             4 * n,                                                   // 17 cell_sorted
             32 * boxes.max(1) as u64,                                // 18 boxes
             (std::mem::size_of::<Partial>() * groups.max(1)) as u64, // 19 partials
+            32 * members,                                            // 20 members
+            64 * bodies,                                             // 21 body_kin
+            32 * bodies * groups.max(1) as u64,                      // 22 body_partials
+            32 * bodies,                                             // 23 body_loads
         ];
         let storage = sizes
             .iter()

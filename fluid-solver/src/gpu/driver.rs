@@ -54,6 +54,9 @@ impl FluidSolver {
             open_top: self.open_top,
             tank: self.tank,
             walls: cfg.wall.clone(),
+            members: self.bodies.members().to_vec(),
+            body_pose: self.state.body_pose.clone(),
+            body_velocity: self.state.body_velocity.clone(),
         };
         let step = GpuEmps::new(dev, &setup, &self.state.grid, &self.state.particles)
             .map_err(GpuStartError::Unsupported)?;
@@ -116,6 +119,13 @@ impl FluidSolver {
         }
         st.totals.candidates += report.candidates;
         st.totals.particle_steps += n;
+        // the bodies' loads from the device; the fluid's reaction is their opposite (each pair
+        // force is summed once, by the body particle's gather; see the README's GPU section)
+        let loads = dev.body_loads();
+        st.body_exchange.loads.clear();
+        st.body_exchange.loads.extend_from_slice(loads);
+        st.body_exchange.reaction.clear();
+        st.body_exchange.reaction.extend(loads.iter().map(|v| -v));
         self.escape_pending = report.escaped > 0;
         let energy_over = self
             .monitor

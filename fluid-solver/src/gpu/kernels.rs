@@ -1,15 +1,16 @@
 //! The WGSL kernels (`shaders/`) as compute pipelines sharing one bind group layout: binding 0
-//! the uniform block, 1 … 19 the storage buffers of [`super::buffers`].
+//! the uniform block, 1 … 23 the storage buffers of [`super::buffers`].
 
 use super::buffers::Buffers;
 use super::device::GpuDevice;
 
 /// The WGSL sources, joined into one module (the bindings are declared once in `common.wgsl`).
-const SOURCES: [&str; 4] = [
+const SOURCES: [&str; 5] = [
     include_str!("shaders/common.wgsl"),
     include_str!("shaders/cell_sort.wgsl"),
     include_str!("shaders/emps.wgsl"),
     include_str!("shaders/reduce.wgsl"),
+    include_str!("shaders/bodies.wgsl"),
 ];
 
 /// One pipeline per kernel, and the bind group over the step's buffers.
@@ -31,6 +32,13 @@ pub struct Kernels {
     pub collide: wgpu::ComputePipeline,
     pub apply_collisions: wgpu::ComputePipeline,
     pub reduce_step: wgpu::ComputePipeline,
+    pub place_bodies: wgpu::ComputePipeline,
+    pub clear_body_loads: wgpu::ComputePipeline,
+    pub body_viscous: wgpu::ComputePipeline,
+    pub body_pressure: wgpu::ComputePipeline,
+    pub body_collision: wgpu::ComputePipeline,
+    pub reduce_bodies: wgpu::ComputePipeline,
+    pub sum_bodies: wgpu::ComputePipeline,
     pub bind_group: wgpu::BindGroup,
 }
 
@@ -109,6 +117,13 @@ impl Kernels {
             collide: make("collide"),
             apply_collisions: make("apply_collisions"),
             reduce_step: make("reduce_step"),
+            place_bodies: make("place_bodies"),
+            clear_body_loads: make("clear_body_loads"),
+            body_viscous: make("body_viscous"),
+            body_pressure: make("body_pressure"),
+            body_collision: make("body_collision"),
+            reduce_bodies: make("reduce_bodies"),
+            sum_bodies: make("sum_bodies"),
             bind_group,
         }
     }

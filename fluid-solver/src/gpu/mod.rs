@@ -9,9 +9,11 @@
 //! - [`kernels`]: the WGSL modules (`shaders/`) as compute pipelines on one bind group;
 //! - [`cell_sort`]: counting sort and prefix sum by cell;
 //! - [`step`]: the E-MPS stages of [`crate::emps::step`] in the same order;
+//! - [`bodies`]: resolved rigid bodies: placed from the host's pose, loads reduced on the device;
 //! - [`reduce`]: the instability detector's scan and the step's totals, reduced on the device;
 //! - [`driver`]: the solver's step on the device (escapes, detector, host copies).
 
+pub mod bodies;
 pub mod buffers;
 pub mod cell_sort;
 pub mod device;

@@ -40,7 +40,13 @@ pub struct Params {
     pub mass: f32,
     pub volume: f32,
     pub scan_blocks: u32,
-    pub _pad: u32,
+    pub n_bodies: u32,
+    pub n_members: u32,
+    pub reach_contact: u32,
+    /// The walls' contact spring k = m ω² and dashpot c = 2 m ω on body particles, ω = 2π /
+    /// (CONTACT_PERIOD_STEPS Δt) ([`crate::body_wall_contact`]); set with each step's Δt.
+    pub contact_k: f32,
+    pub contact_c: f32,
 }
 
 /// Converts to the device's f32.

@@ -1,14 +1,18 @@
 //! One E-MPS step on the device, the stages of [`crate::emps::step`] in the same order: (when the
 //! viscous term is on) cell sort at r^k and S1-4, then S1-10/S1-11, cell sort at r*, S1-15 with
 //! S1-14, S1-3, S1-12/S1-13, the collision pass and its update, and the device reduction of the
-//! detector and the totals. Only the 32 B per 256 particles of that reduction come back per step.
+//! detector and the totals. Only the 32 B per 256 particles of that reduction come back per step,
+//! and with resolved bodies 32 B per body (their force and moment, reduced on the device after
+//! each exchange: [`super::bodies`]).
 
-use super::buffers::{map_read, Buffers, BOXES, PARTIALS};
+use super::bodies::{self, BodyLoad};
+use super::buffers::{map_read, Buffers, BODY_KIN, BODY_LOADS, BOXES, MEMBERS, PARTIALS};
 use super::cell_sort;
 use super::device::GpuDevice;
 use super::kernels::{dispatch, Kernels, WG, WIDE_WG};
 use super::params::{f32x3, Params};
 use super::reduce::{self, Partial, StepReport};
+use crate::body_wall_contact::CONTACT_PERIOD_STEPS;
 use crate::collision::{COLLISION_DISTANCE, RESTITUTION};
 use crate::emps::kernel::Kernel;
 use crate::escape::OpenTop;
@@ -35,6 +39,11 @@ pub struct GpuSetup {
     pub tank: Aabb,
     /// Fixed wall blocks (the detector's boxes are these shrunk by half a spacing).
     pub walls: Vec<Aabb>,
+    /// The bodies' particles: (id, body, offset from the body's initial centre), sorted by id.
+    pub members: Vec<(u32, usize, [f64; 3])>,
+    /// Each body's pose (7) and velocity (6) at the start.
+    pub body_pose: Vec<f64>,
+    pub body_velocity: Vec<f64>,
 }
 
 /// The E-MPS step on a GPU: the device, its buffers and kernels.
@@ -45,8 +54,13 @@ pub struct GpuEmps {
     params: Params,
     n: usize,
     viscous: bool,
-    /// Where the reduction's partials are read back (reused every step).
+    /// Where the reduction's partials and the bodies' loads are read back (reused every step).
     staging: wgpu::Buffer,
+    /// Bodies on the device; their loads of the last step (6 per body); a pose handed over and
+    /// not yet applied to the body particles.
+    bodies: usize,
+    body_loads: Vec<f64>,
+    place_pending: bool,
     /// Submit and wait after each stage to time it (the benchmark); off in runs.
     profile: bool,
     times: StageTimes,
@@ -97,6 +111,7 @@ impl GpuEmps {
             })
             .collect();
         let viscous = ph.viscous();
+        let n_bodies = setup.body_pose.len() / 7;
         let params = Params {
             origin: f32x3(origin),
             inv_cell: (1.0 / cell) as f32,
@@ -131,20 +146,32 @@ impl GpuEmps {
             mass: mass as f32,
             volume: (mass / ph.density) as f32,
             scan_blocks: cells.div_ceil(256) as u32,
-            _pad: 0,
+            n_bodies: n_bodies as u32,
+            n_members: setup.members.len() as u32,
+            reach_contact: grid.reach(k.spacing) as u32,
+            contact_k: 0.0,
+            contact_c: 0.0,
         };
         let groups = n.div_ceil(WIDE_WG as usize);
-        let mut buffers = Buffers::new(&dev, n, cells, boxes.len() / 2, groups);
+        let sizes = (n_bodies, setup.members.len());
+        let mut buffers = Buffers::new(&dev, n, cells, boxes.len() / 2, groups, sizes);
         let kernels = Kernels::new(&dev, &buffers);
         buffers.write(&dev, BOXES, &boxes);
+        buffers.write(&dev, MEMBERS, &bodies::members(&setup.members));
+        let kin = bodies::kinematics(&setup.body_pose, &setup.body_velocity, 0.0);
+        buffers.write(&dev, BODY_KIN, &kin);
         let staging = dev.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("partials"),
-            size: (groups.max(1) * std::mem::size_of::<Partial>()) as u64,
+            size: (groups.max(1) * std::mem::size_of::<Partial>()
+                + n_bodies * std::mem::size_of::<BodyLoad>()) as u64,
             usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         let mut step = GpuEmps {
             staging,
+            bodies: n_bodies,
+            body_loads: vec![0.0; 6 * n_bodies],
+            place_pending: false,
             dev,
             buffers,
             kernels,
@@ -184,6 +211,21 @@ impl GpuEmps {
         self.buffers.download(&self.dev, self.n, p);
     }
 
+    /// Hands over each body's pose (7 per body: centre, quaternion w x y z), velocity (6 per
+    /// body: V, ω) and lead; the next step first places the body particles by them (as
+    /// [`crate::bodies::RigidBodies::set_kinematics`]) and takes moments about these centres.
+    pub fn set_body_motion(&mut self, pose: &[f64], velocity: &[f64], lead: f64) {
+        let kin = bodies::kinematics(pose, velocity, lead);
+        self.buffers.write(&self.dev, BODY_KIN, &kin);
+        self.place_pending = true;
+    }
+
+    /// Force and moment of the fluid's pair terms and the walls' contact on each body in the
+    /// last step (6 per body, about the centres handed over for it).
+    pub fn body_loads(&self) -> &[f64] {
+        &self.body_loads
+    }
+
     /// Bytes copied host → device and device → host since the start.
     pub fn bytes_moved(&self) -> (u64, u64) {
         (self.buffers.uploaded, self.buffers.downloaded)
@@ -204,36 +246,79 @@ impl GpuEmps {
     pub fn advance(&mut self, dt: f64) -> StepReport {
         let t0 = self.times.start();
         self.params.dt = dt as f32;
+        // body_wall_contact.rs: k = m ω², c = 2 m ω, ω = 2π / (CONTACT_PERIOD_STEPS Δt)
+        let mass = f64::from(self.params.mass);
+        let omega = 2.0 * std::f64::consts::PI / (CONTACT_PERIOD_STEPS * dt);
+        self.params.contact_k = (mass * omega * omega) as f32;
+        self.params.contact_c = (2.0 * mass * omega) as f32;
         self.buffers.write_params(&self.dev, &self.params);
         let (n, cells) = (self.n as u32, self.params.cells);
         let groups = self.n.div_ceil(WIDE_WG as usize).max(1);
+        let (bodies, place) = (self.bodies as u32, self.place_pending);
+        self.place_pending = false;
+        // after an exchange's pass: each body particle's force summed per body on the device
+        let reduce_bodies = |p: &mut wgpu::ComputePass<'_>, k: &Kernels| {
+            dispatch(p, k, &k.reduce_bodies, n, WIDE_WG);
+            dispatch(p, k, &k.sum_bodies, 1, WIDE_WG);
+        };
         let mut rec = Recorder::new(self);
-        rec.passes("clear", |p, k| dispatch(p, k, &k.clear_sums, n, WG));
+        rec.passes("clear", |p, k| {
+            dispatch(p, k, &k.clear_sums, n, WG);
+            if bodies > 0 {
+                dispatch(p, k, &k.clear_body_loads, bodies, WG);
+            }
+            if place {
+                dispatch(p, k, &k.place_bodies, n, WG);
+            }
+        });
         if rec.step.viscous {
             rec.sort("neighbour search", n, cells);
-            rec.passes("viscous", |p, k| dispatch(p, k, &k.laplacian, n, WG));
+            rec.passes("viscous", |p, k| {
+                dispatch(p, k, &k.laplacian, n, WG);
+                if bodies > 0 {
+                    dispatch(p, k, &k.body_viscous, n, WG);
+                    reduce_bodies(p, k);
+                }
+            });
         }
         rec.passes("predict", |p, k| dispatch(p, k, &k.predict, n, WG));
         rec.sort("neighbour search", n, cells);
         rec.passes("density and pressure", |p, k| dispatch(p, k, &k.density, n, WG));
         rec.passes("pressure gradient", |p, k| {
             dispatch(p, k, &k.gradient, n, WG);
+            if bodies > 0 {
+                dispatch(p, k, &k.body_pressure, n, WG);
+                reduce_bodies(p, k);
+            }
             dispatch(p, k, &k.correct, n, WG);
         });
         rec.passes("collision", |p, k| {
             dispatch(p, k, &k.collide, n, WG);
+            if bodies > 0 {
+                dispatch(p, k, &k.body_collision, n, WG);
+                reduce_bodies(p, k);
+            }
             dispatch(p, k, &k.apply_collisions, n, WG);
         });
         rec.passes("detector and totals", |p, k| {
             dispatch(p, k, &k.reduce_step, n, WIDE_WG)
         });
         let bytes = (groups * std::mem::size_of::<Partial>()) as u64;
+        let body_bytes = (bodies as usize * std::mem::size_of::<BodyLoad>()) as u64;
         let (partials_buffer, staging) = (rec.step.buffers.at(PARTIALS), &rec.step.staging);
         rec.enc
             .copy_buffer_to_buffer(partials_buffer, 0, staging, 0, bytes);
+        if body_bytes > 0 {
+            let loads = rec.step.buffers.at(BODY_LOADS);
+            rec.enc
+                .copy_buffer_to_buffer(loads, 0, staging, bytes, body_bytes);
+        }
         rec.finish("detector and totals");
-        let partials: Vec<Partial> = map_read(&self.dev, &self.staging.slice(..bytes));
-        self.buffers.downloaded += bytes;
+        let read: Vec<u8> = map_read(&self.dev, &self.staging.slice(..bytes + body_bytes));
+        self.buffers.downloaded += bytes + body_bytes;
+        let (head, tail) = read.split_at(bytes as usize);
+        let partials: Vec<Partial> = bytemuck::pod_collect_to_vec(head);
+        self.body_loads = bodies::loads(&bytemuck::pod_collect_to_vec::<u8, BodyLoad>(tail));
         if !self.profile {
             self.times.lap(t0, "step");
         }

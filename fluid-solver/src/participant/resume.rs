@@ -47,6 +47,7 @@ impl FluidParticipant {
     /// Writes the rows and frame kept back from the accepted window, then the state to `path`.
     pub(super) fn checkpoint_to(&mut self, path: &Path) -> Result<u64, String> {
         self.commit()?;
+        self.solver.sync_host();
         let saved = Saved {
             name: self.name.clone(),
             state: self.solver.save_state(),

@@ -656,9 +656,6 @@ impl FluidConfig {
         if self.artificial_viscosity != 0.0 {
             return refuse("the E-MPS artificial viscosity (artificial_viscosity > 0)");
         }
-        if !self.body.is_empty() {
-            return refuse("rigid bodies ([[body]])");
-        }
         if self.inflow.is_some() || self.outflow.is_some() {
             return refuse("inflow or outflow boundaries");
         }

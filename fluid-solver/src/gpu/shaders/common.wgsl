@@ -15,7 +15,8 @@ struct Params {
     domain_hi: vec3<f32>, wall_top: f32,
     tank_lo: vec3<f32>, open_top: u32,
     tank_hi: vec3<f32>, n_boxes: u32,
-    mass: f32, volume: f32, scan_blocks: u32, _pad: u32,
+    mass: f32, volume: f32, scan_blocks: u32, n_bodies: u32,
+    n_members: u32, reach_contact: u32, contact_k: f32, contact_c: f32,
 };
 
 // Kind codes (src/kind.rs).
@@ -65,6 +66,30 @@ const NONE: u32 = 0xffffffffu;
 @group(0) @binding(18) var<storage, read_write> boxes: array<vec4<f32>>;
 // One partial per workgroup of the reduction (see reduce.wgsl).
 @group(0) @binding(19) var<storage, read_write> partials: array<Partial>;
+// The bodies' particles, sorted by id (bodies.wgsl).
+@group(0) @binding(20) var<storage, read_write> members: array<Member>;
+// Each body's pose and velocity, from the host each step it is given one.
+@group(0) @binding(21) var<storage, read_write> body_kin: array<BodyKin>;
+// One BodyLoad per workgroup of 256 particles and body (group · bodies + body).
+@group(0) @binding(22) var<storage, read_write> body_partials: array<BodyLoad>;
+// Each body's load summed over the step's exchanges: what the host reads back.
+@group(0) @binding(23) var<storage, read_write> body_loads: array<BodyLoad>;
+
+// A body particle's offset from its body's initial centre (f32), its id and its body.
+struct Member {
+    offset: vec3<f32>, id: u32,
+    body: u32, _p0: u32, _p1: u32, _p2: u32,
+};
+
+// A body's pose and velocity for the step (f32): centre, quaternion (w, x, y, z), V, ω.
+struct BodyKin {
+    centre: vec4<f32>, quat: vec4<f32>, vel: vec4<f32>, omega: vec4<f32>,
+};
+
+// Force and moment about the body's centre (xyz of each; f32).
+struct BodyLoad {
+    force: vec4<f32>, moment: vec4<f32>,
+};
 
 struct Partial {
     wall: vec3<f32>, energy: f32,

@@ -189,11 +189,12 @@ fn gradient(@builtin(global_invocation_id) g: vec3<u32>) {
     cand[i] = cand[i] + seen;
 }
 
-// S1-12, S1-13: u = u* − Δt/ρ0 ⟨∇P⟩, r = r* + (u − u*)Δt (the gradient is 0 off the fluid).
+// S1-12, S1-13: u = u* − Δt/ρ0 ⟨∇P⟩, r = r* + (u − u*)Δt for fluid (the gradient is 0 off the
+// fluid; a body particle's acc holds its load, bodies.wgsl).
 @compute @workgroup_size(64)
 fn correct(@builtin(global_invocation_id) g: vec3<u32>) {
     let i = g.x;
-    if i >= prm.n {
+    if i >= prm.n || kind_of(i) != FLUID {
         return;
     }
     let du = -(prm.dt / prm.rho) * acc[i].xyz;
@@ -253,11 +254,11 @@ fn collide(@builtin(global_invocation_id) g: vec3<u32>) {
     cand[i] = cand[i] + seen;
 }
 
-// Adds the collision velocity change Δu and moves the particle by Δu Δt, as S1-13 does.
+// Adds the collision velocity change Δu to a fluid particle and moves it by Δu Δt, as S1-13 does.
 @compute @workgroup_size(64)
 fn apply_collisions(@builtin(global_invocation_id) g: vec3<u32>) {
     let i = g.x;
-    if i >= prm.n {
+    if i >= prm.n || kind_of(i) != FLUID {
         return;
     }
     let du = acc[i].xyz;

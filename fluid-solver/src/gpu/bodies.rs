@@ -1,0 +1,78 @@
+//! Resolved rigid bodies on the device (`shaders/bodies.wgsl`), the GPU path of
+//! [`crate::bodies`]: the host hands over each body's pose and velocity for a step (the values
+//! the CPU path passes to [`crate::bodies::RigidBodies::set_kinematics`]), the device places the
+//! body particles, sums the fluid's pair forces and the walls' contact on them as gathers, and
+//! reduces force and moment per body; only 32 B per body come back per step.
+
+use bytemuck::{Pod, Zeroable};
+
+/// Mirror of `Member` in `shaders/common.wgsl`: a body particle's offset from its body's initial
+/// centre, its id and its body.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+pub struct Member {
+    pub offset: [f32; 3],
+    pub id: u32,
+    pub body: u32,
+    pub pad: [u32; 3],
+}
+
+/// Mirror of `BodyKin`: centre (its w: the lead of `set_kinematics`), quaternion (w, x, y, z), V
+/// and ω of one body (their w unused).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+pub struct BodyKin {
+    pub centre: [f32; 4],
+    pub quat: [f32; 4],
+    pub vel: [f32; 4],
+    pub omega: [f32; 4],
+}
+
+/// Mirror of `BodyLoad`: force and moment (w unused).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+pub struct BodyLoad {
+    pub force: [f32; 4],
+    pub moment: [f32; 4],
+}
+
+/// The device's member table: (particle id, body, offset) sorted by id, as
+/// [`crate::bodies::RigidBodies::members`] gives it.
+pub fn members(table: &[(u32, usize, [f64; 3])]) -> Vec<Member> {
+    table
+        .iter()
+        .map(|&(id, body, offset)| Member {
+            offset: offset.map(|v| v as f32),
+            id,
+            body: body as u32,
+            pad: [0; 3],
+        })
+        .collect()
+}
+
+/// The device's kinematics of each body from `pose` (7 per body: centre, quaternion w x y z),
+/// `velocity` (6 per body: V, ω) and the `lead` of [`crate::bodies::RigidBodies::set_kinematics`].
+pub fn kinematics(pose: &[f64], velocity: &[f64], lead: f64) -> Vec<BodyKin> {
+    pose.chunks_exact(7)
+        .zip(velocity.chunks_exact(6))
+        .map(|(p, v)| {
+            let f = |x: f64| x as f32;
+            BodyKin {
+                centre: [f(p[0]), f(p[1]), f(p[2]), f(lead)],
+                quat: [f(p[3]), f(p[4]), f(p[5]), f(p[6])],
+                vel: [f(v[0]), f(v[1]), f(v[2]), 0.0],
+                omega: [f(v[3]), f(v[4]), f(v[5]), 0.0],
+            }
+        })
+        .collect()
+}
+
+/// The loads read back as 6 per body (fx fy fz mx my mz) in f64.
+pub fn loads(read: &[BodyLoad]) -> Vec<f64> {
+    read.iter()
+        .flat_map(|l| {
+            let (f, m) = (l.force, l.moment);
+            [f[0], f[1], f[2], m[0], m[1], m[2]].map(f64::from)
+        })
+        .collect()
+}

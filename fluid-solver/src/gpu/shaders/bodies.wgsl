@@ -1,0 +1,244 @@
+// Resolved rigid bodies on the device (src/bodies.rs, src/body_wall_contact.rs): body particles
+// placed from the pose the host hands over, the fluid's pair forces on each body particle as
+// gathers (the body particle sums over its fluid neighbours, no float atomics), and their force
+// and moment about the body's centre reduced per body on the device. Each body kernel writes the
+// body particle's force into acc (whose other users read it only for fluid), and reduce_bodies
+// runs right after it, while the positions are those the forces were computed at.
+
+// Index of the member with particle id `id` (binary search over the sorted ids), or NONE.
+fn member_of(id: u32) -> u32 {
+    var lo = 0u;
+    var hi = prm.n_members;
+    while lo < hi {
+        let mid = (lo + hi) / 2u;
+        let m = members[mid].id;
+        if m == id {
+            return mid;
+        }
+        if m < id {
+            lo = mid + 1u;
+        } else {
+            hi = mid;
+        }
+    }
+    return NONE;
+}
+
+// v rotated by the unit quaternion q = (w, x, y, z) stored as (q.x, q.y, q.z, q.w) = (w, x, y, z).
+fn rotate(q: vec4<f32>, v: vec3<f32>) -> vec3<f32> {
+    let u = q.yzw;
+    let t = 2.0 * cross(u, v);
+    return v + q.x * t + cross(u, t);
+}
+
+// RigidBodies::set_kinematics: u = V + ω × R(q) a and r = c + R(q) a − u·lead for each body
+// particle of offset a from its body's initial centre (S1-21); lead rides in centre.w.
+@compute @workgroup_size(64)
+fn place_bodies(@builtin(global_invocation_id) g: vec3<u32>) {
+    let i = g.x;
+    if i >= prm.n || kind_of(i) != BODY {
+        return;
+    }
+    let m = member_of(pid[i]);
+    if m == NONE {
+        return;
+    }
+    let k = body_kin[members[m].body];
+    let arm = rotate(k.quat, members[m].offset);
+    let u = k.vel.xyz + cross(k.omega.xyz, arm);
+    pos[i] = vec4<f32>(k.centre.xyz + arm - u * k.centre.w, pos[i].w);
+    vel[i] = vec4<f32>(u, 0.0);
+}
+
+@compute @workgroup_size(64)
+fn clear_body_loads(@builtin(global_invocation_id) g: vec3<u32>) {
+    if g.x < prm.n_bodies {
+        body_loads[g.x] = BodyLoad(vec4<f32>(0.0), vec4<f32>(0.0));
+    }
+}
+
+// S1-4's viscous pair force on body particle i from its fluid neighbours j (pair_laws::viscous):
+// −m ν 2d/(λ0 n0) Σ_j (u_i − u_j) w(r_ij).
+@compute @workgroup_size(64)
+fn body_viscous(@builtin(global_invocation_id) g: vec3<u32>) {
+    let i = g.x;
+    if i >= prm.n || kind_of(i) != BODY {
+        return;
+    }
+    let re = prm.re;
+    let re2 = re * re;
+    let xi = pos[i].xyz;
+    let ui = vel[i].xyz;
+    let c = cell_sorted[i];
+    var f = vec3<f32>(0.0);
+    let r = prm.reach;
+    for (var dz = 0u; dz <= 2u * r; dz = dz + 1u) {
+        for (var dy = 0u; dy <= 2u * r; dy = dy + 1u) {
+            let range = row_range(c, r, dy, dz);
+            for (var j = range.x; j < range.y; j = j + 1u) {
+                let pj = pos[j];
+                let d = xi - pj.xyz;
+                let r2 = dot(d, d);
+                if u32(pj.w) == FLUID && r2 < re2 && r2 > 0.0 {
+                    let rr = sqrt(r2);
+                    f = f + (ui - vel[j].xyz) * ((re - rr) * (re - rr) / (rr * re));
+                }
+            }
+        }
+    }
+    acc[i] = vec4<f32>(-prm.mass * prm.nu * prm.lap_factor * f, 0.0);
+}
+
+// S1-3's pressure pair force on body particle i from its fluid neighbours j (pair_laws::pressure):
+// Δs³ d/n0_grad Σ_j (P_i + P_j) r_ji/|r_ji|² w_grad(r_ji), r_ji = r_i − r_j.
+@compute @workgroup_size(64)
+fn body_pressure(@builtin(global_invocation_id) g: vec3<u32>) {
+    let i = g.x;
+    if i >= prm.n || kind_of(i) != BODY {
+        return;
+    }
+    let re = prm.re_grad;
+    let re2 = re * re;
+    let xi = pos[i].xyz;
+    let pi = dens[i].y;
+    let c = cell_sorted[i];
+    var f = vec3<f32>(0.0);
+    let r = prm.reach_grad;
+    for (var dz = 0u; dz <= 2u * r; dz = dz + 1u) {
+        for (var dy = 0u; dy <= 2u * r; dy = dy + 1u) {
+            let range = row_range(c, r, dy, dz);
+            for (var j = range.x; j < range.y; j = j + 1u) {
+                let pj = pos[j];
+                let d = xi - pj.xyz;
+                let r2 = dot(d, d);
+                if u32(pj.w) == FLUID && r2 < re2 && r2 > 0.0 {
+                    let rr = sqrt(r2);
+                    f = f + ((dens[j].y + pi) * (re / rr - rr / re) / r2) * d;
+                }
+            }
+        }
+    }
+    acc[i] = vec4<f32>(prm.volume * prm.grad_factor * f, 0.0);
+}
+
+// The collision stage on body particle i (collision::contact_law): −m/Δt (1+e) (u_ij·r_ji) r_ji/|r_ji|²
+// from each fluid neighbour j closer than the collision distance that approaches it
+// (u_ij = u_i − u_j), plus the walls' contact (body_wall_contact.rs): for each wall or dummy
+// particle w closer than Δs, max(0, k (Δs − |r|) − c u_i·n) n with r = r_i − r_w, n = r/|r|.
+@compute @workgroup_size(64)
+fn body_collision(@builtin(global_invocation_id) g: vec3<u32>) {
+    let i = g.x;
+    if i >= prm.n || kind_of(i) != BODY {
+        return;
+    }
+    let d2 = prm.coll_dist * prm.coll_dist;
+    let s2 = prm.spacing * prm.spacing;
+    let xi = pos[i].xyz;
+    let ui = vel[i].xyz;
+    let c = cell_sorted[i];
+    var fluid = vec3<f32>(0.0);
+    var walls = vec3<f32>(0.0);
+    let r = max(prm.reach_coll, prm.reach_contact);
+    for (var dz = 0u; dz <= 2u * r; dz = dz + 1u) {
+        for (var dy = 0u; dy <= 2u * r; dy = dy + 1u) {
+            let range = row_range(c, r, dy, dz);
+            for (var j = range.x; j < range.y; j = j + 1u) {
+                let pj = pos[j];
+                let kj = u32(pj.w);
+                let d = xi - pj.xyz;
+                let r2 = dot(d, d);
+                if !(r2 > 0.0) {
+                    continue;
+                }
+                if kj == FLUID && r2 < d2 {
+                    let closing = dot(ui - vel[j].xyz, d);
+                    if closing < 0.0 {
+                        fluid = fluid + (closing / r2) * d;
+                    }
+                } else if (kj == WALL || kj == DUMMY) && r2 < s2 {
+                    let rr = sqrt(r2);
+                    let n = d / rr;
+                    let magnitude = prm.contact_k * (prm.spacing - rr) - prm.contact_c * dot(ui, n);
+                    if magnitude > 0.0 {
+                        walls = walls + magnitude * n;
+                    }
+                }
+            }
+        }
+    }
+    let f = -(prm.mass / prm.dt) * (1.0 + prm.restitution) * fluid + walls;
+    acc[i] = vec4<f32>(f, 0.0);
+}
+
+var<workgroup> r_bf: array<vec3<f32>, 256>;
+var<workgroup> r_bm: array<vec3<f32>, 256>;
+
+// The force in acc of each body particle and its moment (r − c) × f about its body's centre,
+// summed per workgroup of 256 particles and per body into body_partials[group · bodies + body].
+@compute @workgroup_size(256)
+fn reduce_bodies(@builtin(global_invocation_id) g: vec3<u32>, @builtin(local_invocation_id) l: vec3<u32>, @builtin(workgroup_id) w: vec3<u32>) {
+    let i = g.x;
+    var b = NONE;
+    var f = vec3<f32>(0.0);
+    var m = vec3<f32>(0.0);
+    if i < prm.n && kind_of(i) == BODY {
+        let k = member_of(pid[i]);
+        if k != NONE {
+            b = members[k].body;
+            f = acc[i].xyz;
+            m = cross(pos[i].xyz - body_kin[b].centre.xyz, f);
+        }
+    }
+    for (var body = 0u; body < prm.n_bodies; body = body + 1u) {
+        if b == body {
+            r_bf[l.x] = f;
+            r_bm[l.x] = m;
+        } else {
+            r_bf[l.x] = vec3<f32>(0.0);
+            r_bm[l.x] = vec3<f32>(0.0);
+        }
+        workgroupBarrier();
+        for (var s = 128u; s > 0u; s = s / 2u) {
+            if l.x < s {
+                r_bf[l.x] = r_bf[l.x] + r_bf[l.x + s];
+                r_bm[l.x] = r_bm[l.x] + r_bm[l.x + s];
+            }
+            workgroupBarrier();
+        }
+        if l.x == 0u {
+            body_partials[w.x * prm.n_bodies + body] = BodyLoad(vec4<f32>(r_bf[0], 0.0), vec4<f32>(r_bm[0], 0.0));
+        }
+        workgroupBarrier();
+    }
+}
+
+// Sums the workgroups' partials per body (one workgroup) and adds them to body_loads, which
+// holds the step's sum over its exchanges (cleared at the step's start).
+@compute @workgroup_size(256)
+fn sum_bodies(@builtin(local_invocation_id) l: vec3<u32>) {
+    let groups = (prm.n + SCAN_WG - 1u) / SCAN_WG;
+    for (var body = 0u; body < prm.n_bodies; body = body + 1u) {
+        var f = vec3<f32>(0.0);
+        var m = vec3<f32>(0.0);
+        for (var k = l.x; k < groups; k = k + SCAN_WG) {
+            let p = body_partials[k * prm.n_bodies + body];
+            f = f + p.force.xyz;
+            m = m + p.moment.xyz;
+        }
+        r_bf[l.x] = f;
+        r_bm[l.x] = m;
+        workgroupBarrier();
+        for (var s = 128u; s > 0u; s = s / 2u) {
+            if l.x < s {
+                r_bf[l.x] = r_bf[l.x] + r_bf[l.x + s];
+                r_bm[l.x] = r_bm[l.x] + r_bm[l.x + s];
+            }
+            workgroupBarrier();
+        }
+        if l.x == 0u {
+            let old = body_loads[body];
+            body_loads[body] = BodyLoad(old.force + vec4<f32>(r_bf[0], 0.0), old.moment + vec4<f32>(r_bm[0], 0.0));
+        }
+        workgroupBarrier();
+    }
+}

@@ -1,0 +1,198 @@
+//! Resolved rigid bodies on the GPU path against the CPU path (the specification,
+//! `src/bodies.rs`): the same box in the same settling tank, handed the same pose and velocity
+//! before each step, gets the same force and moment within a bound derived from f32 rounding;
+//! and the fixed submerged box feels ρ g V within the CPU test's 5 %
+//! (`bodies_fixed_hydrostatic.rs`).
+
+mod bodies_common;
+mod gpu_common;
+
+use bodies_common::tank_with_body;
+use fluid_solver::FluidSolver;
+use schemas::case::fluid::{Aabb, FluidConfig};
+use std::time::Instant;
+
+/// The CPU buoyancy test's scene: Δs = 0.02 m, a 0.28 × 0.28 m tank with water 0.3 m deep, a
+/// 12 × 12 × 12 cm box centred 0.16 m below the surface; Δt = 8e-4 s.
+fn scene() -> (FluidConfig, f64) {
+    let body = Aabb {
+        min: [0.08, 0.08, 0.08],
+        max: [0.20, 0.20, 0.20],
+    };
+    let water = Aabb {
+        min: [0.0; 3],
+        max: [0.28, 0.28, 0.3],
+    };
+    let cfg = tank_with_body([0.28, 0.28, 0.4], 0.02, 8.0e-4, water, body);
+    let volume: f64 = (0..3).map(|a| body.max[a] - body.min[a]).product();
+    let buoyancy = cfg.density * cfg.gravity_magnitude() * volume;
+    (cfg, buoyancy)
+}
+
+/// The largest difference of the GPU's loads from the CPU's over `steps` steps, force relative
+/// to ρgV and moment relative to ρgV × the half width 0.06 m, each step handed `pose`,
+/// `velocity` and `lead` (the participant hands them before every step; an implicit window
+/// leads by the step so the body ends it at `pose`).
+fn worst_difference(
+    cfg: &FluidConfig,
+    buoyancy: f64,
+    steps: usize,
+    pose: &[f64],
+    velocity: &[f64],
+    lead: f64,
+) -> Option<(f64, f64)> {
+    let dev = gpu_common::device()?;
+    let mut cpu = FluidSolver::new(cfg);
+    let mut gpu = FluidSolver::new(cfg);
+    gpu.to_device(cfg, dev).unwrap_or_else(|e| panic!("{e}"));
+    let (mut force, mut moment) = (0.0f64, 0.0f64);
+    let dt = cfg.time_step;
+    let (mut t_cpu, mut t_gpu) = (0.0, 0.0);
+    for step in 0..steps {
+        let t = Instant::now();
+        cpu.set_body_motion(pose, velocity, lead)
+            .unwrap_or_else(|e| panic!("{e}"));
+        cpu.step(dt).unwrap_or_else(|e| panic!("CPU: {e}"));
+        t_cpu += t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        gpu.set_body_motion(pose, velocity, lead)
+            .unwrap_or_else(|e| panic!("{e}"));
+        gpu.step(dt).unwrap_or_else(|e| panic!("GPU: {e}"));
+        t_gpu += t.elapsed().as_secs_f64();
+        let (c, g) = (cpu.body_loads(), gpu.body_loads());
+        let (r, rg) = (cpu.body_reactions(), gpu.body_reactions());
+        for a in 0..3 {
+            force = force.max((g[a] - c[a]).abs() / buoyancy);
+            moment = moment.max((g[3 + a] - c[3 + a]).abs() / (0.06 * buoyancy));
+            assert!(
+                (rg[a] + g[a]).abs() <= 1e-12 * buoyancy,
+                "GPU reaction {rg:?} vs loads {g:?}"
+            );
+            assert!(
+                (r[a] + c[a]).abs() <= 1e-9 * buoyancy,
+                "CPU reaction {r:?} vs loads {c:?}"
+            );
+        }
+        if step % 5 == 0 || step + 1 == steps {
+            println!(
+                "step {step}: CPU F = [{:.5}, {:.5}, {:.5}] M = [{:.3e}, {:.3e}, {:.3e}]; GPU F = [{:.5}, {:.5}, {:.5}] M = [{:.3e}, {:.3e}, {:.3e}]",
+                c[0], c[1], c[2], c[3], c[4], c[5], g[0], g[1], g[2], g[3], g[4], g[5]
+            );
+        }
+    }
+    println!(
+        "{} particles, {steps} steps: CPU {t_cpu:.2} s, GPU {t_gpu:.2} s; worst |F_gpu − F_cpu| / ρgV = {force:.3e}, worst |M_gpu − M_cpu| / (ρgV · 0.06 m) = {moment:.3e}",
+        gpu.particle_count()
+    );
+    Some((force, moment))
+}
+
+/// The bound on the loads' difference relative to ρgV, from f32 rounding (unit roundoff
+/// u = 2⁻²⁴ ≈ 6.0e-8), as `gpu_dam_break.rs` derives it for positions:
+/// - a number density sums K ≈ 300 candidates, each rounded once: u √K ≈ 1.0e-6 of n0, so
+///   S1-14 gives δP = c² ρ0 · 1.0e-6 = 12.1² · 1000 · 1.0e-6 = 0.15 Pa, of random sign per
+///   particle;
+/// - a body particle's pressure load sums its ≈ 30 fluid neighbours' pair terms
+///   V d/n0_grad (P_i + P_j) w_grad/r ≈ 2 d δP Δs² / n0_grad per particle: with d = 3 and
+///   n0_grad ≈ 20 (r_e,grad = 2.1 Δs) and Δs² = 4e-4 m², δF ≈ 1.8e-5 N per pair, and
+///   √(30 · 152) ≈ 68 such pairs' worth over the box's 152 surface particles: 1.2e-3 N a step;
+/// - the state's own drift (positions within 1e-3 Δs after 200 steps, `gpu_dam_break.rs`)
+///   moves the near-wall pressures by δn/n0 ≈ 2 · 1e-3 · δx/Δs: far less over the 10 steps here.
+///
+/// ρgV = 16.9 N, so 1.2e-3 N is 7e-5 of it; 1e-3 of ρgV leaves a margin of about 14.
+const LOAD_BOUND: f64 = 1.0e-3;
+
+#[test]
+fn gpu_body_loads_match_cpu_on_a_fixed_box_in_a_settling_tank() {
+    let (cfg, buoyancy) = scene();
+    let pose = [0.14, 0.14, 0.14, 1.0, 0.0, 0.0, 0.0];
+    let Some((force, moment)) = worst_difference(&cfg, buoyancy, 10, &pose, &[0.0; 6], 0.0) else {
+        return;
+    };
+    assert!(
+        force < LOAD_BOUND,
+        "force differs by {force:e} of ρgV (bound {LOAD_BOUND:e})"
+    );
+    assert!(
+        moment < LOAD_BOUND,
+        "moment differs by {moment:e} of ρgV · 0.06 m (bound {LOAD_BOUND:e})"
+    );
+}
+
+/// A moving, turned box with the viscous term on: placement from a quaternion (5° about z),
+/// led by one step as in an implicit window, rigid velocities V + ω × r in the viscous and
+/// collision terms, 10 steps.
+#[test]
+fn gpu_body_loads_match_cpu_on_a_moving_turned_box_with_viscosity() {
+    let (mut cfg, buoyancy) = scene();
+    cfg.viscosity_term = true;
+    cfg.viscosity = 0.05;
+    cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
+    let half = 2.5f64.to_radians();
+    let pose = [0.14, 0.14, 0.14, half.cos(), 0.0, 0.0, half.sin()];
+    let velocity = [0.05, 0.0, -0.02, 0.0, 0.3, 0.5];
+    let Some((force, moment)) = worst_difference(&cfg, buoyancy, 10, &pose, &velocity, cfg.time_step) else {
+        return;
+    };
+    assert!(
+        force < LOAD_BOUND,
+        "force differs by {force:e} of ρgV (bound {LOAD_BOUND:e})"
+    );
+    assert!(
+        moment < LOAD_BOUND,
+        "moment differs by {moment:e} of ρgV · 0.06 m (bound {LOAD_BOUND:e})"
+    );
+}
+
+/// The CPU buoyancy test (`bodies_fixed_hydrostatic.rs`) on the GPU: settle 1 s, then the mean
+/// vertical load over 0.3 s is ρgV within its 5 %, and the sideways force and moments are
+/// within its 2 % (1 625 steps: 21 min on lavapipe here).
+///
+/// Measured 2026-11-24 on lavapipe: F = (0.066, 0.382, 19.009) N, +12.25 % of ρgV = 16.934 N
+/// (sideways 2.3 %): this test FAILS its bound. The CPU run gives +1.25 %; the same CPU run
+/// started from positions rounded to f32 (what the upload does) +2.44 %, and with every 97th
+/// fluid particle moved by 1e-7 m +6.32 % (sideways up to 1.0 %): after 1 250 steps the
+/// sloshing in the 4-particle gaps has forgotten its start, and a 0.3 s mean of the load
+/// scatters by several % on the CPU too. Whether the GPU's +12 % is that scatter or a bias is
+/// not settled (three CPU samples; the 10-step comparison above agrees to 3e-5).
+#[test]
+#[ignore]
+fn gpu_submerged_fixed_box_feels_rho_g_v() {
+    let Some(dev) = gpu_common::device() else {
+        return;
+    };
+    let (cfg, buoyancy) = scene();
+    let mut solver = FluidSolver::new(&cfg);
+    solver.to_device(&cfg, dev).unwrap_or_else(|e| panic!("{e}"));
+    let t = Instant::now();
+    solver.advance_to(1.0).unwrap_or_else(|e| panic!("{e}"));
+    let mut mean = [0.0; 6];
+    let mut steps = 0;
+    while let Some(dt) = solver.next_step_towards(1.3) {
+        solver.step(dt).unwrap_or_else(|e| panic!("{e}"));
+        mean.iter_mut()
+            .zip(&solver.body_loads())
+            .for_each(|(m, l)| *m += l);
+        steps += 1;
+    }
+    mean.iter_mut().for_each(|v| *v /= f64::from(steps));
+    let error = mean[2] / buoyancy - 1.0;
+    println!(
+        "GPU, {:.0} s: mean load over {steps} steps: F = [{:.4}, {:.4}, {:.4}] N, M = [{:.2e}, {:.2e}, {:.2e}] N m; ρgV = {buoyancy:.4} N; error {:+.2} %",
+        t.elapsed().as_secs_f64(),
+        mean[0], mean[1], mean[2], mean[3], mean[4], mean[5], 100.0 * error
+    );
+    assert!(
+        error.abs() < 0.05,
+        "vertical force {} N vs ρgV = {buoyancy} N (bound 5 %)",
+        mean[2]
+    );
+    for a in 0..2 {
+        assert!(mean[a].abs() < 0.02 * buoyancy, "sideways force {a}: {}", mean[a]);
+        assert!(
+            mean[3 + a].abs() < 0.02 * buoyancy * 0.04,
+            "moment {a}: {}",
+            mean[3 + a]
+        );
+    }
+}
