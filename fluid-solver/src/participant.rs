@@ -405,13 +405,13 @@ impl Participant for FluidParticipant {
                         true => (self.solver.time() + dt, dt),
                         false => (self.solver.time(), 0.0),
                     };
-                    let (pose, velocity) = body_motion::at(inputs, read_at);
+                    let (pose, velocity) = body_motion::at(inputs, read_at)?;
                     if !pose.is_empty() || !velocity.is_empty() {
                         self.solver.set_body_motion(&pose, &velocity, lead)?;
                     }
                 }
                 if bodies > 0 || reactions {
-                    self.set_point_reactions(&inputs.at(self.solver.time()))?;
+                    self.set_point_reactions(&inputs.at(self.solver.time())?)?;
                 }
                 self.solver
                     .step(dt)

@@ -67,14 +67,17 @@ impl Waveform {
         out
     }
 
-    /// The data interpolated at time `t` (clamped to the window).
-    pub fn at(&self, t: f64) -> Fields {
+    /// The data interpolated at time `t` (clamped to the window). Refused when an array's length
+    /// differs between the samples interpolated (the contract: a fracture re-declares the geometry
+    /// at a window's end, so every sample of one window has the same lengths), instead of reading
+    /// the missing values as zeros.
+    pub fn at(&self, t: f64) -> Result<Fields, String> {
         let n = self.times.len().min(self.samples.len());
         if n == 0 {
-            return Fields::default();
+            return Ok(Fields::default());
         }
         if n == 1 {
-            return self.samples[0].clone();
+            return Ok(self.samples[0].clone());
         }
         let t = t.clamp(self.times[0], self.times[n - 1]);
         let (first, count) = stencil(&self.times[..n], t);
@@ -84,16 +87,29 @@ impl Waveform {
             .map(Fields::arrays)
             .collect();
         let mut out = self.samples[first].clone();
-        for (a, (_, array)) in out.arrays_mut().into_iter().enumerate() {
+        for (a, (name, array)) in out.arrays_mut().into_iter().enumerate() {
+            for (j, source) in sources.iter().enumerate().skip(1) {
+                if source[a].1.len() != array.len() {
+                    return Err(format!(
+                        "interface window {} … {} s: `{name}` has {} values at t = {} s and {} at t = {} s; the samples of one window must have equal lengths (a re-declared geometry takes effect at a window's end)",
+                        self.start(),
+                        self.end(),
+                        array.len(),
+                        self.times[first],
+                        source[a].1.len(),
+                        self.times[first + j]
+                    ));
+                }
+            }
             for (k, value) in array.iter_mut().enumerate() {
                 *value = weights
                     .iter()
                     .zip(&sources)
-                    .map(|(w, source)| w * source[a].1.get(k).copied().unwrap_or(0.0))
+                    .map(|(w, source)| w * source[a].1[k])
                     .sum();
             }
         }
-        out
+        Ok(out)
     }
 }
 
@@ -153,7 +169,7 @@ mod tests {
     #[test]
     fn two_samples_interpolate_linearly() {
         let w = wave(Waveform::grid(0.0, 1.0, 1), |t| 3.0 * t + 1.0);
-        let f = w.at(0.25);
+        let f = w.at(0.25).unwrap_or_else(|e| panic!("{e}"));
         assert!((f.point_force[0] - 1.75).abs() < 1e-15);
         assert!((f.point_force[1] - 3.5).abs() < 1e-15);
     }
@@ -163,7 +179,8 @@ mod tests {
         let cubic = |t: f64| 2.0 * t * t * t - t * t + 0.5 * t - 3.0;
         let w = wave(Waveform::grid(0.0, 1.0, 6), cubic);
         for t in [0.0, 0.05, 0.33, 0.5, 0.71, 0.99, 1.0] {
-            assert!((w.at(t).point_force[0] - cubic(t)).abs() < 1e-13, "t = {t}");
+            let f = w.at(t).unwrap_or_else(|e| panic!("{e}"));
+            assert!((f.point_force[0] - cubic(t)).abs() < 1e-13, "t = {t}");
         }
     }
 
@@ -174,10 +191,25 @@ mod tests {
             let w = wave(Waveform::grid(0.0, 1.0, n), f64::sin);
             (0..=200)
                 .map(|i| f64::from(i) / 200.0)
-                .map(|t| (w.at(t).point_force[0] - t.sin()).abs())
+                .map(|t| (w.at(t).unwrap_or_else(|e| panic!("{e}")).point_force[0] - t.sin()).abs())
                 .fold(0.0, f64::max)
         };
         let ratio = err(8) / err(16);
         assert!(ratio > 12.0, "error ratio {ratio} shows less than 4th order");
+    }
+
+    /// Issue 13: samples of one window whose array lengths differ (nodes added within it) are
+    /// refused by name, not read with zeros for the missing values; equal lengths still pass.
+    #[test]
+    fn samples_of_different_lengths_are_refused() {
+        let mut w = wave(Waveform::grid(0.0, 1.0, 2), |t| t);
+        w.samples[2].point_force.0.push(7.0);
+        let e = w.at(0.75).map(|_| ()).unwrap_err();
+        assert!(
+            e.contains("`point_force`") && e.contains("2 values") && e.contains("3 at t = 1"),
+            "{e}"
+        );
+        w.samples[2].point_force.0.pop();
+        assert!(w.at(0.75).is_ok());
     }
 }

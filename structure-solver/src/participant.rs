@@ -210,7 +210,7 @@ impl Participant for StructureParticipant {
             let schedule = &self.schedule;
             let loads = |tt: f64| {
                 let mut l = schedule.at(tt);
-                l.add_fields(&inputs.at(tt))?;
+                l.add_fields(&inputs.at(tt)?)?;
                 Ok(l)
             };
             let warned = self.structure.frame().and_then(Frame::energy_warning).is_some();

@@ -22,12 +22,13 @@
 use schemas::message::Waveform;
 
 /// Pose (7 per body) and velocity (6 per body) of the bodies at time `t` of the window `inputs`
-/// (clamped to the window); empty when the window carries no body motion.
-pub fn at(inputs: &Waveform, t: f64) -> (Vec<f64>, Vec<f64>) {
-    let f = inputs.at(t);
+/// (clamped to the window); empty when the window carries no body motion. An error when the
+/// window's samples differ in length ([`Waveform::at`]).
+pub fn at(inputs: &Waveform, t: f64) -> Result<(Vec<f64>, Vec<f64>), String> {
+    let f = inputs.at(t)?;
     let mut pose = f.body_pose.0;
     if pose.is_empty() {
-        return (pose, f.body_velocity.0);
+        return Ok((pose, f.body_velocity.0));
     }
     let n = inputs.times.len().min(inputs.samples.len());
     let t = t.clamp(inputs.start(), inputs.end());
@@ -54,7 +55,7 @@ pub fn at(inputs: &Waveform, t: f64) -> (Vec<f64>, Vec<f64>) {
             out[3..7].copy_from_slice(&slerp(q0, q1, s));
         }
     }
-    (pose, f.body_velocity.0)
+    Ok((pose, f.body_velocity.0))
 }
 
 /// Unit quaternion a fraction `s` of the way from `q0` to `q1` along the shorter great arc
@@ -120,7 +121,7 @@ mod tests {
             ],
             [[0.0; 6], [2.0, 0.0, 0.0, 0.0, 0.0, 1.0]],
         );
-        let (pose, velocity) = at(&w, 1.125);
+        let (pose, velocity) = at(&w, 1.125).unwrap_or_else(|e| panic!("{e}"));
         let angle = 0.25 * std::f64::consts::FRAC_PI_2;
         let expected = [1.0, 0.0, 0.0, (0.5 * angle).cos(), 0.0, 0.0, (0.5 * angle).sin()];
         for (a, b) in pose.iter().zip(expected) {
@@ -128,7 +129,7 @@ mod tests {
         }
         assert!((velocity[0] - 0.5).abs() < 1e-14 && (velocity[5] - 0.25).abs() < 1e-14);
         // the window end is its last sample exactly
-        let (end, _) = at(&w, 1.5);
+        let (end, _) = at(&w, 1.5).unwrap_or_else(|e| panic!("{e}"));
         for (a, b) in end.iter().zip(w.samples[1].body_pose.iter()) {
             assert!((a - b).abs() < 1e-15, "{end:?}");
         }
