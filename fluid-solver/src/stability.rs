@@ -267,9 +267,11 @@ impl StabilityMonitor {
                 id,
                 "velocity",
                 format!(
-                    "|u| = {:.4} m/s at r = {r:?} moves {:.3} spacings in one step (limit {MAX_STEP_DISPLACEMENT}): Δt or c is too large for this flow",
+                    "|u| = {:.4} m/s at r = {r:?} moves {:.3} spacings in one step (limit {MAX_STEP_DISPLACEMENT}): the flow is faster than the time step allows; use time_step ≤ {:.3e} s (E-MPS: with sound_speed ≥ 10 |u|; ISPH: set max_velocity ≥ {:.2} m/s so that the case check accounts for it)",
                     speed(p, i),
-                    step / self.spacing
+                    step / self.spacing,
+                    MAX_STEP_DISPLACEMENT * self.spacing / speed(p, i),
+                    speed(p, i)
                 ),
             ));
         }

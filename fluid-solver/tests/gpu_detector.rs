@@ -75,6 +75,8 @@ fn a_too_fast_particle_is_found_as_on_the_cpu() {
     };
     same(&a, &b);
     assert_eq!(b.quantity, "velocity", "{b}");
+    // the diagnostic names the time step that would hold this speed (0.5 Δs per step)
+    assert!(a.message.contains("use time_step ≤"), "{a}");
 }
 
 #[test]
