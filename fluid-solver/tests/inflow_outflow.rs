@@ -2,6 +2,7 @@
 //! inflow feeds u_in × area, the boundaries' state is saved and restored with the particles, the
 //! bridge-washout cases build and run, and bad boundary keys are refused naming the key.
 
+use fluid_solver::open_boundary::ParticleBalance;
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::{Case, FluidConfig};
 use std::collections::HashSet;
@@ -70,8 +71,23 @@ fn counts(s: &FluidSolver) -> (i64, i64, i64) {
 
 #[test]
 fn particle_balance_closes_exactly_and_ids_stay_unique() {
-    let cfg = channel();
-    let mut s = FluidSolver::new(&cfg);
+    let (b, count_changed) = particle_balance_of(&channel(), 2.0);
+    assert!(count_changed && b.removed > 0 && b.entered > b.removed, "{b:?}");
+}
+
+/// CI twin of [`inflow_rate_matches_u_in_times_area_with_isph`]: the channel with ISPH for
+/// 0.3 s, its particle balance exact every 0.05 s and water entering through the plane.
+#[test]
+fn particle_balance_closes_exactly_with_isph() {
+    let (b, count_changed) = particle_balance_of(&isph_channel(), 0.3);
+    assert!(count_changed && b.entered > 0, "{b:?}");
+}
+
+/// Runs `cfg` (the channel) to `end`, checking every 0.05 s that every particle added or
+/// removed is counted once and ids stay unique; returns the balance and whether the particle
+/// count changed.
+fn particle_balance_of(cfg: &FluidConfig, end: f64) -> (ParticleBalance, bool) {
+    let mut s = FluidSolver::new(cfg);
     let m = s.particle_mass();
     let (n0, f0, i0) = counts(&s);
     assert_eq!(
@@ -80,8 +96,8 @@ fn particle_balance_closes_exactly_and_ids_stay_unique() {
         "the initial strip: 10 layers × 10 sites × 2 rows"
     );
     let mut count_changed = false;
-    while s.time() < 2.0 - 1e-9 {
-        s.advance_to((s.time() + 0.05).min(2.0))
+    while s.time() < end - 1e-9 {
+        s.advance_to((s.time() + 0.05).min(end))
             .unwrap_or_else(|e| panic!("{e}"));
         let b = s.open_boundaries().balance();
         let (n, f, i) = counts(&s);
@@ -109,7 +125,7 @@ fn particle_balance_closes_exactly_and_ids_stay_unique() {
     }
     let b = s.open_boundaries().balance();
     println!("{b:?}, fluid mass {:.3} kg", counts(&s).1 as f64 * m);
-    assert!(count_changed && b.removed > 0 && b.entered > b.removed, "{b:?}");
+    (b, count_changed)
 }
 
 #[test]
@@ -121,15 +137,11 @@ fn inflow_rate_matches_u_in_times_area() {
 /// within the same 2 %, measured over [1.0, 1.5] s (10 spacings of strip travel), and the
 /// particle balance exact (fluid thrown over the channel's open top counted too). Measured:
 /// 0.15000 m³/s through the plane, 0.14921 m³/s carried (−0.5 %); about 40 s in release, so
-/// ignored in CI.
+/// ignored in CI; its twin is [`particle_balance_closes_exactly_with_isph`].
 #[test]
 #[ignore]
 fn inflow_rate_matches_u_in_times_area_with_isph() {
-    let mut cfg = channel();
-    cfg.method = schemas::case::fluid::FluidMethodName::Isph;
-    cfg.isph = Some(schemas::case::fluid::IsphConfig::default());
-    cfg.sound_speed = None;
-    cfg.validate("fluid.river").unwrap_or_else(|e| panic!("{e:?}"));
+    let cfg = isph_channel();
     let n0 = FluidSolver::new(&cfg).particles().len() as i64;
     let s = inflow_rate_of(&cfg, 1.5);
     let b = s.open_boundaries().balance();
@@ -139,6 +151,16 @@ fn inflow_rate_matches_u_in_times_area_with_isph() {
     println!("{b:?}, {} over the open top", s.escaped());
     assert_eq!((n, f, i), (n0 + ins - rem, ent - rem, 200 + ins - ent), "{b:?}");
     assert!(b.removed > 0, "water reached the outflow: {b:?}");
+}
+
+/// The channel with the ISPH method.
+fn isph_channel() -> FluidConfig {
+    let mut cfg = channel();
+    cfg.method = schemas::case::fluid::FluidMethodName::Isph;
+    cfg.isph = Some(schemas::case::fluid::IsphConfig::default());
+    cfg.sound_speed = None;
+    cfg.validate("fluid.river").unwrap_or_else(|e| panic!("{e:?}"));
+    cfg
 }
 
 /// Runs `cfg` (the channel) to `end` and checks the inflow rate over [1, end] s against
