@@ -37,6 +37,8 @@ pub const POS: usize = 1;
 pub const VEL: usize = 2;
 pub const ID: usize = 3;
 pub const DENS: usize = 4;
+pub const CELL_START: usize = 10;
+pub const CELL_COUNT: usize = 11;
 pub const SPARE_POS: usize = 14;
 pub const SPARE_VEL: usize = 15;
 pub const SPARE_ID: usize = 16;
@@ -58,6 +60,7 @@ impl Buffers {
         (bodies, members): (usize, usize),
     ) -> Buffers {
         let n = n.max(1) as u64;
+        let block_sums = super::cell_sort::block_sum_entries(cells as u32);
         let cells = cells as u64;
         let (bodies, members) = (bodies.max(1) as u64, members.max(1) as u64);
         let sizes: [u64; 23] = [
@@ -73,7 +76,7 @@ impl Buffers {
             4 * (cells + 1),                                         // 10 cell_start
             4 * cells,                                               // 11 cell_count
             4 * cells,                                               // 12 fluid_count
-            4 * cells.div_ceil(256).max(1),                          // 13 block sums
+            4 * block_sums,                                          // 13 block sums
             16 * n,                                                  // 14 spare pos
             16 * n,                                                  // 15 spare vel
             4 * n,                                                   // 16 spare id

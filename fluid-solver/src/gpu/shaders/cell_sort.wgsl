@@ -3,8 +3,8 @@
 // the same every run, then the particle arrays gathered into the new order.
 
 @compute @workgroup_size(64)
-fn clear_cells(@builtin(global_invocation_id) g: vec3<u32>) {
-    let c = g.x;
+fn clear_cells(v: Invocation) {
+    let c = item_index(v, WG);
     if c < prm.cells {
         atomicStore(&cell_count[c], 0u);
         atomicStore(&fluid_count[c], 0u);
@@ -12,8 +12,8 @@ fn clear_cells(@builtin(global_invocation_id) g: vec3<u32>) {
 }
 
 @compute @workgroup_size(64)
-fn count_cells(@builtin(global_invocation_id) g: vec3<u32>) {
-    let i = g.x;
+fn count_cells(v: Invocation) {
+    let i = item_index(v, WG);
     if i >= prm.n {
         return;
     }
@@ -27,77 +27,129 @@ fn count_cells(@builtin(global_invocation_id) g: vec3<u32>) {
 
 var<workgroup> scan_tmp: array<u32, 256>;
 
-// Exclusive scan of one block of 256 counts in workgroup memory (Hillis–Steele); the block's
-// total goes to block_sums.
-@compute @workgroup_size(256)
-fn scan_blocks(@builtin(global_invocation_id) g: vec3<u32>, @builtin(local_invocation_id) l: vec3<u32>, @builtin(workgroup_id) w: vec3<u32>) {
-    let c = g.x;
-    var v = 0u;
-    if c < prm.cells {
-        v = atomicLoad(&cell_count[c]);
-    }
-    scan_tmp[l.x] = v;
+// The exclusive prefix sum of the counts, in three levels, each an exact integer scan: the
+// cells by blocks of 4096 (scan_cells: each of 256 threads sums a run of 16 cells, the
+// workgroup scans the runs' totals in workgroup memory, each thread writes its run's starts),
+// the blocks' totals by groups of 256 (scan_block_sums), the groups' totals by one workgroup
+// that loops with a carry (scan_tops; one pass per 2^28 cells), then each level's prefix added
+// back down (add_tops, add_blocks). block_sums holds the blocks' totals (prm.scan_blocks of
+// them), then the groups' totals.
+
+// Cells per thread of the first level (fewer workgroup barriers per cell).
+const SCAN_RUN: u32 = 16u;
+// Cells per block of the first level.
+const SCAN_BLOCK: u32 = 4096u;
+
+// Groups of 256 blocks.
+fn scan_tops_count() -> u32 {
+    return (prm.scan_blocks + SCAN_WG - 1u) / SCAN_WG;
+}
+
+// Inclusive scan (Hillis–Steele) of the workgroup's values `x`, thread `l` holding its own:
+// returns the thread's inclusive prefix; scan_tmp[255] holds the total afterwards.
+fn scan_workgroup(l: u32, x: u32) -> u32 {
+    scan_tmp[l] = x;
     workgroupBarrier();
     for (var d = 1u; d < SCAN_WG; d = d * 2u) {
         var t = 0u;
-        if l.x >= d {
-            t = scan_tmp[l.x - d];
+        if l >= d {
+            t = scan_tmp[l - d];
         }
         workgroupBarrier();
-        scan_tmp[l.x] = scan_tmp[l.x] + t;
+        scan_tmp[l] = scan_tmp[l] + t;
         workgroupBarrier();
     }
-    if c < prm.cells {
-        cell_start[c] = scan_tmp[l.x] - v;
+    return scan_tmp[l];
+}
+
+// Level 1: exclusive scan of each block of 4096 counts into cell_start; the block's total goes
+// to block_sums[block].
+@compute @workgroup_size(256)
+fn scan_cells(v: Invocation) {
+    let first = item_index(v, SCAN_WG) * SCAN_RUN;
+    let block = group_index(v);
+    let end = min(first + SCAN_RUN, prm.cells);
+    var total = 0u;
+    for (var c = first; c < end; c = c + 1u) {
+        total = total + atomicLoad(&cell_count[c]);
     }
-    if l.x == SCAN_WG - 1u {
-        block_sums[w.x] = scan_tmp[l.x];
+    let inclusive = scan_workgroup(v.local, total);
+    var start = inclusive - total;
+    for (var c = first; c < end; c = c + 1u) {
+        cell_start[c] = start;
+        start = start + atomicLoad(&cell_count[c]);
+    }
+    if v.local == SCAN_WG - 1u && block < prm.scan_blocks {
+        block_sums[block] = inclusive;
     }
 }
 
-// Exclusive scan of the block totals by one workgroup, 256 at a time with a carry; writes the
-// grand total (the particle count) to cell_start[cells].
+// Level 2: exclusive scan of each group of 256 block totals in place; the group's total goes
+// after the blocks' totals.
 @compute @workgroup_size(256)
-fn scan_sums(@builtin(local_invocation_id) l: vec3<u32>) {
+fn scan_block_sums(v: Invocation) {
+    let b = item_index(v, SCAN_WG);
+    let group = group_index(v);
+    var x = 0u;
+    if b < prm.scan_blocks {
+        x = block_sums[b];
+    }
+    let inclusive = scan_workgroup(v.local, x);
+    if b < prm.scan_blocks {
+        block_sums[b] = inclusive - x;
+    }
+    if v.local == SCAN_WG - 1u && group < scan_tops_count() {
+        block_sums[prm.scan_blocks + group] = inclusive;
+    }
+}
+
+// Level 3: exclusive scan of the groups' totals by one workgroup, 256 at a time with a carry;
+// writes the grand total (the particle count) to cell_start[cells].
+@compute @workgroup_size(256)
+fn scan_tops(v: Invocation) {
+    let l = v.local;
+    let tops = scan_tops_count();
+    let at = prm.scan_blocks;
     var carry = 0u;
-    for (var base = 0u; base < prm.scan_blocks; base = base + SCAN_WG) {
-        let b = base + l.x;
-        var v = 0u;
-        if b < prm.scan_blocks {
-            v = block_sums[b];
+    for (var base = 0u; base < tops; base = base + SCAN_WG) {
+        let t = base + l;
+        var x = 0u;
+        if t < tops {
+            x = block_sums[at + t];
         }
-        scan_tmp[l.x] = v;
-        workgroupBarrier();
-        for (var d = 1u; d < SCAN_WG; d = d * 2u) {
-            var t = 0u;
-            if l.x >= d {
-                t = scan_tmp[l.x - d];
-            }
-            workgroupBarrier();
-            scan_tmp[l.x] = scan_tmp[l.x] + t;
-            workgroupBarrier();
-        }
-        if b < prm.scan_blocks {
-            block_sums[b] = carry + scan_tmp[l.x] - v;
+        let inclusive = scan_workgroup(l, x);
+        if t < tops {
+            block_sums[at + t] = carry + inclusive - x;
         }
         carry = carry + scan_tmp[SCAN_WG - 1u];
         workgroupBarrier();
     }
-    if l.x == 0u {
+    if l == 0u {
         cell_start[prm.cells] = carry;
     }
 }
 
+// Each block's prefix plus its group's.
 @compute @workgroup_size(256)
-fn scan_add(@builtin(global_invocation_id) g: vec3<u32>, @builtin(workgroup_id) w: vec3<u32>) {
-    if g.x < prm.cells {
-        cell_start[g.x] = cell_start[g.x] + block_sums[w.x];
+fn add_tops(v: Invocation) {
+    let b = item_index(v, SCAN_WG);
+    if b < prm.scan_blocks {
+        block_sums[b] = block_sums[b] + block_sums[prm.scan_blocks + b / SCAN_WG];
+    }
+}
+
+// Each cell's prefix plus its block's.
+@compute @workgroup_size(256)
+fn add_blocks(v: Invocation) {
+    let c = item_index(v, SCAN_WG);
+    if c < prm.cells {
+        cell_start[c] = cell_start[c] + block_sums[c / SCAN_BLOCK];
     }
 }
 
 @compute @workgroup_size(64)
-fn scatter(@builtin(global_invocation_id) g: vec3<u32>) {
-    let i = g.x;
+fn scatter(v: Invocation) {
+    let i = item_index(v, WG);
     if i >= prm.n {
         return;
     }
@@ -108,8 +160,8 @@ fn scatter(@builtin(global_invocation_id) g: vec3<u32>) {
 
 // Insertion sort of each cell's slots by previous index (a handful per cell).
 @compute @workgroup_size(64)
-fn order_cells(@builtin(global_invocation_id) g: vec3<u32>) {
-    let c = g.x;
+fn order_cells(v: Invocation) {
+    let c = item_index(v, WG);
     if c >= prm.cells {
         return;
     }
@@ -129,8 +181,8 @@ fn order_cells(@builtin(global_invocation_id) g: vec3<u32>) {
 // Gathers positions, velocities and ids into the sorted order (into the spare arrays, copied
 // back by the host's command encoder).
 @compute @workgroup_size(64)
-fn reorder(@builtin(global_invocation_id) g: vec3<u32>) {
-    let k = g.x;
+fn reorder(v: Invocation) {
+    let k = item_index(v, WG);
     if k >= prm.n {
         return;
     }

@@ -96,6 +96,24 @@ struct Partial {
     candidates: u32, finding: u32, escaped: u32, fluid: u32,
 };
 
+// Where an invocation is in a dispatch of rows of workgroups (kernels::dispatch: past the
+// device's workgroups per dimension, a dispatch is 2-D): the workgroups are numbered row by row.
+struct Invocation {
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) local: u32,
+};
+
+// Linear index of the invocation's workgroup.
+fn group_index(v: Invocation) -> u32 {
+    return v.group.y * v.groups.x + v.group.x;
+}
+
+// Linear index of the invocation in a dispatch of workgroups of `size` threads.
+fn item_index(v: Invocation, size: u32) -> u32 {
+    return group_index(v) * size + v.local;
+}
+
 fn kind_of(i: u32) -> u32 {
     return u32(pos[i].w);
 }
