@@ -1,5 +1,5 @@
 //! The WGSL kernels (`shaders/`) as compute pipelines sharing one bind group layout: binding 0
-//! the uniform block, 1 … 23 the storage buffers of [`super::buffers`]; and their dispatch,
+//! the uniform block, 1 … 19 the storage buffers of [`super::buffers`]; and their dispatch,
 //! in rows when a dispatch has more workgroups than the device allows per dimension.
 
 use super::buffers::Buffers;
@@ -25,7 +25,9 @@ pub struct Kernels {
     pub add_blocks: wgpu::ComputePipeline,
     pub scatter: wgpu::ComputePipeline,
     pub order_cells: wgpu::ComputePipeline,
-    pub reorder: wgpu::ComputePipeline,
+    pub gather_positions: wgpu::ComputePipeline,
+    pub gather_velocities: wgpu::ComputePipeline,
+    pub gather_ids: wgpu::ComputePipeline,
     pub clear_sums: wgpu::ComputePipeline,
     pub laplacian: wgpu::ComputePipeline,
     pub predict: wgpu::ComputePipeline,
@@ -115,7 +117,9 @@ impl Kernels {
             add_blocks: make("add_blocks"),
             scatter: make("scatter"),
             order_cells: make("order_cells"),
-            reorder: make("reorder"),
+            gather_positions: make("gather_positions"),
+            gather_velocities: make("gather_velocities"),
+            gather_ids: make("gather_ids"),
             clear_sums: make("clear_sums"),
             laplacian: make("laplacian"),
             predict: make("predict"),

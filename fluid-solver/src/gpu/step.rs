@@ -219,6 +219,11 @@ impl GpuEmps {
         &self.body_loads
     }
 
+    /// Bytes of device memory the step's buffers hold (the module doc of [`super::buffers`]).
+    pub fn device_bytes(&self) -> u64 {
+        self.buffers.device_bytes()
+    }
+
     /// Bytes copied host → device and device → host since the start.
     pub fn bytes_moved(&self) -> (u64, u64) {
         (self.buffers.uploaded, self.buffers.downloaded)

@@ -1,13 +1,13 @@
-// Counting sort of the particles by cell (the CPU's CellGrid::sort): count, exclusive prefix
-// sum of the counts, scatter, then each cell's slots ordered by previous index so the order is
-// the same every run, then the particle arrays gathered into the new order.
+// Counting sort of the particles by cell (the CPU's CellGrid::sort): count (and flag the cells
+// that hold fluid), exclusive prefix sum of the counts, scatter, then each cell's slots ordered
+// by previous index so the order is the same every run, then the particle arrays gathered into
+// the new order.
 
 @compute @workgroup_size(64)
 fn clear_cells(v: Invocation) {
     let c = item_index(v, WG);
     if c < prm.cells {
         atomicStore(&cell_count[c], 0u);
-        atomicStore(&fluid_count[c], 0u);
     }
 }
 
@@ -21,7 +21,7 @@ fn count_cells(v: Invocation) {
     cell_of[i] = c;
     atomicAdd(&cell_count[c], 1u);
     if kind_of(i) == FLUID {
-        atomicAdd(&fluid_count[c], 1u);
+        atomicOr(&cell_count[c], FLUID_CELL);
     }
 }
 
@@ -71,13 +71,13 @@ fn scan_cells(v: Invocation) {
     let end = min(first + SCAN_RUN, prm.cells);
     var total = 0u;
     for (var c = first; c < end; c = c + 1u) {
-        total = total + atomicLoad(&cell_count[c]);
+        total = total + (atomicLoad(&cell_count[c]) & ~FLUID_CELL);
     }
     let inclusive = scan_workgroup(v.local, total);
     var start = inclusive - total;
     for (var c = first; c < end; c = c + 1u) {
         cell_start[c] = start;
-        start = start + atomicLoad(&cell_count[c]);
+        start = start + (atomicLoad(&cell_count[c]) & ~FLUID_CELL);
     }
     if v.local == SCAN_WG - 1u && block < prm.scan_blocks {
         block_sums[block] = inclusive;
@@ -154,7 +154,7 @@ fn scatter(v: Invocation) {
         return;
     }
     let c = cell_of[i];
-    let slot = cell_start[c] + atomicSub(&cell_count[c], 1u) - 1u;
+    let slot = cell_start[c] + (atomicSub(&cell_count[c], 1u) & ~FLUID_CELL) - 1u;
     perm[slot] = i;
 }
 
@@ -168,27 +168,42 @@ fn order_cells(v: Invocation) {
     let s = cell_start[c];
     let e = cell_start[c + 1u];
     for (var k = s + 1u; k < e; k = k + 1u) {
-        let v = perm[k];
+        let x = perm[k];
         var m = k;
-        while m > s && perm[m - 1u] > v {
+        while m > s && perm[m - 1u] > x {
             perm[m] = perm[m - 1u];
             m = m - 1u;
         }
-        perm[m] = v;
+        perm[m] = x;
     }
 }
 
-// Gathers positions, velocities and ids into the sorted order (into the spare arrays, copied
-// back by the host's command encoder).
+// The gather of the particle arrays into the sorted order, in three passes through arrays that
+// are free during the sort (no spare copies): positions into acc, velocities into acc, then ids
+// into perm (each slot read, then written, by its own thread) with the cells; the host's
+// command encoder copies each back after its pass (cell_sort.rs).
 @compute @workgroup_size(64)
-fn reorder(v: Invocation) {
+fn gather_positions(v: Invocation) {
     let k = item_index(v, WG);
-    if k >= prm.n {
-        return;
+    if k < prm.n {
+        acc[k] = pos[perm[k]];
     }
-    let j = perm[k];
-    spare_pos[k] = pos[j];
-    spare_vel[k] = vel[j];
-    spare_id[k] = pid[j];
-    cell_sorted[k] = cell_of[j];
+}
+
+@compute @workgroup_size(64)
+fn gather_velocities(v: Invocation) {
+    let k = item_index(v, WG);
+    if k < prm.n {
+        acc[k] = vel[perm[k]];
+    }
+}
+
+@compute @workgroup_size(64)
+fn gather_ids(v: Invocation) {
+    let k = item_index(v, WG);
+    if k < prm.n {
+        let j = perm[k];
+        cell_sorted[k] = cell_of[j];
+        perm[k] = pid[j];
+    }
 }

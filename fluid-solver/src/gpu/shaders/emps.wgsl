@@ -11,7 +11,8 @@ fn clear_sums(v: Invocation) {
     }
 }
 
-// Whether a cell within reach_grad of cell c holds fluid (CellGrid::fluid_near).
+// Whether a cell within reach_grad of cell c holds fluid (CellGrid::fluid_near): after the
+// scatter, a cell's count is 0 and only its FLUID_CELL flag is left.
 fn fluid_near(c: u32) -> bool {
     let r = prm.reach_grad;
     let nx = prm.dims.x;
@@ -20,7 +21,7 @@ fn fluid_near(c: u32) -> bool {
     for (var dz = 0u; dz <= 2u * r; dz = dz + 1u) {
         for (var dy = 0u; dy <= 2u * r; dy = dy + 1u) {
             for (var dx = 0u; dx <= 2u * r; dx = dx + 1u) {
-                if atomicLoad(&fluid_count[base + dz * nxy + dy * nx + dx]) > 0u {
+                if atomicLoad(&cell_count[base + dz * nxy + dy * nx + dx]) != 0u {
                     return true;
                 }
             }
