@@ -217,8 +217,8 @@ fn gpu_step_over_four_million_cells_matches_cpu_step() {
     check_large_grid(&slab(false), 3.3, 3);
 }
 
-/// The viscous slab (two sorts a step) in 173³ = 5.2 M cells for 20 steps (minutes on
-/// lavapipe; measured there: bit for bit the case grid's run, 1.1e-7 m from the CPU).
+/// The viscous slab (two sorts a step) in 173³ = 5.2 M cells for 20 steps (98 s on lavapipe
+/// here: bit for bit the case grid's run, 1.1e-7 m from the CPU).
 #[test]
 #[ignore]
 fn gpu_viscous_step_over_five_million_cells_matches_cpu_step() {

@@ -6,11 +6,11 @@
 //! after the sort and the permutation 3 × `u32` (12 B): 92 B (the sort gathers through the pair
 //! pass's result and the permutation, free while it runs, so it needs no spare copies). Per
 //! cell: start and count `u32` (8 B; the count's top bit flags a cell with fluid), and 4 B per
-//! 4096 cells of the scan's block totals. Per 256 particles one reduction partial (32 B). Resolved bodies
-//! (`shaders/bodies.wgsl`): per body particle its offset from the body's initial centre (f32),
-//! id and body (32 B); per body its pose and velocity (f32, 64 B), its load (f32, 32 B) and one
-//! partial load per reduction group (f32, 32 B). A body particle's load of one exchange lives in
-//! its `acc` slot, so bodies add nothing per particle.
+//! 4096 cells of the scan's block totals. Per 256 particles one reduction partial (32 B).
+//! Resolved bodies (`shaders/bodies.wgsl`): per body particle its offset from the body's initial
+//! centre (f32), id and body (32 B); per body its pose and velocity (f32, 64 B), its load (f32,
+//! 32 B) and one partial load per reduction group (f32, 32 B). A body particle's load of one
+//! exchange lives in its `acc` slot, so bodies add nothing per particle.
 
 use super::device::GpuDevice;
 use super::reduce::Partial;

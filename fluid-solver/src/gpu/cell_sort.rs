@@ -1,7 +1,8 @@
 //! Counting sort and prefix sum by cell on the device (the CPU's [`crate::neighbour_search`]):
-//! count per cell, exclusive scan in three levels (blocks of 4096 cells, groups of 256 blocks, and
-//! the groups' totals: any cell count a buffer holds), scatter, order each cell's slots by previous index (so a run is repeatable), gather
-//! positions, velocities and ids into the new order through arrays free during the sort.
+//! count per cell, exclusive scan in three levels (blocks of 4096 cells, groups of 256 blocks,
+//! and the groups' totals: any cell count a buffer holds), scatter, order each cell's slots by
+//! previous index (so a run is repeatable), gather positions, velocities and ids into the new
+//! order through arrays that are free during the sort.
 
 use super::buffers::{Buffers, ACC, ID, PERM, POS, VEL};
 use super::kernels::{dispatch, Kernels, WG, WIDE_WG};
