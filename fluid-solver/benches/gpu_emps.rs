@@ -6,7 +6,6 @@
 //! 0.003 m for ≥ 1 M particles (the goal: ≥ 2e8 particle-steps/s there). With only a software Vulkan device (lavapipe) it says so and runs one small size
 //! to check that the path works; its numbers are not GPU speed.
 
-use fluid_solver::gpu::buffers::BYTES_PER_PARTICLE;
 use fluid_solver::gpu::GpuDevice;
 use fluid_solver::FluidSolver;
 use schemas::case::fluid::FluidConfig;
@@ -75,10 +74,12 @@ fn run(base: &FluidConfig, ds: f64, depth: f64, steps: u64) {
         1e3 * plain / steps as f64
     );
     println!(
-        "  set-up (particles placed on the host, uploaded) {setup:.2} s; {steps} steps = {:.3} s of flow in {:.2} s wall; device memory {} B per particle (buffers.rs)",
+        "  set-up (particles placed on the host, uploaded) {setup:.2} s; {steps} steps = {:.3} s of flow in {:.2} s wall; device memory {:.1} MB, {:.0} B per particle ({} cells of the grid included)",
         steps as f64 * dt,
         setup + plain,
-        BYTES_PER_PARTICLE
+        d.device_bytes() as f64 / 1e6,
+        d.device_bytes() as f64 / n as f64,
+        solver.cell_grid().cell_count()
     );
     println!(
         "  host↔device per step: {per_step:.0} B (reduction partials + uniforms); per 0.01 s probe window ({window} steps): {:.0} B + one particle copy of {} B",

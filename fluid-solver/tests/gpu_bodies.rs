@@ -144,6 +144,43 @@ fn gpu_body_loads_match_cpu_on_a_moving_turned_box_with_viscosity() {
     );
 }
 
+/// The moving, turned box's loads with every kernel dispatched in rows of 3 workgroups (the
+/// 2-D path of runs past 4.2 M particles; the body reductions' partials numbered row by row)
+/// equal those of one row bit for bit, each of 3 steps.
+#[test]
+fn gpu_body_loads_in_rows_of_workgroups_equal_one_row() {
+    let (mut cfg, _) = scene();
+    cfg.viscosity_term = true;
+    cfg.viscosity = 0.05;
+    cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
+    let half = 2.5f64.to_radians();
+    let pose = [0.14, 0.14, 0.14, half.cos(), 0.0, 0.0, half.sin()];
+    let velocity = [0.05, 0.0, -0.02, 0.0, 0.3, 0.5];
+    let mut runs = Vec::new();
+    for row in [None, Some(3)] {
+        let Some(dev) = gpu_common::device() else {
+            return;
+        };
+        let mut gpu = FluidSolver::new(&cfg);
+        gpu.to_device(&cfg, dev).unwrap_or_else(|e| panic!("{e}"));
+        if let (Some(row), Some(d)) = (row, gpu.device_mut()) {
+            d.set_dispatch_row(row);
+        }
+        let mut loads = Vec::new();
+        for _ in 0..3 {
+            gpu.set_body_motion(&pose, &velocity, cfg.time_step)
+                .unwrap_or_else(|e| panic!("{e}"));
+            gpu.step(cfg.time_step).unwrap_or_else(|e| panic!("GPU: {e}"));
+            loads.push(gpu.body_loads());
+        }
+        runs.push(loads);
+    }
+    assert_eq!(
+        runs[0], runs[1],
+        "the loads in rows of 3 workgroups differ from one row's"
+    );
+}
+
 /// The CPU buoyancy test (`bodies_fixed_hydrostatic.rs`) on the GPU: settle 1 s, then the mean
 /// vertical load over 0.3 s is ρgV within its 5 %, and the sideways force and moments are
 /// within its 2 % (1 625 steps: 21 min on lavapipe here).

@@ -3,12 +3,14 @@
 //! Per particle: position + kind `vec4<f32>` (16 B), velocity `vec4<f32>` (16 B), id `u32`
 //! (4 B), number density + pressure `vec2<f32>` (8 B), the pair pass's result `vec4<f32>` (16 B),
 //! the force from non-fluid neighbours `vec4<f32>` (16 B), candidates `u32` (4 B), cell before and
-//! after the sort and the permutation 3 × `u32` (12 B), and the sort's spare position, velocity
-//! and id (36 B): 128 B. Per cell: start, count, fluid count 3 × `u32` (12 B). Resolved bodies
-//! (`shaders/bodies.wgsl`): per body particle its offset from the body's initial centre (f32),
-//! id and body (32 B); per body its pose and velocity (f32, 64 B), its load (f32, 32 B) and one
-//! partial load per reduction group (f32, 32 B). A body particle's load of one exchange lives in
-//! its `acc` slot, so bodies add nothing per particle.
+//! after the sort and the permutation 3 × `u32` (12 B): 92 B (the sort gathers through the pair
+//! pass's result and the permutation, free while it runs, so it needs no spare copies). Per
+//! cell: start and count `u32` (8 B; the count's top bit flags a cell with fluid), and 4 B per
+//! 4096 cells of the scan's block totals. Per 256 particles one reduction partial (32 B).
+//! Resolved bodies (`shaders/bodies.wgsl`): per body particle its offset from the body's initial
+//! centre (f32), id and body (32 B); per body its pose and velocity (f32, 64 B), its load (f32,
+//! 32 B) and one partial load per reduction group (f32, 32 B). A body particle's load of one
+//! exchange lives in its `acc` slot, so bodies add nothing per particle.
 
 use super::device::GpuDevice;
 use super::reduce::Partial;
@@ -16,12 +18,7 @@ use crate::particles::Particles;
 use bytemuck::{Pod, Zeroable};
 use std::sync::mpsc;
 
-/// Device bytes per particle (see the module doc).
-pub const BYTES_PER_PARTICLE: u64 = 128;
-/// Device bytes per cell.
-pub const BYTES_PER_CELL: u64 = 12;
-
-/// Every storage buffer of the step, in binding order 1 … 23 (0 is the uniform block).
+/// Every storage buffer of the step, in binding order 1 … 19 (0 is the uniform block).
 pub struct Buffers {
     pub params: wgpu::Buffer,
     pub storage: Vec<wgpu::Buffer>,
@@ -37,14 +34,15 @@ pub const POS: usize = 1;
 pub const VEL: usize = 2;
 pub const ID: usize = 3;
 pub const DENS: usize = 4;
-pub const SPARE_POS: usize = 14;
-pub const SPARE_VEL: usize = 15;
-pub const SPARE_ID: usize = 16;
-pub const BOXES: usize = 18;
-pub const PARTIALS: usize = 19;
-pub const MEMBERS: usize = 20;
-pub const BODY_KIN: usize = 21;
-pub const BODY_LOADS: usize = 23;
+pub const ACC: usize = 5;
+pub const PERM: usize = 9;
+pub const CELL_START: usize = 10;
+pub const CELL_COUNT: usize = 11;
+pub const BOXES: usize = 14;
+pub const PARTIALS: usize = 15;
+pub const MEMBERS: usize = 16;
+pub const BODY_KIN: usize = 17;
+pub const BODY_LOADS: usize = 19;
 
 impl Buffers {
     /// Buffers for `n` particles, `cells` cells, `boxes` wall blocks, `groups` reduction groups,
@@ -58,9 +56,10 @@ impl Buffers {
         (bodies, members): (usize, usize),
     ) -> Buffers {
         let n = n.max(1) as u64;
+        let block_sums = super::cell_sort::block_sum_entries(cells as u32);
         let cells = cells as u64;
         let (bodies, members) = (bodies.max(1) as u64, members.max(1) as u64);
-        let sizes: [u64; 23] = [
+        let sizes: [u64; 19] = [
             16 * n,                                                  // 1 pos
             16 * n,                                                  // 2 vel
             4 * n,                                                   // 3 id
@@ -72,18 +71,14 @@ impl Buffers {
             4 * n,                                                   // 9 perm
             4 * (cells + 1),                                         // 10 cell_start
             4 * cells,                                               // 11 cell_count
-            4 * cells,                                               // 12 fluid_count
-            4 * cells.div_ceil(256).max(1),                          // 13 block sums
-            16 * n,                                                  // 14 spare pos
-            16 * n,                                                  // 15 spare vel
-            4 * n,                                                   // 16 spare id
-            4 * n,                                                   // 17 cell_sorted
-            32 * boxes.max(1) as u64,                                // 18 boxes
-            (std::mem::size_of::<Partial>() * groups.max(1)) as u64, // 19 partials
-            32 * members,                                            // 20 members
-            64 * bodies,                                             // 21 body_kin
-            32 * bodies * groups.max(1) as u64,                      // 22 body_partials
-            32 * bodies,                                             // 23 body_loads
+            4 * block_sums,                                          // 12 block sums
+            4 * n,                                                   // 13 cell_sorted
+            32 * boxes.max(1) as u64,                                // 14 boxes
+            (std::mem::size_of::<Partial>() * groups.max(1)) as u64, // 15 partials
+            32 * members,                                            // 16 members
+            64 * bodies,                                             // 17 body_kin
+            32 * bodies * groups.max(1) as u64,                      // 18 body_partials
+            32 * bodies,                                             // 19 body_loads
         ];
         let storage = sizes
             .iter()
@@ -112,6 +107,11 @@ impl Buffers {
             uploaded: 0,
             downloaded: 0,
         }
+    }
+
+    /// Bytes of device memory the buffers hold.
+    pub fn device_bytes(&self) -> u64 {
+        self.params.size() + self.storage.iter().map(wgpu::Buffer::size).sum::<u64>()
     }
 
     /// The buffer of binding `b`.

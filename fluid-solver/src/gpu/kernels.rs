@@ -1,5 +1,6 @@
 //! The WGSL kernels (`shaders/`) as compute pipelines sharing one bind group layout: binding 0
-//! the uniform block, 1 … 23 the storage buffers of [`super::buffers`].
+//! the uniform block, 1 … 19 the storage buffers of [`super::buffers`]; and their dispatch,
+//! in rows when a dispatch has more workgroups than the device allows per dimension.
 
 use super::buffers::Buffers;
 use super::device::GpuDevice;
@@ -17,12 +18,16 @@ const SOURCES: [&str; 5] = [
 pub struct Kernels {
     pub clear_cells: wgpu::ComputePipeline,
     pub count_cells: wgpu::ComputePipeline,
-    pub scan_blocks: wgpu::ComputePipeline,
-    pub scan_sums: wgpu::ComputePipeline,
-    pub scan_add: wgpu::ComputePipeline,
+    pub scan_cells: wgpu::ComputePipeline,
+    pub scan_block_sums: wgpu::ComputePipeline,
+    pub scan_tops: wgpu::ComputePipeline,
+    pub add_tops: wgpu::ComputePipeline,
+    pub add_blocks: wgpu::ComputePipeline,
     pub scatter: wgpu::ComputePipeline,
     pub order_cells: wgpu::ComputePipeline,
-    pub reorder: wgpu::ComputePipeline,
+    pub gather_positions: wgpu::ComputePipeline,
+    pub gather_velocities: wgpu::ComputePipeline,
+    pub gather_ids: wgpu::ComputePipeline,
     pub clear_sums: wgpu::ComputePipeline,
     pub laplacian: wgpu::ComputePipeline,
     pub predict: wgpu::ComputePipeline,
@@ -40,6 +45,9 @@ pub struct Kernels {
     pub reduce_bodies: wgpu::ComputePipeline,
     pub sum_bodies: wgpu::ComputePipeline,
     pub bind_group: wgpu::BindGroup,
+    /// Workgroups per row of a dispatch: the device's limit per dimension (65 535 on most),
+    /// or fewer to run the 2-D path at small sizes ([`super::GpuEmps::set_dispatch_row`]).
+    pub row: u32,
 }
 
 impl Kernels {
@@ -102,12 +110,16 @@ impl Kernels {
         Kernels {
             clear_cells: make("clear_cells"),
             count_cells: make("count_cells"),
-            scan_blocks: make("scan_blocks"),
-            scan_sums: make("scan_sums"),
-            scan_add: make("scan_add"),
+            scan_cells: make("scan_cells"),
+            scan_block_sums: make("scan_block_sums"),
+            scan_tops: make("scan_tops"),
+            add_tops: make("add_tops"),
+            add_blocks: make("add_blocks"),
             scatter: make("scatter"),
             order_cells: make("order_cells"),
-            reorder: make("reorder"),
+            gather_positions: make("gather_positions"),
+            gather_velocities: make("gather_velocities"),
+            gather_ids: make("gather_ids"),
             clear_sums: make("clear_sums"),
             laplacian: make("laplacian"),
             predict: make("predict"),
@@ -125,6 +137,7 @@ impl Kernels {
             reduce_bodies: make("reduce_bodies"),
             sum_bodies: make("sum_bodies"),
             bind_group,
+            row: device.limits().max_compute_workgroups_per_dimension,
         }
     }
 }
@@ -134,7 +147,10 @@ pub const WG: u32 = 64;
 /// Threads per workgroup of the scans and the reduction.
 pub const WIDE_WG: u32 = 256;
 
-/// Records `pipeline` over `items` threads of `group` per workgroup.
+/// Records `pipeline` over `items` threads of `group` per workgroup: one row of workgroups
+/// while they fit in [`Kernels::row`], else rows of `row` workgroups (a 2-D dispatch; the
+/// kernels number the workgroups row by row, `group_index` in `shaders/common.wgsl`, and the
+/// last row's surplus threads find their index past the end).
 pub fn dispatch(
     pass: &mut wgpu::ComputePass<'_>,
     k: &Kernels,
@@ -144,5 +160,15 @@ pub fn dispatch(
 ) {
     pass.set_pipeline(pipeline);
     pass.set_bind_group(0, &k.bind_group, &[]);
-    pass.dispatch_workgroups(items.div_ceil(group).max(1), 1, 1);
+    let (x, y) = grid_of(items.div_ceil(group).max(1), k.row);
+    pass.dispatch_workgroups(x, y, 1);
+}
+
+/// Workgroups per row and rows for `groups` workgroups in rows of at most `row`.
+fn grid_of(groups: u32, row: u32) -> (u32, u32) {
+    if groups <= row {
+        (groups, 1)
+    } else {
+        (row, groups.div_ceil(row))
+    }
 }

@@ -24,10 +24,6 @@ use crate::stage_timer::StageTimes;
 use schemas::case::fluid::Aabb;
 use std::fmt;
 
-/// Largest particle count of one dispatch row (65 535 workgroups of 64): larger runs need 2D
-/// dispatches, not written yet.
-pub const MAX_PARTICLES: usize = 65_535 * 64;
-
 /// What the device step needs to know of the case: the operators, the physics, the grid and the
 /// detector's geometry.
 #[derive(Debug, Clone)]
@@ -76,24 +72,21 @@ impl GpuEmps {
     /// Uploads `p` (sorted by `grid`, whose geometry the device copies) to `dev`.
     pub fn new(dev: GpuDevice, setup: &GpuSetup, grid: &CellGrid, p: &Particles) -> Result<GpuEmps, String> {
         let n = p.len();
-        if n > MAX_PARTICLES {
-            return Err(format!(
-                "the GPU path runs at most {MAX_PARTICLES} particles so far (one dispatch row), the case has {n}; use backend = \"cpu\""
-            ));
-        }
-        let largest = dev.device.limits().max_storage_buffer_binding_size;
+        let (origin, cell, dims) = grid.geometry();
+        let cells = dims[0] * dims[1] * dims[2];
+        let limits = dev.device.limits();
+        let largest = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size);
         if 16 * n as u64 > largest {
             return Err(format!(
                 "the GPU binds at most {largest} B per array, {n} particles need {} B; use backend = \"cpu\"",
                 16 * n as u64
             ));
         }
-        let (origin, cell, dims) = grid.geometry();
-        let cells = dims[0] * dims[1] * dims[2];
-        if cells > 65_535 * 64 {
+        let starts = 4 * (cells as u64 + 1);
+        if starts > largest || cells >= u32::MAX as usize {
             return Err(format!(
-                "the GPU path's prefix sum handles at most {} cells so far, the case's grid has {cells}; use backend = \"cpu\"",
-                65_535 * 64
+                "the GPU binds at most {largest} B per array, the case's cell grid of {} × {} × {} = {cells} cells (cells of {cell:.3e} m over the tank and its headroom) needs {starts} B for its cell starts; use a coarser spacing or backend = \"cpu\"",
+                dims[0], dims[1], dims[2]
             ));
         }
         let k = &setup.kernel;
@@ -145,7 +138,7 @@ impl GpuEmps {
             n_boxes: (boxes.len() / 2) as u32,
             mass: mass as f32,
             volume: (mass / ph.density) as f32,
-            scan_blocks: cells.div_ceil(256) as u32,
+            scan_blocks: cell_sort::scan_blocks(cells as u32),
             n_bodies: n_bodies as u32,
             n_members: setup.members.len() as u32,
             reach_contact: grid.reach(k.spacing) as u32,
@@ -226,9 +219,21 @@ impl GpuEmps {
         &self.body_loads
     }
 
+    /// Bytes of device memory the step's buffers hold (the module doc of [`super::buffers`]).
+    pub fn device_bytes(&self) -> u64 {
+        self.buffers.device_bytes()
+    }
+
     /// Bytes copied host → device and device → host since the start.
     pub fn bytes_moved(&self) -> (u64, u64) {
         (self.buffers.uploaded, self.buffers.downloaded)
+    }
+
+    /// Dispatches in rows of at most `groups` workgroups (the device's limit per dimension by
+    /// default): a smaller row runs the 2-D dispatch path of large runs at a small size (tests).
+    pub fn set_dispatch_row(&mut self, groups: u32) {
+        let limit = self.dev.device.limits().max_compute_workgroups_per_dimension;
+        self.kernels.row = groups.clamp(1, limit);
     }
 
     /// Times every stage by waiting after it (slower; for the benchmark).

@@ -34,8 +34,8 @@ fn rotate(q: vec4<f32>, v: vec3<f32>) -> vec3<f32> {
 // RigidBodies::set_kinematics: u = V + ω × R(q) a and r = c + R(q) a − u·lead for each body
 // particle of offset a from its body's initial centre (S1-21); lead rides in centre.w.
 @compute @workgroup_size(64)
-fn place_bodies(@builtin(global_invocation_id) g: vec3<u32>) {
-    let i = g.x;
+fn place_bodies(v: Invocation) {
+    let i = item_index(v, WG);
     if i >= prm.n || kind_of(i) != BODY {
         return;
     }
@@ -51,17 +51,18 @@ fn place_bodies(@builtin(global_invocation_id) g: vec3<u32>) {
 }
 
 @compute @workgroup_size(64)
-fn clear_body_loads(@builtin(global_invocation_id) g: vec3<u32>) {
-    if g.x < prm.n_bodies {
-        body_loads[g.x] = BodyLoad(vec4<f32>(0.0), vec4<f32>(0.0));
+fn clear_body_loads(v: Invocation) {
+    let b = item_index(v, WG);
+    if b < prm.n_bodies {
+        body_loads[b] = BodyLoad(vec4<f32>(0.0), vec4<f32>(0.0));
     }
 }
 
 // S1-4's viscous pair force on body particle i from its fluid neighbours j (pair_laws::viscous):
 // −m ν 2d/(λ0 n0) Σ_j (u_i − u_j) w(r_ij).
 @compute @workgroup_size(64)
-fn body_viscous(@builtin(global_invocation_id) g: vec3<u32>) {
-    let i = g.x;
+fn body_viscous(v: Invocation) {
+    let i = item_index(v, WG);
     if i >= prm.n || kind_of(i) != BODY {
         return;
     }
@@ -92,8 +93,8 @@ fn body_viscous(@builtin(global_invocation_id) g: vec3<u32>) {
 // S1-3's pressure pair force on body particle i from its fluid neighbours j (pair_laws::pressure):
 // Δs³ d/n0_grad Σ_j (P_i + P_j) r_ji/|r_ji|² w_grad(r_ji), r_ji = r_i − r_j.
 @compute @workgroup_size(64)
-fn body_pressure(@builtin(global_invocation_id) g: vec3<u32>) {
-    let i = g.x;
+fn body_pressure(v: Invocation) {
+    let i = item_index(v, WG);
     if i >= prm.n || kind_of(i) != BODY {
         return;
     }
@@ -126,8 +127,8 @@ fn body_pressure(@builtin(global_invocation_id) g: vec3<u32>) {
 // (u_ij = u_i − u_j), plus the walls' contact (body_wall_contact.rs): for each wall or dummy
 // particle w closer than Δs, max(0, k (Δs − |r|) − c u_i·n) n with r = r_i − r_w, n = r/|r|.
 @compute @workgroup_size(64)
-fn body_collision(@builtin(global_invocation_id) g: vec3<u32>) {
-    let i = g.x;
+fn body_collision(v: Invocation) {
+    let i = item_index(v, WG);
     if i >= prm.n || kind_of(i) != BODY {
         return;
     }
@@ -176,8 +177,10 @@ var<workgroup> r_bm: array<vec3<f32>, 256>;
 // The force in acc of each body particle and its moment (r − c) × f about its body's centre,
 // summed per workgroup of 256 particles and per body into body_partials[group · bodies + body].
 @compute @workgroup_size(256)
-fn reduce_bodies(@builtin(global_invocation_id) g: vec3<u32>, @builtin(local_invocation_id) l: vec3<u32>, @builtin(workgroup_id) w: vec3<u32>) {
-    let i = g.x;
+fn reduce_bodies(v: Invocation) {
+    let i = item_index(v, SCAN_WG);
+    let group = group_index(v);
+    let l = v.local;
     var b = NONE;
     var f = vec3<f32>(0.0);
     var m = vec3<f32>(0.0);
@@ -191,22 +194,22 @@ fn reduce_bodies(@builtin(global_invocation_id) g: vec3<u32>, @builtin(local_inv
     }
     for (var body = 0u; body < prm.n_bodies; body = body + 1u) {
         if b == body {
-            r_bf[l.x] = f;
-            r_bm[l.x] = m;
+            r_bf[l] = f;
+            r_bm[l] = m;
         } else {
-            r_bf[l.x] = vec3<f32>(0.0);
-            r_bm[l.x] = vec3<f32>(0.0);
+            r_bf[l] = vec3<f32>(0.0);
+            r_bm[l] = vec3<f32>(0.0);
         }
         workgroupBarrier();
         for (var s = 128u; s > 0u; s = s / 2u) {
-            if l.x < s {
-                r_bf[l.x] = r_bf[l.x] + r_bf[l.x + s];
-                r_bm[l.x] = r_bm[l.x] + r_bm[l.x + s];
+            if l < s {
+                r_bf[l] = r_bf[l] + r_bf[l + s];
+                r_bm[l] = r_bm[l] + r_bm[l + s];
             }
             workgroupBarrier();
         }
-        if l.x == 0u {
-            body_partials[w.x * prm.n_bodies + body] = BodyLoad(vec4<f32>(r_bf[0], 0.0), vec4<f32>(r_bm[0], 0.0));
+        if l == 0u && group < reduction_groups() {
+            body_partials[group * prm.n_bodies + body] = BodyLoad(vec4<f32>(r_bf[0], 0.0), vec4<f32>(r_bm[0], 0.0));
         }
         workgroupBarrier();
     }
@@ -215,27 +218,28 @@ fn reduce_bodies(@builtin(global_invocation_id) g: vec3<u32>, @builtin(local_inv
 // Sums the workgroups' partials per body (one workgroup) and adds them to body_loads, which
 // holds the step's sum over its exchanges (cleared at the step's start).
 @compute @workgroup_size(256)
-fn sum_bodies(@builtin(local_invocation_id) l: vec3<u32>) {
-    let groups = (prm.n + SCAN_WG - 1u) / SCAN_WG;
+fn sum_bodies(v: Invocation) {
+    let l = v.local;
+    let groups = reduction_groups();
     for (var body = 0u; body < prm.n_bodies; body = body + 1u) {
         var f = vec3<f32>(0.0);
         var m = vec3<f32>(0.0);
-        for (var k = l.x; k < groups; k = k + SCAN_WG) {
+        for (var k = l; k < groups; k = k + SCAN_WG) {
             let p = body_partials[k * prm.n_bodies + body];
             f = f + p.force.xyz;
             m = m + p.moment.xyz;
         }
-        r_bf[l.x] = f;
-        r_bm[l.x] = m;
+        r_bf[l] = f;
+        r_bm[l] = m;
         workgroupBarrier();
         for (var s = 128u; s > 0u; s = s / 2u) {
-            if l.x < s {
-                r_bf[l.x] = r_bf[l.x] + r_bf[l.x + s];
-                r_bm[l.x] = r_bm[l.x] + r_bm[l.x + s];
+            if l < s {
+                r_bf[l] = r_bf[l] + r_bf[l + s];
+                r_bm[l] = r_bm[l] + r_bm[l + s];
             }
             workgroupBarrier();
         }
-        if l.x == 0u {
+        if l == 0u {
             let old = body_loads[body];
             body_loads[body] = BodyLoad(old.force + vec4<f32>(r_bf[0], 0.0), old.moment + vec4<f32>(r_bm[0], 0.0));
         }

@@ -28,6 +28,8 @@ const BODY: u32 = 3u;
 const WG: u32 = 64u;
 const SCAN_WG: u32 = 256u;
 const NONE: u32 = 0xffffffffu;
+// cell_count's flag of a cell that holds fluid.
+const FLUID_CELL: u32 = 0x80000000u;
 
 @group(0) @binding(0) var<uniform> prm: Params;
 // xyz: position [m]; w: kind code.
@@ -38,7 +40,9 @@ const NONE: u32 = 0xffffffffu;
 @group(0) @binding(3) var<storage, read_write> pid: array<u32>;
 // x: number density n (S1-15); y: pressure P (S1-14).
 @group(0) @binding(4) var<storage, read_write> dens: array<vec2<f32>>;
-// Per-particle result of the last pair pass (Laplacian, gradient or collision Δu).
+// Per-particle result of the last pair pass (Laplacian, gradient or collision Δu); free while
+// the particles are sorted, when it takes the gathered positions, then velocities
+// (cell_sort.wgsl).
 @group(0) @binding(5) var<storage, read_write> acc: array<vec4<f32>>;
 // xyz: force of non-fluid neighbours on the particle summed over the step's passes [N];
 // w: unused.
@@ -47,33 +51,29 @@ const NONE: u32 = 0xffffffffu;
 @group(0) @binding(7) var<storage, read_write> cand: array<u32>;
 // Cell of each particle before the sort (unsorted order).
 @group(0) @binding(8) var<storage, read_write> cell_of: array<u32>;
-// Sorting permutation: sorted slot → index before the sort.
+// Sorting permutation: sorted slot → index before the sort; then the gathered ids.
 @group(0) @binding(9) var<storage, read_write> perm: array<u32>;
 // Particles of cell c are cell_start[c] .. cell_start[c + 1] (cells + 1 entries).
 @group(0) @binding(10) var<storage, read_write> cell_start: array<u32>;
-// Particles per cell (count pass), then counted down by the scatter.
+// Bits 0–30: particles per cell (count pass), then counted down to 0 by the scatter; bit 31
+// (FLUID_CELL): the cell holds fluid, kept after the scatter for fluid_near.
 @group(0) @binding(11) var<storage, read_write> cell_count: array<atomic<u32>>;
-// Fluid particles per cell.
-@group(0) @binding(12) var<storage, read_write> fluid_count: array<atomic<u32>>;
-// Totals of the scan's blocks (then their exclusive prefix).
-@group(0) @binding(13) var<storage, read_write> block_sums: array<u32>;
-@group(0) @binding(14) var<storage, read_write> spare_pos: array<vec4<f32>>;
-@group(0) @binding(15) var<storage, read_write> spare_vel: array<vec4<f32>>;
-@group(0) @binding(16) var<storage, read_write> spare_id: array<u32>;
+// Totals of the scan's blocks (then their exclusive prefix), then of their groups.
+@group(0) @binding(12) var<storage, read_write> block_sums: array<u32>;
 // Cell of each particle in the sorted order.
-@group(0) @binding(17) var<storage, read_write> cell_sorted: array<u32>;
+@group(0) @binding(13) var<storage, read_write> cell_sorted: array<u32>;
 // Wall blocks for the instability detector: min (xyz), max (xyz) per box, shrunk by Δs/2.
-@group(0) @binding(18) var<storage, read_write> boxes: array<vec4<f32>>;
+@group(0) @binding(14) var<storage, read_write> boxes: array<vec4<f32>>;
 // One partial per workgroup of the reduction (see reduce.wgsl).
-@group(0) @binding(19) var<storage, read_write> partials: array<Partial>;
+@group(0) @binding(15) var<storage, read_write> partials: array<Partial>;
 // The bodies' particles, sorted by id (bodies.wgsl).
-@group(0) @binding(20) var<storage, read_write> members: array<Member>;
+@group(0) @binding(16) var<storage, read_write> members: array<Member>;
 // Each body's pose and velocity, from the host each step it is given one.
-@group(0) @binding(21) var<storage, read_write> body_kin: array<BodyKin>;
+@group(0) @binding(17) var<storage, read_write> body_kin: array<BodyKin>;
 // One BodyLoad per workgroup of 256 particles and body (group · bodies + body).
-@group(0) @binding(22) var<storage, read_write> body_partials: array<BodyLoad>;
+@group(0) @binding(18) var<storage, read_write> body_partials: array<BodyLoad>;
 // Each body's load summed over the step's exchanges: what the host reads back.
-@group(0) @binding(23) var<storage, read_write> body_loads: array<BodyLoad>;
+@group(0) @binding(19) var<storage, read_write> body_loads: array<BodyLoad>;
 
 // A body particle's offset from its body's initial centre (f32), its id and its body.
 struct Member {
@@ -95,6 +95,24 @@ struct Partial {
     wall: vec3<f32>, energy: f32,
     candidates: u32, finding: u32, escaped: u32, fluid: u32,
 };
+
+// Where an invocation is in a dispatch of rows of workgroups (kernels::dispatch: past the
+// device's workgroups per dimension, a dispatch is 2-D): the workgroups are numbered row by row.
+struct Invocation {
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) local: u32,
+};
+
+// Linear index of the invocation's workgroup.
+fn group_index(v: Invocation) -> u32 {
+    return v.group.y * v.groups.x + v.group.x;
+}
+
+// Linear index of the invocation in a dispatch of workgroups of `size` threads.
+fn item_index(v: Invocation, size: u32) -> u32 {
+    return group_index(v) * size + v.local;
+}
 
 fn kind_of(i: u32) -> u32 {
     return u32(pos[i].w);

@@ -3,15 +3,16 @@
 
 // Clears the step's per-particle sums (force from non-fluid neighbours, candidates).
 @compute @workgroup_size(64)
-fn clear_sums(@builtin(global_invocation_id) g: vec3<u32>) {
-    let i = g.x;
+fn clear_sums(v: Invocation) {
+    let i = item_index(v, WG);
     if i < prm.n {
         wallf[i] = vec4<f32>(0.0);
         cand[i] = 0u;
     }
 }
 
-// Whether a cell within reach_grad of cell c holds fluid (CellGrid::fluid_near).
+// Whether a cell within reach_grad of cell c holds fluid (CellGrid::fluid_near): after the
+// scatter, a cell's count is 0 and only its FLUID_CELL flag is left.
 fn fluid_near(c: u32) -> bool {
     let r = prm.reach_grad;
     let nx = prm.dims.x;
@@ -20,7 +21,7 @@ fn fluid_near(c: u32) -> bool {
     for (var dz = 0u; dz <= 2u * r; dz = dz + 1u) {
         for (var dy = 0u; dy <= 2u * r; dy = dy + 1u) {
             for (var dx = 0u; dx <= 2u * r; dx = dx + 1u) {
-                if atomicLoad(&fluid_count[base + dz * nxy + dy * nx + dx]) > 0u {
+                if atomicLoad(&cell_count[base + dz * nxy + dy * nx + dx]) != 0u {
                     return true;
                 }
             }
@@ -32,8 +33,8 @@ fn fluid_near(c: u32) -> bool {
 // S1-4: ⟨∇²u⟩_i = 2d/(λ0 n0) Σ_j (u_j − u_i) w(r_ij) for fluid i (walls have u = 0: no slip);
 // the part from non-fluid j, times m ν, is the walls' viscous force.
 @compute @workgroup_size(64)
-fn laplacian(@builtin(global_invocation_id) g: vec3<u32>) {
-    let i = g.x;
+fn laplacian(v: Invocation) {
+    let i = item_index(v, WG);
     if i >= prm.n {
         return;
     }
@@ -78,8 +79,8 @@ fn laplacian(@builtin(global_invocation_id) g: vec3<u32>) {
 // S1-10, S1-11: u* = u + (ν⟨∇²u⟩ + g)Δt, r* = r + u*Δt for fluid; bodies move with their own
 // velocity; walls stay.
 @compute @workgroup_size(64)
-fn predict(@builtin(global_invocation_id) g: vec3<u32>) {
-    let i = g.x;
+fn predict(v: Invocation) {
+    let i = item_index(v, WG);
     if i >= prm.n {
         return;
     }
@@ -102,8 +103,8 @@ fn predict(@builtin(global_invocation_id) g: vec3<u32>) {
 // gate particles with fluid within r_e,grad (others n = 0); ρ* = ρ0 n/n0,
 // P = c²(ρ* − ρ0) where ρ* > ρ0, else 0.
 @compute @workgroup_size(64)
-fn density(@builtin(global_invocation_id) g: vec3<u32>) {
-    let i = g.x;
+fn density(v: Invocation) {
+    let i = item_index(v, WG);
     if i >= prm.n {
         return;
     }
@@ -146,8 +147,8 @@ fn density(@builtin(global_invocation_id) g: vec3<u32>) {
 // neighbours that carry pressure (not dummies); the part from non-fluid j, times −V, is the
 // walls' pressure force.
 @compute @workgroup_size(64)
-fn gradient(@builtin(global_invocation_id) g: vec3<u32>) {
-    let i = g.x;
+fn gradient(v: Invocation) {
+    let i = item_index(v, WG);
     if i >= prm.n {
         return;
     }
@@ -192,8 +193,8 @@ fn gradient(@builtin(global_invocation_id) g: vec3<u32>) {
 // S1-12, S1-13: u = u* − Δt/ρ0 ⟨∇P⟩, r = r* + (u − u*)Δt for fluid (the gradient is 0 off the
 // fluid; a body particle's acc holds its load, bodies.wgsl).
 @compute @workgroup_size(64)
-fn correct(@builtin(global_invocation_id) g: vec3<u32>) {
-    let i = g.x;
+fn correct(v: Invocation) {
+    let i = item_index(v, WG);
     if i >= prm.n || kind_of(i) != FLUID {
         return;
     }
@@ -207,8 +208,8 @@ fn correct(@builtin(global_invocation_id) g: vec3<u32>) {
 // with s = 1/2 for fluid j and 1 for others; the part from non-fluid j, times m/Δt, is the
 // walls' contact force.
 @compute @workgroup_size(64)
-fn collide(@builtin(global_invocation_id) g: vec3<u32>) {
-    let i = g.x;
+fn collide(v: Invocation) {
+    let i = item_index(v, WG);
     if i >= prm.n {
         return;
     }
@@ -256,8 +257,8 @@ fn collide(@builtin(global_invocation_id) g: vec3<u32>) {
 
 // Adds the collision velocity change Δu to a fluid particle and moves it by Δu Δt, as S1-13 does.
 @compute @workgroup_size(64)
-fn apply_collisions(@builtin(global_invocation_id) g: vec3<u32>) {
-    let i = g.x;
+fn apply_collisions(v: Invocation) {
+    let i = item_index(v, WG);
     if i >= prm.n || kind_of(i) != FLUID {
         return;
     }

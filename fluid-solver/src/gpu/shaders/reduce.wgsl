@@ -75,9 +75,17 @@ fn finding(i: u32, left: ptr<function, bool>) -> u32 {
     return 0u;
 }
 
+// Workgroups of 256 particles of the reductions (one Partial, and one BodyLoad per body, each;
+// a 2-D dispatch's surplus workgroups write none).
+fn reduction_groups() -> u32 {
+    return (prm.n + SCAN_WG - 1u) / SCAN_WG;
+}
+
 @compute @workgroup_size(256)
-fn reduce_step(@builtin(global_invocation_id) g: vec3<u32>, @builtin(local_invocation_id) l: vec3<u32>, @builtin(workgroup_id) w: vec3<u32>) {
-    let i = g.x;
+fn reduce_step(v: Invocation) {
+    let i = item_index(v, SCAN_WG);
+    let group = group_index(v);
+    let l = v.local;
     var wall = vec3<f32>(0.0);
     var energy = 0.0;
     var seen = 0u;
@@ -101,25 +109,25 @@ fn reduce_step(@builtin(global_invocation_id) g: vec3<u32>, @builtin(local_invoc
         wall = wallf[i].xyz;
         seen = cand[i];
     }
-    r_wall[l.x] = wall;
-    r_energy[l.x] = energy;
-    r_cand[l.x] = seen;
-    r_find[l.x] = found;
-    r_esc[l.x] = esc;
-    r_fluid[l.x] = fluid;
+    r_wall[l] = wall;
+    r_energy[l] = energy;
+    r_cand[l] = seen;
+    r_find[l] = found;
+    r_esc[l] = esc;
+    r_fluid[l] = fluid;
     workgroupBarrier();
     for (var s = 128u; s > 0u; s = s / 2u) {
-        if l.x < s {
-            r_wall[l.x] = r_wall[l.x] + r_wall[l.x + s];
-            r_energy[l.x] = r_energy[l.x] + r_energy[l.x + s];
-            r_cand[l.x] = r_cand[l.x] + r_cand[l.x + s];
-            r_find[l.x] = min(r_find[l.x], r_find[l.x + s]);
-            r_esc[l.x] = r_esc[l.x] + r_esc[l.x + s];
-            r_fluid[l.x] = r_fluid[l.x] + r_fluid[l.x + s];
+        if l < s {
+            r_wall[l] = r_wall[l] + r_wall[l + s];
+            r_energy[l] = r_energy[l] + r_energy[l + s];
+            r_cand[l] = r_cand[l] + r_cand[l + s];
+            r_find[l] = min(r_find[l], r_find[l + s]);
+            r_esc[l] = r_esc[l] + r_esc[l + s];
+            r_fluid[l] = r_fluid[l] + r_fluid[l + s];
         }
         workgroupBarrier();
     }
-    if l.x == 0u {
-        partials[w.x] = Partial(r_wall[0], r_energy[0], r_cand[0], r_find[0], r_esc[0], r_fluid[0]);
+    if l == 0u && group < reduction_groups() {
+        partials[group] = Partial(r_wall[0], r_energy[0], r_cand[0], r_find[0], r_esc[0], r_fluid[0]);
     }
 }
