@@ -7,7 +7,7 @@ use super::free_surface::{moment_matrix, LAMBDA_SPLASH};
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
 use super::walls::NeumannPair;
-use crate::kind::FLUID;
+use crate::kind::{Kind, FLUID};
 use crate::moments::solve;
 use crate::particles::Particles;
 use crate::vector_field::{add, PassTotals, VectorField};
@@ -130,10 +130,11 @@ pub fn laplacian(
 /// in 0.3 s and then a column along the tank's vertical edge away at 5 % per step (stopped
 /// near 0.9 s); with S2-8 the same tank holds ρgh to 0.01 %.
 ///
-/// `from_non_fluid` is Σ over fluid–solid pairs of the symmetric pair term
-/// `V (p_i + p_j^(i)) ∇W_ij`, the walls' load by the pair law of [`super::pair_laws`] (bodies
-/// take theirs from the face law there) (the difference form's solid part is not a load: its fluid pairs are not
-/// antisymmetric, so the walls would not carry the water's weight).
+/// `from_non_fluid` is Σ over fluid–wall pairs (bodies excluded: their load is the face law of
+/// [`super::pair_laws`], which the step books) of the symmetric pair term
+/// `V (p_i + p_j^(i)) ∇W_ij`, the walls' load by the pair law of [`super::pair_laws`] (the
+/// difference form's solid part is not a load: its fluid pairs are not antisymmetric, so the
+/// walls would not carry the water's weight).
 pub fn pressure_gradient(
     k: &Wendland,
     list: &NeighbourList,
@@ -143,6 +144,7 @@ pub fn pressure_gradient(
     out: &mut VectorField,
 ) -> PassTotals {
     out.resize(p.len());
+    let body = Kind::Body.code();
     (&mut out.x, &mut out.y, &mut out.z)
         .into_par_iter()
         .enumerate()
@@ -169,8 +171,8 @@ pub fn pressure_gradient(
                     for a in 0..3 {
                         g[a] += c * dp * d[a];
                     }
-                    if solid {
-                        // The pair law of the walls' and bodies' load (pair_laws.rs).
+                    if solid && p.kind[j] != body {
+                        // The pair law of the walls' load (pair_laws.rs).
                         let pij = 2.0 * p.pressure[i] + dp;
                         (0..3).for_each(|a| wall[a] += c * pij * d[a]);
                     }

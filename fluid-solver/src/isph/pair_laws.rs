@@ -34,15 +34,37 @@ pub struct BodyFaces {
     pub weight: Vec<f64>,
 }
 
-/// The pressure force on each body particle from its exposed faces (module doc), with the
+impl BodyFaces {
+    /// Σ_j F_j: the pressure load on all bodies together. The pair law shares each F_j among
+    /// fluid neighbours with weights that sum to 1, so −Σ_j F_j is the reaction the fluid is
+    /// booked with.
+    pub fn total(&self) -> [f64; 3] {
+        self.force
+            .iter()
+            .fold([0.0; 3], |s, f| [s[0] + f[0], s[1] + f[1], s[2] + f[2]])
+    }
+}
+
+/// The pressure force on each wet body particle from its exposed faces (module doc), with the
 /// fluid pressures and the velocities v* the step moves the fluid by. A face is exposed when
 /// no body particle sits one spacing away across it: the lattice directions to the body
 /// neighbours at Δs (±10 %) are the covered faces, and the opposite of a covered direction
 /// whose own opposite is not covered is an exposed one (a body one particle thin along an axis
 /// has neither and gets no load along it). A face's pressure is the extrapolated pressure
 /// carried hydrostatically to the face's centre, never below 0 (no tension where the face is
-/// above the water).
-pub fn body_faces(k: &Wendland, list: &NeighbourList, walls: &NeumannPair, out: &mut BodyFaces) {
+/// above the water). Only the body particles that take part in the fluid's pressure gradient
+/// (`takes_part`, the wet ones of [`super::free_surface::fill_flags`]) carry a load: a dry body
+/// particle is not in the fluid's gradient, so the fluid would feel no reaction to its load.
+/// (Loaded, a box under a falling 8 cm cube of water took 230–450 N per step for 6 steps before
+/// the water reached it, from the extrapolated impermeability term of the approaching surface
+/// particles, while the water fell freely: 9.0 N s in 0.1 s where the water gave up 1.2 N s.)
+pub fn body_faces(
+    k: &Wendland,
+    list: &NeighbourList,
+    walls: &NeumannPair,
+    takes_part: &[u8],
+    out: &mut BodyFaces,
+) {
     let p = walls.p;
     let body = Kind::Body.code();
     let (ds, r2max) = (k.spacing, k.radius * k.radius);
@@ -55,7 +77,7 @@ pub fn body_faces(k: &Wendland, list: &NeighbourList, walls: &NeumannPair, out: 
         .with_min_len(4096)
         .for_each(|(j, (force, weight))| {
             (*force, *weight) = ([0.0; 3], 0.0);
-            if p.kind[j] != body {
+            if p.kind[j] != body || takes_part[j] == 0 {
                 return;
             }
             let (mut num, mut den) = (0.0, 0.0);

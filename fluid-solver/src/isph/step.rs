@@ -210,7 +210,15 @@ impl IsphStep {
             &mut self.accel,
         );
         (0..3).for_each(|a| totals.force_from_walls[a] -= self.kernel.volume * pass.from_non_fluid[a]);
-        pair_laws::body_faces(&self.kernel, &self.list, &walls, &mut self.faces);
+        pair_laws::body_faces(
+            &self.kernel,
+            &self.list,
+            &walls,
+            &self.takes_part,
+            &mut self.faces,
+        );
+        let on_bodies = self.faces.total();
+        (0..3).for_each(|a| totals.force_from_walls[a] -= on_bodies[a]);
         bodies(
             Exchange::Pressure,
             &pair_laws::pressure(&self.kernel, self.neumann(p, dt), &self.faces),
@@ -253,7 +261,13 @@ impl IsphStep {
             p,
             normals: &self.normals,
         };
-        pair_laws::body_faces(&self.kernel, &self.list, &walls, &mut self.faces);
+        pair_laws::body_faces(
+            &self.kernel,
+            &self.list,
+            &walls,
+            &self.takes_part,
+            &mut self.faces,
+        );
         (p.vx, p.vy, p.vz) = v;
         state.ppe = solved?;
         Ok(())
