@@ -191,14 +191,20 @@ impl Frame {
         loads: &[f64],
         motion: Option<Motion>,
     ) -> Vec<f64> {
+        // a node that a fracture added within this step (in a cut part) has no load until the
+        // structure re-declares its geometry at the window end
+        const NO_LOAD: [f64; NODE_DOFS] = [0.0; NODE_DOFS];
         let mut rhs = vec![0.0; self.nodes.len() * NODE_DOFS];
         for v in 0..self.nodes.len() {
             let g = v * NODE_DOFS;
+            // one length check per node, not one per entry (1 % of a 7³ building's step)
+            let load: &[f64; NODE_DOFS] = loads
+                .get(g..g + NODE_DOFS)
+                .and_then(|l| l.try_into().ok())
+                .unwrap_or(&NO_LOAD);
             let mut f = [0.0; NODE_DOFS];
             for (k, fk) in f.iter_mut().enumerate() {
-                // a node that a fracture added within this step (in a cut part) has no load
-                // until the structure re-declares its geometry at the window end
-                *fk = loads.get(g + k).copied().unwrap_or(0.0) - nodal.internal[v][k]
+                *fk = load[k] - nodal.internal[v][k]
                     + if k < 3 {
                         nodal.mass[v] * self.gravity[k]
                     } else {

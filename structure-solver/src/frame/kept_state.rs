@@ -31,9 +31,17 @@ pub struct KeptState {
 
 impl KeptState {
     /// Keeps the nodes' positions and rotations.
-    pub fn keep_nodes(&mut self, nodes: &[Node]) {
+    fn keep_nodes(&mut self, nodes: &[Node]) {
         self.nodes.clear();
         self.nodes.extend(nodes.iter().map(|n| (n.position, n.rotation)));
+    }
+
+    /// Room for the positions and rotations of `count` nodes, for the caller to write (in the pass
+    /// that moves them).
+    pub fn node_slots(&mut self, count: usize) -> &mut [(Vector3<f64>, UnitQuaternion<f64>)] {
+        self.nodes
+            .resize(count, (Vector3::zeros(), UnitQuaternion::identity()));
+        &mut self.nodes
     }
 
     /// Keeps the nodes' state and the elements' frames and stress states.
