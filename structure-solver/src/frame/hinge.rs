@@ -72,13 +72,21 @@ impl StressState {
     }
 
     /// Moves the integration point to `s_new`, keeping the end forces.
+    #[inline]
     pub fn move_to(&mut self, section: &Section, length: f64, s_new: f64) {
         if s_new != self.s {
-            let before = self.strain_energy(section, length);
-            move_integration_point(length, self.s, s_new, &mut self.sigma);
-            self.shifted += self.strain_energy(section, length) - before;
-            self.s = s_new;
+            self.shift_to(section, length, s_new);
         }
+    }
+
+    /// [`StressState::move_to`] a point other than its own: the end forces stay, the one-point
+    /// strain energy changes (added to `shifted`). Apart, so that the test above is inlined into
+    /// the per-step pass over all elements, which moves almost none.
+    fn shift_to(&mut self, section: &Section, length: f64, s_new: f64) {
+        let before = self.strain_energy(section, length);
+        move_integration_point(length, self.s, s_new, &mut self.sigma);
+        self.shifted += self.strain_energy(section, length) - before;
+        self.s = s_new;
     }
 
     /// Section stiffness relating resultant and strain increments: elastic D, or at a hinge the
