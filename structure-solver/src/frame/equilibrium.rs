@@ -25,6 +25,10 @@ pub const MAX_CORRECTIONS: usize = 12;
 const MAX_HALVINGS: usize = 3;
 /// A correction that reduces the unbalanced force by less than this factor makes the factor be redone.
 const SLOW_CONVERGENCE: f64 = 0.25;
+/// Share of the step's target unbalanced force (`tolerance` times its first one) to which a
+/// correction's linear solve by conjugate gradients is carried (besides their relative tolerance,
+/// whichever is reached first): the error of the solve adds to the next unbalanced force.
+const LINEAR_SOLVE_SHARE: f64 = 0.01;
 /// A correction: the iterate it started from, the correction and the hinges before it.
 type Correction = (Vec<f64>, Vec<f64>, Vec<Option<End>>);
 
@@ -102,7 +106,9 @@ impl Frame {
             if refactor {
                 self.refactor(Some(&contributions), dt, mass_factor)?;
             }
-            self.solve_with_current_tangent(&mut rhs, dt, mass_factor)?;
+            // the linear solve need not be finer than a share of what the step must reach
+            let enough = LINEAR_SOLVE_SHARE * tolerance * first;
+            self.solve_with_current_tangent(&mut rhs, dt, mass_factor, enough)?;
             let delta = rhs;
             let hinges = self.elements.iter().map(|e| e.stress.hinge).collect();
             last_correction = Some((du.clone(), delta.clone(), hinges));

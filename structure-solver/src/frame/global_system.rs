@@ -96,7 +96,7 @@ impl Frame {
         )?;
         let mut u = self.unbalanced_force(&self.gather(&contributions), loads, None);
         system.factorize(0.0)?;
-        system.solve(&mut u, 0)?;
+        system.solve(&mut u, 0, 0.0)?;
         Ok(u)
     }
 

@@ -221,7 +221,7 @@ impl Frame {
         let zero = vec![0.0; self.nodes.len() * NODE_DOFS];
         let mut du = self.residual(&nodal, loads, inertia, &zero, mass_factor, dt);
         let first = norm(&du);
-        self.solve_with_current_tangent(&mut du, dt, mass_factor)?;
+        self.solve_with_current_tangent(&mut du, dt, mass_factor, 0.0)?;
         check_finite(&du)?;
         if keep {
             self.apply_increment_keeping(&du);
@@ -274,22 +274,24 @@ impl Frame {
     /// current tangent of every element whose hinge or integration point changed since its matrix was
     /// made: those members are re-condensed and the system is solved by conjugate gradients with the
     /// kept factor as preconditioner; when they do not converge within [`CG_PRODUCTS_LIMIT`]
-    /// products, those values are factorised and the system solved directly.
+    /// products, those values are factorised and the system solved directly. Conjugate gradients stop
+    /// at the relative tolerance or at a residual of `enough` (0: the relative tolerance alone).
     pub(super) fn solve_with_current_tangent(
         &mut self,
         x: &mut [f64],
         dt: f64,
         mass_factor: f64,
+        enough: f64,
     ) -> Result<(), String> {
         self.recondense_changed(dt, mass_factor)?;
         let rhs = x.to_vec();
-        let outcome = self.system.solve(x, CG_PRODUCTS_LIMIT)?;
+        let outcome = self.system.solve(x, CG_PRODUCTS_LIMIT, enough)?;
         self.cg_iterations += outcome.iterations as u64;
         self.factor_age.add_cg_products(outcome.iterations);
         if !outcome.converged {
             self.refactor(None, dt, mass_factor)?;
             x.copy_from_slice(&rhs);
-            self.system.solve(x, 0)?;
+            self.system.solve(x, 0, 0.0)?;
         }
         Ok(())
     }
