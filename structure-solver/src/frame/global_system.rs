@@ -8,6 +8,7 @@ use super::condensed_system::NodeBlock;
 use super::element::{
     add_axial_geometric_stiffness, global_stiffness, local_forces, to_global_vector, ELEMENT_DOFS,
 };
+use super::hinge::StressState;
 use super::section::Section;
 use super::topology::Element;
 use super::Frame;
@@ -26,9 +27,9 @@ pub(super) struct Contribution {
 }
 
 impl Contribution {
-    /// What element `e` of `section` adds at its current state.
-    pub(super) fn of(e: &Element, section: &Section, density: f64) -> Contribution {
-        let f = local_forces(e.length0, e.stress.s, &e.stress.sigma);
+    /// What element `e` of `section` in stress state `stress` adds at its current state.
+    pub(super) fn of(e: &Element, stress: &StressState, section: &Section, density: f64) -> Contribution {
+        let f = local_forces(e.length0, stress.s, &stress.sigma);
         let (mass, rotary) = end_mass(e, section, density);
         Contribution {
             force: to_global_vector(&e.current.frame, &f),
@@ -38,13 +39,13 @@ impl Contribution {
     }
 }
 
-/// Tangent stiffness of element `e` at its current state (with the geometric stiffness of its axial
-/// force), global axes.
-pub(super) fn tangent_stiffness(e: &Element, section: &Section) -> Block {
+/// Tangent stiffness of element `e` in stress state `stress` at its current state (with the
+/// geometric stiffness of its axial force), global axes.
+pub(super) fn tangent_stiffness(e: &Element, stress: &StressState, section: &Section) -> Block {
     let frame = &e.current.frame;
-    let mut k = global_stiffness(frame, e.length0, e.stress.s, &e.stress.tangent(section));
+    let mut k = global_stiffness(frame, e.length0, stress.s, &stress.tangent(section));
     if !e.linear {
-        add_axial_geometric_stiffness(&mut k, frame, e.stress.sigma[0], e.current.length);
+        add_axial_geometric_stiffness(&mut k, frame, stress.sigma[0], e.current.length);
     }
     k
 }
@@ -131,15 +132,20 @@ impl Frame {
     /// Tangent stiffness of element `e` at its current state, global axes.
     pub(super) fn tangent_stiffness(&self, e: usize) -> Block {
         let element = &self.elements[e];
-        tangent_stiffness(element, &self.sections[element.section])
+        tangent_stiffness(
+            element,
+            &self.stresses.current()[e],
+            &self.sections[element.section],
+        )
     }
 
     /// Each element's internal forces and lumped masses, in parallel.
     pub(super) fn contributions(&self) -> Vec<Contribution> {
         self.elements
             .par_iter()
+            .zip(self.stresses.current())
             .with_min_len(super::PARALLEL_CHUNK)
-            .map(|e| Contribution::of(e, &self.sections[e.section], self.density))
+            .map(|(e, s)| Contribution::of(e, s, &self.sections[e.section], self.density))
             .collect()
     }
 

@@ -115,9 +115,16 @@ impl StressState {
     /// where an elastic element's end reaches the yield surface (the whole increment is then taken
     /// with the integration point already at the hinge, which keeps the response consistent with the
     /// hinge's tangent), flows plastically at a loading hinge (closest-point return) and closes a
-    /// hinge whose elastic trial falls inside the surface.
-    pub fn update(&mut self, section: &Section, length: f64, dd: &[f64; ELEMENT_DOFS]) {
-        let start = *self;
+    /// hinge whose elastic trial falls inside the surface. This state becomes `start` so advanced
+    /// (`stress_states.rs` keeps both).
+    pub fn update_from(
+        &mut self,
+        start: &StressState,
+        section: &Section,
+        length: f64,
+        dd: &[f64; ELEMENT_DOFS],
+    ) {
+        *self = *start;
         self.elastic_trial(section, length, dd);
         match self.hinge {
             None => {
@@ -132,7 +139,7 @@ impl StressState {
                     } else {
                         End::Finish
                     };
-                    *self = start;
+                    *self = *start;
                     self.move_to(section, length, end.integration_point());
                     self.hinge = Some(end);
                     let before = self.sigma;
