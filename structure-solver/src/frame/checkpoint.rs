@@ -1,10 +1,11 @@
 //! A frame in a checkpoint file: its whole state — nodes (with the ones fracture made), elements with
-//! their frames, stress states, hinges and fracture counts, the Newmark velocities and
-//! accelerations, contact, hinge events, the energy account, counters and the accuracy record —
-//! without what it caches to go faster: the condensed system with its symbolic and numeric
-//! factorisations, the factor's age, the internal forces kept from the last step and the kept
-//! state's scratch copy. Those are made again from the state: a frame read back has no factor, and
-//! its next step assembles and factorises anew.
+//! their frames and fracture counts, their current stress states with the hinges, the Newmark
+//! velocities and accelerations, contact, hinge events, the energy account, counters and the
+//! accuracy record — without what it caches to go faster: the condensed system with its symbolic
+//! and numeric factorisations, the factor's age, the internal forces kept from the last step, the
+//! kept state's scratch copy and the stress states before the last update. Those are made again
+//! from the state: a frame read back has no factor, and its next step assembles and factorises
+//! anew.
 //!
 //! So that a resumed run does exactly the arithmetic of one that never stopped, a run that writes
 //! a checkpoint drops the same caches at that moment ([`Frame::drop_caches`]): both then continue
@@ -16,9 +17,11 @@
 use super::contact::Contact;
 use super::energy::EnergyAccount;
 use super::fracture::FractureCriterion;
+use super::hinge::StressState;
 use super::hinge_events::HingeEvent;
 use super::section::Section;
 use super::stepping::Equilibrium;
+use super::stress_states::StressStates;
 use super::topology::{Element, Node};
 use super::{condensed_system_of, Frame};
 use nalgebra::Vector3;
@@ -36,6 +39,8 @@ pub struct FrameFile {
     contact: Option<Contact>,
     nodes: Vec<Node>,
     elements: Vec<Element>,
+    /// The elements' current stress states (the ones before the last update are a cache).
+    stresses: Vec<StressState>,
     ids: BTreeMap<u32, usize>,
     connectivity: u64,
     factorizations: u64,
@@ -67,6 +72,7 @@ impl From<Frame> for FrameFile {
             contact,
             nodes,
             elements,
+            stresses,
             ids,
             // caches, made again from the state
             system: _,
@@ -101,6 +107,7 @@ impl From<Frame> for FrameFile {
             contact,
             nodes,
             elements,
+            stresses: stresses.current().to_vec(),
             ids,
             connectivity,
             factorizations,
@@ -128,6 +135,13 @@ impl TryFrom<FrameFile> for Frame {
 
     /// The frame of a checkpoint, with its condensed system made anew and no factor.
     fn try_from(f: FrameFile) -> Result<Frame, String> {
+        if f.stresses.len() != f.elements.len() {
+            return Err(format!(
+                "frame checkpoint: {} stress states for {} elements",
+                f.stresses.len(),
+                f.elements.len()
+            ));
+        }
         let system = condensed_system_of(&f.nodes, &f.elements)?;
         Ok(Frame {
             time_step: f.time_step,
@@ -138,6 +152,7 @@ impl TryFrom<FrameFile> for Frame {
             contact: f.contact,
             nodes: f.nodes,
             elements: f.elements,
+            stresses: StressStates::new(f.stresses),
             ids: f.ids,
             system,
             factor_age: Default::default(),

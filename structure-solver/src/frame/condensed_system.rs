@@ -257,8 +257,9 @@ impl CondensedSystem {
     /// Solves in place: `x` holds the right-hand side over all global DOFs (6 per node), then the
     /// solution (zero where a DOF is not an unknown). Directly with the kept factor, or, when blocks
     /// were re-condensed since, by conjugate gradients preconditioned with it in at most
-    /// `max_iterations` products (the solution is then only good if the outcome says converged).
-    pub fn solve(&mut self, x: &mut [f64], max_iterations: usize) -> Result<Iterated, String> {
+    /// `max_iterations` products (the solution is then only good if the outcome says converged), down
+    /// to a residual of `enough` or the relative tolerance ([`preconditioned_cg::solve`]).
+    pub fn solve(&mut self, x: &mut [f64], max_iterations: usize, enough: f64) -> Result<Iterated, String> {
         if self.factor_time_step.is_none() {
             return Err("internal error: the frame's system was solved before it was factorised".into());
         }
@@ -284,7 +285,7 @@ impl CondensedSystem {
             }
         }
         let outcome = if self.modified {
-            preconditioned_cg::solve(&mut self.sparse, &mut self.reduced, max_iterations)?
+            preconditioned_cg::solve(&mut self.sparse, &mut self.reduced, max_iterations, enough)?
         } else {
             self.sparse.solve_factored(&mut self.reduced)?;
             Iterated {
@@ -384,14 +385,24 @@ mod tests {
             .map(|g| (g as f64 * 0.61).cos())
             .collect();
         let mut iterated = rhs.clone();
-        let outcome = kept.solve(&mut iterated, 50).expect("solved");
+        let outcome = kept.solve(&mut iterated, 50, 0.0).expect("solved");
         assert!(
             outcome.converged && outcome.iterations > 1,
             "{} products",
             outcome.iterations
         );
+        // a caller content with a residual of 1e-3 of the right-hand side's gets it in fewer products
+        let mut coarse = rhs.clone();
+        let enough = 1e-3 * rhs.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let coarse_outcome = kept.solve(&mut coarse, 50, enough).expect("solved");
+        assert!(
+            coarse_outcome.converged && coarse_outcome.iterations < outcome.iterations,
+            "{} products to 1e-3, {} to the tolerance",
+            coarse_outcome.iterations,
+            outcome.iterations
+        );
         let mut direct = rhs;
-        let fresh_outcome = fresh.solve(&mut direct, 0).expect("solved");
+        let fresh_outcome = fresh.solve(&mut direct, 0, 0.0).expect("solved");
         assert_eq!(fresh_outcome.iterations, 0, "a fresh factor solves directly");
         let scale = direct.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
         let error = iterated
@@ -411,7 +422,7 @@ mod tests {
         let mut refactored: Vec<f64> = (0..NODE_DOFS * fixed.len())
             .map(|g| (g as f64 * 0.61).cos())
             .collect();
-        let refactored_outcome = kept.solve(&mut refactored, 0).expect("solved");
+        let refactored_outcome = kept.solve(&mut refactored, 0, 0.0).expect("solved");
         assert_eq!(refactored_outcome.iterations, 0, "the new factor solves directly");
         let error = refactored
             .iter()
@@ -427,7 +438,7 @@ mod tests {
         let mut wrong: Vec<f64> = (0..NODE_DOFS * fixed.len())
             .map(|g| (g as f64 * 0.61).cos())
             .collect();
-        stale.solve(&mut wrong, 0).expect("solved");
+        stale.solve(&mut wrong, 0, 0.0).expect("solved");
         let difference = wrong
             .iter()
             .zip(&direct)

@@ -63,8 +63,8 @@ impl Frame {
             return;
         }
         let rate = DELTA / (BETA * dt);
-        for e in &self.elements {
-            let k = tangent_stiffness(e, &self.sections[e.section]);
+        for (e, s) in self.elements.iter().zip(self.stresses.current()) {
+            let k = tangent_stiffness(e, s, &self.sections[e.section]);
             let mut v = [0.0; ELEMENT_DOFS];
             for (end, &node) in e.nodes.iter().enumerate() {
                 for c in 0..NODE_DOFS {

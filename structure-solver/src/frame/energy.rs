@@ -164,18 +164,19 @@ impl Frame {
     pub fn strain_energy(&self) -> f64 {
         self.elements
             .iter()
-            .map(|e| e.stress.strain_energy(&self.sections[e.section], e.length0))
+            .zip(self.stresses.current())
+            .map(|(e, s)| s.strain_energy(&self.sections[e.section], e.length0))
             .sum()
     }
 
     /// Plastic work dissipated at hinges so far [J].
     pub fn plastic_dissipation(&self) -> f64 {
-        self.elements.iter().map(|e| e.stress.dissipated).sum()
+        self.stresses.current().iter().map(|s| s.dissipated).sum()
     }
 
     /// Change of the strain energy made by moving integration points so far [J].
     pub fn shift_energy(&self) -> f64 {
-        self.elements.iter().map(|e| e.stress.shifted).sum()
+        self.stresses.current().iter().map(|s| s.shifted).sum()
     }
 
     /// Lumped translational mass and rotary inertia (global axes) of each node at the current state.
@@ -278,8 +279,8 @@ impl Frame {
         }
         let mut stiffness_damping = 0.0;
         if a1 != 0.0 {
-            for e in &self.elements {
-                let k = tangent_stiffness(e, &self.sections[e.section]);
+            for (e, s) in self.elements.iter().zip(self.stresses.current()) {
+                let k = tangent_stiffness(e, s, &self.sections[e.section]);
                 let (mut x, mut y) = ([0.0; ELEMENT_DOFS], [0.0; ELEMENT_DOFS]);
                 for (end, &node) in e.nodes.iter().enumerate() {
                     for c in 0..NODE_DOFS {

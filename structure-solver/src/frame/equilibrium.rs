@@ -25,6 +25,10 @@ pub const MAX_CORRECTIONS: usize = 12;
 const MAX_HALVINGS: usize = 3;
 /// A correction that reduces the unbalanced force by less than this factor makes the factor be redone.
 const SLOW_CONVERGENCE: f64 = 0.25;
+/// Share of the step's target unbalanced force (`tolerance` times its first one) to which a
+/// correction's linear solve by conjugate gradients is carried (besides their relative tolerance,
+/// whichever is reached first): the error of the solve adds to the next unbalanced force.
+const LINEAR_SOLVE_SHARE: f64 = 0.01;
 /// A correction: the iterate it started from, the correction and the hinges before it.
 type Correction = (Vec<f64>, Vec<f64>, Vec<Option<End>>);
 
@@ -40,7 +44,7 @@ impl Frame {
     ) -> Result<Vec<f64>, String> {
         self.end_of_step_forces = None;
         // the committed state, which every iterate starts from
-        self.kept.keep(&self.nodes, &self.elements);
+        self.kept.keep(&self.nodes, &self.elements, &self.stresses);
         let mass_factor = self.effective_mass_factor(dt);
         let mut du = vec![0.0; self.nodes.len() * NODE_DOFS];
         let mut first_residual = None;
@@ -78,10 +82,11 @@ impl Frame {
             }
             if let Some((from, delta, hinges)) = &mut last_correction {
                 let switched = || {
-                    self.elements
+                    self.stresses
+                        .current()
                         .iter()
                         .zip(hinges.iter())
-                        .any(|(e, h)| e.stress.hinge != *h)
+                        .any(|(s, h)| s.hinge != *h)
                 };
                 if residual > last_residual && halvings < MAX_HALVINGS && switched() {
                     // the correction overshot (hinges switching): try half of it
@@ -102,9 +107,11 @@ impl Frame {
             if refactor {
                 self.refactor(Some(&contributions), dt, mass_factor)?;
             }
-            self.solve_with_current_tangent(&mut rhs, dt, mass_factor)?;
+            // the linear solve need not be finer than a share of what the step must reach
+            let enough = LINEAR_SOLVE_SHARE * tolerance * first;
+            self.solve_with_current_tangent(&mut rhs, dt, mass_factor, enough)?;
             let delta = rhs;
-            let hinges = self.elements.iter().map(|e| e.stress.hinge).collect();
+            let hinges = self.stresses.current().iter().map(|s| s.hinge).collect();
             last_correction = Some((du.clone(), delta.clone(), hinges));
             for (d, x) in du.iter_mut().zip(&delta) {
                 *d += x;
@@ -118,7 +125,8 @@ impl Frame {
     /// Puts the frame in the state the committed one (kept at the start of the step) reaches with
     /// the increment `du`.
     fn set_trial(&mut self, du: &[f64]) {
-        self.kept.restore(&mut self.nodes, &mut self.elements);
+        self.kept
+            .restore(&mut self.nodes, &mut self.elements, &mut self.stresses);
         self.apply_increment(du);
         self.update_elements();
     }

@@ -19,7 +19,7 @@
 //! of every other member, about a third of a refactorisation on the benchmark's 7 × 7 × 7 grid. A
 //! fracture changes the connectivity and everything is redone.
 
-use super::hinge::End;
+use super::hinge::{End, StressState};
 use super::newmark;
 use super::section::Section;
 use super::topology::Element;
@@ -63,12 +63,16 @@ pub struct FactorAge {
 
 impl FactorAge {
     /// Remembers the elements' state at an assembly of the values (which a factorisation follows).
-    pub fn record(&mut self, elements: &[Element]) {
+    pub fn record(&mut self, elements: &[Element], stresses: &[StressState]) {
         self.at_assembly.clear();
-        self.at_assembly
-            .extend(elements.iter().map(|e| (e.current.frame, e.stress.sigma[0])));
+        self.at_assembly.extend(
+            elements
+                .iter()
+                .zip(stresses)
+                .map(|(e, s)| (e.current.frame, s.sigma[0])),
+        );
         self.tangents.clear();
-        self.tangents.extend(elements.iter().map(tangent_of));
+        self.tangents.extend(stresses.iter().map(tangent_of));
         self.cg_products = 0;
     }
 
@@ -83,20 +87,20 @@ impl FactorAge {
     }
 
     /// Elements whose hinge or integration point differs from when their matrix was made.
-    pub fn changed_tangents(&self, elements: &[Element]) -> Vec<usize> {
-        elements
+    pub fn changed_tangents(&self, stresses: &[StressState]) -> Vec<usize> {
+        stresses
             .iter()
             .zip(&self.tangents)
             .enumerate()
-            .filter(|(_, (e, made))| tangent_of(e) != **made)
+            .filter(|(_, (s, made))| tangent_of(s) != **made)
             .map(|(i, _)| i)
             .collect()
     }
 
     /// Remembers the hinge and integration point of `changed` elements, whose matrices were remade.
-    pub fn record_tangents(&mut self, elements: &[Element], changed: &[usize]) {
+    pub fn record_tangents(&mut self, stresses: &[StressState], changed: &[usize]) {
         for &e in changed {
-            self.tangents[e] = tangent_of(&elements[e]);
+            self.tangents[e] = tangent_of(&stresses[e]);
         }
     }
 
@@ -107,6 +111,7 @@ impl FactorAge {
     pub fn staleness(
         &self,
         elements: &[Element],
+        stresses: &[StressState],
         sections: &[Section],
         density: f64,
         dt: f64,
@@ -116,19 +121,20 @@ impl FactorAge {
             return Staleness::Reassemble;
         }
         let mass_factor = newmark::mass_factor(dt);
-        let drifted = elements.iter().zip(&self.at_assembly).any(|(e, (frame, axial))| {
+        let mut at_assembly = elements.iter().zip(stresses).zip(&self.at_assembly);
+        let drifted = at_assembly.any(|((e, s), (frame, axial))| {
             let section = &sections[e.section];
             // ‖R₁ − R₀‖ = 2√2 sin(θ/2) (Frobenius): θ to second order without an arc cosine
             let theta = (e.current.frame - frame).norm() / std::f64::consts::SQRT_2;
             let stiffness = section.stiffness[..3].iter().fold(0.0_f64, |m, k| m.max(*k)) / e.length0;
-            let geometric = (e.stress.sigma[0] - axial).abs() / e.current.length;
+            let geometric = (s.sigma[0] - axial).abs() / e.current.length;
             let mass = 0.5 * density * section.area * e.length0;
             2.0 * theta * stiffness + geometric > limit * mass * mass_factor || 2.0 * theta > limit
         });
         if drifted {
             Staleness::Reassemble
         } else if self.cg_products > CG_PRODUCTS_LIMIT
-            || self.changed_tangents(elements).len() > CHANGED_ELEMENTS_LIMIT
+            || self.changed_tangents(stresses).len() > CHANGED_ELEMENTS_LIMIT
         {
             Staleness::Refactor
         } else {
@@ -138,6 +144,6 @@ impl FactorAge {
 }
 
 /// What an element's tangent stiffness is made with besides its state: its hinge and integration point.
-fn tangent_of(e: &Element) -> (Option<End>, f64) {
-    (e.stress.hinge, e.stress.s)
+fn tangent_of(s: &StressState) -> (Option<End>, f64) {
+    (s.hinge, s.s)
 }

@@ -54,8 +54,9 @@ impl Frame {
         let mut changed = false;
         for i in 0..self.elements.len() {
             let e = &self.elements[i];
-            let Some(end) = e.stress.hinge else { continue };
-            if !criterion.is_reached(&e.stress.strain) {
+            let stress = &self.stresses.current()[i];
+            let Some(end) = stress.hinge else { continue };
+            if !criterion.is_reached(&stress.strain) {
                 continue;
             }
             let old = e.nodes[end.node()];
@@ -70,8 +71,9 @@ impl Frame {
                 continue;
             }
             let e = &self.elements[i];
+            let stress = &self.stresses.current()[i];
             if let Some(events) = &mut self.events {
-                let forces = super::section_forces::end_forces(e)[end.node()];
+                let forces = super::section_forces::end_forces(e, stress)[end.node()];
                 events.push(HingeEvent {
                     time: self.elapsed,
                     element: i,
@@ -79,7 +81,7 @@ impl Frame {
                     node: old,
                     kind: HingeEventKind::Fracture,
                     forces,
-                    function: criterion.value(&e.stress.strain),
+                    function: criterion.value(&stress.strain),
                 });
             }
             let mut node = self.nodes[old].clone();
@@ -90,12 +92,13 @@ impl Frame {
             e.nodes[end.node()] = self.nodes.len() - 1;
             // the strain energy the fracture releases leaves the account as a shift (`energy.rs`):
             // U drops by it without work
-            let released = e.stress.strain_energy(&self.sections[e.section], e.length0);
-            let (dissipated, shifted) = (e.stress.dissipated, e.stress.shifted - released);
-            e.stress = StressState::elastic(e.stress.s);
-            e.stress.hinge = None;
-            e.stress.dissipated = dissipated;
-            e.stress.shifted = shifted;
+            let stress = &mut self.stresses.current_mut()[i];
+            let released = stress.strain_energy(&self.sections[e.section], e.length0);
+            let (dissipated, shifted) = (stress.dissipated, stress.shifted - released);
+            *stress = StressState::elastic(stress.s);
+            stress.hinge = None;
+            stress.dissipated = dissipated;
+            stress.shifted = shifted;
             e.fractures += 1;
             changed = true;
         }

@@ -72,13 +72,21 @@ impl StressState {
     }
 
     /// Moves the integration point to `s_new`, keeping the end forces.
+    #[inline]
     pub fn move_to(&mut self, section: &Section, length: f64, s_new: f64) {
         if s_new != self.s {
-            let before = self.strain_energy(section, length);
-            move_integration_point(length, self.s, s_new, &mut self.sigma);
-            self.shifted += self.strain_energy(section, length) - before;
-            self.s = s_new;
+            self.shift_to(section, length, s_new);
         }
+    }
+
+    /// [`StressState::move_to`] a point other than its own: the end forces stay, the one-point
+    /// strain energy changes (added to `shifted`). Apart, so that the test above is inlined into
+    /// the per-step pass over all elements, which moves almost none.
+    fn shift_to(&mut self, section: &Section, length: f64, s_new: f64) {
+        let before = self.strain_energy(section, length);
+        move_integration_point(length, self.s, s_new, &mut self.sigma);
+        self.shifted += self.strain_energy(section, length) - before;
+        self.s = s_new;
     }
 
     /// Section stiffness relating resultant and strain increments: elastic D, or at a hinge the
@@ -107,9 +115,16 @@ impl StressState {
     /// where an elastic element's end reaches the yield surface (the whole increment is then taken
     /// with the integration point already at the hinge, which keeps the response consistent with the
     /// hinge's tangent), flows plastically at a loading hinge (closest-point return) and closes a
-    /// hinge whose elastic trial falls inside the surface.
-    pub fn update(&mut self, section: &Section, length: f64, dd: &[f64; ELEMENT_DOFS]) {
-        let start = *self;
+    /// hinge whose elastic trial falls inside the surface. This state becomes `start` so advanced
+    /// (`stress_states.rs` keeps both).
+    pub fn update_from(
+        &mut self,
+        start: &StressState,
+        section: &Section,
+        length: f64,
+        dd: &[f64; ELEMENT_DOFS],
+    ) {
+        *self = *start;
         self.elastic_trial(section, length, dd);
         match self.hinge {
             None => {
@@ -124,7 +139,7 @@ impl StressState {
                     } else {
                         End::Finish
                     };
-                    *self = start;
+                    *self = *start;
                     self.move_to(section, length, end.integration_point());
                     self.hinge = Some(end);
                     let before = self.sigma;

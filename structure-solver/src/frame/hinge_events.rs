@@ -58,7 +58,7 @@ impl Frame {
     pub(super) fn hinges_if_recording(&self) -> Option<Vec<Option<End>>> {
         self.events
             .as_ref()
-            .map(|_| self.elements.iter().map(|e| e.stress.hinge).collect())
+            .map(|_| self.stresses.current().iter().map(|s| s.hinge).collect())
     }
 
     /// Records the hinges that formed or closed since `before` (the hinges before the step).
@@ -66,13 +66,14 @@ impl Frame {
         let Some(events) = &mut self.events else {
             return;
         };
-        for (i, (e, was)) in self.elements.iter().zip(before).enumerate() {
-            let (kind, end) = match (was, e.stress.hinge) {
+        let now = self.elements.iter().zip(self.stresses.current());
+        for (i, ((e, stress), was)) in now.zip(before).enumerate() {
+            let (kind, end) = match (was, stress.hinge) {
                 (None, Some(end)) => (HingeEventKind::Forming, end),
                 (Some(end), None) => (HingeEventKind::Closing, *end),
                 _ => continue,
             };
-            let forces = end_forces(e)[end.node()];
+            let forces = end_forces(e, stress)[end.node()];
             let section = &self.sections[e.section];
             events.push(HingeEvent {
                 time: self.elapsed,

@@ -32,6 +32,7 @@ pub mod preconditioned_cg;
 pub mod section;
 pub mod section_forces;
 pub mod stepping;
+pub mod stress_states;
 pub mod supernodal_solve;
 pub mod topology;
 pub mod vtu;
@@ -57,6 +58,7 @@ use schemas::case::frame::FrameConfig;
 use schemas::case::FieldError;
 use section::Section;
 use std::collections::BTreeMap;
+use stress_states::StressStates;
 use topology::{Element, Node};
 
 /// An ASI-Gauss frame and its state; a clone is a checkpoint, and so is its serde form (without
@@ -72,6 +74,8 @@ pub struct Frame {
     contact: Option<contact::Contact>,
     nodes: Vec<Node>,
     elements: Vec<Element>,
+    /// The elements' stress states (`stress_states.rs`), element `i`'s at `i`.
+    stresses: StressStates,
     ids: BTreeMap<u32, usize>,
     system: CondensedSystem,
     connectivity: u64,
@@ -117,7 +121,12 @@ pub struct Frame {
 impl Frame {
     /// Builds a frame from its validated config; `key` is the table's path for error messages.
     pub fn from_config(cfg: &FrameConfig, key: &str) -> Result<Frame, FieldError> {
-        let topology::Topology { nodes, elements, ids } = topology::build(cfg, key)?;
+        let topology::Topology {
+            nodes,
+            elements,
+            stresses,
+            ids,
+        } = topology::build(cfg, key)?;
         let sections: Vec<Section> = cfg
             .section
             .iter()
@@ -155,6 +164,7 @@ impl Frame {
             contact,
             nodes,
             elements,
+            stresses: StressStates::new(stresses),
             ids,
             system,
             connectivity: 0,
@@ -241,7 +251,8 @@ impl Frame {
         let mut v: Vec<usize> = self
             .elements
             .iter()
-            .filter_map(|e| e.stress.hinge.map(|end| e.nodes[end.node()]))
+            .zip(self.stresses.current())
+            .filter_map(|(e, s)| s.hinge.map(|end| e.nodes[end.node()]))
             .collect();
         v.sort_unstable();
         v.dedup();

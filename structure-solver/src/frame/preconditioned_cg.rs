@@ -22,11 +22,19 @@ pub struct Iterated {
 }
 
 /// Solves `A x = b` in place (`x` holds b, then x) for A the system's current values, preconditioned
-/// by its kept factor, in at most `max_iterations` products with A.
-pub fn solve(system: &mut SparseSystem, x: &mut [f64], max_iterations: usize) -> Result<Iterated, String> {
+/// by its kept factor, in at most `max_iterations` products with A. It stops at a residual of
+/// [`CG_TOLERANCE`] `‖b‖` or `enough`, whichever is larger (`enough`: the residual below which the
+/// caller needs no more, 0 for the relative tolerance alone).
+pub fn solve(
+    system: &mut SparseSystem,
+    x: &mut [f64],
+    max_iterations: usize,
+    enough: f64,
+) -> Result<Iterated, String> {
     let n = x.len();
     let mut r = x.to_vec();
     let b_norm = dot(&r, &r).sqrt();
+    let target = (CG_TOLERANCE * b_norm).max(enough);
     x.iter_mut().for_each(|v| *v = 0.0);
     if b_norm == 0.0 {
         return Ok(Iterated {
@@ -52,7 +60,7 @@ pub fn solve(system: &mut SparseSystem, x: &mut [f64], max_iterations: usize) ->
             *xi += alpha * pi;
             *ri -= alpha * qi;
         }
-        if dot(&r, &r).sqrt() <= CG_TOLERANCE * b_norm {
+        if dot(&r, &r).sqrt() <= target {
             return Ok(Iterated {
                 iterations: iteration,
                 converged: true,

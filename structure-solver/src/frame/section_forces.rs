@@ -4,15 +4,17 @@
 //! shear (`element::moments_at`). Also the nodes' rotations.
 
 use super::element::moments_at;
+use super::hinge::StressState;
 use super::section::Resultants;
 use super::topology::Element;
 use super::Frame;
 
-/// Resultants at the element's first (ξ = −1) and second (ξ = +1) node.
-pub fn end_forces(e: &Element) -> [Resultants; 2] {
+/// Resultants at the first (ξ = −1) and second (ξ = +1) node of element `e` in stress state
+/// `stress`.
+pub fn end_forces(e: &Element, stress: &StressState) -> [Resultants; 2] {
     [-1.0, 1.0].map(|xi| {
-        let (my, mz) = moments_at(e.length0, e.stress.s, &e.stress.sigma, xi);
-        let s = &e.stress.sigma;
+        let (my, mz) = moments_at(e.length0, stress.s, &stress.sigma, xi);
+        let s = &stress.sigma;
         [s[0], s[1], s[2], s[3], my, mz]
     })
 }
@@ -20,7 +22,11 @@ pub fn end_forces(e: &Element) -> [Resultants; 2] {
 impl Frame {
     /// Section forces at both ends of every element (two elements per member, in member order).
     pub fn section_forces(&self) -> Vec<[Resultants; 2]> {
-        self.elements.iter().map(end_forces).collect()
+        self.elements
+            .iter()
+            .zip(self.stresses.current())
+            .map(|(e, s)| end_forces(e, s))
+            .collect()
     }
 
     /// Member and half (0: the member's first element, 1: its second) of every element.

@@ -10,6 +10,7 @@ use super::element::ELEMENT_DOFS;
 use super::energy;
 use super::factor_age::{Staleness, CG_PRODUCTS_LIMIT};
 use super::global_system::{end_mass, mass_block, tangent_stiffness, Contribution, Motion, NodalForces};
+use super::hinge::StressState;
 use super::newmark;
 use super::section::Section;
 use super::topology::{Element, Node};
@@ -116,7 +117,8 @@ impl Frame {
     /// Puts the nodes and elements back where the last increment found them (a one-solve step that
     /// has not been finished: velocities, accelerations and counters untouched).
     fn take_back(&mut self) {
-        self.kept.restore(&mut self.nodes, &mut self.elements);
+        self.kept
+            .restore(&mut self.nodes, &mut self.elements, &mut self.stresses);
         self.end_of_step_forces = None;
     }
 
@@ -133,9 +135,14 @@ impl Frame {
             None => loads,
         };
         let inertia = self.inertia_with_damping(dt);
-        let staleness =
-            self.factor_age
-                .staleness(&self.elements, &self.sections, self.density, dt, self.stale_limit);
+        let staleness = self.factor_age.staleness(
+            &self.elements,
+            self.stresses.current(),
+            &self.sections,
+            self.density,
+            dt,
+            self.stale_limit,
+        );
         match staleness {
             Staleness::Reassemble => self.system.drop_values(),
             Staleness::Refactor => self.system.drop_factor(),
@@ -221,13 +228,14 @@ impl Frame {
         let zero = vec![0.0; self.nodes.len() * NODE_DOFS];
         let mut du = self.residual(&nodal, loads, inertia, &zero, mass_factor, dt);
         let first = norm(&du);
-        self.solve_with_current_tangent(&mut du, dt, mass_factor)?;
+        self.solve_with_current_tangent(&mut du, dt, mass_factor, 0.0)?;
         check_finite(&du)?;
         if keep {
-            self.kept.keep_nodes(&self.nodes);
+            self.apply_increment_keeping(&du);
+        } else {
+            self.apply_increment(&du);
         }
-        self.apply_increment(&du);
-        let contributions = self.update_elements_with_forces(keep);
+        let contributions = self.update_elements_with_forces();
         let nodal = self.gather(&contributions);
         let last = norm(&self.residual(&nodal, loads, inertia, &du, mass_factor, dt));
         self.end_of_step_forces = Some(nodal);
@@ -273,22 +281,24 @@ impl Frame {
     /// current tangent of every element whose hinge or integration point changed since its matrix was
     /// made: those members are re-condensed and the system is solved by conjugate gradients with the
     /// kept factor as preconditioner; when they do not converge within [`CG_PRODUCTS_LIMIT`]
-    /// products, those values are factorised and the system solved directly.
+    /// products, those values are factorised and the system solved directly. Conjugate gradients stop
+    /// at the relative tolerance or at a residual of `enough` (0: the relative tolerance alone).
     pub(super) fn solve_with_current_tangent(
         &mut self,
         x: &mut [f64],
         dt: f64,
         mass_factor: f64,
+        enough: f64,
     ) -> Result<(), String> {
         self.recondense_changed(dt, mass_factor)?;
         let rhs = x.to_vec();
-        let outcome = self.system.solve(x, CG_PRODUCTS_LIMIT)?;
+        let outcome = self.system.solve(x, CG_PRODUCTS_LIMIT, enough)?;
         self.cg_iterations += outcome.iterations as u64;
         self.factor_age.add_cg_products(outcome.iterations);
         if !outcome.converged {
             self.refactor(None, dt, mass_factor)?;
             x.copy_from_slice(&rhs);
-            self.system.solve(x, 0)?;
+            self.system.solve(x, 0, 0.0)?;
         }
         Ok(())
     }
@@ -297,7 +307,7 @@ impl Frame {
     /// matrix was made, at the current state.
     fn recondense_changed(&mut self, dt: f64, mass_factor: f64) -> Result<(), String> {
         let scale = self.stiffness_factor(dt);
-        let changed = self.factor_age.changed_tangents(&self.elements);
+        let changed = self.factor_age.changed_tangents(self.stresses.current());
         if changed.is_empty() {
             return Ok(());
         }
@@ -308,13 +318,17 @@ impl Frame {
                 let (element, section) = (&self.elements[e], &self.sections[self.elements[e].section]);
                 let (m, j) = end_mass(element, section, self.density);
                 (
-                    scaled(tangent_stiffness(element, section), scale),
+                    scaled(
+                        tangent_stiffness(element, &self.stresses.current()[e], section),
+                        scale,
+                    ),
                     mass_block(mass_factor * m, &(j * mass_factor)),
                 )
             })
             .unzip();
         self.system.update(&elements, &matrices, &end_blocks)?;
-        self.factor_age.record_tangents(&self.elements, &elements);
+        self.factor_age
+            .record_tangents(self.stresses.current(), &elements);
         Ok(())
     }
 
@@ -340,15 +354,16 @@ impl Frame {
                 }
             };
             let node_blocks = self.node_blocks(contributions, mass_factor);
-            let (elements, sections) = (&self.elements, &self.sections);
+            let (elements, stresses, sections) = (&self.elements, self.stresses.current(), &self.sections);
             let scale = self.stiffness_factor(dt);
-            let unscaled = |e: usize| tangent_stiffness(&elements[e], &sections[elements[e].section]);
+            let unscaled =
+                |e: usize| tangent_stiffness(&elements[e], &stresses[e], &sections[elements[e].section]);
             let scaled_by = |e: usize| scaled(unscaled(e), scale);
             // without damping, each block goes straight to the assembly (no copy on the way)
             let stiffness: &(dyn Fn(usize) -> Block + Sync) =
                 if scale == 1.0 { &unscaled } else { &scaled_by };
             self.system.assemble(stiffness, &node_blocks)?;
-            self.factor_age.record(&self.elements);
+            self.factor_age.record(&self.elements, self.stresses.current());
             self.assemblies += 1;
         }
         self.factorizations += 1;
@@ -384,64 +399,69 @@ impl Frame {
     /// the benchmark's 7 × 7 × 7 grid: 0.15 ms per step in rayon tasks, 0.03 ms on one thread).
     pub(super) fn apply_increment(&mut self, du: &[f64]) {
         for (node, du) in self.nodes.iter_mut().zip(du.chunks_exact(NODE_DOFS)) {
-            node.position += Vector3::new(du[0], du[1], du[2]);
-            let spin = UnitQuaternion::from_scaled_axis(Vector3::new(du[3], du[4], du[5]));
-            node.rotation = spin * node.rotation;
-            node.rotation.renormalize_fast();
+            move_node(node, du);
         }
     }
 
-    /// New co-rotational frames, natural deformation increments and resultants of every element.
+    /// [`Frame::apply_increment`], keeping each node's position and rotation before it for
+    /// [`Frame::take_back`] in the same pass (a separate pass read every node twice), and where the
+    /// elements' stress states stand.
+    fn apply_increment_keeping(&mut self, du: &[f64]) {
+        let kept = self.kept.keep_for_increment(&self.stresses, self.nodes.len());
+        for ((node, du), kept) in self.nodes.iter_mut().zip(du.chunks_exact(NODE_DOFS)).zip(kept) {
+            *kept = (node.position, node.rotation);
+            move_node(node, du);
+        }
+    }
+
+    /// New co-rotational frames, natural deformation increments and resultants of every element
+    /// (the stress states before them stay in their other array, `stress_states.rs`).
     pub(super) fn update_elements(&mut self) {
         let (nodes, sections) = (&self.nodes, &self.sections);
+        let (before, after) = self.stresses.to_update();
         self.elements
             .par_iter_mut()
+            .zip(before)
+            .zip(after)
             .with_min_len(PARALLEL_CHUNK)
-            .for_each(|e| update_element(e, nodes, sections));
+            .for_each(|((e, before), after)| update_element(e, before, after, nodes, sections));
+        self.stresses.updated();
     }
 
     /// [`Frame::update_elements`] and, in the same pass, the elements' contributions at the new
-    /// state without stiffness; with `keep`, also the elements' stress states before it, into the
-    /// kept state (`kept_state.rs`: their frames are made again from the nodes on a take-back).
-    fn update_elements_with_forces(&mut self, keep: bool) -> Vec<Contribution> {
+    /// state without stiffness.
+    fn update_elements_with_forces(&mut self) -> Vec<Contribution> {
         let (nodes, sections, density) = (&self.nodes, &self.sections, self.density);
-        let update = |e: &mut Element| {
-            update_element(e, nodes, sections);
-            Contribution::of(e, &sections[e.section], density)
-        };
-        if !keep {
-            return self
-                .elements
-                .par_iter_mut()
-                .with_min_len(PARALLEL_CHUNK)
-                .map(update)
-                .collect();
-        }
-        let kept = self.kept.stress_slots(self.elements.len());
-        self.elements
+        let (before, after) = self.stresses.to_update();
+        let contributions = self
+            .elements
             .par_iter_mut()
-            .zip(kept.par_iter_mut())
+            .zip(before)
+            .zip(after)
             .with_min_len(PARALLEL_CHUNK)
-            .map(|(e, kept)| {
-                *kept = e.stress;
-                update(e)
+            .map(|((e, before), after)| {
+                update_element(e, before, after, nodes, sections);
+                Contribution::of(e, after, &sections[e.section], density)
             })
-            .collect()
+            .collect();
+        self.stresses.updated();
+        contributions
     }
 
     /// Puts each elastic element's integration point where ASI-Gauss wants it given its member's hinges
     /// (a few comparisons per member: on one thread, cheaper than rayon's tasks).
     pub(super) fn update_integration_points(&mut self) {
         let sections = &self.sections;
-        self.elements.chunks_exact_mut(2).for_each(|member| {
-            let hinged = [member[0].stress.hinge.is_some(), member[1].stress.hinge.is_some()];
-            for (half, e) in member.iter_mut().enumerate() {
+        let stresses = self.stresses.current_mut().chunks_exact_mut(2);
+        for (member, stress) in self.elements.chunks_exact(2).zip(stresses) {
+            let hinged = [stress[0].hinge.is_some(), stress[1].hinge.is_some()];
+            for (half, (e, stress)) in member.iter().zip(stress.iter_mut()).enumerate() {
                 if !hinged[half] {
                     let s = e.elastic_integration_point(hinged[1 - half]);
-                    e.stress.move_to(&sections[e.section], e.length0, s);
+                    stress.move_to(&sections[e.section], e.length0, s);
                 }
             }
-        });
+        }
     }
 
     /// Stops a run whose elements stretch or twist beyond what the formulation can represent.
@@ -488,15 +508,31 @@ impl Frame {
     }
 }
 
+/// Moves `node` by its 6 entries of an increment: the translation, and the rotation composed as
+/// `exp(Δθ) R`.
+#[inline(always)]
+fn move_node(node: &mut Node, du: &[f64]) {
+    node.position += Vector3::new(du[0], du[1], du[2]);
+    let spin = UnitQuaternion::from_scaled_axis(Vector3::new(du[3], du[4], du[5]));
+    node.rotation = spin * node.rotation;
+    node.rotation.renormalize_fast();
+}
+
 /// Brings element `e` to the current node positions and rotations: its co-rotational frame, natural
-/// deformation increment and resultants.
-fn update_element(e: &mut Element, nodes: &[Node], sections: &[Section]) {
+/// deformation increment, and into `after` its stress state `before` advanced by that increment.
+fn update_element(
+    e: &mut Element,
+    before: &StressState,
+    after: &mut StressState,
+    nodes: &[Node],
+    sections: &[Section],
+) {
     let now = e.kinematics(nodes);
     let mut dd = [0.0; ELEMENT_DOFS];
     for (i, d) in dd.iter_mut().enumerate() {
         *d = now.deformation[i] - e.current.deformation[i];
     }
-    e.stress.update(&sections[e.section], e.length0, &dd);
+    after.update_from(before, &sections[e.section], e.length0, &dd);
     e.current = now;
 }
 

@@ -53,7 +53,6 @@ pub struct Element {
     pub reference: UnitQuaternion<f64>,
     /// Current frame and natural deformations.
     pub current: Corotated,
-    pub stress: StressState,
     /// Times this element has fractured (and been split off a node).
     pub fractures: u32,
     /// First-order kinematics (`geometry = "linear"`): strains from the undeformed configuration,
@@ -107,6 +106,8 @@ pub struct Topology {
     pub nodes: Vec<Node>,
     /// Two per member, in member order.
     pub elements: Vec<Element>,
+    /// Each element's stress state: unstressed, its integration point on the Gauss placement.
+    pub stresses: Vec<StressState>,
     /// Config node id → node index.
     pub ids: BTreeMap<u32, usize>,
 }
@@ -135,6 +136,7 @@ pub fn build(cfg: &FrameConfig, key: &str) -> Result<Topology, FieldError> {
         .map(|(i, s)| (s.name.as_str(), i))
         .collect();
     let mut elements = Vec::with_capacity(2 * cfg.member.len());
+    let mut stresses = Vec::with_capacity(2 * cfg.member.len());
     for (m, member) in cfg.member.iter().enumerate() {
         let (a, b) = (index[&member.nodes[0]], index[&member.nodes[1]]);
         let mid = nodes.len();
@@ -152,7 +154,7 @@ pub fn build(cfg: &FrameConfig, key: &str) -> Result<Topology, FieldError> {
                 &reference,
                 length0,
             );
-            let mut element = Element {
+            let element = Element {
                 nodes: pair,
                 member: m,
                 half,
@@ -160,17 +162,17 @@ pub fn build(cfg: &FrameConfig, key: &str) -> Result<Topology, FieldError> {
                 length0,
                 reference,
                 current,
-                stress: StressState::elastic(0.0),
                 fractures: 0,
                 linear: cfg.geometry == Geometry::Linear,
             };
-            element.stress = StressState::elastic(element.elastic_integration_point(false));
+            stresses.push(StressState::elastic(element.elastic_integration_point(false)));
             elements.push(element);
         }
     }
     Ok(Topology {
         nodes,
         elements,
+        stresses,
         ids: index,
     })
 }

@@ -55,9 +55,10 @@ impl Frame {
         s.push_str("</DataArray>\n</Cells>\n<CellData>\n");
         let member: Vec<i64> = self.elements.iter().map(|e| e.member as i64).collect();
         let hinge: Vec<i64> = self
-            .elements
+            .stresses
+            .current()
             .iter()
-            .map(|e| e.stress.hinge.map_or(0, |end| end.node() as i64 + 1))
+            .map(|s| s.hinge.map_or(0, |end| end.node() as i64 + 1))
             .collect();
         let fractures: Vec<i64> = self.elements.iter().map(|e| i64::from(e.fractures)).collect();
         for (name, values) in [("member", member), ("hinge", hinge), ("fractures", fractures)] {
