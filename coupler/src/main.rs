@@ -119,7 +119,8 @@ enum Command {
         /// Timed runs after the warm-up (default: each case's report.repeats).
         #[arg(long)]
         repeats: Option<u32>,
-        /// Put the latest report of --out into this README's marked sections; runs nothing.
+        /// Put the latest report of --out into this README's marked sections (with --full: the
+        /// sections of the full report); runs nothing.
         #[arg(long, value_name = "README", num_args = 0..=1, default_missing_value = "README.md")]
         readme: Option<PathBuf>,
         /// With --stability: only the family of this name (repeatable).

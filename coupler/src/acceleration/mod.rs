@@ -46,7 +46,7 @@ fn restore<A: serde::de::DeserializeOwned>(a: &mut A, bytes: &[u8]) -> Result<()
 
 /// The accelerator the case asks for.
 pub fn from_config(c: &CouplingConfig) -> Box<dyn Accelerator> {
-    match c.acceleration {
+    match c.acceleration() {
         AccelerationKind::Constant => Box::new(ConstantRelaxation {
             omega: c.initial_relaxation,
         }),

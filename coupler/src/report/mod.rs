@@ -59,7 +59,12 @@ pub fn folder(opts: &ReportOptions) -> PathBuf {
 pub fn report(opts: &ReportOptions) -> Result<(), CouplerError> {
     let out = folder(opts);
     if let Some(readme_path) = &opts.readme {
-        let done = readme::update(readme_path, &out, "docs/report").map_err(CouplerError::Io)?;
+        let figures = if opts.full {
+            "docs/report/full"
+        } else {
+            "docs/report"
+        };
+        let done = readme::update(readme_path, &out, figures, opts.full).map_err(CouplerError::Io)?;
         eprintln!(
             "{}: updated from {} ({})",
             readme_path.display(),
@@ -209,6 +214,13 @@ fn run_stability(
          rejects the setting; nothing ran) or failed silently (claimed success with NaN or absurd output: must never happen).\n\n",
         if opts.full { "full" } else { "CI-sized" }
     );
+    if !opts.families.is_empty() {
+        let _ = writeln!(
+            md,
+            "Only the families chosen with `--family`: {}.\n",
+            opts.families.join(", ")
+        );
+    }
     md.push_str(&stability::markdown(&outcomes, &chosen, out).map_err(io)?);
     for line in &skipped {
         let _ = writeln!(md, "\n{line}");

@@ -1,10 +1,20 @@
 //! `coupler report --readme`: the README's accuracy and stability sections are the latest
 //! report's own Markdown, put between marker comments, with its figures copied beside the README.
+//! A `--full` report goes between its own markers (`report:accuracy-full`,
+//! `report:stability-full`), its figures into a `full` folder beside the CI-sized ones.
 
 use std::path::Path;
 
 pub const ACCURACY: (&str, &str) = ("<!-- report:accuracy:start -->", "<!-- report:accuracy:end -->");
 pub const STABILITY: (&str, &str) = ("<!-- report:stability:start -->", "<!-- report:stability:end -->");
+pub const ACCURACY_FULL: (&str, &str) = (
+    "<!-- report:accuracy-full:start -->",
+    "<!-- report:accuracy-full:end -->",
+);
+pub const STABILITY_FULL: (&str, &str) = (
+    "<!-- report:stability-full:start -->",
+    "<!-- report:stability-full:end -->",
+);
 
 /// Replaces the text between `markers` in `text` with `body`; None when the markers are missing.
 pub fn replace_between(text: &str, markers: (&str, &str), body: &str) -> Option<String> {
@@ -14,14 +24,18 @@ pub fn replace_between(text: &str, markers: (&str, &str), body: &str) -> Option<
 }
 
 /// Puts `report_dir`'s `accuracy.md` and `stability.md` (those that exist) into `readme`
-/// between their markers, copying the PNGs they show into `figures` (relative to the README)
-/// and pointing the links there.
-pub fn update(readme: &Path, report_dir: &Path, figures: &str) -> Result<Vec<String>, String> {
+/// between their markers (those of a `full` report when it is one), copying the PNGs they show
+/// into `figures` (relative to the README) and pointing the links there.
+pub fn update(readme: &Path, report_dir: &Path, figures: &str, full: bool) -> Result<Vec<String>, String> {
     let mut text =
         std::fs::read_to_string(readme).map_err(|e| format!("cannot read {}: {e}", readme.display()))?;
     let base = readme.parent().unwrap_or(Path::new("."));
     let mut done = Vec::new();
-    for (file, markers) in [("accuracy.md", ACCURACY), ("stability.md", STABILITY)] {
+    let markers = match full {
+        true => [ACCURACY_FULL, STABILITY_FULL],
+        false => [ACCURACY, STABILITY],
+    };
+    for (file, markers) in ["accuracy.md", "stability.md"].into_iter().zip(markers) {
         let Ok(body) = std::fs::read_to_string(report_dir.join(file)) else {
             continue;
         };
@@ -99,5 +113,25 @@ mod tests {
         let new = replace_between(&text, ACCURACY, "new").unwrap();
         assert_eq!(new, format!("a\n{}\nnew\n{}\nb\n", ACCURACY.0, ACCURACY.1));
         assert!(replace_between("no markers", ACCURACY, "x").is_none());
+    }
+
+    #[test]
+    fn a_full_report_goes_between_its_own_markers() {
+        let dir = std::env::temp_dir().join(format!("readme-full-{}", std::process::id()));
+        let report = dir.join("report");
+        std::fs::create_dir_all(&report).unwrap();
+        std::fs::write(report.join("stability.md"), "### family\n\n![map](map.png)\n").unwrap();
+        std::fs::write(report.join("map.png"), b"png").unwrap();
+        let readme = dir.join("README.md");
+        let ci = format!("{}\nci\n{}", STABILITY.0, STABILITY.1);
+        let full = format!("{}\n{}", STABILITY_FULL.0, STABILITY_FULL.1);
+        std::fs::write(&readme, format!("{ci}\n{full}\n")).unwrap();
+        let done = update(&readme, &report, "docs/full", true).unwrap();
+        assert_eq!(done, vec!["stability.md".to_string()]);
+        let text = std::fs::read_to_string(&readme).unwrap();
+        assert!(text.starts_with(&ci), "the CI-sized section stays: {text}");
+        assert!(text.contains("#### family\n\n![map](docs/full/map.png)\n<!-- report:stability-full:end -->"));
+        assert!(dir.join("docs/full/map.png").exists());
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -32,7 +32,9 @@
 //! ```
 //!
 //! A setting's key is the dotted path of a case key; a number in the path indexes an array of
-//! tables (`structure.s.body.0.mass` is the first `[[structure.s.body]]`'s mass).
+//! tables (`structure.s.body.0.mass` is the first `[[structure.s.body]]`'s mass). The value
+//! `"unset"` removes the key from the case (e.g. `"fluid.tank.sound_speed" = "unset"` for an ISPH
+//! rung of an E-MPS case: ISPH refuses a sound speed).
 
 use super::{Case, FieldError};
 use serde::Deserialize;
@@ -286,8 +288,12 @@ pub fn describe(settings: &Settings) -> String {
         .join(", ")
 }
 
+/// A setting's value that removes its key from the case instead of setting it.
+pub const UNSET: &str = "unset";
+
 /// The case text with each setting applied and without `[report]` and `[reference]` (a run
-/// needs neither). A key's parent tables must exist; the key itself may be new.
+/// needs neither). A key's parent tables must exist; the key itself may be new; a value of
+/// [`UNSET`] removes the key.
 pub fn apply_settings(text: &str, settings: &Settings) -> Result<String, String> {
     let mut table: toml::Table = text
         .parse()
@@ -327,7 +333,11 @@ pub fn apply_settings(text: &str, settings: &Settings) -> Result<String, String>
             };
             i += 1;
         }
-        node.insert(last.to_string(), value.clone());
+        if value.as_str() == Some(UNSET) {
+            node.remove(*last);
+        } else {
+            node.insert(last.to_string(), value.clone());
+        }
     }
     toml::to_string(&table).map_err(|e| format!("cannot write the changed case: {e}"))
 }
@@ -348,5 +358,15 @@ mod tests {
         assert!(out.get("report").is_none());
         s.insert("s.body.1.mass".into(), toml::Value::Float(1.0));
         assert!(apply_settings(text, &s).unwrap_err().contains("s.body.1"));
+    }
+
+    #[test]
+    fn unset_removes_a_key() {
+        let text = "[case]\nname = \"a\"\n[f.tank]\nsound_speed = 12.1\nspacing = 0.02\n";
+        let mut s = Settings::new();
+        s.insert("f.tank.sound_speed".into(), toml::Value::String(UNSET.into()));
+        let out: toml::Table = apply_settings(text, &s).unwrap().parse().unwrap();
+        assert!(out["f"]["tank"].get("sound_speed").is_none());
+        assert_eq!(out["f"]["tank"]["spacing"].as_float(), Some(0.02));
     }
 }
