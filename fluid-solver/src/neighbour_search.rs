@@ -306,22 +306,25 @@ impl CellGrid {
     /// non-empty row along x only the cells within `√(radius² − d_yz²) + drift`, d_yz the row's
     /// distance across x (rows with d_yz ≥ radius are skipped). Never more than the 7³ block of
     /// [`CellGrid::for_each_near_point`], and the same particles in the same order wherever that
-    /// block sees all of them, so sums over them are equal to the last bit. `fluid_rows`: skip
-    /// rows holding no fluid particle (for sums over water only).
+    /// block sees all of them, so sums over them are equal to the last bit. `rows`: which rows
+    /// are read ([`Rows`]); `f(j, r², x_j − at)`. Returns whether any row was read.
     pub fn for_each_near_point_trimmed(
         &self,
         p: &Particles,
         at: [f64; 3],
         radius: f64,
         drift: f64,
-        fluid_rows: bool,
-        mut f: impl FnMut(usize, f64),
-    ) {
+        rows: Rows,
+        mut f: impl FnMut(usize, f64, [f64; 3]),
+    ) -> bool {
         let reach = self.reach(radius) as i64;
-        let centre = self.cell_index(at) as usize;
         let nx = self.dims[0];
         let nxy = nx * self.dims[1];
-        let c = [centre % nx, (centre / nx) % self.dims[1], centre / nxy];
+        // the coordinates of `at`'s cell, clamped as `cell_index` does (the same floor, no libm call)
+        let c = [0, 1, 2].map(|a| {
+            self.coord(a, at[a])
+                .clamp(PAD as i64, (self.dims[a] - PAD - 1) as i64) as usize
+        });
         let r2max = radius * radius;
         // a margin for the rounding of cell borders
         let drift = drift + 1e-9 * self.cell;
@@ -347,16 +350,21 @@ impl CellGrid {
         let (x0, x1) = span(0, radius);
         let ((y0, y1), (z0, z1)) = (span(1, radius), span(2, radius));
         if x1 < x0 as i64 || y1 < y0 as i64 || z1 < z0 as i64 {
-            return;
+            return false;
         }
         let (x1, y1, z1) = (x1 as usize, y1 as usize, z1 as usize);
+        let fluid_in = |row: usize| self.fluid_before[row + x1 + 1] > self.fluid_before[row + x0];
+        if rows == Rows::AllIfFluid && !(z0..=z1).any(|cz| (y0..=y1).any(|cy| fluid_in(cz * nxy + cy * nx))) {
+            return false;
+        }
+        let mut read = false;
         for cz in z0..=z1 {
             let gz = gap(2, cz);
             for cy in y0..=y1 {
                 let row = cz * nxy + cy * nx;
                 let (lo, hi) = (row + x0, row + x1 + 1);
                 if self.start[lo] == self.start[hi]
-                    || (fluid_rows && self.fluid_before[lo] == self.fluid_before[hi])
+                    || (rows == Rows::Fluid && self.fluid_before[lo] == self.fluid_before[hi])
                 {
                     continue;
                 }
@@ -369,17 +377,19 @@ impl CellGrid {
                 if b < a as i64 {
                     continue;
                 }
+                read = true;
                 let range = self.start[row + a] as usize..self.start[row + b as usize + 1] as usize;
                 let (xs, ys, zs) = (&p.x[range.clone()], &p.y[range.clone()], &p.z[range.clone()]);
                 for (k, ((x, y), z)) in xs.iter().zip(ys).zip(zs).enumerate() {
                     let d = [x - at[0], y - at[1], z - at[2]];
                     let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
                     if r2 < r2max {
-                        f(range.start + k, r2);
+                        f(range.start + k, r2, d);
                     }
                 }
             }
         }
+        read
     }
 
     /// The particles within `radius` of the point `at` (see [`CellGrid::for_each_near_point`]).
@@ -404,4 +414,16 @@ impl CellGrid {
             }
         }
     }
+}
+
+/// Which rows of cells a point query ([`CellGrid::for_each_near_point_trimmed`]) reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rows {
+    /// Every row holding a particle.
+    All,
+    /// Only rows holding a fluid particle (sums over water only).
+    Fluid,
+    /// Every row holding a particle, but none when no fluid particle is in the block of cells
+    /// (sums over every particle that mean nothing without water: the drag law's samples).
+    AllIfFluid,
 }

@@ -3,7 +3,7 @@
 //! particle lattices: water below z = 0 (top particle layer at −Δs/2, so the free surface of the
 //! particle water is at z = 0), a floor of wall particles below z = −H.
 
-use fluid_solver::neighbour_search::CellGrid;
+use fluid_solver::neighbour_search::{CellGrid, Rows};
 use fluid_solver::particles::Particles;
 use fluid_solver::unresolved::kernel::Wendland;
 use fluid_solver::unresolved::sampling::{sample, smallest_eigenvalue};
@@ -229,19 +229,32 @@ fn the_trimmed_point_query_sees_what_the_full_block_sees_after_particles_drifted
             let mut full = Vec::new();
             grid.for_each_near_point(&p, at, radius, |j, r2| full.push((j, r2)));
             let mut trimmed = Vec::new();
-            grid.for_each_near_point_trimmed(&p, at, radius, drift, false, |j, r2| trimmed.push((j, r2)));
+            grid.for_each_near_point_trimmed(&p, at, radius, drift, Rows::All, |j, r2, _| {
+                trimmed.push((j, r2))
+            });
             assert_eq!(full, trimmed, "at {at:?}");
             let fluid: Vec<_> = full
                 .into_iter()
                 .filter(|&(j, _)| p.kind[j] == Kind::Fluid.code())
                 .collect();
             let mut rows = Vec::new();
-            grid.for_each_near_point_trimmed(&p, at, radius, drift, true, |j, r2| {
+            grid.for_each_near_point_trimmed(&p, at, radius, drift, Rows::Fluid, |j, r2, _| {
                 if p.kind[j] == Kind::Fluid.code() {
                     rows.push((j, r2))
                 }
             });
             assert_eq!(fluid, rows, "fluid rows at {at:?}");
+            // the sampling's query: the same particles, none only where no water is within reach
+            let mut sampled = Vec::new();
+            let wet =
+                grid.for_each_near_point_trimmed(&p, at, radius, drift, Rows::AllIfFluid, |j, r2, _| {
+                    sampled.push((j, r2))
+                });
+            if wet {
+                assert_eq!(sampled, trimmed, "at {at:?}");
+            } else {
+                assert!(fluid.is_empty() && sampled.is_empty(), "water missed near {at:?}");
+            }
             points += usize::from(!trimmed.is_empty());
         }
     }

@@ -315,6 +315,43 @@ structure = "column"
 initial_flow = [1.0, 0.0, 0.0]
 "#;
 
+/// The drag column of [`DRAG_COLUMN_CASE`] as a breakable cantilever under implicit coupling
+/// (issue 13, topology that changes; `tests/drag_coupling.rs`, `tests/resume.rs`): standing at
+/// `x` [m] (the board's far side is at 0.13), its top support removed, a node at 5 cm, a yield
+/// stress lowered to 1e4 Pa (plastic moment σ_y b h²/4 = 2e-5 N m: a few thousandths of a
+/// newton of drag yield its base) and S2-17's critical curvature 0.01 1/m, so the surge breaks
+/// it; implicit coupling with constant relaxation ω = 1, tolerance 1e-6, at most 30 sweeps;
+/// `coupling` is added to the `[coupling]` section.
+pub fn breakable_drag_column_case(x: f64, end_time: f64, coupling: &str) -> String {
+    let settings = format!(
+        "tolerance = 1e-6\nacceleration = \"constant\"\ninitial_relaxation = 1.0\nmax_iterations = 30{coupling}"
+    );
+    let weak = "yield_stress = 1.0e4\nfracture_curvature = [0.01, 0.01]";
+    let middle = format!(
+        "[[structure.column.frame.node]]\nid = 3\nposition = [{x}, 0.05, 0.05]\n\n\
+         [[structure.column.frame.member]]\nnodes = [1, 3]"
+    );
+    let text = DRAG_COLUMN_CASE
+        .replace("SCHEME", "implicit")
+        .replace("TOLERANCE", &settings)
+        .replace("end_time = 0.2", &format!("end_time = {end_time}"))
+        .replace("[0.25, 0.05,", &format!("[{x}, 0.05,"))
+        .replace("yield_stress = 2.35e8", weak)
+        .replace(
+            "[[structure.column.frame.support]]\nnode = 2\nfixed = [\"x\", \"y\", \"z\", \"rx\", \"ry\", \"rz\"]\n",
+            "",
+        )
+        .replace(
+            "[[structure.column.frame.member]]\nnodes = [1, 2]",
+            &format!("{middle}\nsection = \"bar\"\norientation = [1.0, 0.0, 0.0]\n\n[[structure.column.frame.member]]\nnodes = [3, 2]"),
+        );
+    assert!(
+        text.contains("nodes = [3, 2]") && !text.contains("node = 2\n"),
+        "{text}"
+    );
+    text
+}
+
 /// The floating box of issue 5 (`tests/floating_at_rest.rs`, and with ISPH
 /// `tests/isph_floating.rs`): Δs = 0.02 m, a 0.4 × 0.4 m tank with water 0.2 m deep; a 16 × 16 × 8 cm box (8 × 8 × 4
 /// particles) of 400 kg/m³, centred in plan, placed with its bottom 4 cm under the surface (its

@@ -9,7 +9,9 @@
 //! - (explicit, constant predictor: the reaction is constant over each one-step window) have
 //!   the fluid take exactly the impulse the coupler gave, Σ_w F_w Δt_w, to 1e-9 relative.
 
-use stack_tests::{coupler_run, csv_rows, out_dir, stderr, DRAG_COLUMN_CASE as CASE};
+use stack_tests::{
+    breakable_drag_column_case, coupler_run, csv_rows, out_dir, stderr, DRAG_COLUMN_CASE as CASE,
+};
 use std::path::Path;
 
 /// Mass of the water: 10 × 10 × 10 particles of 1000 × 0.01³ kg.
@@ -223,26 +225,7 @@ fn iqn_ils_converges_on_the_drag_column() {
 fn a_column_fractures_under_implicit_coupling_and_the_run_goes_on() {
     let dir = out_dir("drag-column-implicit-fracture");
     let case = dir.join("case.toml");
-    let settings =
-        "tolerance = 1e-6\nacceleration = \"constant\"\ninitial_relaxation = 1.0\nmax_iterations = 30";
-    let weak = "yield_stress = 1.0e4\nfracture_curvature = [0.01, 0.01]";
-    let middle = "[[structure.column.frame.node]]\nid = 3\nposition = [0.135, 0.05, 0.05]\n\n\
-                  [[structure.column.frame.member]]\nnodes = [1, 3]";
-    let text = CASE
-        .replace("SCHEME", "implicit")
-        .replace("TOLERANCE", settings)
-        .replace("end_time = 0.2", "end_time = 0.09")
-        .replace("[0.25, 0.05,", "[0.135, 0.05,")
-        .replace("yield_stress = 2.35e8", weak)
-        .replace(
-            "[[structure.column.frame.support]]\nnode = 2\nfixed = [\"x\", \"y\", \"z\", \"rx\", \"ry\", \"rz\"]\n",
-            "",
-        )
-        .replace("[[structure.column.frame.member]]\nnodes = [1, 2]", &format!("{middle}\nsection = \"bar\"\norientation = [1.0, 0.0, 0.0]\n\n[[structure.column.frame.member]]\nnodes = [3, 2]"));
-    assert!(
-        text.contains("nodes = [3, 2]") && !text.contains("node = 2\n"),
-        "{text}"
-    );
+    let text = breakable_drag_column_case(0.135, 0.09, "");
     std::fs::write(&case, text).unwrap_or_else(|e| panic!("{e}"));
     let out = dir.join("out");
     let run = coupler_run(&case, &out);

@@ -9,7 +9,10 @@
 
 use schemas::message::{FromParticipant, ToParticipant};
 use schemas::recording::{Message, Recording};
-use stack_tests::{binary, case_from, coupler, coupler_run, csv_rows, out_dir, stderr, DRAG_COLUMN_CASE};
+use stack_tests::{
+    binary, breakable_drag_column_case, case_from, coupler, coupler_run, csv_rows, out_dir, stderr,
+    DRAG_COLUMN_CASE,
+};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -545,4 +548,58 @@ fn the_drag_column_resumed_after_the_surge_writes_the_same_outputs() {
         .map_or(f64::INFINITY, |r| r[1]);
     println!("the column first took drag at t = {first} s");
     assert!(first < 0.18, "the column took no drag before the last checkpoint");
+}
+
+/// Resume across a fracture under implicit coupling (issue 13): the breakable drag column of
+/// `tests/drag_coupling.rs` moved to x = 0.112 m, into the board's gap, so the surge breaks it at
+/// t ≈ 0.046 s (3 fractures in two steps; 110 windows to 0.055 s). Checkpoints at 0.025 s (the
+/// column intact) and 0.05 s (broken: the frame's new nodes and elements, the drag law's new
+/// sub-members and their flow directions, the window the fracture ended unconverged behind it).
+/// The run whole, then resumed from each checkpoint: from 0.05 s the broken topology is read
+/// back, from 0.025 s the resumed run breaks the column again in the same sweeps; every output
+/// equal byte for byte. No random kill (the other cases do that): the three runs take about 5 s
+/// of CPU together.
+#[test]
+fn a_column_broken_under_implicit_drag_coupling_resumed_writes_the_same_outputs() {
+    let dir = out_dir("resume-drag-fracture");
+    let case = dir.join("case.toml");
+    let text = breakable_drag_column_case(0.112, 0.055, "\ncheckpoint_interval = 0.025");
+    std::fs::write(&case, text).unwrap_or_else(|e| panic!("{e}"));
+    let whole = dir.join("whole");
+    let run = coupler_run(&case, &whole);
+    let log = stderr(&run);
+    assert!(run.status.success(), "{log}");
+    assert!(log.contains("changed (a fracture)"), "no topology note:\n{log}");
+    let events = std::fs::read_to_string(whole.join("column/hinge-events.csv")).unwrap_or_default();
+    let fractures: Vec<f64> = events
+        .lines()
+        .filter(|l| l.contains(",fracture,"))
+        .filter_map(|l| l.split(',').next().and_then(|t| t.parse().ok()))
+        .collect();
+    println!("fractures at {fractures:?} s");
+    assert!(
+        !fractures.is_empty() && fractures.iter().all(|&t| t > 0.025 && t < 0.05),
+        "the column breaks between the checkpoints: {events}"
+    );
+    let ledger = csv_rows(&whole.join("ledger.csv"));
+    // window,time,iterations,residual (NaN: a window a fracture ended)
+    assert!(
+        ledger.iter().any(|r| r[3].is_nan() && r[1] < 0.05),
+        "a window before the last checkpoint was ended by the fracture"
+    );
+    let kept = manifests(&whole);
+    assert_eq!(kept.len(), 2, "checkpoints at 0.025 and 0.05 s: {kept:?}");
+    // from 0.05 s: the broken column and the law's sub-members of its pieces are read back
+    let after = dir.join("from-after-the-fracture");
+    copy_folder(&whole, &after);
+    let err = resume(&case, &after);
+    assert!(err.contains("t = 0.05"), "{err}");
+    assert_same_outputs(&whole, &after);
+    // from 0.025 s (the later manifest gone): the resumed run breaks the column again
+    let before = dir.join("from-before-the-fracture");
+    copy_folder(&whole, &before);
+    std::fs::remove_file(manifests(&before)[1].as_path()).unwrap_or_else(|e| panic!("{e}"));
+    let err = resume(&case, &before);
+    assert!(err.contains("t = 0.025"), "{err}");
+    assert_same_outputs(&whole, &before);
 }

@@ -18,11 +18,14 @@
 //! `the_trimmed_point_query_sees_what_the_full_block_sees_after_particles_drifted`).
 //!
 //! Cost, callgrind on the drag cost bench (`coupler/benches/drag_cost.rs`, t = 0.004 s, 1
-//! thread, 10 080 sub-members, 3 270 wet), per call: sampling 78.2 M instructions (82.5 M on the
-//! 7³ block: 0.52 M particles read instead of ~1.3 M, but the ~0.22 M within the support cost
-//! ~140 instructions each and now dominate), spreading 49.9 M (55.1 M). With the law (3.4 M × 4)
-//! a window costs 17.5 % of the fluid step's 813 M (18.6 % before); the issue asks for 10 %.
-
+//! thread, 10 080 sub-members, 3 270 wet), per call: sampling 71.7 M instructions (77.4 M
+//! before a point with no water in its block of cells returned dry without reading the walls
+//! around it, and before the point's cell was found without a libm floor; 82.5 M on the 7³
+//! block), spreading 49.8 M (48.5 M: the same within the measurement's ±1 M); the ~0.25 M
+//! particles within the support of the wet points cost ~100 instructions each and dominate.
+//! With the law (2.45 M × 4) a window costs 131 M, 16.1 % of the fluid step's 813 M (17.5 %
+//! before); the issue asks for 10 %. Results are equal to the last bit (the same particles in
+//! the same order, the same arithmetic).
 pub mod kernel;
 pub mod sampling;
 pub mod spreading;

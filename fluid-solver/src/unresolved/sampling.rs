@@ -16,12 +16,12 @@
 //! anywhere, and inside the water about zero (the centroid of a full, symmetric support is the
 //! point itself); see the sampling tests for the bound near a surface or a wall.
 //!
-//! The particles near a point come from the step's own cell list ([`CellGrid::for_each_near_point`]),
+//! The particles near a point come from the step's own cell list ([`CellGrid::for_each_near_point_trimmed`]),
 //! so no second grid is built: see [`super`] for when that list is valid.
 
 use super::kernel::Wendland;
 use crate::kind::{Kind, FLUID};
-use crate::neighbour_search::CellGrid;
+use crate::neighbour_search::{CellGrid, Rows};
 use crate::particles::Particles;
 use rayon::prelude::*;
 
@@ -65,12 +65,12 @@ pub fn sample_at(
     // the moment matrix is symmetric (a radial kernel): its upper triangle
     let mut m = [0.0; 6];
     let gate = Kind::Gate.code();
-    grid.for_each_near_point_trimmed(p, x, kernel.radius, drift, false, |j, r2| {
+    // no water within the support: dry, whatever walls are near
+    let wet = grid.for_each_near_point_trimmed(p, x, kernel.radius, drift, Rows::AllIfFluid, |j, r2, d| {
         let kind = p.kind[j];
         if kind == gate {
             return;
         }
-        let d = [p.x[j] - x[0], p.y[j] - x[1], p.z[j] - x[2]];
         let r = r2.sqrt();
         let (value, derivative) = kernel.value_and_derivative(r);
         if kind == FLUID {
@@ -89,7 +89,7 @@ pub fn sample_at(
         }
     });
 
-    if weight <= 0.0 {
+    if !wet || weight <= 0.0 {
         return dry;
     }
     let lambda_min = smallest_eigenvalue(&m);

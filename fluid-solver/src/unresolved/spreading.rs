@@ -11,12 +11,12 @@
 //! and is returned as `unapplied`, which the solver adds up and the participant reports as a
 //! warning with its impulse.
 //!
-//! The particles near a point come from the step's own cell list ([`CellGrid::for_each_near_point`]),
+//! The particles near a point come from the step's own cell list ([`CellGrid::for_each_near_point_trimmed`]),
 //! so no second grid is built: see [`super`] for when that list is valid.
 
 use super::kernel::Wendland;
 use crate::kind::FLUID;
-use crate::neighbour_search::CellGrid;
+use crate::neighbour_search::{CellGrid, Rows};
 use crate::particles::Particles;
 use rayon::prelude::*;
 
@@ -100,7 +100,7 @@ fn shares_around(
     // a full support holds about 60 particles: one allocation
     let mut share = Vec::with_capacity(96);
     let mut sum = 0.0;
-    grid.for_each_near_point_trimmed(p, x, kernel.radius, drift, true, |j, r2| {
+    grid.for_each_near_point_trimmed(p, x, kernel.radius, drift, Rows::Fluid, |j, r2, _| {
         if p.kind[j] != FLUID {
             return;
         }

@@ -74,7 +74,14 @@ pub struct DragLink {
 /// Struct. 44, 195–204; the critical angle falls as the corners are rounded), so the table's
 /// 13° row stands within one degree. Its value (1.5 at 13°) is not checked: the texts found
 /// (issue 13, search of public pages) give the angle but not the minimum's value; take it
-/// ±0.15. S2 fits
+/// ±0.15. A second search (issue 13) for the value at high Reynolds number found
+/// only abstracts and the openings of papers, none with the minimum's number: Knisely 1990
+/// (J. Fluids Struct. 4, doi:10.1016/0889-9746(90)90137-T: mean drag against incidence in a wind
+/// tunnel at Re 8.8e3 … 8.1e4 (Re on the projected width), its values only in figures), Lee 1975
+/// (J. Fluid Mech. 69), Carassale et al. 2014 (above), van Hinsberg 2021 (Exp. Fluids 62, square prisms
+/// at Re 1e5 … 1e7, only 0°, 22.5° and 45°), and NPTEL 112104039 lecture 16, whose Fig. 3.44
+/// shows the dip but is on the side width: a value read off a side-width curve must be divided
+/// by cos α + sin α (1.20 at 13°) before it goes in this table. The row stays unconfirmed. S2 fits
 /// its own curve to Sevhan, Sarioglu & Akansu (2018, Uludağ Univ. J. Fac. Eng. 23(2)), Fig. 1,
 /// missing from the seed's text.
 pub fn square_prism_drag() -> Vec<[f64; 2]> {

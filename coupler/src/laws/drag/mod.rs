@@ -179,7 +179,13 @@ impl Drag {
                     None => centroid,
                 };
                 let mut force = Vector3::zeros();
-                if sampled && length > 0.0 {
+                let l = if sampled && length > 0.0 {
+                    force::submerged_length(fluid.sampled_lambda_min[i], s.fraction * length)
+                } else {
+                    0.0
+                };
+                // dry (l = 0): every term below is 0, none is evaluated
+                if l > 0.0 {
                     let axis = span / length;
                     let member_velocity = if v.len() >= 6 * self.nodes {
                         vec3(v, 6 * a) * n1 + vec3(v, 6 * b) * n2
@@ -187,7 +193,6 @@ impl Drag {
                         Vector3::zeros()
                     };
                     let v_rel = vec3(&fluid.sampled_velocity, 3 * i) - member_velocity;
-                    let l = force::submerged_length(fluid.sampled_lambda_min[i], s.fraction * length);
                     let (across, along) = force::split(&v_rel, &axis);
                     let alpha = attack_angle(&across, &axis, self.section_axis.as_ref());
                     let cd = self.table.at(alpha);
