@@ -13,8 +13,7 @@
 //! forwards at toe particles open upwards, and the umbrella then held the particle ahead. Measured
 //! on seven snapshots of that run (t = 0.05 … 0.4 s, 1 116 surface particles by the test's
 //! brute-force truth, detection on the same positions): ∇λ missed 164 and marked 10 interior
-//! particles, ν missed 107 and marked 6; at t = 0.15 s the run with ν misses 7 of 125 (∇λ 12 of
-//! 124) and marks none.
+//! particles, ν missed 107 and marked 6.
 //!
 //! The umbrella in 3D, with Marrone's h = r_e/2 (his kernel's support is 2h) and T = x_i + h n_i:
 //! a neighbour j with |x_ji| < √2 h occupies it when it lies in the 45° cone about n_i
@@ -31,7 +30,7 @@
 //! the water would punch a hole in the pressure field. Left open: the wall particles up to
 //! about 1 Δs above the waterline still read a fill ≥ [`WET_FILL`], so at the waterline against
 //! a wall ν tilts about 50° away from the wall and the umbrella's 45° cone can hold the
-//! neighbour beside the particle (4 of the 7 misses of the dam-break snapshot in
+//! neighbour beside the particle (the misses left on the dam-break snapshot of
 //! `tests/isph.rs`).
 
 use super::kernel::Wendland;

@@ -83,6 +83,8 @@ pub struct IsphStep {
     faces: pair_laws::BodyFaces,
     /// The Dirichlet pressure of each surface particle ([`free_surface::surface_pressure`]).
     dirichlet: Vec<f64>,
+    /// The surface flags of the last PPE assembly, for the wall differences ([`super::walls`]).
+    surface: Vec<u8>,
     times: StageTimes,
 }
 
@@ -112,6 +114,7 @@ impl IsphStep {
             ppe: PpeSystem::default(),
             solution: Vec::new(),
             dirichlet: Vec::new(),
+            surface: Vec::new(),
             faces: pair_laws::BodyFaces::default(),
             times: StageTimes::default(),
         }
@@ -151,6 +154,7 @@ impl IsphStep {
             dt,
             p,
             normals: &self.normals,
+            surface: &self.surface,
         }
     }
 
@@ -200,15 +204,9 @@ impl IsphStep {
             dt,
             p,
             normals: &self.normals,
+            surface: &self.surface,
         };
-        let pass = operators::pressure_gradient(
-            &self.kernel,
-            &self.list,
-            p,
-            (&self.takes_part, &self.lambda),
-            &walls,
-            &mut self.accel,
-        );
+        let pass = operators::pressure_gradient(&self.kernel, &self.list, p, &walls, &mut self.accel);
         (0..3).for_each(|a| totals.force_from_walls[a] -= self.kernel.volume * pass.from_non_fluid[a]);
         pair_laws::body_faces(&self.kernel, &self.list, &walls, &mut self.faces);
         bodies(
@@ -252,6 +250,7 @@ impl IsphStep {
             dt,
             p,
             normals: &self.normals,
+            surface: &self.surface,
         };
         pair_laws::body_faces(&self.kernel, &self.list, &walls, &mut self.faces);
         (p.vx, p.vy, p.vz) = v;
@@ -348,6 +347,7 @@ impl IsphStep {
             self.physics.gravity,
             &mut self.dirichlet,
         );
+        self.surface.clone_from(surface);
         let ppe = &mut self.ppe;
         ppe.row_of.clear();
         ppe.row_of.resize(p.len(), NOT_AN_UNKNOWN);
@@ -364,6 +364,7 @@ impl IsphStep {
             dt,
             p,
             normals: &self.normals,
+            surface: &self.surface,
         };
         let (rho, alpha) = (self.physics.density, self.settings.alpha_d);
         let (row_of, ratio, div, dirichlet) = (&ppe.row_of, &self.ratio, &self.divergence, &self.dirichlet);
@@ -460,6 +461,7 @@ impl IsphStep {
             dt,
             p,
             normals: &self.normals,
+            surface: &self.surface,
         };
         let solid = walls::extrapolated(&self.kernel, &self.list, &pair);
         for (w, pw) in solid {
