@@ -43,7 +43,7 @@ fn isph_surge_front_follows_the_experiments() {
 /// when a splash particle that had landed on the top of the 4-particle slab's side wall was
 /// called inside the wall (`wall_top.rs`). The run-up on the far wall rises to z = 0.65 m, 0.21 m
 /// above the walls' top, and in a slab 4 particles wide some of its splash falls over the side
-/// walls: it is removed and counted. Measured: 2 of 800 by 1.1 s and none more to 1.5 s, within
+/// walls: it is removed and counted. Measured: 6 of 800 by 0.9 s and none more to 1.5 s, within
 /// the default `max_removed_fraction` of 1 % (E-MPS on the same slab loses none to t = 3 s).
 /// While the walls held back water leaving them at the free surface (`isph::walls`), 22 left
 /// by 1.0 s, and 36 by 1.5 s once the pressure gradient took in the dry wall particles.

@@ -21,8 +21,8 @@
 //! walls' Neumann difference also pulled water back that was leaving a wall, and the run-up jet
 //! leaving the slab's side walls' top edges, whose normals tilt upwards, was drawn outwards
 //! over them (36 of 800 removed by 1.5 s with every solid in the gradient). Water at the free
-//! surface now gets only the wall's push (`isph::walls`): 2 of 800 removed by 1.5 s, Martin &
-//! Moyce 0.028.
+//! surface now gets only the wall's push (`isph::walls`): 2 of 800 removed by 1.5 s (6 once the
+//! push waits for contact), Martin & Moyce 0.028 (0.027).
 
 mod common;
 

@@ -85,6 +85,8 @@ pub struct IsphStep {
     dirichlet: Vec<f64>,
     /// The surface flags of the last PPE assembly, for the wall differences ([`super::walls`]).
     surface: Vec<u8>,
+    /// The solids' depths behind their walls' faces ([`walls::depths`]).
+    depth: Vec<f64>,
     times: StageTimes,
 }
 
@@ -115,6 +117,7 @@ impl IsphStep {
             solution: Vec::new(),
             dirichlet: Vec::new(),
             surface: Vec::new(),
+            depth: Vec::new(),
             faces: pair_laws::BodyFaces::default(),
             times: StageTimes::default(),
         }
@@ -155,6 +158,8 @@ impl IsphStep {
             p,
             normals: &self.normals,
             surface: &self.surface,
+            depth: &self.depth,
+            spacing: self.kernel.spacing,
         }
     }
 
@@ -205,6 +210,8 @@ impl IsphStep {
             p,
             normals: &self.normals,
             surface: &self.surface,
+            depth: &self.depth,
+            spacing: self.kernel.spacing,
         };
         let pass = operators::pressure_gradient(&self.kernel, &self.list, p, &walls, &mut self.accel);
         (0..3).for_each(|a| totals.force_from_walls[a] -= self.kernel.volume * pass.from_non_fluid[a]);
@@ -251,6 +258,8 @@ impl IsphStep {
             p,
             normals: &self.normals,
             surface: &self.surface,
+            depth: &self.depth,
+            spacing: self.kernel.spacing,
         };
         pair_laws::body_faces(&self.kernel, &self.list, &walls, &mut self.faces);
         (p.vx, p.vy, p.vz) = v;
@@ -321,6 +330,7 @@ impl IsphStep {
     fn assemble(&mut self, p: &Particles, state: &mut IsphState, dt: f64) {
         let k = self.kernel;
         walls::normals(&k, &self.list, p, &mut self.normals);
+        walls::depths(&k, &self.list, p, &self.normals, &mut self.depth);
         operators::divergence(&k, &self.list, p, &mut self.divergence);
         let list = &self.list;
         let surface = &mut state.surface;
@@ -365,6 +375,8 @@ impl IsphStep {
             p,
             normals: &self.normals,
             surface: &self.surface,
+            depth: &self.depth,
+            spacing: self.kernel.spacing,
         };
         let (rho, alpha) = (self.physics.density, self.settings.alpha_d);
         let (row_of, ratio, div, dirichlet) = (&ppe.row_of, &self.ratio, &self.divergence, &self.dirichlet);
@@ -462,6 +474,8 @@ impl IsphStep {
             p,
             normals: &self.normals,
             surface: &self.surface,
+            depth: &self.depth,
+            spacing: self.kernel.spacing,
         };
         let solid = walls::extrapolated(&self.kernel, &self.list, &pair);
         for (w, pw) in solid {
