@@ -3,12 +3,12 @@
 //! weight is `F_ij = 2 V (x_j − x_i)·∇W_ij / r² = −2 V W'(r)/r ≥ 0`. Each pass is a gather
 //! (particle i writes its own slot), in parallel without locks.
 
-use super::free_surface::{moment_matrix, LAMBDA_SPLASH};
+use super::free_surface::LAMBDA_SPLASH;
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
 use super::walls::NeumannPair;
 use crate::kind::{Kind, FLUID};
-use crate::moments::solve;
+use crate::moments::{smallest_eigenvalue, solve};
 use crate::particles::Particles;
 use crate::vector_field::{add, PassTotals, VectorField};
 use rayon::prelude::*;
@@ -118,10 +118,20 @@ pub fn laplacian(
 
 /// The pressure gradient of the momentum equation, for fluid i (0 elsewhere): S2-8's difference
 /// form corrected by the particle's moment matrix (Bonet & Lok 1999),
-/// `⟨∇p⟩_i = m_i⁻¹ Σ_j V (p_j − p_i) ∇W_ij` over the neighbours that take part in the detection
-/// (those that fill m_i, [`super::free_surface`]), a solid neighbour at the pressure
-/// `p_i + Δp_ij` this particle's PPE saw ([`super::walls`]). Exact for a linear pressure field on
-/// any support, full or half empty; splash particles (λ_min ≤ 0.2) keep the uncorrected sum.
+/// `⟨∇p⟩_i = m_i⁻¹ Σ_j V (p_j − p_i) ∇W_ij` over every listed neighbour, fluid or solid, with
+/// m_i (S2-10) over the same neighbours; a solid neighbour at the pressure `p_i + Δp_ij` this
+/// particle's PPE saw ([`super::walls`]). Exact for a linear pressure field on any support, full
+/// or half empty; splash particles (λ_min of this m_i ≤ 0.2) keep the uncorrected sum.
+///
+/// Every solid takes part, wet or dry, as in the PPE's Neumann differences (the wet/dry
+/// distinction of [`super::free_surface`] is the detection's: whether a wall counts as water
+/// when looking for air). A particle resting on dry wall particles then feels the wall's
+/// hydrostatic difference ρ g·(x_w − x_f) through the corrected sum, which carries its weight
+/// exactly whatever part of its support the wall fills (λ_min of a particle alone on a flat
+/// wall is about 0.5), and the Neumann part stops its motion into the wall. With only the wet
+/// solids, as before, such a particle felt no wall at all and was held only by the collision
+/// stage: a drop on the top of a side wall sank into it after about 2 s (`tests/wall_top.rs`),
+/// and a film on the dry floor ahead of the surge was held at the collision distance.
 ///
 /// Not the symmetric form `Σ_j V (p_i + p_j) ∇W_ij`: it is the difference form plus
 /// `2 p_i Σ_j V ∇W_ij`, a force proportional to the absolute pressure that vanishes only on the
@@ -139,12 +149,12 @@ pub fn pressure_gradient(
     k: &Wendland,
     list: &NeighbourList,
     p: &Particles,
-    (takes_part, lambda): (&[u8], &[f64]),
     walls: &NeumannPair,
     out: &mut VectorField,
 ) -> PassTotals {
     out.resize(p.len());
     let body = Kind::Body.code();
+    let scale = -k.volume / k.lattice_moment;
     (&mut out.x, &mut out.y, &mut out.z)
         .into_par_iter()
         .enumerate()
@@ -153,11 +163,9 @@ pub fn pressure_gradient(
             let mut g = [0.0; 3];
             let mut wall = [0.0; 3];
             if p.kind[i] == FLUID {
+                let mut m = [[0.0; 3]; 3];
                 for &j in list.of(i) {
                     let j = j as usize;
-                    if takes_part[j] == 0 {
-                        continue; // the sum must match the moment matrix it is corrected by
-                    }
                     let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
                     let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
                     let solid = p.kind[j] != FLUID;
@@ -167,9 +175,13 @@ pub fn pressure_gradient(
                     } else {
                         p.pressure[j] - p.pressure[i]
                     };
-                    let c = k.volume * k.dw_over_r(r);
+                    let w = k.dw_over_r(r);
+                    let c = k.volume * w;
                     for a in 0..3 {
                         g[a] += c * dp * d[a];
+                        for b in 0..3 {
+                            m[a][b] += scale * w * d[a] * d[b];
+                        }
                     }
                     if solid && p.kind[j] != body {
                         // The pair law of the walls' load (pair_laws.rs).
@@ -181,8 +193,8 @@ pub fn pressure_gradient(
                 // (λ_min ≤ 0.2, S2-11) keeps the plain S2-8 sum: m_i⁻¹ would multiply it by up to
                 // 1/λ_min (unchecked, the CI dam break's impact jet reached 4.6 m/s, 1.35 × 2√(gH),
                 // and the detector stopped it at t = 0.28 s).
-                if lambda[i] > LAMBDA_SPLASH {
-                    if let Some(gc) = solve(&moment_matrix(k, list, p, takes_part, i), g) {
+                if smallest_eigenvalue(&m) > LAMBDA_SPLASH {
+                    if let Some(gc) = solve(&m, g) {
                         g = gc;
                     }
                 }

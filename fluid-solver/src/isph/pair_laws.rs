@@ -52,10 +52,10 @@ impl BodyFaces {
 /// whose own opposite is not covered is an exposed one (a body one particle thin along an axis
 /// has neither and gets no load along it). A face's pressure is the extrapolated pressure
 /// carried hydrostatically to the face's centre, never below 0 (no tension where the face is
-/// above the water). Only the body particles that take part in the fluid's pressure gradient
-/// (`takes_part`, the wet ones of [`super::free_surface::fill_flags`]) carry a load: a dry body
-/// particle is not in the fluid's gradient, so the fluid would feel no reaction to its load.
-/// (Loaded, a box under a falling 8 cm cube of water took 230–450 N per step for 6 steps before
+/// above the water). Only the wet body particles (`takes_part`, of
+/// [`super::free_surface::fill_flags`]) carry a load. (The fluid's gradient reads dry solids
+/// too, since the change for drops on dry wall tops in [`super::operators::pressure_gradient`];
+/// whether dry body particles should then carry a load is open. Loaded before that change, a box under a falling 8 cm cube of water took 230–450 N per step for 6 steps before
 /// the water reached it, from the extrapolated impermeability term of the approaching surface
 /// particles, while the water fell freely: 9.0 N s in 0.1 s where the water gave up 1.2 N s.)
 pub fn body_faces(

@@ -83,6 +83,10 @@ pub struct IsphStep {
     faces: pair_laws::BodyFaces,
     /// The Dirichlet pressure of each surface particle ([`free_surface::surface_pressure`]).
     dirichlet: Vec<f64>,
+    /// The surface flags of the last PPE assembly, for the wall differences ([`super::walls`]).
+    surface: Vec<u8>,
+    /// The solids' depths behind their walls' faces ([`walls::depths`]).
+    depth: Vec<f64>,
     times: StageTimes,
 }
 
@@ -112,6 +116,8 @@ impl IsphStep {
             ppe: PpeSystem::default(),
             solution: Vec::new(),
             dirichlet: Vec::new(),
+            surface: Vec::new(),
+            depth: Vec::new(),
             faces: pair_laws::BodyFaces::default(),
             times: StageTimes::default(),
         }
@@ -151,6 +157,9 @@ impl IsphStep {
             dt,
             p,
             normals: &self.normals,
+            surface: &self.surface,
+            depth: &self.depth,
+            spacing: self.kernel.spacing,
         }
     }
 
@@ -200,15 +209,11 @@ impl IsphStep {
             dt,
             p,
             normals: &self.normals,
+            surface: &self.surface,
+            depth: &self.depth,
+            spacing: self.kernel.spacing,
         };
-        let pass = operators::pressure_gradient(
-            &self.kernel,
-            &self.list,
-            p,
-            (&self.takes_part, &self.lambda),
-            &walls,
-            &mut self.accel,
-        );
+        let pass = operators::pressure_gradient(&self.kernel, &self.list, p, &walls, &mut self.accel);
         (0..3).for_each(|a| totals.force_from_walls[a] -= self.kernel.volume * pass.from_non_fluid[a]);
         pair_laws::body_faces(
             &self.kernel,
@@ -260,6 +265,9 @@ impl IsphStep {
             dt,
             p,
             normals: &self.normals,
+            surface: &self.surface,
+            depth: &self.depth,
+            spacing: self.kernel.spacing,
         };
         pair_laws::body_faces(
             &self.kernel,
@@ -336,6 +344,7 @@ impl IsphStep {
     fn assemble(&mut self, p: &Particles, state: &mut IsphState, dt: f64) {
         let k = self.kernel;
         walls::normals(&k, &self.list, p, &mut self.normals);
+        walls::depths(&k, &self.list, p, &self.normals, &mut self.depth);
         operators::divergence(&k, &self.list, p, &mut self.divergence);
         let list = &self.list;
         let surface = &mut state.surface;
@@ -362,6 +371,7 @@ impl IsphStep {
             self.physics.gravity,
             &mut self.dirichlet,
         );
+        self.surface.clone_from(surface);
         let ppe = &mut self.ppe;
         ppe.row_of.clear();
         ppe.row_of.resize(p.len(), NOT_AN_UNKNOWN);
@@ -378,6 +388,9 @@ impl IsphStep {
             dt,
             p,
             normals: &self.normals,
+            surface: &self.surface,
+            depth: &self.depth,
+            spacing: self.kernel.spacing,
         };
         let (rho, alpha) = (self.physics.density, self.settings.alpha_d);
         let (row_of, ratio, div, dirichlet) = (&ppe.row_of, &self.ratio, &self.divergence, &self.dirichlet);
@@ -474,6 +487,9 @@ impl IsphStep {
             dt,
             p,
             normals: &self.normals,
+            surface: &self.surface,
+            depth: &self.depth,
+            spacing: self.kernel.spacing,
         };
         let solid = walls::extrapolated(&self.kernel, &self.list, &pair);
         for (w, pw) in solid {
