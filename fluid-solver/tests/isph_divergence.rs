@@ -124,15 +124,24 @@ fn check_step(cfg: &FluidConfig, t: f64) -> Terms {
     free_surface::lambda_min(&k, &list, &q, &takes_part, &mut lambda);
     let mut normals = VectorField::default();
     walls::normals(&k, &list, &q, &mut normals);
+    let mut depth = Vec::new();
+    walls::depths(&k, &list, &q, &normals, &mut depth);
+    // The step's surface flags, in this sorted order (rows are the fluid that is not surface).
+    let surface: Vec<u8> = (0..n)
+        .map(|i| if fluid(i) && !row(i) { SURFACE } else { 0 })
+        .collect();
     let pair = NeumannPair {
         density: rho,
         gravity: g,
         dt,
         p: &q,
         normals: &normals,
+        surface: &surface,
+        depth: &depth,
+        spacing: ds,
     };
     let mut grad = VectorField::default();
-    operators::pressure_gradient(&k, &list, &q, (&takes_part, &lambda), &pair, &mut grad);
+    operators::pressure_gradient(&k, &list, &q, &pair, &mut grad);
 
     // 1. The step's velocities are the projection's, v* − (Δt/ρ) G p, except where the
     // collision stage acted after it (a particle within its reach of another).
