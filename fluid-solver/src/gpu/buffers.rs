@@ -4,11 +4,13 @@
 //! (4 B), number density + pressure `vec2<f32>` (8 B), the pair pass's result `vec4<f32>` (16 B),
 //! the force from non-fluid neighbours `vec4<f32>` (16 B), candidates `u32` (4 B), cell before and
 //! after the sort and the permutation 3 × `u32` (12 B), and the sort's spare position, velocity
-//! and id (36 B): 128 B. Per cell: start, count, fluid count 3 × `u32` (12 B). Resolved bodies
-//! (`shaders/bodies.wgsl`): per body particle its offset from the body's initial centre (f32),
-//! id and body (32 B); per body its pose and velocity (f32, 64 B), its load (f32, 32 B) and one
-//! partial load per reduction group (f32, 32 B). A body particle's load of one exchange lives in
-//! its `acc` slot, so bodies add nothing per particle.
+//! and id (36 B): 128 B. Per cell: start, count, fluid count and the mask of bodies present 4 ×
+//! `u32` (16 B). Resolved bodies (`shaders/bodies.wgsl`, `shaders/reaction.wgsl`): per body
+//! particle its offset from the body's initial centre (f32), id and body (32 B); per body its
+//! pose and velocity (f32, 64 B), its three sums (loads, the fluid-side reaction, the walls'
+//! contact; f32, 3 × 32 B) and three partials per reduction group (f32, 3 × 32 B). A body
+//! particle's load of one exchange lives in its `acc` slot and the walls' share in its `wallf`
+//! slot, so bodies add nothing per particle.
 
 use super::device::GpuDevice;
 use super::reduce::Partial;
@@ -19,9 +21,12 @@ use std::sync::mpsc;
 /// Device bytes per particle (see the module doc).
 pub const BYTES_PER_PARTICLE: u64 = 128;
 /// Device bytes per cell.
-pub const BYTES_PER_CELL: u64 = 12;
+pub const BYTES_PER_CELL: u64 = 16;
+/// Sums kept per body (`SUMS` in `shaders/common.wgsl`): the loads summed by body particle, the
+/// reaction summed by fluid particle, the walls' contact.
+pub const SUMS: u64 = 3;
 
-/// Every storage buffer of the step, in binding order 1 … 23 (0 is the uniform block).
+/// Every storage buffer of the step, in binding order 1 … 24 (0 is the uniform block).
 pub struct Buffers {
     pub params: wgpu::Buffer,
     pub storage: Vec<wgpu::Buffer>,
@@ -60,7 +65,7 @@ impl Buffers {
         let n = n.max(1) as u64;
         let cells = cells as u64;
         let (bodies, members) = (bodies.max(1) as u64, members.max(1) as u64);
-        let sizes: [u64; 23] = [
+        let sizes: [u64; 24] = [
             16 * n,                                                  // 1 pos
             16 * n,                                                  // 2 vel
             4 * n,                                                   // 3 id
@@ -82,8 +87,9 @@ impl Buffers {
             (std::mem::size_of::<Partial>() * groups.max(1)) as u64, // 19 partials
             32 * members,                                            // 20 members
             64 * bodies,                                             // 21 body_kin
-            32 * bodies * groups.max(1) as u64,                      // 22 body_partials
-            32 * bodies,                                             // 23 body_loads
+            32 * SUMS * bodies * groups.max(1) as u64,               // 22 body_partials
+            32 * SUMS * bodies,                                      // 23 body_loads
+            4 * cells,                                               // 24 body_cells
         ];
         let storage = sizes
             .iter()

@@ -1,16 +1,17 @@
 //! The WGSL kernels (`shaders/`) as compute pipelines sharing one bind group layout: binding 0
-//! the uniform block, 1 … 23 the storage buffers of [`super::buffers`].
+//! the uniform block, 1 … 24 the storage buffers of [`super::buffers`].
 
 use super::buffers::Buffers;
 use super::device::GpuDevice;
 
 /// The WGSL sources, joined into one module (the bindings are declared once in `common.wgsl`).
-const SOURCES: [&str; 5] = [
+const SOURCES: [&str; 6] = [
     include_str!("shaders/common.wgsl"),
     include_str!("shaders/cell_sort.wgsl"),
     include_str!("shaders/emps.wgsl"),
     include_str!("shaders/reduce.wgsl"),
     include_str!("shaders/bodies.wgsl"),
+    include_str!("shaders/reaction.wgsl"),
 ];
 
 /// One pipeline per kernel, and the bind group over the step's buffers.
@@ -39,6 +40,9 @@ pub struct Kernels {
     pub body_collision: wgpu::ComputePipeline,
     pub reduce_bodies: wgpu::ComputePipeline,
     pub sum_bodies: wgpu::ComputePipeline,
+    pub react_viscous: wgpu::ComputePipeline,
+    pub react_pressure: wgpu::ComputePipeline,
+    pub react_collision: wgpu::ComputePipeline,
     pub bind_group: wgpu::BindGroup,
 }
 
@@ -124,6 +128,9 @@ impl Kernels {
             body_collision: make("body_collision"),
             reduce_bodies: make("reduce_bodies"),
             sum_bodies: make("sum_bodies"),
+            react_viscous: make("react_viscous"),
+            react_pressure: make("react_pressure"),
+            react_collision: make("react_collision"),
             bind_group,
         }
     }
@@ -142,7 +149,20 @@ pub fn dispatch(
     items: u32,
     group: u32,
 ) {
+    dispatch_rows(pass, k, pipeline, items, group, 1);
+}
+
+/// Records `pipeline` over `items` threads of `group` per workgroup in each of `rows` rows (the
+/// row is `workgroup_id.y`).
+pub fn dispatch_rows(
+    pass: &mut wgpu::ComputePass<'_>,
+    k: &Kernels,
+    pipeline: &wgpu::ComputePipeline,
+    items: u32,
+    group: u32,
+    rows: u32,
+) {
     pass.set_pipeline(pipeline);
     pass.set_bind_group(0, &k.bind_group, &[]);
-    pass.dispatch_workgroups(items.div_ceil(group).max(1), 1, 1);
+    pass.dispatch_workgroups(items.div_ceil(group).max(1), rows, 1);
 }

@@ -2,8 +2,9 @@
 // placed from the pose the host hands over, the fluid's pair forces on each body particle as
 // gathers (the body particle sums over its fluid neighbours, no float atomics), and their force
 // and moment about the body's centre reduced per body on the device. Each body kernel writes the
-// body particle's force into acc (whose other users read it only for fluid), and reduce_bodies
-// runs right after it, while the positions are those the forces were computed at.
+// body particle's force into acc (whose other users read it only for fluid) and the walls' share
+// of it into wallf (which the step's totals read only for fluid), and reduce_bodies runs right
+// after it, while the positions are those the forces were computed at.
 
 // Index of the member with particle id `id` (binary search over the sorted ids), or NONE.
 fn member_of(id: u32) -> u32 {
@@ -52,9 +53,14 @@ fn place_bodies(@builtin(global_invocation_id) g: vec3<u32>) {
 
 @compute @workgroup_size(64)
 fn clear_body_loads(@builtin(global_invocation_id) g: vec3<u32>) {
-    if g.x < prm.n_bodies {
+    if g.x < prm.n_bodies * SUMS {
         body_loads[g.x] = BodyLoad(vec4<f32>(0.0), vec4<f32>(0.0));
     }
+}
+
+// Slot of sum `sum` of `body` in the partials of reduction group `group`.
+fn load_slot(group: u32, body: u32, sum: u32) -> u32 {
+    return (group * prm.n_bodies + body) * SUMS + sum;
 }
 
 // S1-4's viscous pair force on body particle i from its fluid neighbours j (pair_laws::viscous):
@@ -87,6 +93,7 @@ fn body_viscous(@builtin(global_invocation_id) g: vec3<u32>) {
         }
     }
     acc[i] = vec4<f32>(-prm.mass * prm.nu * prm.lap_factor * f, 0.0);
+    wallf[i] = vec4<f32>(0.0);
 }
 
 // S1-3's pressure pair force on body particle i from its fluid neighbours j (pair_laws::pressure):
@@ -119,6 +126,7 @@ fn body_pressure(@builtin(global_invocation_id) g: vec3<u32>) {
         }
     }
     acc[i] = vec4<f32>(prm.volume * prm.grad_factor * f, 0.0);
+    wallf[i] = vec4<f32>(0.0);
 }
 
 // The collision stage on body particle i (collision::contact_law): −m/Δt (1+e) (u_ij·r_ji) r_ji/|r_ji|²
@@ -168,60 +176,69 @@ fn body_collision(@builtin(global_invocation_id) g: vec3<u32>) {
     }
     let f = -(prm.mass / prm.dt) * (1.0 + prm.restitution) * fluid + walls;
     acc[i] = vec4<f32>(f, 0.0);
+    wallf[i] = vec4<f32>(walls, 0.0);
 }
 
 var<workgroup> r_bf: array<vec3<f32>, 256>;
 var<workgroup> r_bm: array<vec3<f32>, 256>;
 
-// The force in acc of each body particle and its moment (r − c) × f about its body's centre,
-// summed per workgroup of 256 particles and per body into body_partials[group · bodies + body].
+// Sums force f and moment m over the workgroup of 256 threads (thread l) and writes the total
+// to body_partials[slot]. Called in uniform control flow.
+fn reduce_into(l: u32, slot: u32, f: vec3<f32>, m: vec3<f32>) {
+    r_bf[l] = f;
+    r_bm[l] = m;
+    workgroupBarrier();
+    for (var s = 128u; s > 0u; s = s / 2u) {
+        if l < s {
+            r_bf[l] = r_bf[l] + r_bf[l + s];
+            r_bm[l] = r_bm[l] + r_bm[l + s];
+        }
+        workgroupBarrier();
+    }
+    if l == 0u {
+        body_partials[slot] = BodyLoad(vec4<f32>(r_bf[0], 0.0), vec4<f32>(r_bm[0], 0.0));
+    }
+    workgroupBarrier();
+}
+
+// The force in acc of each body particle and its moment (r − c) × f about its body's centre
+// (LOADS), and the walls' share in wallf (WALLS), summed per workgroup of 256 particles and per
+// body into body_partials.
 @compute @workgroup_size(256)
 fn reduce_bodies(@builtin(global_invocation_id) g: vec3<u32>, @builtin(local_invocation_id) l: vec3<u32>, @builtin(workgroup_id) w: vec3<u32>) {
     let i = g.x;
     var b = NONE;
     var f = vec3<f32>(0.0);
-    var m = vec3<f32>(0.0);
+    var fw = vec3<f32>(0.0);
+    var arm = vec3<f32>(0.0);
     if i < prm.n && kind_of(i) == BODY {
         let k = member_of(pid[i]);
         if k != NONE {
             b = members[k].body;
             f = acc[i].xyz;
-            m = cross(pos[i].xyz - body_kin[b].centre.xyz, f);
+            fw = wallf[i].xyz;
+            arm = pos[i].xyz - body_kin[b].centre.xyz;
         }
     }
     for (var body = 0u; body < prm.n_bodies; body = body + 1u) {
-        if b == body {
-            r_bf[l.x] = f;
-            r_bm[l.x] = m;
-        } else {
-            r_bf[l.x] = vec3<f32>(0.0);
-            r_bm[l.x] = vec3<f32>(0.0);
-        }
-        workgroupBarrier();
-        for (var s = 128u; s > 0u; s = s / 2u) {
-            if l.x < s {
-                r_bf[l.x] = r_bf[l.x] + r_bf[l.x + s];
-                r_bm[l.x] = r_bm[l.x] + r_bm[l.x + s];
-            }
-            workgroupBarrier();
-        }
-        if l.x == 0u {
-            body_partials[w.x * prm.n_bodies + body] = BodyLoad(vec4<f32>(r_bf[0], 0.0), vec4<f32>(r_bm[0], 0.0));
-        }
-        workgroupBarrier();
+        let mine = b == body;
+        let fb = select(vec3<f32>(0.0), f, mine);
+        let fwb = select(vec3<f32>(0.0), fw, mine);
+        reduce_into(l.x, load_slot(w.x, body, LOADS), fb, cross(arm, fb));
+        reduce_into(l.x, load_slot(w.x, body, WALLS), fwb, cross(arm, fwb));
     }
 }
 
-// Sums the workgroups' partials per body (one workgroup) and adds them to body_loads, which
-// holds the step's sum over its exchanges (cleared at the step's start).
+// Sums the workgroups' partials per body and sum (one workgroup) and adds them to body_loads,
+// which holds the step's sums over its exchanges (cleared at the step's start).
 @compute @workgroup_size(256)
 fn sum_bodies(@builtin(local_invocation_id) l: vec3<u32>) {
     let groups = (prm.n + SCAN_WG - 1u) / SCAN_WG;
-    for (var body = 0u; body < prm.n_bodies; body = body + 1u) {
+    for (var slot = 0u; slot < prm.n_bodies * SUMS; slot = slot + 1u) {
         var f = vec3<f32>(0.0);
         var m = vec3<f32>(0.0);
         for (var k = l.x; k < groups; k = k + SCAN_WG) {
-            let p = body_partials[k * prm.n_bodies + body];
+            let p = body_partials[k * prm.n_bodies * SUMS + slot];
             f = f + p.force.xyz;
             m = m + p.moment.xyz;
         }
@@ -236,8 +253,8 @@ fn sum_bodies(@builtin(local_invocation_id) l: vec3<u32>) {
             workgroupBarrier();
         }
         if l.x == 0u {
-            let old = body_loads[body];
-            body_loads[body] = BodyLoad(old.force + vec4<f32>(r_bf[0], 0.0), old.moment + vec4<f32>(r_bm[0], 0.0));
+            let old = body_loads[slot];
+            body_loads[slot] = BodyLoad(old.force + vec4<f32>(r_bf[0], 0.0), old.moment + vec4<f32>(r_bm[0], 0.0));
         }
         workgroupBarrier();
     }

@@ -8,6 +8,7 @@ fn clear_cells(@builtin(global_invocation_id) g: vec3<u32>) {
     if c < prm.cells {
         atomicStore(&cell_count[c], 0u);
         atomicStore(&fluid_count[c], 0u);
+        atomicStore(&body_cells[c], 0u);
     }
 }
 
@@ -20,8 +21,15 @@ fn count_cells(@builtin(global_invocation_id) g: vec3<u32>) {
     let c = cell_index(pos[i].xyz);
     cell_of[i] = c;
     atomicAdd(&cell_count[c], 1u);
-    if kind_of(i) == FLUID {
+    let k = kind_of(i);
+    if k == FLUID {
         atomicAdd(&fluid_count[c], 1u);
+    }
+    if k == BODY && prm.n_bodies > 0u {
+        let m = member_of(pid[i]);
+        if m != NONE {
+            atomicOr(&body_cells[c], 1u << (members[m].body % 32u));
+        }
     }
 }
 

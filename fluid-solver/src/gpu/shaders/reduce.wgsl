@@ -97,8 +97,9 @@ fn reduce_step(@builtin(global_invocation_id) g: vec3<u32>, @builtin(local_invoc
             let u = vel[i].xyz;
             energy = 0.5 * dot(u, u) - dot(prm.gravity, pos[i].xyz);
             fluid = 1u;
+            // a body particle's wallf holds the walls' contact on it (bodies.wgsl)
+            wall = wallf[i].xyz;
         }
-        wall = wallf[i].xyz;
         seen = cand[i];
     }
     r_wall[l.x] = wall;

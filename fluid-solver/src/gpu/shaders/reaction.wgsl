@@ -1,0 +1,123 @@
+// The bodies' reaction on the fluid summed from the fluid's side (src/bodies.rs, fluid_side_sum):
+// fluid particle i gathers, over the particles j of body b within the exchange's radius, minus
+// the pair force the fluid exerts on j — evaluated again from i's side, not read from the body
+// kernels — with its moment about the body's centre taken at r_j, as the loads take it. The
+// workgroups of 256 fluid slots reduce it per body (workgroup_id.y = b) into the REACTION slot of
+// body_partials, beside the loads that reduce_bodies summed by body particle: two sums of the one
+// law in different orders and over different neighbour searches, which the coupler's ledger
+// compares. A fluid particle with no particle of body b in the cells within reach skips the
+// gather (body_cells, filled by the cell sort).
+
+// Whether a cell within `reach` of cell c holds a particle of body b (b % 32: a false positive
+// only costs the gather).
+fn body_near(c: u32, reach: u32, b: u32) -> bool {
+    let nx = prm.dims.x;
+    let nxy = nx * prm.dims.y;
+    let base = c - reach * nxy - reach * nx - reach;
+    let bit = 1u << (b % 32u);
+    for (var dz = 0u; dz <= 2u * reach; dz = dz + 1u) {
+        for (var dy = 0u; dy <= 2u * reach; dy = dy + 1u) {
+            for (var dx = 0u; dx <= 2u * reach; dx = dx + 1u) {
+                if (atomicLoad(&body_cells[base + dz * nxy + dy * nx + dx]) & bit) != 0u {
+                    return true;
+                }
+            }
+        }
+    }
+    return false;
+}
+
+// The body of particle j when it is a body particle, else NONE.
+fn body_of(j: u32) -> u32 {
+    if u32(pos[j].w) != BODY {
+        return NONE;
+    }
+    let m = member_of(pid[j]);
+    if m == NONE {
+        return NONE;
+    }
+    return members[m].body;
+}
+
+// Fluid slot i of an exchange's reaction on body b: whether i takes part, and its reach.
+fn reacts(i: u32, b: u32, reach: u32) -> bool {
+    return i < prm.n && b < prm.n_bodies && kind_of(i) == FLUID && body_near(cell_sorted[i], reach, b);
+}
+
+// The pair force of exchange `law` (0 viscous, 1 pressure, 2 collision) that fluid particle i
+// exerts on body particle j, with d = r_j − r_i, r2 = |d|² (0 when out of the law's range).
+fn pair_on_body(law: u32, i: u32, j: u32, d: vec3<f32>, r2: f32) -> vec3<f32> {
+    if law == 0u {
+        // S1-4 (pair_laws::viscous): −m ν 2d/(λ0 n0) (u_j − u_i) w(r_ij)
+        let re = prm.re;
+        if r2 < re * re {
+            let rr = sqrt(r2);
+            let w = (re - rr) * (re - rr) / (rr * re);
+            return -prm.mass * prm.nu * prm.lap_factor * w * (vel[j].xyz - vel[i].xyz);
+        }
+    } else if law == 1u {
+        // S1-3 (pair_laws::pressure): Δs³ d/n0_grad (P_i + P_j) r_ji/|r_ji|² w_grad(r_ji)
+        let re = prm.re_grad;
+        if r2 < re * re {
+            let rr = sqrt(r2);
+            let c = (dens[i].y + dens[j].y) * (re / rr - rr / re) / r2;
+            return prm.volume * prm.grad_factor * c * d;
+        }
+    } else {
+        // collision::contact_law: −m/Δt (1+e) (u_ji·r_ji) r_ji/|r_ji|² for approaching pairs
+        if r2 < prm.coll_dist * prm.coll_dist {
+            let closing = dot(vel[j].xyz - vel[i].xyz, d);
+            if closing < 0.0 {
+                return -(prm.mass / prm.dt) * (1.0 + prm.restitution) * (closing / r2) * d;
+            }
+        }
+    }
+    return vec3<f32>(0.0);
+}
+
+// One exchange's reaction: slot i's sum over body b's particles within `reach` cells, reduced
+// into the REACTION partial of its workgroup and body.
+fn react(law: u32, reach: u32, g: vec3<u32>, l: u32, w: vec3<u32>) {
+    let i = g.x;
+    let b = w.y;
+    var f = vec3<f32>(0.0);
+    var m = vec3<f32>(0.0);
+    if reacts(i, b, reach) {
+        let xi = pos[i].xyz;
+        let centre = body_kin[b].centre.xyz;
+        let c = cell_sorted[i];
+        for (var dz = 0u; dz <= 2u * reach; dz = dz + 1u) {
+            for (var dy = 0u; dy <= 2u * reach; dy = dy + 1u) {
+                let range = row_range(c, reach, dy, dz);
+                for (var j = range.x; j < range.y; j = j + 1u) {
+                    let xj = pos[j].xyz;
+                    let d = xj - xi;
+                    let r2 = dot(d, d);
+                    if r2 > 0.0 && body_of(j) == b {
+                        let r = -pair_on_body(law, i, j, d, r2);
+                        f = f + r;
+                        m = m + cross(xj - centre, r);
+                    }
+                }
+            }
+        }
+    }
+    if b < prm.n_bodies {
+        reduce_into(l, load_slot(w.x, b, REACTION), f, m);
+    }
+}
+
+@compute @workgroup_size(256)
+fn react_viscous(@builtin(global_invocation_id) g: vec3<u32>, @builtin(local_invocation_id) l: vec3<u32>, @builtin(workgroup_id) w: vec3<u32>) {
+    react(0u, prm.reach, g, l.x, w);
+}
+
+@compute @workgroup_size(256)
+fn react_pressure(@builtin(global_invocation_id) g: vec3<u32>, @builtin(local_invocation_id) l: vec3<u32>, @builtin(workgroup_id) w: vec3<u32>) {
+    react(1u, prm.reach_grad, g, l.x, w);
+}
+
+@compute @workgroup_size(256)
+fn react_collision(@builtin(global_invocation_id) g: vec3<u32>, @builtin(local_invocation_id) l: vec3<u32>, @builtin(workgroup_id) w: vec3<u32>) {
+    react(2u, prm.reach_coll, g, l.x, w);
+}
