@@ -374,3 +374,23 @@ pub fn body_ref<'a>(
     }
     Ok((participant, body))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn coupling(extra: &str) -> CouplingConfig {
+        toml::from_str(&format!("window = 0.01\nscheme = \"explicit\"\n{extra}"))
+            .unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    #[test]
+    fn the_ledger_tolerance_defaults_by_backend_and_a_given_one_is_kept() {
+        let c = coupling("");
+        assert_eq!(c.balance_tolerance(false), CPU_BALANCE_TOLERANCE);
+        assert_eq!(c.balance_tolerance(true), GPU_BALANCE_TOLERANCE);
+        let c = coupling("balance_tolerance = 1e-9");
+        assert_eq!(c.balance_tolerance(false), 1e-9);
+        assert_eq!(c.balance_tolerance(true), 1e-9);
+    }
+}
