@@ -28,7 +28,23 @@ fn count_cells(@builtin(global_invocation_id) g: vec3<u32>) {
     if k == BODY && prm.n_bodies > 0u {
         let m = member_of(pid[i]);
         if m != NONE {
-            atomicOr(&body_cells[c], 1u << (members[m].body % 32u));
+            mark_body_near(c, 1u << (members[m].body % 32u));
+        }
+    }
+}
+
+// Sets `bit` in every cell within reach_react of cell c (cell_index keeps c at least pad ≥
+// reach cells from the grid's faces).
+fn mark_body_near(c: u32, bit: u32) {
+    let r = reach_react();
+    let nx = prm.dims.x;
+    let nxy = nx * prm.dims.y;
+    let base = c - r * nxy - r * nx - r;
+    for (var dz = 0u; dz <= 2u * r; dz = dz + 1u) {
+        for (var dy = 0u; dy <= 2u * r; dy = dy + 1u) {
+            for (var dx = 0u; dx <= 2u * r; dx = dx + 1u) {
+                atomicOr(&body_cells[base + dz * nxy + dy * nx + dx], bit);
+            }
         }
     }
 }

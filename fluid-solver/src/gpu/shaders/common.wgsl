@@ -75,7 +75,8 @@ const NONE: u32 = 0xffffffffu;
 @group(0) @binding(22) var<storage, read_write> body_partials: array<BodyLoad>;
 // Each body's sums over the step's exchanges, SUMS per body: what the host reads back.
 @group(0) @binding(23) var<storage, read_write> body_loads: array<BodyLoad>;
-// Per cell: bit b % 32 set when a particle of body b lies in it (the reaction's skip test).
+// Per cell: bit b % 32 set when a particle of body b lies within reach_react cells of it (the
+// reaction's skip test, reaction.wgsl; filled by the cell sort).
 @group(0) @binding(24) var<storage, read_write> body_cells: array<atomic<u32>>;
 
 // A body particle's offset from its body's initial centre (f32), its id and its body.

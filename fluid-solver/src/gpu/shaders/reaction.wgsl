@@ -5,33 +5,24 @@
 // workgroups of 256 fluid slots reduce it per body (workgroup_id.y = b) into the REACTION slot of
 // body_partials, beside the loads that reduce_bodies summed by body particle: two sums of the one
 // law in different orders and over different neighbour searches, which the coupler's ledger
-// compares. A fluid particle with no particle of body b in the cells within reach skips the
-// gather (body_cells, filled by the cell sort).
+// compares. A fluid particle with no particle of body b within reach skips the gather
+// (body_cells, filled by the cell sort).
 
-// Whether a cell within `reach` of cell c holds a particle of body b (b % 32: a false positive
-// only costs the gather).
-fn body_near(c: u32, reach: u32, b: u32) -> bool {
-    let nx = prm.dims.x;
-    let nxy = nx * prm.dims.y;
-    let base = c - reach * nxy - reach * nx - reach;
-    let bit = 1u << (b % 32u);
-    for (var dz = 0u; dz <= 2u * reach; dz = dz + 1u) {
-        for (var dy = 0u; dy <= 2u * reach; dy = dy + 1u) {
-            for (var dx = 0u; dx <= 2u * reach; dx = dx + 1u) {
-                if (atomicLoad(&body_cells[base + dz * nxy + dy * nx + dx]) & bit) != 0u {
-                    return true;
-                }
-            }
-        }
-    }
-    return false;
+// Cells each way within which the exchanges pair a fluid and a body particle: the largest reach
+// of the laws in use (S1-4's r_e only with the viscous term).
+fn reach_react() -> u32 {
+    return max(select(prm.reach_grad, max(prm.reach, prm.reach_grad), prm.viscous != 0u), prm.reach_coll);
 }
 
-// The body of particle j when it is a body particle, else NONE.
+// Fluid slot i of an exchange's reaction on body b: whether i takes part (a particle of body b
+// within reach_react of its cell; b % 32: a false positive only costs the gather).
+fn reacts(i: u32, b: u32) -> bool {
+    return i < prm.n && b < prm.n_bodies && kind_of(i) == FLUID
+        && (atomicLoad(&body_cells[cell_sorted[i]]) & (1u << (b % 32u))) != 0u;
+}
+
+// The body of body particle j (NONE when it is no member, as reduce_bodies skips it).
 fn body_of(j: u32) -> u32 {
-    if u32(pos[j].w) != BODY {
-        return NONE;
-    }
     let m = member_of(pid[j]);
     if m == NONE {
         return NONE;
@@ -39,9 +30,14 @@ fn body_of(j: u32) -> u32 {
     return members[m].body;
 }
 
-// Fluid slot i of an exchange's reaction on body b: whether i takes part, and its reach.
-fn reacts(i: u32, b: u32, reach: u32) -> bool {
-    return i < prm.n && b < prm.n_bodies && kind_of(i) == FLUID && body_near(cell_sorted[i], reach, b);
+// The squared range of exchange `law` (0 viscous, 1 pressure, 2 collision).
+fn range2(law: u32) -> f32 {
+    if law == 0u {
+        return prm.re * prm.re;
+    } else if law == 1u {
+        return prm.re_grad * prm.re_grad;
+    }
+    return prm.coll_dist * prm.coll_dist;
 }
 
 // The pair force of exchange `law` (0 viscous, 1 pressure, 2 collision) that fluid particle i
@@ -82,21 +78,25 @@ fn react(law: u32, reach: u32, g: vec3<u32>, l: u32, w: vec3<u32>) {
     let b = w.y;
     var f = vec3<f32>(0.0);
     var m = vec3<f32>(0.0);
-    if reacts(i, b, reach) {
+    if reacts(i, b) {
         let xi = pos[i].xyz;
         let centre = body_kin[b].centre.xyz;
         let c = cell_sorted[i];
+        let reach2 = range2(law);
         for (var dz = 0u; dz <= 2u * reach; dz = dz + 1u) {
             for (var dy = 0u; dy <= 2u * reach; dy = dy + 1u) {
                 let range = row_range(c, reach, dy, dz);
                 for (var j = range.x; j < range.y; j = j + 1u) {
-                    let xj = pos[j].xyz;
-                    let d = xj - xi;
+                    let pj = pos[j];
+                    if u32(pj.w) != BODY {
+                        continue;
+                    }
+                    let d = pj.xyz - xi;
                     let r2 = dot(d, d);
-                    if r2 > 0.0 && body_of(j) == b {
+                    if r2 > 0.0 && r2 < reach2 && body_of(j) == b {
                         let r = -pair_on_body(law, i, j, d, r2);
                         f = f + r;
-                        m = m + cross(xj - centre, r);
+                        m = m + cross(pj.xyz - centre, r);
                     }
                 }
             }
