@@ -4,13 +4,13 @@
 //! (4 B), number density + pressure `vec2<f32>` (8 B), the pair pass's result `vec4<f32>` (16 B),
 //! the force from non-fluid neighbours `vec4<f32>` (16 B), candidates `u32` (4 B), cell before and
 //! after the sort and the permutation 3 × `u32` (12 B), and the sort's spare position, velocity
-//! and id (36 B): 128 B. Per cell: start, count, fluid count and the mask of bodies present 4 ×
-//! `u32` (16 B). Resolved bodies (`shaders/bodies.wgsl`, `shaders/reaction.wgsl`): per body
-//! particle its offset from the body's initial centre (f32), id and body (32 B); per body its
-//! pose and velocity (f32, 64 B), its three sums (loads, the fluid-side reaction, the walls'
-//! contact; f32, 3 × 32 B) and three partials per reduction group (f32, 3 × 32 B). A body
-//! particle's load of one exchange lives in its `acc` slot and the walls' share in its `wallf`
-//! slot, so bodies add nothing per particle.
+//! and id (36 B): 128 B. Per cell: start, count, fluid count 3 × `u32` (12 B), with resolved
+//! bodies also the mask of bodies near it (`u32`, 4 B). Resolved bodies (`shaders/bodies.wgsl`,
+//! `shaders/reaction.wgsl`): per body particle its offset from the body's initial centre (f32),
+//! id and body (32 B); per body its pose and velocity (f32, 64 B), its three sums (loads, the
+//! fluid-side reaction, the walls' contact; f32, 3 × 32 B) and three partials per reduction
+//! group (f32, 3 × 32 B). A body particle's load of one exchange lives in its `acc` slot and the
+//! walls' share in its `wallf` slot, so bodies add nothing per particle.
 
 use super::device::GpuDevice;
 use super::reduce::Partial;
@@ -20,8 +20,8 @@ use std::sync::mpsc;
 
 /// Device bytes per particle (see the module doc).
 pub const BYTES_PER_PARTICLE: u64 = 128;
-/// Device bytes per cell.
-pub const BYTES_PER_CELL: u64 = 16;
+/// Device bytes per cell (4 more with resolved bodies: the mask of bodies near it).
+pub const BYTES_PER_CELL: u64 = 12;
 /// Sums kept per body (`SUMS` in `shaders/common.wgsl`): the loads summed by body particle, the
 /// reaction summed by fluid particle, the walls' contact.
 pub const SUMS: u64 = 3;
@@ -64,6 +64,8 @@ impl Buffers {
     ) -> Buffers {
         let n = n.max(1) as u64;
         let cells = cells as u64;
+        // the mask of bodies near each cell only when there are bodies
+        let body_cells = if bodies > 0 { cells } else { 1 };
         let (bodies, members) = (bodies.max(1) as u64, members.max(1) as u64);
         let sizes: [u64; 24] = [
             16 * n,                                                  // 1 pos
@@ -89,7 +91,7 @@ impl Buffers {
             64 * bodies,                                             // 21 body_kin
             32 * SUMS * bodies * groups.max(1) as u64,               // 22 body_partials
             32 * SUMS * bodies,                                      // 23 body_loads
-            4 * cells,                                               // 24 body_cells
+            4 * body_cells,                                          // 24 body_cells
         ];
         let storage = sizes
             .iter()

@@ -8,7 +8,9 @@ fn clear_cells(@builtin(global_invocation_id) g: vec3<u32>) {
     if c < prm.cells {
         atomicStore(&cell_count[c], 0u);
         atomicStore(&fluid_count[c], 0u);
-        atomicStore(&body_cells[c], 0u);
+        if prm.n_bodies > 0u {
+            atomicStore(&body_cells[c], 0u);
+        }
     }
 }
 
