@@ -11,6 +11,7 @@ use crate::progress::Progress;
 use crate::scheme::{CheckpointPlan, Summary, Windows};
 use crate::stability::Detector;
 use crate::stack::{Launch, Stack};
+use schemas::case::fluid::FluidBackend;
 use schemas::case::{Case, Kind};
 use schemas::message::{Role, PROTOCOL_VERSION};
 use schemas::recording::{Recorder, RecordingHeader};
@@ -188,9 +189,11 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
                 })?;
         }
         let ledger_path = out.join("ledger.csv");
+        let gpu = case.fluid.values().any(|f| f.backend == FluidBackend::Gpu);
+        let tolerance = coupling.balance_tolerance(gpu);
         let ledger = match &resumed {
-            Some(_) => Ledger::append(&ledger_path, coupling.balance_tolerance)?,
-            None => Ledger::create(&ledger_path, &order, coupling.balance_tolerance)?,
+            Some(_) => Ledger::append(&ledger_path, tolerance)?,
+            None => Ledger::create(&ledger_path, &order, tolerance)?,
         };
         let windows = Windows {
             stack: &mut stack,

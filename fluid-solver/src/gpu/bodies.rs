@@ -2,8 +2,11 @@
 //! [`crate::bodies`]: the host hands over each body's pose and velocity for a step (the values
 //! the CPU path passes to [`crate::bodies::RigidBodies::set_kinematics`]), the device places the
 //! body particles, sums the fluid's pair forces and the walls' contact on them as gathers, and
-//! reduces force and moment per body; only 32 B per body come back per step.
+//! reduces force and moment per body; it also sums the bodies' reaction on the fluid from the
+//! fluid particles' side (`shaders/reaction.wgsl`), for the action–reaction ledger; 96 B per body
+//! come back per step.
 
+use super::buffers::SUMS;
 use bytemuck::{Pod, Zeroable};
 
 /// Mirror of `Member` in `shaders/common.wgsl`: a body particle's offset from its body's initial
@@ -67,12 +70,21 @@ pub fn kinematics(pose: &[f64], velocity: &[f64], lead: f64) -> Vec<BodyKin> {
         .collect()
 }
 
-/// The loads read back as 6 per body (fx fy fz mx my mz) in f64.
-pub fn loads(read: &[BodyLoad]) -> Vec<f64> {
-    read.iter()
-        .flat_map(|l| {
-            let (f, m) = (l.force, l.moment);
-            [f[0], f[1], f[2], m[0], m[1], m[2]].map(f64::from)
-        })
-        .collect()
+/// The sums read back (`SUMS` per body: loads, the fluid-side reaction, the walls' contact) as
+/// 6 per body (fx fy fz mx my mz) in f64: the loads, and the reaction on the fluid and the walls
+/// (the fluid-side sum minus the walls' contact, whose reaction the walls take, as
+/// [`crate::solver`] does on the CPU).
+pub fn loads_and_reactions(read: &[BodyLoad]) -> (Vec<f64>, Vec<f64>) {
+    let six = |l: &BodyLoad| {
+        let (f, m) = (l.force, l.moment);
+        [f[0], f[1], f[2], m[0], m[1], m[2]].map(f64::from)
+    };
+    let mut loads = Vec::new();
+    let mut reactions = Vec::new();
+    for sums in read.chunks_exact(SUMS as usize) {
+        let (fluid_side, walls) = (six(&sums[1]), six(&sums[2]));
+        loads.extend(six(&sums[0]));
+        reactions.extend((0..6).map(|a| fluid_side[a] - walls[a]));
+    }
+    (loads, reactions)
 }

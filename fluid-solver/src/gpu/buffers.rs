@@ -6,11 +6,13 @@
 //! after the sort and the permutation 3 × `u32` (12 B): 92 B (the sort gathers through the pair
 //! pass's result and the permutation, free while it runs, so it needs no spare copies). Per
 //! cell: start and count `u32` (8 B; the count's top bit flags a cell with fluid), and 4 B per
-//! 4096 cells of the scan's block totals. Per 256 particles one reduction partial (32 B).
-//! Resolved bodies (`shaders/bodies.wgsl`): per body particle its offset from the body's initial
-//! centre (f32), id and body (32 B); per body its pose and velocity (f32, 64 B), its load (f32,
-//! 32 B) and one partial load per reduction group (f32, 32 B). A body particle's load of one
-//! exchange lives in its `acc` slot, so bodies add nothing per particle.
+//! 4096 cells of the scan's block totals; with resolved bodies also the mask of bodies near it
+//! (`u32`, 4 B: 12 B). Per 256 particles one reduction partial (32 B). Resolved bodies
+//! (`shaders/bodies.wgsl`, `shaders/reaction.wgsl`): per body particle its offset from the
+//! body's initial centre (f32), id and body (32 B); per body its pose and velocity (f32, 64 B),
+//! its three sums (loads, the fluid-side reaction, the walls' contact; f32, 3 × 32 B) and three
+//! partials per reduction group (f32, 3 × 32 B). A body particle's load of one exchange lives in
+//! its `acc` slot and the walls' share in its `wallf` slot, so bodies add nothing per particle.
 
 use super::device::GpuDevice;
 use super::reduce::Partial;
@@ -18,7 +20,11 @@ use crate::particles::Particles;
 use bytemuck::{Pod, Zeroable};
 use std::sync::mpsc;
 
-/// Every storage buffer of the step, in binding order 1 … 19 (0 is the uniform block).
+/// Sums kept per body (`SUMS` in `shaders/common.wgsl`): the loads summed by body particle, the
+/// reaction summed by fluid particle, the walls' contact.
+pub const SUMS: u64 = 3;
+
+/// Every storage buffer of the step, in binding order 1 … 20 (0 is the uniform block).
 pub struct Buffers {
     pub params: wgpu::Buffer,
     pub storage: Vec<wgpu::Buffer>,
@@ -58,8 +64,12 @@ impl Buffers {
         let n = n.max(1) as u64;
         let block_sums = super::cell_sort::block_sum_entries(cells as u32);
         let cells = cells as u64;
+        // the mask of bodies near each cell only when there are bodies
+        let body_cells = if bodies > 0 { cells } else { 1 };
+        // and the bodies' partials per reduction group
+        let body_groups = if bodies > 0 { groups.max(1) as u64 } else { 1 };
         let (bodies, members) = (bodies.max(1) as u64, members.max(1) as u64);
-        let sizes: [u64; 19] = [
+        let sizes: [u64; 20] = [
             16 * n,                                                  // 1 pos
             16 * n,                                                  // 2 vel
             4 * n,                                                   // 3 id
@@ -77,8 +87,9 @@ impl Buffers {
             (std::mem::size_of::<Partial>() * groups.max(1)) as u64, // 15 partials
             32 * members,                                            // 16 members
             64 * bodies,                                             // 17 body_kin
-            32 * bodies * groups.max(1) as u64,                      // 18 body_partials
-            32 * bodies,                                             // 19 body_loads
+            32 * SUMS * bodies * body_groups,                        // 18 body_partials
+            32 * SUMS * bodies,                                      // 19 body_loads
+            4 * body_cells,                                          // 20 body_cells
         ];
         let storage = sizes
             .iter()

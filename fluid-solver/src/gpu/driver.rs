@@ -119,13 +119,12 @@ impl FluidSolver {
         }
         st.totals.candidates += report.candidates;
         st.totals.particle_steps += n;
-        // the bodies' loads from the device; the fluid's reaction is their opposite (each pair
-        // force is summed once, by the body particle's gather; see the README's GPU section)
-        let loads = dev.body_loads();
+        // the bodies' loads and the fluid's reaction, two sums on the device (by body particle,
+        // by fluid particle) that the coupler's ledger compares
         st.body_exchange.loads.clear();
-        st.body_exchange.loads.extend_from_slice(loads);
+        st.body_exchange.loads.extend_from_slice(dev.body_loads());
         st.body_exchange.reaction.clear();
-        st.body_exchange.reaction.extend(loads.iter().map(|v| -v));
+        st.body_exchange.reaction.extend_from_slice(dev.body_reactions());
         self.escape_pending = report.escaped > 0;
         let energy_over = self
             .monitor

@@ -1,17 +1,18 @@
 //! The WGSL kernels (`shaders/`) as compute pipelines sharing one bind group layout: binding 0
-//! the uniform block, 1 … 19 the storage buffers of [`super::buffers`]; and their dispatch,
+//! the uniform block, 1 … 20 the storage buffers of [`super::buffers`]; and their dispatch,
 //! in rows when a dispatch has more workgroups than the device allows per dimension.
 
 use super::buffers::Buffers;
 use super::device::GpuDevice;
 
 /// The WGSL sources, joined into one module (the bindings are declared once in `common.wgsl`).
-const SOURCES: [&str; 5] = [
+const SOURCES: [&str; 6] = [
     include_str!("shaders/common.wgsl"),
     include_str!("shaders/cell_sort.wgsl"),
     include_str!("shaders/emps.wgsl"),
     include_str!("shaders/reduce.wgsl"),
     include_str!("shaders/bodies.wgsl"),
+    include_str!("shaders/reaction.wgsl"),
 ];
 
 /// One pipeline per kernel, and the bind group over the step's buffers.
@@ -44,6 +45,9 @@ pub struct Kernels {
     pub body_collision: wgpu::ComputePipeline,
     pub reduce_bodies: wgpu::ComputePipeline,
     pub sum_bodies: wgpu::ComputePipeline,
+    pub react_viscous: wgpu::ComputePipeline,
+    pub react_pressure: wgpu::ComputePipeline,
+    pub react_collision: wgpu::ComputePipeline,
     pub bind_group: wgpu::BindGroup,
     /// Workgroups per row of a dispatch: the device's limit per dimension (65 535 on most),
     /// or fewer to run the 2-D path at small sizes ([`super::GpuEmps::set_dispatch_row`]).
@@ -136,6 +140,9 @@ impl Kernels {
             body_collision: make("body_collision"),
             reduce_bodies: make("reduce_bodies"),
             sum_bodies: make("sum_bodies"),
+            react_viscous: make("react_viscous"),
+            react_pressure: make("react_pressure"),
+            react_collision: make("react_collision"),
             bind_group,
             row: device.limits().max_compute_workgroups_per_dimension,
         }
@@ -158,10 +165,23 @@ pub fn dispatch(
     items: u32,
     group: u32,
 ) {
+    dispatch_layers(pass, k, pipeline, items, group, 1);
+}
+
+/// Records `pipeline` over `items` threads of `group` per workgroup, as [`dispatch`] does, in
+/// each of `layers` layers (the layer is `workgroup_id.z`; the reaction's body).
+pub fn dispatch_layers(
+    pass: &mut wgpu::ComputePass<'_>,
+    k: &Kernels,
+    pipeline: &wgpu::ComputePipeline,
+    items: u32,
+    group: u32,
+    layers: u32,
+) {
     pass.set_pipeline(pipeline);
     pass.set_bind_group(0, &k.bind_group, &[]);
     let (x, y) = grid_of(items.div_ceil(group).max(1), k.row);
-    pass.dispatch_workgroups(x, y, 1);
+    pass.dispatch_workgroups(x, y, layers);
 }
 
 /// Workgroups per row and rows for `groups` workgroups in rows of at most `row`.

@@ -2,14 +2,15 @@
 //! viscous term is on) cell sort at r^k and S1-4, then S1-10/S1-11, cell sort at r*, S1-15 with
 //! S1-14, S1-3, S1-12/S1-13, the collision pass and its update, and the device reduction of the
 //! detector and the totals. Only the 32 B per 256 particles of that reduction come back per step,
-//! and with resolved bodies 32 B per body (their force and moment, reduced on the device after
+//! and with resolved bodies 96 B per body (their loads, the fluid's reaction summed from the
+//! fluid's side and the walls' contact, each a force and a moment reduced on the device after
 //! each exchange: [`super::bodies`]).
 
 use super::bodies::{self, BodyLoad};
-use super::buffers::{map_read, Buffers, BODY_KIN, BODY_LOADS, BOXES, MEMBERS, PARTIALS};
+use super::buffers::{map_read, Buffers, BODY_KIN, BODY_LOADS, BOXES, MEMBERS, PARTIALS, SUMS};
 use super::cell_sort;
 use super::device::GpuDevice;
-use super::kernels::{dispatch, Kernels, WG, WIDE_WG};
+use super::kernels::{dispatch, dispatch_layers, Kernels, WG, WIDE_WG};
 use super::params::{f32x3, Params};
 use super::reduce::{self, Partial, StepReport};
 use crate::body_wall_contact::CONTACT_PERIOD_STEPS;
@@ -52,10 +53,11 @@ pub struct GpuEmps {
     viscous: bool,
     /// Where the reduction's partials and the bodies' loads are read back (reused every step).
     staging: wgpu::Buffer,
-    /// Bodies on the device; their loads of the last step (6 per body); a pose handed over and
-    /// not yet applied to the body particles.
+    /// Bodies on the device; their loads and the fluid's reaction of the last step (6 per body
+    /// each); a pose handed over and not yet applied to the body particles.
     bodies: usize,
     body_loads: Vec<f64>,
+    body_reactions: Vec<f64>,
     place_pending: bool,
     /// Submit and wait after each stage to time it (the benchmark); off in runs.
     profile: bool,
@@ -156,7 +158,7 @@ impl GpuEmps {
         let staging = dev.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("partials"),
             size: (groups.max(1) * std::mem::size_of::<Partial>()
-                + n_bodies * std::mem::size_of::<BodyLoad>()) as u64,
+                + SUMS as usize * n_bodies * std::mem::size_of::<BodyLoad>()) as u64,
             usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -164,6 +166,7 @@ impl GpuEmps {
             staging,
             bodies: n_bodies,
             body_loads: vec![0.0; 6 * n_bodies],
+            body_reactions: vec![0.0; 6 * n_bodies],
             place_pending: false,
             dev,
             buffers,
@@ -224,6 +227,14 @@ impl GpuEmps {
         self.buffers.device_bytes()
     }
 
+    /// Force and moment the bodies exerted on the fluid and the walls in the last step (6 per
+    /// body): the fluid's share summed on the device from the fluid particles' side
+    /// (`shaders/reaction.wgsl`), minus the walls' contact; minus [`GpuEmps::body_loads`] up to
+    /// f32 rounding.
+    pub fn body_reactions(&self) -> &[f64] {
+        &self.body_reactions
+    }
+
     /// Bytes copied host → device and device → host since the start.
     pub fn bytes_moved(&self) -> (u64, u64) {
         (self.buffers.uploaded, self.buffers.downloaded)
@@ -261,16 +272,18 @@ impl GpuEmps {
         let groups = self.n.div_ceil(WIDE_WG as usize).max(1);
         let (bodies, place) = (self.bodies as u32, self.place_pending);
         self.place_pending = false;
-        // after an exchange's pass: each body particle's force summed per body on the device
-        let reduce_bodies = |p: &mut wgpu::ComputePass<'_>, k: &Kernels| {
+        // after an exchange's pass: each body particle's force summed per body, and the reaction
+        // summed from the fluid particles' side (`react`), on the device
+        let reduce_bodies = |p: &mut wgpu::ComputePass<'_>, k: &Kernels, react: &wgpu::ComputePipeline| {
             dispatch(p, k, &k.reduce_bodies, n, WIDE_WG);
+            dispatch_layers(p, k, react, n, WIDE_WG, bodies);
             dispatch(p, k, &k.sum_bodies, 1, WIDE_WG);
         };
         let mut rec = Recorder::new(self);
         rec.passes("clear", |p, k| {
             dispatch(p, k, &k.clear_sums, n, WG);
             if bodies > 0 {
-                dispatch(p, k, &k.clear_body_loads, bodies, WG);
+                dispatch(p, k, &k.clear_body_loads, bodies * SUMS as u32, WG);
             }
             if place {
                 dispatch(p, k, &k.place_bodies, n, WG);
@@ -282,7 +295,7 @@ impl GpuEmps {
                 dispatch(p, k, &k.laplacian, n, WG);
                 if bodies > 0 {
                     dispatch(p, k, &k.body_viscous, n, WG);
-                    reduce_bodies(p, k);
+                    reduce_bodies(p, k, &k.react_viscous);
                 }
             });
         }
@@ -293,7 +306,7 @@ impl GpuEmps {
             dispatch(p, k, &k.gradient, n, WG);
             if bodies > 0 {
                 dispatch(p, k, &k.body_pressure, n, WG);
-                reduce_bodies(p, k);
+                reduce_bodies(p, k, &k.react_pressure);
             }
             dispatch(p, k, &k.correct, n, WG);
         });
@@ -301,7 +314,7 @@ impl GpuEmps {
             dispatch(p, k, &k.collide, n, WG);
             if bodies > 0 {
                 dispatch(p, k, &k.body_collision, n, WG);
-                reduce_bodies(p, k);
+                reduce_bodies(p, k, &k.react_collision);
             }
             dispatch(p, k, &k.apply_collisions, n, WG);
         });
@@ -309,7 +322,7 @@ impl GpuEmps {
             dispatch(p, k, &k.reduce_step, n, WIDE_WG)
         });
         let bytes = (groups * std::mem::size_of::<Partial>()) as u64;
-        let body_bytes = (bodies as usize * std::mem::size_of::<BodyLoad>()) as u64;
+        let body_bytes = (SUMS as usize * bodies as usize * std::mem::size_of::<BodyLoad>()) as u64;
         let (partials_buffer, staging) = (rec.step.buffers.at(PARTIALS), &rec.step.staging);
         rec.enc
             .copy_buffer_to_buffer(partials_buffer, 0, staging, 0, bytes);
@@ -323,7 +336,8 @@ impl GpuEmps {
         self.buffers.downloaded += bytes + body_bytes;
         let (head, tail) = read.split_at(bytes as usize);
         let partials: Vec<Partial> = bytemuck::pod_collect_to_vec(head);
-        self.body_loads = bodies::loads(&bytemuck::pod_collect_to_vec::<u8, BodyLoad>(tail));
+        let sums = bytemuck::pod_collect_to_vec::<u8, BodyLoad>(tail);
+        (self.body_loads, self.body_reactions) = bodies::loads_and_reactions(&sums);
         if !self.profile {
             self.times.lap(t0, "step");
         }

@@ -96,9 +96,11 @@ pub struct CouplingConfig {
     /// IQN-ILS: windows whose secant pairs are reused.
     #[serde(default = "default_reuse")]
     pub reuse_windows: u32,
-    /// Largest allowed relative action–reaction residual of the ledger.
-    #[serde(default = "default_balance_tolerance")]
-    pub balance_tolerance: f64,
+    /// Largest allowed relative action–reaction residual of the ledger; when not given,
+    /// [`CPU_BALANCE_TOLERANCE`], or [`GPU_BALANCE_TOLERANCE`] when a fluid runs on the GPU
+    /// ([`CouplingConfig::balance_tolerance`]).
+    #[serde(default, rename = "balance_tolerance")]
+    pub balance_tolerance_given: Option<f64>,
     /// Net energy the coupling may create at the interface, as a multiple of the run's physical
     /// energy scale, before the coupler stops the run as unstable (the coupler's `stability`
     /// module; default 10; a run warns above 1).
@@ -136,9 +138,17 @@ fn default_max_iterations() -> u32 {
 fn default_reuse() -> u32 {
     0
 }
-fn default_balance_tolerance() -> f64 {
-    1e-12
-}
+/// The ledger's default tolerance: the CPU paths sum both sides in f64 (measured ≤ 6e-15).
+pub const CPU_BALANCE_TOLERANCE: f64 = 1e-12;
+
+/// The ledger's default tolerance when a fluid runs on the GPU: there the loads (summed by body
+/// particle) and the reaction (summed by fluid particle) are two f32 sums of the same pair
+/// forces in different orders, each off by at most (depth ≈ 80: a gather's ≤ 60 neighbours, two
+/// trees of 256, three exchanges) · 2⁻²⁴ ≈ 5e-6 of Σ|pair forces| (`fluid-solver`'s
+/// `tests/gpu_bodies.rs`); 1e-5 of the net forces holds while Σ|pair forces| stays within
+/// about twice the net force in the worst case and 20 times it with random rounding. Measured on
+/// the floating box (`tests/tests/gpu_floating.rs`): at most 5e-8.
+pub const GPU_BALANCE_TOLERANCE: f64 = 1e-5;
 fn default_created_energy_limit() -> f64 {
     10.0
 }
@@ -159,6 +169,16 @@ impl CouplingConfig {
             AccelerationKind::Aitken
         } else {
             AccelerationKind::IqnIls
+        })
+    }
+
+    /// The ledger's tolerance: `balance_tolerance` when given, else the default for a case whose
+    /// fluids run on the GPU (`gpu`) or not.
+    pub fn balance_tolerance(&self, gpu: bool) -> f64 {
+        self.balance_tolerance_given.unwrap_or(if gpu {
+            GPU_BALANCE_TOLERANCE
+        } else {
+            CPU_BALANCE_TOLERANCE
         })
     }
 
@@ -210,7 +230,9 @@ impl CouplingConfig {
         if self.max_iterations == 0 {
             return Err(FieldError::new("coupling.max_iterations", "must be ≥ 1, got 0"));
         }
-        check::positive("coupling.balance_tolerance", self.balance_tolerance)?;
+        if let Some(t) = self.balance_tolerance_given {
+            check::positive("coupling.balance_tolerance", t)?;
+        }
         if !(self.created_energy_limit.is_finite() && self.created_energy_limit >= 1.0) {
             return Err(FieldError::new(
                 "coupling.created_energy_limit",
@@ -383,5 +405,15 @@ mod tests {
         assert_eq!(parse(body).acceleration(), AccelerationKind::IqnIls);
         let aitken = format!("acceleration = \"aitken\"\n{body}");
         assert_eq!(parse(&aitken).acceleration(), AccelerationKind::Aitken);
+    }
+
+    #[test]
+    fn the_ledger_tolerance_defaults_by_backend_and_a_given_one_is_kept() {
+        let c = parse("");
+        assert_eq!(c.balance_tolerance(false), CPU_BALANCE_TOLERANCE);
+        assert_eq!(c.balance_tolerance(true), GPU_BALANCE_TOLERANCE);
+        let c = parse("balance_tolerance = 1e-9");
+        assert_eq!(c.balance_tolerance(false), 1e-9);
+        assert_eq!(c.balance_tolerance(true), 1e-9);
     }
 }

@@ -2,8 +2,9 @@
 // placed from the pose the host hands over, the fluid's pair forces on each body particle as
 // gathers (the body particle sums over its fluid neighbours, no float atomics), and their force
 // and moment about the body's centre reduced per body on the device. Each body kernel writes the
-// body particle's force into acc (whose other users read it only for fluid), and reduce_bodies
-// runs right after it, while the positions are those the forces were computed at.
+// body particle's force into acc (whose other users read it only for fluid) and the walls' share
+// of it into wallf (which the step's totals read only for fluid), and reduce_bodies runs right
+// after it, while the positions are those the forces were computed at.
 
 // Index of the member with particle id `id` (binary search over the sorted ids), or NONE.
 fn member_of(id: u32) -> u32 {
@@ -52,10 +53,15 @@ fn place_bodies(v: Invocation) {
 
 @compute @workgroup_size(64)
 fn clear_body_loads(v: Invocation) {
-    let b = item_index(v, WG);
-    if b < prm.n_bodies {
-        body_loads[b] = BodyLoad(vec4<f32>(0.0), vec4<f32>(0.0));
+    let k = item_index(v, WG);
+    if k < prm.n_bodies * SUMS {
+        body_loads[k] = BodyLoad(vec4<f32>(0.0), vec4<f32>(0.0));
     }
+}
+
+// Slot of sum `sum` of `body` in the partials of reduction group `group`.
+fn load_slot(group: u32, body: u32, sum: u32) -> u32 {
+    return (group * prm.n_bodies + body) * SUMS + sum;
 }
 
 // S1-4's viscous pair force on body particle i from its fluid neighbours j (pair_laws::viscous):
@@ -88,6 +94,7 @@ fn body_viscous(v: Invocation) {
         }
     }
     acc[i] = vec4<f32>(-prm.mass * prm.nu * prm.lap_factor * f, 0.0);
+    wallf[i] = vec4<f32>(0.0);
 }
 
 // S1-3's pressure pair force on body particle i from its fluid neighbours j (pair_laws::pressure):
@@ -120,6 +127,7 @@ fn body_pressure(v: Invocation) {
         }
     }
     acc[i] = vec4<f32>(prm.volume * prm.grad_factor * f, 0.0);
+    wallf[i] = vec4<f32>(0.0);
 }
 
 // The collision stage on body particle i (collision::contact_law): −m/Δt (1+e) (u_ij·r_ji) r_ji/|r_ji|²
@@ -169,13 +177,35 @@ fn body_collision(v: Invocation) {
     }
     let f = -(prm.mass / prm.dt) * (1.0 + prm.restitution) * fluid + walls;
     acc[i] = vec4<f32>(f, 0.0);
+    wallf[i] = vec4<f32>(walls, 0.0);
 }
 
 var<workgroup> r_bf: array<vec3<f32>, 256>;
 var<workgroup> r_bm: array<vec3<f32>, 256>;
 
-// The force in acc of each body particle and its moment (r − c) × f about its body's centre,
-// summed per workgroup of 256 particles and per body into body_partials[group · bodies + body].
+// Sums force f and moment m over the workgroup of 256 threads (thread l) and writes the total
+// to body_partials[load_slot(group, body, sum)]; a 2-D dispatch's surplus workgroups (group ≥
+// reduction_groups()) write none. Called in uniform control flow.
+fn reduce_into(l: u32, group: u32, body: u32, sum: u32, f: vec3<f32>, m: vec3<f32>) {
+    r_bf[l] = f;
+    r_bm[l] = m;
+    workgroupBarrier();
+    for (var s = 128u; s > 0u; s = s / 2u) {
+        if l < s {
+            r_bf[l] = r_bf[l] + r_bf[l + s];
+            r_bm[l] = r_bm[l] + r_bm[l + s];
+        }
+        workgroupBarrier();
+    }
+    if l == 0u && group < reduction_groups() {
+        body_partials[load_slot(group, body, sum)] = BodyLoad(vec4<f32>(r_bf[0], 0.0), vec4<f32>(r_bm[0], 0.0));
+    }
+    workgroupBarrier();
+}
+
+// The force in acc of each body particle and its moment (r − c) × f about its body's centre
+// (LOADS), and the walls' share in wallf (WALLS), summed per workgroup of 256 particles and per
+// body into body_partials.
 @compute @workgroup_size(256)
 fn reduce_bodies(v: Invocation) {
     let i = item_index(v, SCAN_WG);
@@ -183,49 +213,37 @@ fn reduce_bodies(v: Invocation) {
     let l = v.local;
     var b = NONE;
     var f = vec3<f32>(0.0);
-    var m = vec3<f32>(0.0);
+    var fw = vec3<f32>(0.0);
+    var arm = vec3<f32>(0.0);
     if i < prm.n && kind_of(i) == BODY {
         let k = member_of(pid[i]);
         if k != NONE {
             b = members[k].body;
             f = acc[i].xyz;
-            m = cross(pos[i].xyz - body_kin[b].centre.xyz, f);
+            fw = wallf[i].xyz;
+            arm = pos[i].xyz - body_kin[b].centre.xyz;
         }
     }
     for (var body = 0u; body < prm.n_bodies; body = body + 1u) {
-        if b == body {
-            r_bf[l] = f;
-            r_bm[l] = m;
-        } else {
-            r_bf[l] = vec3<f32>(0.0);
-            r_bm[l] = vec3<f32>(0.0);
-        }
-        workgroupBarrier();
-        for (var s = 128u; s > 0u; s = s / 2u) {
-            if l < s {
-                r_bf[l] = r_bf[l] + r_bf[l + s];
-                r_bm[l] = r_bm[l] + r_bm[l + s];
-            }
-            workgroupBarrier();
-        }
-        if l == 0u && group < reduction_groups() {
-            body_partials[group * prm.n_bodies + body] = BodyLoad(vec4<f32>(r_bf[0], 0.0), vec4<f32>(r_bm[0], 0.0));
-        }
-        workgroupBarrier();
+        let mine = b == body;
+        let fb = select(vec3<f32>(0.0), f, mine);
+        let fwb = select(vec3<f32>(0.0), fw, mine);
+        reduce_into(l, group, body, LOADS, fb, cross(arm, fb));
+        reduce_into(l, group, body, WALLS, fwb, cross(arm, fwb));
     }
 }
 
-// Sums the workgroups' partials per body (one workgroup) and adds them to body_loads, which
-// holds the step's sum over its exchanges (cleared at the step's start).
+// Sums the workgroups' partials per body and sum (one workgroup) and adds them to body_loads,
+// which holds the step's sums over its exchanges (cleared at the step's start).
 @compute @workgroup_size(256)
 fn sum_bodies(v: Invocation) {
     let l = v.local;
     let groups = reduction_groups();
-    for (var body = 0u; body < prm.n_bodies; body = body + 1u) {
+    for (var slot = 0u; slot < prm.n_bodies * SUMS; slot = slot + 1u) {
         var f = vec3<f32>(0.0);
         var m = vec3<f32>(0.0);
         for (var k = l; k < groups; k = k + SCAN_WG) {
-            let p = body_partials[k * prm.n_bodies + body];
+            let p = body_partials[k * prm.n_bodies * SUMS + slot];
             f = f + p.force.xyz;
             m = m + p.moment.xyz;
         }
@@ -240,8 +258,8 @@ fn sum_bodies(v: Invocation) {
             workgroupBarrier();
         }
         if l == 0u {
-            let old = body_loads[body];
-            body_loads[body] = BodyLoad(old.force + vec4<f32>(r_bf[0], 0.0), old.moment + vec4<f32>(r_bm[0], 0.0));
+            let old = body_loads[slot];
+            body_loads[slot] = BodyLoad(old.force + vec4<f32>(r_bf[0], 0.0), old.moment + vec4<f32>(r_bm[0], 0.0));
         }
         workgroupBarrier();
     }

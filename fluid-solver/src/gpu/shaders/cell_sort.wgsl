@@ -1,13 +1,17 @@
 // Counting sort of the particles by cell (the CPU's CellGrid::sort): count (and flag the cells
-// that hold fluid), exclusive prefix sum of the counts, scatter, then each cell's slots ordered
-// by previous index so the order is the same every run, then the particle arrays gathered into
-// the new order.
+// that hold fluid; with bodies, mark the cells near each body in body_cells, which the gather
+// leaves alone), exclusive prefix sum of the counts, scatter, then each cell's slots ordered by
+// previous index so the order is the same every run, then the particle arrays gathered into the
+// new order.
 
 @compute @workgroup_size(64)
 fn clear_cells(v: Invocation) {
     let c = item_index(v, WG);
     if c < prm.cells {
         atomicStore(&cell_count[c], 0u);
+        if prm.n_bodies > 0u {
+            atomicStore(&body_cells[c], 0u);
+        }
     }
 }
 
@@ -20,8 +24,31 @@ fn count_cells(v: Invocation) {
     let c = cell_index(pos[i].xyz);
     cell_of[i] = c;
     atomicAdd(&cell_count[c], 1u);
-    if kind_of(i) == FLUID {
+    let k = kind_of(i);
+    if k == FLUID {
         atomicOr(&cell_count[c], FLUID_CELL);
+    }
+    if k == BODY && prm.n_bodies > 0u {
+        let m = member_of(pid[i]);
+        if m != NONE {
+            mark_body_near(c, 1u << (members[m].body % 32u));
+        }
+    }
+}
+
+// Sets `bit` in every cell within reach_react of cell c (cell_index keeps c at least pad ≥
+// reach cells from the grid's faces).
+fn mark_body_near(c: u32, bit: u32) {
+    let r = reach_react();
+    let nx = prm.dims.x;
+    let nxy = nx * prm.dims.y;
+    let base = c - r * nxy - r * nx - r;
+    for (var dz = 0u; dz <= 2u * r; dz = dz + 1u) {
+        for (var dy = 0u; dy <= 2u * r; dy = dy + 1u) {
+            for (var dx = 0u; dx <= 2u * r; dx = dx + 1u) {
+                atomicOr(&body_cells[base + dz * nxy + dy * nx + dx], bit);
+            }
+        }
     }
 }
 

@@ -70,10 +70,14 @@ const FLUID_CELL: u32 = 0x80000000u;
 @group(0) @binding(16) var<storage, read_write> members: array<Member>;
 // Each body's pose and velocity, from the host each step it is given one.
 @group(0) @binding(17) var<storage, read_write> body_kin: array<BodyKin>;
-// One BodyLoad per workgroup of 256 particles and body (group · bodies + body).
+// One BodyLoad per workgroup of 256 particles, body and sum (load_slot: (group · bodies + body)
+// · SUMS + sum).
 @group(0) @binding(18) var<storage, read_write> body_partials: array<BodyLoad>;
-// Each body's load summed over the step's exchanges: what the host reads back.
+// Each body's sums over the step's exchanges, SUMS per body: what the host reads back.
 @group(0) @binding(19) var<storage, read_write> body_loads: array<BodyLoad>;
+// Per cell: bit b % 32 set when a particle of body b lies within reach_react cells of it (the
+// reaction's skip test, reaction.wgsl; filled by the cell sort). One entry without bodies.
+@group(0) @binding(20) var<storage, read_write> body_cells: array<atomic<u32>>;
 
 // A body particle's offset from its body's initial centre (f32), its id and its body.
 struct Member {
@@ -85,6 +89,14 @@ struct Member {
 struct BodyKin {
     centre: vec4<f32>, quat: vec4<f32>, vel: vec4<f32>, omega: vec4<f32>,
 };
+
+// The sums kept per body: the loads on the body summed by body particle (LOADS), the reaction
+// on the fluid summed by fluid particle (REACTION, reaction.wgsl), and the walls' contact on the
+// body, a part of LOADS that the walls take (WALLS).
+const SUMS: u32 = 3u;
+const LOADS: u32 = 0u;
+const REACTION: u32 = 1u;
+const WALLS: u32 = 2u;
 
 // Force and moment about the body's centre (xyz of each; f32).
 struct BodyLoad {

@@ -75,7 +75,7 @@ fn finding(i: u32, left: ptr<function, bool>) -> u32 {
     return 0u;
 }
 
-// Workgroups of 256 particles of the reductions (one Partial, and one BodyLoad per body, each;
+// Workgroups of 256 particles of the reductions (one Partial, and SUMS BodyLoads per body, each;
 // a 2-D dispatch's surplus workgroups write none).
 fn reduction_groups() -> u32 {
     return (prm.n + SCAN_WG - 1u) / SCAN_WG;
@@ -105,8 +105,9 @@ fn reduce_step(v: Invocation) {
             let u = vel[i].xyz;
             energy = 0.5 * dot(u, u) - dot(prm.gravity, pos[i].xyz);
             fluid = 1u;
+            // a body particle's wallf holds the walls' contact on it (bodies.wgsl)
+            wall = wallf[i].xyz;
         }
-        wall = wallf[i].xyz;
         seen = cand[i];
     }
     r_wall[l] = wall;
