@@ -62,6 +62,22 @@ fn gpu_backend_refuses_what_it_does_not_run_naming_the_feature() {
         e.contains("`fluid.water.backend`") && e.contains("filtered probes"),
         "{e}"
     );
+
+    // A tank 2 km from the origin: positions would round by 1.2e-4 m = 6e-3 Δs in f32.
+    let far = GOOD
+        .replace(
+            "min = [0.0, 0.0, 0.0], max = [0.2,",
+            "min = [2000.0, 0.0, 0.0], max = [2000.2,",
+        )
+        .replace(
+            "min = [0.0, 0.0, 0.0]\nmax = [0.1,",
+            "min = [2000.0, 0.0, 0.0]\nmax = [2000.1,",
+        );
+    let e = error_of(&far);
+    assert!(
+        e.contains("`fluid.water.backend`") && e.contains("f32") && e.contains("move the tank"),
+        "{e}"
+    );
 }
 
 fn write_case(dir: &str, text: &str) -> PathBuf {
