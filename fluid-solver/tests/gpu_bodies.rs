@@ -120,6 +120,18 @@ const LOAD_BOUND: f64 = 1.0e-3;
 /// about √80 / 80 of that worst case.
 const BALANCE_BOUND: f64 = 2.0e-4;
 
+/// The scene with the viscous term on and the box turned by 5° about z, moving and spinning:
+/// (config, ρgV, pose, velocity).
+fn moving_turned_box() -> (FluidConfig, f64, [f64; 7], [f64; 6]) {
+    let (mut cfg, buoyancy) = scene();
+    cfg.viscosity_term = true;
+    cfg.viscosity = 0.05;
+    cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
+    let half = 2.5f64.to_radians();
+    let pose = [0.14, 0.14, 0.14, half.cos(), 0.0, 0.0, half.sin()];
+    (cfg, buoyancy, pose, [0.05, 0.0, -0.02, 0.0, 0.3, 0.5])
+}
+
 #[test]
 fn gpu_body_loads_match_cpu_on_a_fixed_box_in_a_settling_tank() {
     let (cfg, buoyancy) = scene();
@@ -142,13 +154,7 @@ fn gpu_body_loads_match_cpu_on_a_fixed_box_in_a_settling_tank() {
 /// collision terms, 10 steps.
 #[test]
 fn gpu_body_loads_match_cpu_on_a_moving_turned_box_with_viscosity() {
-    let (mut cfg, buoyancy) = scene();
-    cfg.viscosity_term = true;
-    cfg.viscosity = 0.05;
-    cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
-    let half = 2.5f64.to_radians();
-    let pose = [0.14, 0.14, 0.14, half.cos(), 0.0, 0.0, half.sin()];
-    let velocity = [0.05, 0.0, -0.02, 0.0, 0.3, 0.5];
+    let (cfg, buoyancy, pose, velocity) = moving_turned_box();
     let Some((force, moment)) = worst_difference(&cfg, buoyancy, 10, &pose, &velocity, cfg.time_step) else {
         return;
     };
@@ -168,13 +174,7 @@ fn gpu_body_loads_match_cpu_on_a_moving_turned_box_with_viscosity() {
 /// row) equal those of one row bit for bit, each of 3 steps.
 #[test]
 fn gpu_body_loads_in_rows_of_workgroups_equal_one_row() {
-    let (mut cfg, _) = scene();
-    cfg.viscosity_term = true;
-    cfg.viscosity = 0.05;
-    cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
-    let half = 2.5f64.to_radians();
-    let pose = [0.14, 0.14, 0.14, half.cos(), 0.0, 0.0, half.sin()];
-    let velocity = [0.05, 0.0, -0.02, 0.0, 0.3, 0.5];
+    let (cfg, _, pose, velocity) = moving_turned_box();
     let mut runs = Vec::new();
     for row in [None, Some(3)] {
         let Some(dev) = gpu_common::device() else {

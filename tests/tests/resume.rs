@@ -505,20 +505,27 @@ fn a_fracturing_frame_killed_and_resumed_writes_the_same_outputs() {
     // the uninterrupted run kept both checkpoints: resume from each of them
     let kept = manifests(&whole);
     assert_eq!(kept.len(), 2, "checkpoints at 0.04 and 0.08 s: {kept:?}");
-    // from 0.08 s: the fractured topology (6 nodes, the split element) is read back
-    let after = dir.join("from-after-the-fracture");
-    copy_folder(&whole, &after);
-    let err = resume(&case, &after);
-    assert!(err.contains("t = 0.08"), "{err}");
-    assert_same_outputs(&whole, &after);
-    // from 0.04 s (the later manifest gone, as when a run dies while writing it): a hinge is read
-    // back and the fracture happens again in the resumed run
-    let before = dir.join("from-before-the-fracture");
-    copy_folder(&whole, &before);
-    std::fs::remove_file(manifests(&before)[1].as_path()).unwrap_or_else(|e| panic!("{e}"));
-    let err = resume(&case, &before);
-    assert!(err.contains("t = 0.04"), "{err}");
-    assert_same_outputs(&whole, &before);
+    // from 0.08 s: the fractured topology (6 nodes, the split element) is read back; from 0.04 s
+    // (the later manifest gone, as when a run dies while writing it): a hinge is read back and
+    // the fracture happens again in the resumed run
+    resume_on_both_sides_of_a_fracture(&case, &whole, &dir, "0.08", "0.04");
+}
+
+/// Resumes copies of the uninterrupted run `whole` (two checkpoints) from its later checkpoint,
+/// at t = `after`, and, with the later manifest removed, from the earlier one at t = `before`;
+/// each resumed run's outputs must equal `whole`'s byte for byte.
+fn resume_on_both_sides_of_a_fracture(case: &Path, whole: &Path, dir: &Path, after: &str, before: &str) {
+    let later = dir.join("from-after-the-fracture");
+    copy_folder(whole, &later);
+    let err = resume(case, &later);
+    assert!(err.contains(&format!("t = {after}")), "{err}");
+    assert_same_outputs(whole, &later);
+    let earlier = dir.join("from-before-the-fracture");
+    copy_folder(whole, &earlier);
+    std::fs::remove_file(manifests(&earlier)[1].as_path()).unwrap_or_else(|e| panic!("{e}"));
+    let err = resume(case, &earlier);
+    assert!(err.contains(&format!("t = {before}")), "{err}");
+    assert_same_outputs(whole, &earlier);
 }
 
 #[test]
@@ -589,17 +596,7 @@ fn a_column_broken_under_implicit_drag_coupling_resumed_writes_the_same_outputs(
     );
     let kept = manifests(&whole);
     assert_eq!(kept.len(), 2, "checkpoints at 0.025 and 0.05 s: {kept:?}");
-    // from 0.05 s: the broken column and the law's sub-members of its pieces are read back
-    let after = dir.join("from-after-the-fracture");
-    copy_folder(&whole, &after);
-    let err = resume(&case, &after);
-    assert!(err.contains("t = 0.05"), "{err}");
-    assert_same_outputs(&whole, &after);
+    // from 0.05 s: the broken column and the law's sub-members of its pieces are read back;
     // from 0.025 s (the later manifest gone): the resumed run breaks the column again
-    let before = dir.join("from-before-the-fracture");
-    copy_folder(&whole, &before);
-    std::fs::remove_file(manifests(&before)[1].as_path()).unwrap_or_else(|e| panic!("{e}"));
-    let err = resume(&case, &before);
-    assert!(err.contains("t = 0.025"), "{err}");
-    assert_same_outputs(&whole, &before);
+    resume_on_both_sides_of_a_fracture(&case, &whole, &dir, "0.05", "0.025");
 }
