@@ -7,7 +7,7 @@
 //! gauges H3 and H2 when it did there, and P1's mean load after the impact is the measured one.
 
 use schemas::case::Case;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[test]
 fn the_ci_twin_runs_to_its_end_with_sensors_and_gauges() {
@@ -17,18 +17,8 @@ fn the_ci_twin_runs_to_its_end_with_sensors_and_gauges() {
     let summary = fluid_solver::run::run_case(&case, &out, false).unwrap_or_else(|e| panic!("{e}"));
     println!("{summary}");
     assert!((summary.time - case.info.end_time).abs() < 1e-9);
-    let csv = std::fs::read_to_string(out.join("tank_probes.csv")).unwrap_or_else(|e| panic!("{e}"));
-    let mut lines = csv.lines();
-    let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
-    let col = |name: &str| {
-        header
-            .iter()
-            .position(|h| *h == name)
-            .unwrap_or_else(|| panic!("no column {name}"))
-    };
-    let rows: Vec<Vec<f64>> = lines
-        .map(|l| l.split(',').map(|v| v.parse().unwrap_or(f64::NAN)).collect())
-        .collect();
+    let (header, rows) = table(&out.join("tank_probes.csv"));
+    let col = |name: &str| column(&header, name);
     let (t, front, p1, h4) = (col("time"), col("front"), col("P1"), col("H4"));
     let (ds, g, h0): (f64, f64, f64) = (0.04, 9.8, 0.55);
     let ritter = 2.0 * (g * h0).sqrt();
@@ -85,10 +75,9 @@ fn the_ci_twin_runs_to_its_end_with_sensors_and_gauges() {
     let _ = std::fs::remove_dir_all(&out);
 }
 
-/// The measured series of the case folder: (time, columns by name).
-fn experiment() -> (Vec<String>, Vec<Vec<f64>>) {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../cases/dam-break-obstacle/experiment.csv");
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+/// A CSV file's header and rows of numbers (lines starting with `#` are comments).
+fn table(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let mut lines = text.lines().filter(|l| !l.starts_with('#'));
     let header = lines
         .next()
@@ -100,6 +89,14 @@ fn experiment() -> (Vec<String>, Vec<Vec<f64>>) {
         .map(|l| l.split(',').map(|v| v.parse().unwrap_or(f64::NAN)).collect())
         .collect();
     (header, rows)
+}
+
+/// The index of column `name` in `header`.
+fn column(header: &[String], name: &str) -> usize {
+    header
+        .iter()
+        .position(|h| h == name)
+        .unwrap_or_else(|| panic!("no column {name}"))
 }
 
 /// First time a column passes `level`.
@@ -135,13 +132,9 @@ fn filtered(rows: &[Vec<f64>], t: usize, c: usize, window: f64) -> Vec<Vec<f64>>
 }
 
 fn against_the_experiment(rows: &[Vec<f64>], col: &dyn Fn(&str) -> usize, ds: f64) {
-    let (header, exp) = experiment();
-    let ecol = |name: &str| {
-        header
-            .iter()
-            .position(|h| h == name)
-            .unwrap_or_else(|| panic!("experiment.csv has no column {name}"))
-    };
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../cases/dam-break-obstacle/experiment.csv");
+    let (header, exp) = table(&path);
+    let ecol = |name: &str| column(&header, name);
     let (t, et) = (col("time"), ecol("time"));
     // Wetting: the first time a gauge reads more than 2 cm. Tolerance: two spacings of travel at
     // the experiment's mean front speed to H2 (1.0 m in 0.368 s, 2.7 m/s): at Δs = 0.04 m, 30 ms
