@@ -2,6 +2,7 @@
 //! bit-identical checkpoints for both methods.
 
 mod common;
+mod isph_slab;
 
 use fluid_solver::isph::free_surface::{self, SURFACE};
 use fluid_solver::isph::kernel::Wendland;
@@ -336,15 +337,7 @@ fn a_restored_checkpoint_continues_bit_identically_with_either_method() {
 /// cone can hold the neighbour beside the particle.
 #[test]
 fn free_surface_of_a_dam_break_snapshot() {
-    let (_, mut cfg) = common::load_case("dam-break-koshizuka");
-    cfg.method = FluidMethodName::Isph;
-    cfg.isph = Some(IsphConfig::default());
-    cfg.sound_speed = None;
-    cfg.spacing = 0.0146;
-    cfg.tank.max = [0.584, 0.0584, 0.438];
-    cfg.block[0].max = [0.146, 0.0584, 0.292];
-    cfg.time_step = 1.6e-3;
-    cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
+    let cfg = isph_slab::isph_slab();
     let ds = cfg.spacing;
     let mut solver = FluidSolver::new(&cfg);
     solver.advance_to(0.15).unwrap_or_else(|e| panic!("{e}"));

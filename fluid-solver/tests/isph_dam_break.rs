@@ -4,23 +4,14 @@
 
 mod common;
 mod front_common;
-
-use schemas::case::fluid::{FluidMethodName, IsphConfig};
+mod isph_slab;
 
 #[test]
 fn isph_surge_front_follows_the_experiments() {
     // CI size as the E-MPS test: Δs = L/10 = 0.0146 m, a slab 4 particles deep (800 fluid
     // particles); Δt = 1.6e-3 s (u Δt/Δs = 0.37 with the front speed u = 2√(g·2L), Ritter),
     // 2.7× E-MPS's 6e-4 s.
-    let (_, mut cfg) = common::load_case("dam-break-koshizuka");
-    cfg.method = FluidMethodName::Isph;
-    cfg.isph = Some(IsphConfig::default());
-    cfg.sound_speed = None;
-    cfg.spacing = 0.0146;
-    cfg.tank.max = [0.584, 0.0584, 0.438];
-    cfg.block[0].max = [0.146, 0.0584, 0.292];
-    cfg.time_step = 1.6e-3;
-    cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
+    let cfg = isph_slab::isph_slab();
     let e = front_common::front_errors(&cfg, 0.006, 4);
     let (koshizuka_oka, martin_moyce, shift) = (e.koshizuka_oka, e.martin_moyce, e.shift);
     // Bounds: those of the E-MPS test at this resolution (dam_break.rs: 0.33 and 0.05).
@@ -50,15 +41,7 @@ fn isph_surge_front_follows_the_experiments() {
 #[test]
 #[ignore]
 fn isph_dam_break_runs_past_the_run_up() {
-    let (_, mut cfg) = common::load_case("dam-break-koshizuka");
-    cfg.method = FluidMethodName::Isph;
-    cfg.isph = Some(IsphConfig::default());
-    cfg.sound_speed = None;
-    cfg.spacing = 0.0146;
-    cfg.tank.max = [0.584, 0.0584, 0.438];
-    cfg.block[0].max = [0.146, 0.0584, 0.292];
-    cfg.time_step = 1.6e-3;
-    cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
+    let cfg = isph_slab::isph_slab();
     let mut solver = fluid_solver::FluidSolver::new(&cfg);
     for k in 1..=15 {
         solver
@@ -79,18 +62,11 @@ fn isph_dam_break_runs_past_the_run_up() {
 /// (`isph::free_surface`) the gated and the ungated runs agree to the digits printed.
 #[test]
 fn isph_dam_break_released_by_a_gate_follows_the_experiments() {
-    let (_, mut cfg) = common::load_case("dam-break-koshizuka");
-    cfg.method = FluidMethodName::Isph;
-    cfg.isph = Some(IsphConfig::default());
-    cfg.sound_speed = None;
-    cfg.spacing = 0.0146;
-    cfg.tank.max = [0.584, 0.0584, 0.438];
-    cfg.block[0].max = [0.146, 0.0584, 0.292];
+    let mut cfg = isph_slab::isph_slab();
     cfg.gate = vec![schemas::case::fluid::Aabb {
         min: [0.146, 0.0, 0.0],
         max: [0.146 + 2.0 * 0.0146, 0.0584, 0.438],
     }];
-    cfg.time_step = 1.6e-3;
     cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
     let gated = fluid_solver::FluidSolver::new(&cfg);
     let gates = gated.particles().count(fluid_solver::Kind::Gate);
