@@ -21,6 +21,9 @@ use schemas::case::Case;
 use std::path::PathBuf;
 use std::time::Instant;
 
+mod bench_process;
+use bench_process::{cpu_seconds, load_average};
+
 fn case(ds: f64, layers: f64) -> FluidConfig {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../cases/dam-break-koshizuka/case.toml");
     let case = Case::load(&path).unwrap_or_else(|e| {
@@ -100,28 +103,6 @@ fn run(name: &str, cfg: &FluidConfig, end: f64) -> Row {
         },
         probe_rms: (sum2 / n.max(1) as f64).sqrt(),
     }
-}
-
-/// CPU seconds this process has used (user + system, from /proc/self/stat; 0 where absent):
-/// on a loaded machine the wall time counts other processes' turns, the CPU time does not.
-fn cpu_seconds() -> f64 {
-    let ticks_per_second = 100.0; // USER_HZ on Linux
-    std::fs::read_to_string("/proc/self/stat")
-        .ok()
-        .and_then(|s| {
-            let rest = &s[s.rfind(')')? + 2..];
-            let f: Vec<&str> = rest.split_whitespace().collect();
-            Some((f.get(11)?.parse::<f64>().ok()? + f.get(12)?.parse::<f64>().ok()?) / ticks_per_second)
-        })
-        .unwrap_or(0.0)
-}
-
-/// The 1-minute load average (other processes share the cores).
-fn load_average() -> String {
-    std::fs::read_to_string("/proc/loadavg")
-        .ok()
-        .and_then(|s| s.split_whitespace().next().map(str::to_owned))
-        .unwrap_or_else(|| "?".into())
 }
 
 fn main() {

@@ -15,6 +15,9 @@ use schemas::case::Case;
 use std::path::PathBuf;
 use std::time::Instant;
 
+mod bench_process;
+use bench_process::{cpu_seconds, load_average};
+
 /// Side of the cube of water [m].
 const SIDE: f64 = 0.1;
 
@@ -52,27 +55,6 @@ fn last_solve(s: &FluidSolver) -> (u32, f64, usize) {
         MethodState::Isph(st) => (st.ppe.iterations, st.ppe.residual, st.ppe.unknowns),
         MethodState::Emps => (0, 0.0, 0),
     }
-}
-
-/// CPU seconds this process has used (user + system, from /proc/self/stat; 0 where absent):
-/// on a loaded machine the wall time counts other processes' turns, the CPU time does not.
-fn cpu_seconds() -> f64 {
-    let ticks_per_second = 100.0; // USER_HZ on Linux
-    std::fs::read_to_string("/proc/self/stat")
-        .ok()
-        .and_then(|s| {
-            let rest = &s[s.rfind(')')? + 2..];
-            let f: Vec<&str> = rest.split_whitespace().collect();
-            Some((f.get(11)?.parse::<f64>().ok()? + f.get(12)?.parse::<f64>().ok()?) / ticks_per_second)
-        })
-        .unwrap_or(0.0)
-}
-
-fn load_average() -> String {
-    std::fs::read_to_string("/proc/loadavg")
-        .ok()
-        .and_then(|s| s.split_whitespace().next().map(str::to_owned))
-        .unwrap_or_else(|| "?".into())
 }
 
 fn main() {

@@ -13,6 +13,9 @@ use std::collections::HashMap;
 use std::path::PathBuf;
 use std::time::Instant;
 
+mod bench_process;
+use bench_process::cpu_seconds;
+
 /// Edges used by one triangle (holes) and by more than two (non-manifold).
 fn bad_edges(mesh: &TriangleMesh) -> (usize, usize) {
     let mut uses: HashMap<(u32, u32), u32> = HashMap::new();
@@ -24,21 +27,6 @@ fn bad_edges(mesh: &TriangleMesh) -> (usize, usize) {
     }
     let once = uses.values().filter(|&&n| n == 1).count();
     (once, uses.values().filter(|&&n| n > 2).count())
-}
-
-/// CPU time of this process so far [ms] (Linux `/proc/self/stat` utime + stime at 100 ticks/s;
-/// 0 where unavailable). On a shared machine it shows the work that wall time hides.
-fn cpu_ms() -> f64 {
-    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
-    // Fields after the command name in parentheses: utime and stime are the 12th and 13th.
-    let after = stat.rsplit(')').next().unwrap_or_default();
-    let ticks: f64 = after
-        .split_whitespace()
-        .skip(11)
-        .take(2)
-        .filter_map(|t| t.parse::<f64>().ok())
-        .sum();
-    10.0 * ticks
 }
 
 fn fail(message: String) -> ! {
@@ -95,14 +83,14 @@ fn main() {
                 .build()
                 .unwrap_or_else(|e| fail(format!("cannot start {threads} threads: {e}")));
             let reps = 3;
-            let cpu = cpu_ms();
+            let cpu = 1e3 * cpu_seconds();
             let start = Instant::now();
             let mut mesh = TriangleMesh::default();
             for _ in 0..reps {
                 mesh = pool.install(|| fluid_surface(particles, *spacing));
             }
             let mesh_ms = 1e3 * start.elapsed().as_secs_f64() / f64::from(reps);
-            let mesh_cpu_ms = (cpu_ms() - cpu) / f64::from(reps);
+            let mesh_cpu_ms = (1e3 * cpu_seconds() - cpu) / f64::from(reps);
             let file = out.join("surface.vtp");
             let start = Instant::now();
             write_vtp(&file, &mesh).unwrap_or_else(|e| fail(format!("{}: {e}", file.display())));
