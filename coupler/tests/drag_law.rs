@@ -183,19 +183,27 @@ fn sample_points_sit_one_width_upstream_and_follow_the_accepted_flow() {
         "after a +y flow: {s:?}"
     );
     assert!(fs[1] > 0.0);
-    // A dry sample (zero velocity) keeps the direction, even while the member sways in the air
-    // (relative velocity −v_member ≠ 0): a member moving in air is no flow. (Taking that sway
-    // for the flow turned the sample points of the prism dam break downstream or below the
-    // floor before the surge came, so wide prisms took no drag.)
+    // A wet sample that is still keeps the direction.
+    law.accept(&[vec![uniform_flow(&law, [0.0; 3], 1.0)], vec![structure.clone()]]);
+    let (to_fluid, _, _, _) = apply(&law, &structure, &fluid);
+    assert!(
+        to_fluid.sample_point[0] == 0.0 && close(to_fluid.sample_point[1], -WIDTH, WIDTH),
+        "a still, wet sample: {:?}",
+        to_fluid.sample_point
+    );
+    // A dry sample (λ_min below S2-20's λ^surface) returns the direction to the case's
+    // initial_flow (+x), even while the member sways in the air (relative velocity −v_member ≠ 0)
+    // and a few splashed particles move at the point: a member moving in air is no flow, and a
+    // direction kept at a dry point locked the wide prism's sample points in its dry wake.
     let mut swaying = structure.clone();
     swaying.node_velocity = F64s(vec![
         0.0, 0.0, -1e-3, 0.0, 0.0, 0.0, 0.0, 0.0, -2e-3, 0.0, 0.0, 0.0,
     ]);
-    law.accept(&[vec![uniform_flow(&law, [0.0; 3], 0.0)], vec![swaying]]);
+    law.accept(&[vec![uniform_flow(&law, [-2.0, 0.0, 0.0], 0.3)], vec![swaying]]);
     let (to_fluid, _, _, _) = apply(&law, &structure, &fluid);
     assert!(
-        to_fluid.sample_point[0] == 0.0 && close(to_fluid.sample_point[1], -WIDTH, WIDTH),
-        "{:?}",
+        close(to_fluid.sample_point[0], -WIDTH, WIDTH) && to_fluid.sample_point[1] == 0.0,
+        "after a dry sample: {:?}",
         to_fluid.sample_point
     );
 }

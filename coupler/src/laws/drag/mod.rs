@@ -31,9 +31,10 @@ use schemas::message::{Fields, Geometry, InterfaceDecl};
 use schemas::F64s;
 use sub_members::SubMember;
 
-/// A flow direction is taken from a wet sample (λ_min > 0) only if its speed relative to the
-/// member exceeds this [m/s]; at a dry sample the direction stays what it was (the member's own
-/// motion in air — its sway under gravity — is not a flow and must not turn the sample point).
+/// A flow direction is taken from a wet sample (λ_min ≥ S2-20's λ^surface, the samples that
+/// carry a force) only if its speed relative to the member exceeds this [m/s]; a dry sample says
+/// nothing about the flow, and the member's own motion in air (its sway under gravity) is not a
+/// flow and must not turn the sample point.
 const DIRECTION_MIN_SPEED: f64 = 1e-9;
 
 /// The settings of one drag link, resolved against the case.
@@ -388,7 +389,11 @@ impl Law for Drag {
     }
 
     /// Each sub-member's flow direction becomes that of the velocity relative to the member
-    /// sampled at the window's end (kept where the sample is dry or still).
+    /// sampled at the window's end where the sample is wet (kept where it is wet but still); a
+    /// dry sample returns it to the case's `initial_flow` (none: the centroid is sampled). A
+    /// direction kept at a dry sample locked the wide prism's sample points in its dry wake: at
+    /// Δs = 5 mm the water the 0.05 m prism reflected turned them downstream at 0.19 s, and the
+    /// prism took no drag for the rest of the run (`cases/prism-dam-break/README.md`).
     fn accept(&mut self, outputs: &[Vec<Fields>]) {
         let (Some(s), Some(f)) = (outputs[self.structure].last(), outputs[self.fluid].last()) else {
             return;
@@ -396,12 +401,15 @@ impl Law for Drag {
         if f.sampled_velocity.len() != 3 * self.pieces.len() {
             return;
         }
+        let initial = self.settings.initial_flow.map(|v| Vector3::from(v).normalize());
         for (i, (piece, dir)) in self.pieces.iter().zip(&mut self.directions).enumerate() {
             let [a, b] = piece.nodes;
             let member = vec3(&s.node_velocity, 6 * a) * (0.5 * (1.0 - piece.xi))
                 + vec3(&s.node_velocity, 6 * b) * (0.5 * (1.0 + piece.xi));
             let v = vec3(&f.sampled_velocity, 3 * i) - member;
-            if f.sampled_lambda_min[i] > 0.0 && v.norm() > DIRECTION_MIN_SPEED {
+            if f.sampled_lambda_min[i] < force::LAMBDA_SURFACE {
+                *dir = initial;
+            } else if v.norm() > DIRECTION_MIN_SPEED {
                 *dir = Some(v.normalize());
             }
         }
