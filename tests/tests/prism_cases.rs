@@ -22,15 +22,11 @@ fn coarse_case(name: &str, file: &str, dir: &Path, end: f64) -> PathBuf {
     path
 }
 
-/// Runs `case`; the ledger's rows and its column `name`.
-fn run(case: &Path, out: &Path) -> (Vec<Vec<f64>>, Vec<String>) {
+/// Runs `case`; the ledger's rows and its header, and what the coupler wrote to stderr.
+fn run(case: &Path, out: &Path) -> (Vec<Vec<f64>>, Vec<String>, String) {
     let run = coupler_run(case, out);
-    assert!(
-        run.status.success(),
-        "{}: coupler failed:\n{}",
-        case.display(),
-        stderr(&run)
-    );
+    let log = stderr(&run);
+    assert!(run.status.success(), "{}: coupler failed:\n{log}", case.display());
     let ledger = out.join("ledger.csv");
     let header = std::fs::read_to_string(&ledger)
         .unwrap_or_default()
@@ -40,7 +36,7 @@ fn run(case: &Path, out: &Path) -> (Vec<Vec<f64>>, Vec<String>) {
         .split(',')
         .map(str::to_string)
         .collect();
-    (csv_rows(&ledger), header)
+    (csv_rows(&ledger), header, log)
 }
 
 fn column(header: &[String], name: &str) -> usize {
@@ -69,8 +65,13 @@ fn the_unresolved_prism_takes_the_impulse_of_the_resolved_one_within_the_coarse_
     let dir = out_dir("prism-dam-break-ci");
     let unresolved = coarse_case("prism-dam-break", "case.toml", &dir, 0.3);
     let resolved = coarse_case("prism-dam-break", "resolved.toml", &dir, 0.3);
-    let (rows, header) = run(&unresolved, &dir.join("unresolved"));
-    let (ref_rows, ref_header) = run(&resolved, &dir.join("resolved"));
+    let (rows, header, log) = run(&unresolved, &dir.join("unresolved"));
+    let (ref_rows, ref_header, _) = run(&resolved, &dir.join("resolved"));
+    // 0.05 m is wider than the reaction's support 2.4 Δs = 0.048 m: the user is told.
+    assert!(
+        log.contains("warning: coupling.drag: a member 0.05 m wide is 1.0 times the radius 0.0480 m"),
+        "no wide-member warning:\n{log}"
+    );
     let balance = column(&header, "balance");
     let worst = rows.iter().map(|r| r[balance]).fold(0.0, f64::max);
     assert!(worst <= 1e-12, "ledger balance {worst:e}");
@@ -96,7 +97,7 @@ fn the_washout_prism_fractures_and_the_coupled_run_goes_on() {
     let dir = out_dir("prism-washout-ci");
     let case = coarse_case("prism-washout", "case.toml", &dir, 0.26);
     let out = dir.join("out");
-    let (rows, header) = run(&case, &out);
+    let (rows, header, _) = run(&case, &out);
     let balance = column(&header, "balance");
     let worst = rows.iter().map(|r| r[balance]).fold(0.0, f64::max);
     assert!(worst <= 1e-12, "ledger balance {worst:e}");

@@ -8,8 +8,8 @@
 
 use std::f64::consts::PI;
 
-/// Support radius in particle spacings (S2 Table 1).
-pub const SUPPORT_IN_SPACINGS: f64 = 2.4;
+/// Support radius in particle spacings (S2 Table 1; the contract's value).
+pub const SUPPORT_IN_SPACINGS: f64 = schemas::case::drag::KERNEL_SUPPORT_IN_SPACINGS;
 
 /// Wendland C2 with support `radius`.
 #[derive(Debug, Clone, Copy, PartialEq)]

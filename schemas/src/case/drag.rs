@@ -20,6 +20,12 @@ use super::error::check;
 use super::{Case, FieldError};
 use serde::Deserialize;
 
+/// Radius, in fluid particle spacings, of the kernel with which the fluid samples the flow at a
+/// point and spreads a reaction around a sub-member's centroid (S2 Table 1's influence radius;
+/// S2-24). Both sides of the contract use it: the fluid to sample and spread, the coupler to
+/// warn about members wider than it.
+pub const KERNEL_SUPPORT_IN_SPACINGS: f64 = 2.4;
+
 /// `[[coupling.drag]]`.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
