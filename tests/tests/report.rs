@@ -271,3 +271,60 @@ set = [{{ "case.end_time" = 1.0 }}, {{ "case.end_time" = 60.0 }}]
         .iter()
         .any(|c| c["row"] == "explicit" && c["column"] == "60 s" && c["state"] == "stopped"));
 }
+
+/// A `resolved-run` reference runs another case file (with its `set`) and the `integral`
+/// measure compares time integrals. The cantilever against itself under twice the tip load: the
+/// elastic response is linear in the load (2 kN: 24 MPa at the root, a tenth of the yield
+/// stress), so |∫(z₁ − z₂) dt| / |∫ z₂ dt| = ½ up to rounding. A reference without its case
+/// file is refused by `coupler check`, naming the field.
+#[test]
+fn a_resolved_run_reference_compares_the_integral_against_another_case_file() {
+    let dir = out_dir("report-resolved-run");
+    let source = workspace().join("cases/structure-cantilever/case.toml");
+    let text = std::fs::read_to_string(&source).unwrap_or_default();
+    let scene = text.split("\n[reference]").next().unwrap_or_default();
+    assert!(
+        scene.contains("value = [0.0, 0.0, -1000.0"),
+        "the cantilever's tip load"
+    );
+    std::fs::write(
+        dir.join("resolved.toml"),
+        scene.replace("value = [0.0, 0.0, -1000.0", "value = [0.0, 0.0, -2000.0"),
+    )
+    .unwrap_or_else(|e| panic!("cannot write the resolved case: {e}"));
+    let reference = |case_line: &str| {
+        format!(
+            "{scene}\n[reference]\nagainst = \"resolved-run\"\n{case_line}participant = \"beam\"\nfile = \"node-5.csv\"\n\
+             column = \"z\"\nmeasure = \"integral\"\nrelative = true\nsource = \"the cantilever under 2 kN\"\n\
+             set = {{ \"case.end_time\" = 0.2 }}\n\n[report]\ntarget_error = 0.1\nrepeats = 1\n\n[[report.ladder]]\n\
+             label = \"one solve\"\nset = {{ \"case.end_time\" = 0.2 }}\nvary = [\"structure.beam.frame.time_step\"]\nvalues = [1e-4]\n"
+        )
+    };
+    let case = dir.join("case.toml");
+    std::fs::write(&case, reference("")).unwrap_or_else(|e| panic!("cannot write the case: {e}"));
+    let check = Command::new(binary("coupler"))
+        .args(["check", case.to_str().unwrap_or_default()])
+        .output()
+        .unwrap_or_else(|e| panic!("cannot start the coupler: {e}"));
+    assert!(!check.status.success(), "a resolved run needs its case file");
+    assert!(stderr(&check).contains("reference.case"), "{}", stderr(&check));
+    std::fs::write(&case, reference("case = \"resolved.toml\"\n"))
+        .unwrap_or_else(|e| panic!("cannot write the case: {e}"));
+    let out = dir.join("report");
+    let run = Command::new(binary("coupler"))
+        .args([
+            "report",
+            case.to_str().unwrap_or_default(),
+            "--out",
+            out.to_str().unwrap_or_default(),
+        ])
+        .output()
+        .unwrap_or_else(|e| panic!("cannot start the coupler: {e}"));
+    assert!(run.status.success(), "{}", stderr(&run));
+    let table = rows(&out.join("accuracy.csv"));
+    assert_eq!(table.len(), 1, "one rung");
+    let error: f64 = table[0]["error"].parse().unwrap_or(f64::NAN);
+    assert!((error - 0.5).abs() < 1e-6, "error {error}, {:?}", table[0]);
+    let md = std::fs::read_to_string(out.join("accuracy.md")).unwrap_or_default();
+    assert!(md.contains("against the resolved run of the same scene"), "{md}");
+}

@@ -78,33 +78,34 @@ pub fn run_case(
     let mut rows: Vec<Row> = Vec::new();
     let mut missing = Vec::new();
     let mut notes: Vec<String> = Vec::new();
-    // The finer run a `finer-run` reference compares with.
+    // The finer (or resolved) run a `finer-run` (`resolved-run`) reference compares with.
     let finer: Option<PathBuf> = match reference.against {
-        Against::FinerRun => {
-            bar.start(&format!(
-                "{name}: finer reference run ({})",
-                describe(&reference.set)
-            ));
-            let case_file = write_changed_case(case, &reference.set, &dir.join("finer").join("case"))?;
+        Against::FinerRun | Against::ResolvedRun => {
+            let what = reference_run_name(reference);
+            bar.start(&format!("{name}: {what} ({})", describe(&reference.set)));
+            let source = match reference.against {
+                Against::ResolvedRun => reference
+                    .resolved_case(case)
+                    .map_err(|e| format!("{}: `{}`: {}", case.path.display(), e.key, e.message))?,
+                _ => case.clone(),
+            };
+            let case_file = write_changed_case(&source, &reference.set, &dir.join("finer").join("case"))?;
             let run_out = dir.join("finer").join("out");
             let m = super::measure::run_case(&case_file, &run_out)?;
             bar.done();
             if m.interrupted {
-                missing.push("the finer reference run".into());
+                missing.push(what.into());
                 None
             } else if m.success() {
                 notes.push(format!(
-                    "Reference: the finer run ({}) took {:.2} s wall, {:.0} MB.",
+                    "Reference: {what} ({}) took {:.2} s wall, {:.0} MB.",
                     describe(&reference.set),
                     m.wall,
                     m.peak_rss as f64 / 1e6
                 ));
                 Some(run_out)
             } else {
-                notes.push(format!(
-                    "The finer reference run failed: {}",
-                    last_error(&m.stderr)
-                ));
+                notes.push(format!("{what} failed: {}", last_error(&m.stderr)));
                 None
             }
         }
@@ -114,7 +115,7 @@ pub fn run_case(
     for (k, job) in all.iter().enumerate() {
         let what = format!("{} = {}", job.parameter, job.value);
         if schemas::signals::interrupted()
-            || (reference.against == Against::FinerRun && finer.is_none() && !missing.is_empty())
+            || (reference_run(reference) && finer.is_none() && !missing.is_empty())
         {
             missing.push(format!("{}: {what}", job.ladder_label));
             continue;
@@ -170,6 +171,19 @@ pub fn run_case(
     Ok(CaseReport { markdown, missing })
 }
 
+/// Whether the reference is a run of its own (finer or resolved) done before the ladders.
+pub fn reference_run(r: &ReferenceConfig) -> bool {
+    matches!(r.against, Against::FinerRun | Against::ResolvedRun)
+}
+
+/// The reference run in words.
+fn reference_run_name(r: &ReferenceConfig) -> &'static str {
+    match r.against {
+        Against::ResolvedRun => "the resolved reference run",
+        _ => "the finer reference run",
+    }
+}
+
 /// The run's `error:` lines joined (a solver's own message, then the coupler's), or its last line.
 pub fn last_error(stderr: &str) -> String {
     let lines: Vec<&str> = stderr.lines().map(str::trim).filter(|l| !l.is_empty()).collect();
@@ -189,6 +203,7 @@ pub fn error_name(r: &ReferenceConfig) -> String {
     let how = match r.measure {
         schemas::case::reference::Measure::Max => "largest",
         schemas::case::reference::Measure::Rms => "RMS",
+        schemas::case::reference::Measure::Integral => "time-integral",
     };
     let what = match (&r.column, r.solution) {
         (_, Some(schemas::case::reference::Solution::TwoMassOscillator)) => "displacement error".to_string(),
@@ -213,6 +228,7 @@ fn case_markdown(
         Against::Exact => "exact solution",
         Against::Experiment => "experiment",
         Against::FinerRun => "finer run of the same case",
+        Against::ResolvedRun => "resolved run of the same scene",
     };
     let mut s = format!(
         "### {name}\n\nError: {} against the {against} ({}).\n\n",

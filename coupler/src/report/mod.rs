@@ -128,7 +128,26 @@ fn stamp() -> String {
                 .map(|m| m.trim().to_string())
         })
         .unwrap_or_else(|| "unknown CPU".into());
-    format!("{date}, {cores} cores ({cpu})")
+    match load_average() {
+        Some(load) if load > cores as f64 => format!(
+            "{date}, {cores} cores ({cpu}), load {load:.1} at the start (1-minute average: \
+             other work shared the cores, so wall times are inflated)"
+        ),
+        Some(load) => {
+            format!("{date}, {cores} cores ({cpu}), load {load:.1} at the start (1-minute average)")
+        }
+        None => format!("{date}, {cores} cores ({cpu})"),
+    }
+}
+
+/// The 1-minute load average (`/proc/loadavg`'s first field), None where it cannot be read.
+fn load_average() -> Option<f64> {
+    std::fs::read_to_string("/proc/loadavg")
+        .ok()?
+        .split_whitespace()
+        .next()?
+        .parse()
+        .ok()
 }
 
 fn run_accuracy(
@@ -141,10 +160,7 @@ fn run_accuracy(
     let total: usize = cases
         .iter()
         .filter_map(|c| accuracy::sections(c).ok())
-        .map(|(r, p)| {
-            accuracy::jobs(p, opts.full).len()
-                + usize::from(r.against == schemas::case::reference::Against::FinerRun)
-        })
+        .map(|(r, p)| accuracy::jobs(p, opts.full).len() + usize::from(accuracy::reference_run(r)))
         .sum();
     let bar = progress::Bar::new(total as u64);
     let mut csv = table::CsvRows::create(&out.join("accuracy.csv")).map_err(io)?;

@@ -121,16 +121,22 @@ mod tests {
         let report = dir.join("report");
         std::fs::create_dir_all(&report).unwrap();
         std::fs::write(report.join("stability.md"), "### family\n\n![map](map.png)\n").unwrap();
+        std::fs::write(report.join("accuracy.md"), "### case\n\nfull ladder\n").unwrap();
         std::fs::write(report.join("map.png"), b"png").unwrap();
         let readme = dir.join("README.md");
         let ci = format!("{}\nci\n{}", STABILITY.0, STABILITY.1);
         let full = format!("{}\n{}", STABILITY_FULL.0, STABILITY_FULL.1);
-        std::fs::write(&readme, format!("{ci}\n{full}\n")).unwrap();
+        let accuracy_full = format!("{}\n{}", ACCURACY_FULL.0, ACCURACY_FULL.1);
+        std::fs::write(&readme, format!("{ci}\n{accuracy_full}\n{full}\n")).unwrap();
         let done = update(&readme, &report, "docs/full", true).unwrap();
-        assert_eq!(done, vec!["stability.md".to_string()]);
+        assert_eq!(done, vec!["accuracy.md".to_string(), "stability.md".to_string()]);
         let text = std::fs::read_to_string(&readme).unwrap();
         assert!(text.starts_with(&ci), "the CI-sized section stays: {text}");
         assert!(text.contains("#### family\n\n![map](docs/full/map.png)\n<!-- report:stability-full:end -->"));
+        assert!(text.contains(&format!(
+            "{}\n#### case\n\nfull ladder\n{}",
+            ACCURACY_FULL.0, ACCURACY_FULL.1
+        )));
         assert!(dir.join("docs/full/map.png").exists());
         std::fs::remove_dir_all(&dir).unwrap();
     }

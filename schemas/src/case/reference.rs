@@ -2,14 +2,14 @@
 //!
 //! ```toml
 //! [reference]
-//! against = "exact"                       # "exact" | "experiment" | "finer-run"
+//! against = "exact"                       # "exact" | "experiment" | "finer-run" | "resolved-run"
 //! solution = "constant"                   # exact: "constant" (value) | "two-mass-oscillator"
 //! value = -4.031e-4                       # the exact value (solution = "constant")
-//! participant = "beam"                    # whose output file is compared
+//! participant = "beam"                    # whose output file is compared (none: the run's own, e.g. ledger.csv)
 //! file = "node-5.csv"                     # a CSV with a header line, `t` first
 //! column = "z"
 //! from = 0.6                              # compare rows with from ≤ t ≤ until
-//! measure = "max"                         # "max" | "rms" of the differences
+//! measure = "max"                         # "max" | "rms" of the differences | "integral" of them
 //! relative = true                         # divide by the reference's largest magnitude
 //! source = "Timoshenko: PL³/3EI + PL/κGA"
 //! ```
@@ -18,7 +18,11 @@
 //! starting with `#` are comments, then a header line) whose `data_time` and `data_value`
 //! columns, times `time_scale` and `value_scale`, give the model's time and value. A finer run
 //! (`against = "finer-run"`) is the same case with the settings of `set` (e.g. a smaller
-//! spacing); its output is interpolated in time at the compared run's rows.
+//! spacing); its output is interpolated in time at the compared run's rows. A resolved run
+//! (`against = "resolved-run"`) is another case file of the same scene (`case`, relative to the
+//! case folder: e.g. a prism made of body particles for a prism coupled by a drag law) run with
+//! the settings of `set`, and compared the same way. A file's time is its `t` or `time` column
+//! (else its first).
 
 use super::error::check;
 use super::report::{check_settings, Settings};
@@ -36,6 +40,8 @@ pub enum Against {
     Experiment,
     /// The same case run finer (the settings of `set`).
     FinerRun,
+    /// Another case file of the same scene with the structure resolved (`case`, with `set`).
+    ResolvedRun,
 }
 
 /// Closed-form solutions the report knows.
@@ -57,6 +63,9 @@ pub enum Measure {
     Max,
     /// Root mean square of the differences.
     Rms,
+    /// |∫ (computed − reference) dt| over the compared rows (trapezoids at the run's rows), e.g.
+    /// an impulse error; relative: divided by |∫ reference dt|.
+    Integral,
 }
 
 /// `[reference]`.
@@ -79,7 +88,8 @@ pub struct ReferenceConfig {
     /// `solution = "two-mass-oscillator"`: the participants holding m1 and m2 (their first point).
     #[serde(default)]
     pub participants: Vec<String>,
-    /// The participant whose output file is compared.
+    /// The participant whose output file is compared; none: the coupled run's own file
+    /// (`ledger.csv`).
     #[serde(default)]
     pub participant: Option<String>,
     /// The output file, in the participant's output folder.
@@ -107,9 +117,13 @@ pub struct ReferenceConfig {
     /// Model value = data value × `value_scale`.
     #[serde(default = "one")]
     pub value_scale: f64,
-    /// `against = "finer-run"`: the settings that make the run finer.
+    /// `against = "finer-run"`: the settings that make the run finer; `"resolved-run"`: the
+    /// settings of the resolved run.
     #[serde(default)]
     pub set: Settings,
+    /// `against = "resolved-run"`: the resolved case file, relative to the case folder.
+    #[serde(default)]
+    pub case: Option<PathBuf>,
 }
 
 fn one() -> f64 {
@@ -167,7 +181,9 @@ impl ReferenceConfig {
                 ));
             }
         } else {
-            need("participant", self.participant.is_some())?;
+            if case.coupling.is_none() {
+                need("participant", self.participant.is_some())?;
+            }
             need("file", self.file.as_deref().is_some_and(|f| !f.is_empty()))?;
             need("column", self.column.as_deref().is_some_and(|c| !c.is_empty()))?;
             if let Some(p) = &self.participant {
@@ -213,6 +229,16 @@ impl ReferenceConfig {
                 }
                 check_settings(case, &k("set"), &self.set, true)?;
             }
+            Against::ResolvedRun => {
+                let resolved = self.resolved_case(case)?;
+                check_settings(&resolved, &k("set"), &self.set, true)?;
+            }
+        }
+        if self.against != Against::ResolvedRun && self.case.is_some() {
+            return Err(FieldError::new(
+                k("case"),
+                "belongs to against = \"resolved-run\" only",
+            ));
         }
         if self.against != Against::Exact && self.solution.is_some() {
             return Err(FieldError::new(
@@ -223,11 +249,29 @@ impl ReferenceConfig {
         Ok(())
     }
 
+    /// `against = "resolved-run"`: the resolved case, loaded.
+    pub fn resolved_case(&self, case: &Case) -> Result<Case, FieldError> {
+        let file = self.case.as_deref().ok_or_else(|| {
+            FieldError::new(
+                "reference.case",
+                "is needed with against = \"resolved-run\": the resolved case file",
+            )
+        })?;
+        let path = case.resolve(file);
+        Case::load(&path).map_err(|e| {
+            FieldError::new(
+                "reference.case",
+                format!("{}: `{}`: {}", path.display(), e.key, e.message),
+            )
+        })
+    }
+
     fn against_name(&self) -> &'static str {
         match self.against {
             Against::Exact => "exact",
             Against::Experiment => "experiment",
             Against::FinerRun => "finer-run",
+            Against::ResolvedRun => "resolved-run",
         }
     }
 }
