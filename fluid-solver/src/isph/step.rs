@@ -75,7 +75,6 @@ pub struct IsphStep {
     ratio: Vec<f64>,
     lambda: Vec<f64>,
     takes_part: Vec<u8>,
-    divergence: Vec<f64>,
     normals: VectorField,
     accel: VectorField,
     ppe: PpeSystem,
@@ -112,7 +111,6 @@ impl IsphStep {
             ratio: Vec::new(),
             lambda: Vec::new(),
             takes_part: Vec::new(),
-            divergence: Vec::new(),
             normals: VectorField::default(),
             accel: VectorField::default(),
             ppe: PpeSystem::default(),
@@ -348,7 +346,6 @@ impl IsphStep {
         let k = self.kernel;
         walls::normals(&k, &self.list, p, &mut self.normals);
         walls::depths(&k, &self.list, p, &self.normals, &mut self.depth);
-        operators::divergence(&k, &self.list, p, &mut self.divergence);
         let list = &self.list;
         let surface = &mut state.surface;
         // Unknowns: fluid, not on the surface, with at least one fluid neighbour.
@@ -396,7 +393,7 @@ impl IsphStep {
             spacing: self.kernel.spacing,
         };
         let (rho, alpha) = (self.physics.density, self.settings.alpha_d);
-        let (row_of, ratio, div, dirichlet) = (&ppe.row_of, &self.ratio, &self.divergence, &self.dirichlet);
+        let (row_of, ratio, dirichlet) = (&ppe.row_of, &self.ratio, &self.dirichlet);
         // Rows in blocks of ROW_BLOCK unknowns, each block's entries contiguous in its own
         // reused buffers, then copied into the CSR arrays block by block in parallel.
         let blocks = &mut self.row_blocks;
@@ -413,10 +410,8 @@ impl IsphStep {
                 for &i in block {
                     let i = i as usize;
                     let row = row_of[i];
-                    let (mut diag, mut rhs) = (
-                        0.0,
-                        -(rho / dt * div[i] + alpha * rho * (1.0 - ratio[i]) / (dt * dt)),
-                    );
+                    // Σ_j F_ij, the known terms, and S2-8's divergence of v* in the same pass.
+                    let (mut diag, mut rhs, mut div) = (0.0, 0.0, 0.0);
                     for &j in list.of(i) {
                         let j = j as usize;
                         let r = ((p.x[j] - p.x[i]).powi(2)
@@ -430,6 +425,7 @@ impl IsphStep {
                         let f32 = (-2.0 * k.volume * k.dw_over_r(r)) as f32;
                         let f = f64::from(f32);
                         if p.kind[j] == FLUID {
+                            div += operators::divergence_term(&k, p, i, j, r);
                             diag += f;
                             if row_of[j] == NOT_AN_UNKNOWN {
                                 rhs += f * dirichlet[j];
@@ -444,7 +440,8 @@ impl IsphStep {
                     }
                     out.end.push(out.col.len() as u32);
                     out.diag.push(diag);
-                    out.rhs.push(rhs);
+                    out.rhs
+                        .push(rhs - (rho / dt * div + alpha * rho * (1.0 - ratio[i]) / (dt * dt)));
                 }
             });
         let rows = ppe.particle.len();
