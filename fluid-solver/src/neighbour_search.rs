@@ -142,6 +142,12 @@ impl CellGrid {
         }
     }
 
+    /// The cell of particle `i` (after [`CellGrid::sort`]).
+    #[inline(always)]
+    pub fn cell(&self, i: usize) -> u32 {
+        self.cell_of[i]
+    }
+
     /// Whether any fluid particle lies in the cells within `reach` of particle `i`'s cell.
     pub fn fluid_near(&self, i: usize, reach: usize) -> bool {
         let mut any = false;

@@ -13,11 +13,20 @@ use rayon::prelude::*;
 /// Particles per block of the parallel build.
 const BLOCK: usize = 512;
 
-/// Neighbours of particle i are `index[start[i] .. start[i + 1]]` (i itself excluded).
+/// The neighbour lists of every particle, kept per block of [`BLOCK`] particles: each block is
+/// built in place by one rayon task, its buffers reused from step to step (no concatenation, no
+/// allocation once the lists have reached their size).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct NeighbourList {
-    pub start: Vec<u32>,
-    pub index: Vec<u32>,
+    blocks: Vec<Block>,
+}
+
+/// Neighbours of the block's k-th particle are `index[start[k] .. start[k + 1]]` (the particle
+/// itself excluded).
+#[derive(Debug, Clone, Default, PartialEq)]
+struct Block {
+    start: Vec<u32>,
+    index: Vec<u32>,
 }
 
 impl NeighbourList {
@@ -26,15 +35,33 @@ impl NeighbourList {
         let reach = grid.reach(radius);
         let r2max = radius * radius;
         let (x, y, z, kind) = (&p.x, &p.y, &p.z, &p.kind);
-        // Blocks of BLOCK particles, each block's lists contiguous (one allocation per block),
-        // then concatenated.
         let n = p.len();
-        let blocks: Vec<(Vec<u32>, Vec<u32>, u64)> = (0..n.div_ceil(BLOCK))
-            .into_par_iter()
-            .map(|b| {
-                let (mut index, mut end, mut seen) = (Vec::new(), Vec::new(), 0u64);
+        self.blocks.resize_with(n.div_ceil(BLOCK), Block::default);
+        self.blocks
+            .par_iter_mut()
+            .enumerate()
+            .map(|(b, block)| {
+                let (index, start) = (&mut block.index, &mut block.start);
+                index.clear();
+                start.clear();
+                start.push(0);
+                let mut seen = 0u64;
+                // Whether fluid is near the last solid's cell (the particles of a cell are
+                // consecutive, so each cell is asked once).
+                let mut near: Option<(u32, bool)> = None;
                 for i in b * BLOCK..((b + 1) * BLOCK).min(n) {
-                    if kind[i] == FLUID || grid.fluid_near(i, reach) {
+                    let listed = kind[i] == FLUID || {
+                        let c = grid.cell(i);
+                        match near {
+                            Some((last, answer)) if last == c => answer,
+                            _ => {
+                                let answer = grid.fluid_near(i, reach);
+                                near = Some((c, answer));
+                                answer
+                            }
+                        }
+                    };
+                    if listed {
                         let (xi, yi, zi) = (x[i], y[i], z[i]);
                         grid.for_each_range_within(i, [xi, yi, zi], radius, reach, |s, e| {
                             seen += (e - s) as u64;
@@ -47,32 +74,26 @@ impl NeighbourList {
                             }
                         });
                     }
-                    end.push(index.len() as u32);
+                    start.push(index.len() as u32);
                 }
-                (index, end, seen)
+                seen
             })
-            .collect();
-        self.start.clear();
-        self.start.push(0);
-        self.index.clear();
-        let mut seen = 0;
-        for (index, end, s) in blocks {
-            let offset = self.index.len() as u32;
-            self.start.extend(end.iter().map(|e| offset + e));
-            self.index.extend_from_slice(&index);
-            seen += s;
-        }
-        seen
+            .sum()
     }
 
     /// The neighbours of particle `i`.
     #[inline(always)]
     pub fn of(&self, i: usize) -> &[u32] {
-        &self.index[self.start[i] as usize..self.start[i + 1] as usize]
+        let b = &self.blocks[i / BLOCK];
+        let k = i % BLOCK;
+        &b.index[b.start[k] as usize..b.start[k + 1] as usize]
     }
 
     /// Bytes held.
     pub fn memory_bytes(&self) -> usize {
-        4 * (self.start.capacity() + self.index.capacity())
+        self.blocks
+            .iter()
+            .map(|b| 4 * (b.start.capacity() + b.index.capacity()))
+            .sum()
     }
 }

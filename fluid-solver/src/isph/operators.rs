@@ -55,14 +55,23 @@ pub fn divergence(k: &Wendland, list: &NeighbourList, p: &Particles, out: &mut V
                     if p.kind[j] != FLUID {
                         continue;
                     }
-                    let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
-                    let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-                    let dv = [p.vx[j] - p.vx[i], p.vy[j] - p.vy[i], p.vz[j] - p.vz[i]];
-                    s += k.volume * k.dw_over_r(r) * (dv[0] * d[0] + dv[1] * d[1] + dv[2] * d[2]);
+                    let r =
+                        ((p.x[j] - p.x[i]).powi(2) + (p.y[j] - p.y[i]).powi(2) + (p.z[j] - p.z[i]).powi(2))
+                            .sqrt();
+                    s += divergence_term(k, p, i, j, r);
                 }
             }
             *o = s;
         });
+}
+
+/// One fluid pair's term of S2-8's divergence, `V (v_j − v_i)·∇W_ij`, at distance `r`
+/// (the PPE assembly sums it in its own pass over the pairs).
+#[inline(always)]
+pub fn divergence_term(k: &Wendland, p: &Particles, i: usize, j: usize, r: f64) -> f64 {
+    let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
+    let dv = [p.vx[j] - p.vx[i], p.vy[j] - p.vy[i], p.vz[j] - p.vz[i]];
+    k.volume * k.dw_over_r(r) * (dv[0] * d[0] + dv[1] * d[1] + dv[2] * d[2])
 }
 
 /// S2-9 on the velocity: `⟨∇²v⟩_i = Σ_j F_ij (v_j − v_i)` for fluid i over fluid neighbours and,

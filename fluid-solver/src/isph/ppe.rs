@@ -9,6 +9,13 @@
 //! least one surface neighbour per connected body of water, positive definite: conjugate
 //! gradients apply.
 //!
+//! The solve is memory-bound (about 55 entries per row against a few vector values), so only the
+//! strict upper triangle is stored, in f32: 4 bytes of value and 4 of column per pair of
+//! unknowns instead of 2 × 12. The product `A x` ([`PpeSystem::apply`]) reads each stored entry
+//! once for both of its rows, in two phases over chunks at least the matrix's bandwidth long
+//! (the unknowns are in cell order, so a row's columns lie within a few layers of cells): the
+//! even chunks in parallel, then the odd ones, each writing only its own and the next chunk.
+//!
 //! Three solvers ([`schemas::case::fluid::PpeSolver`]): a Jacobi-preconditioned CG over the rows
 //! in rayon, warm-started from the last step's pressure (its dot products summed in fixed chunks,
 //! so a run is bit-reproducible); the same CG preconditioned by symmetric Gauss–Seidel within
@@ -32,10 +39,11 @@ pub struct PpeSystem {
     pub particle: Vec<u32>,
     /// Unknown number of each particle, or [`NOT_AN_UNKNOWN`].
     pub row_of: Vec<u32>,
-    /// Off-diagonal entries of row r: `col[start[r] .. start[r + 1]]`, values `−F` in `val`.
+    /// Strict upper triangle (columns > r) of row r: `col[start[r] .. start[r + 1]]`, values
+    /// `−F` in `val`, in f32 (module doc); the diagonal, right-hand side and vectors are f64.
     pub start: Vec<u32>,
     pub col: Vec<u32>,
-    pub val: Vec<f64>,
+    pub val: Vec<f32>,
     pub diag: Vec<f64>,
     pub rhs: Vec<f64>,
 }
@@ -68,12 +76,59 @@ impl PpeSystem {
         self.particle.is_empty()
     }
 
-    /// `out = A x`.
+    /// `out = A x` from the upper triangle (module doc): for each row r of a chunk,
+    /// `out_r += A_rr x_r + Σ_{c>r} A_rc x_c` and `out_c += A_rc x_r`, the even chunks in parallel
+    /// and then the odd ones. Each task writes only its chunk and the next (`span` is at least the
+    /// bandwidth, [`PpeSystem::span`]), and every sum is taken in a fixed order, so the result
+    /// does not depend on the thread count.
     pub fn apply(&self, x: &[f64], out: &mut [f64]) {
-        out.par_iter_mut()
-            .enumerate()
-            .with_min_len(1024)
-            .for_each(|(r, o)| *o = self.row_times(r, x));
+        self.apply_with(self.span(), x, out);
+    }
+
+    /// [`PpeSystem::apply`] with the chunk length `span`.
+    fn apply_with(&self, span: usize, x: &[f64], out: &mut [f64]) {
+        let n = self.len();
+        for phase in 0..2 {
+            let offset = phase * span;
+            if offset >= n {
+                break;
+            }
+            out[offset..]
+                .par_chunks_mut(2 * span)
+                .enumerate()
+                .for_each(|(m, o)| {
+                    if phase == 0 {
+                        o.iter_mut().for_each(|v| *v = 0.0);
+                    }
+                    let base = offset + 2 * m * span;
+                    for r in base..(base + span).min(n) {
+                        let xr = x[r];
+                        let mut sum = self.diag[r] * xr;
+                        let (s, e) = (self.start[r] as usize, self.start[r + 1] as usize);
+                        for (&c, &v) in self.col[s..e].iter().zip(&self.val[s..e]) {
+                            let (c, v) = (c as usize, f64::from(v));
+                            sum += v * x[c];
+                            o[c - base] += v * xr;
+                        }
+                        o[r - base] += sum;
+                    }
+                });
+        }
+    }
+
+    /// The chunk length of [`PpeSystem::apply`]: the bandwidth `max (c − r)` rounded up to a
+    /// multiple of [`CHUNK`] (at least one).
+    fn span(&self) -> usize {
+        let band = (0..self.len())
+            .into_par_iter()
+            .with_min_len(CHUNK)
+            .map(|r| {
+                let (s, e) = (self.start[r] as usize, self.start[r + 1] as usize);
+                self.col[s..e].iter().map(|&c| c as usize - r).max().unwrap_or(0)
+            })
+            .max()
+            .unwrap_or(0);
+        (band + 1).div_ceil(CHUNK) * CHUNK
     }
 
     /// Solves with `solver`, starting from `x` (the warm start); `x` holds the solution.
@@ -104,10 +159,11 @@ impl PpeSystem {
         }
     }
 
-    /// Jacobi-preconditioned conjugate gradient (Saad 2003, Alg. 9.1), three passes over the
-    /// unknowns per iteration: `Ad` with `d·Ad`; the updates of x and r with `r·z` and `r·r`
-    /// (z = D⁻¹r is not stored); the new direction `d = z + βd`. Each reduction is summed per
-    /// fixed chunk in the order of the unfused algorithm, so the result is bit-identical to it.
+    /// Jacobi-preconditioned conjugate gradient (Saad 2003, Alg. 9.1), per iteration: `Ad` (the
+    /// two phases of [`PpeSystem::apply`], the only passes over the matrix) and `d·Ad`; the
+    /// updates of x and r with `r·z` and `r·r` (z = D⁻¹r is not stored); the new direction
+    /// `d = z + βd`. Each reduction is summed per fixed chunk in the order of the unfused
+    /// algorithm, so the result is bit-identical to it.
     fn jacobi_pcg(&self, x: &mut [f64], tol: f64, max_iterations: u32) -> Result<PpeReport, PpeFailure> {
         let n = self.len();
         let b2 = dot(&self.rhs, &self.rhs);
@@ -120,8 +176,9 @@ impl PpeSystem {
             });
         }
         let target2 = tol * tol * b2;
+        let span = self.span();
         let mut r = vec![0.0; n];
-        self.apply(x, &mut r);
+        self.apply_with(span, x, &mut r);
         r.par_iter_mut().zip(&self.rhs).for_each(|(r, b)| *r = b - *r);
         let inv_d: Vec<f64> = self.diag.par_iter().map(|d| 1.0 / d).collect();
         let mut d: Vec<f64> = r.par_iter().zip(&inv_d).map(|(r, d)| r * d).collect();
@@ -137,7 +194,7 @@ impl PpeSystem {
                     unknowns: n,
                 });
             }
-            let d_ad = self.apply_and_dot(&d, &mut ad);
+            let d_ad = self.apply_and_dot(span, &d, &mut ad);
             let alpha = rz / d_ad;
             let (rz_new, r2_new) = update_chunks(x, &mut r, &d, &ad, &inv_d, alpha);
             let beta = rz_new / rz;
@@ -175,8 +232,9 @@ impl PpeSystem {
             });
         }
         let target2 = tol * tol * b2;
+        let span = self.span();
         let mut r = vec![0.0; n];
-        self.apply(x, &mut r);
+        self.apply_with(span, x, &mut r);
         r.par_iter_mut().zip(&self.rhs).for_each(|(r, b)| *r = b - *r);
         let mut z = vec![0.0; n];
         let mut rz = self.block_sgs(&r, &mut z);
@@ -192,7 +250,7 @@ impl PpeSystem {
                     unknowns: n,
                 });
             }
-            let alpha = rz / self.apply_and_dot(&d, &mut ad);
+            let alpha = rz / self.apply_and_dot(span, &d, &mut ad);
             let parts: Vec<f64> = x
                 .par_chunks_mut(CHUNK)
                 .zip(r.par_chunks_mut(CHUNK))
@@ -237,22 +295,26 @@ impl PpeSystem {
                     let (s, e) = (self.start[i] as usize, self.start[i + 1] as usize);
                     self.col[s..e].iter().zip(&self.val[s..e])
                 };
+                // Forward sweep `(D + L) y = r` column by column from the upper triangle: z
+                // holds r minus the terms of the rows already solved.
+                z.copy_from_slice(&r[b0..b1]);
                 for i in b0..b1 {
-                    let mut s = r[i];
+                    let zi = z[i - b0] / self.diag[i];
+                    z[i - b0] = zi;
                     for (&c, &v) in entries(i) {
                         let c = c as usize;
-                        if c >= b0 && c < i {
-                            s -= v * z[c - b0];
+                        if c < b1 {
+                            z[c - b0] -= f64::from(v) * zi;
                         }
                     }
-                    z[i - b0] = s / self.diag[i];
                 }
+                // Backward sweep `(D + U) z = D y`.
                 for i in (b0..b1).rev() {
                     let mut s = 0.0;
                     for (&c, &v) in entries(i) {
                         let c = c as usize;
-                        if c > i && c < b1 {
-                            s += v * z[c - b0];
+                        if c < b1 {
+                            s += f64::from(v) * z[c - b0];
                         }
                     }
                     z[i - b0] -= s / self.diag[i];
@@ -263,35 +325,10 @@ impl PpeSystem {
         parts.iter().sum()
     }
 
-    /// `out = A x` and `x·out`, per fixed chunk of rows (the sum as [`dot`]'s).
-    fn apply_and_dot(&self, x: &[f64], out: &mut [f64]) -> f64 {
-        let parts: Vec<f64> = out
-            .par_chunks_mut(CHUNK)
-            .enumerate()
-            .map(|(c, o)| {
-                let r0 = c * CHUNK;
-                for (k, o) in o.iter_mut().enumerate() {
-                    *o = self.row_times(r0 + k, x);
-                }
-                x[r0..r0 + o.len()]
-                    .iter()
-                    .zip(o.iter())
-                    .map(|(x, y)| x * y)
-                    .sum::<f64>()
-            })
-            .collect();
-        parts.iter().sum()
-    }
-
-    /// `(A x)_r`.
-    #[inline(always)]
-    fn row_times(&self, r: usize, x: &[f64]) -> f64 {
-        let (s, e) = (self.start[r] as usize, self.start[r + 1] as usize);
-        let mut sum = self.diag[r] * x[r];
-        for (&c, &v) in self.col[s..e].iter().zip(&self.val[s..e]) {
-            sum += v * x[c as usize];
-        }
-        sum
+    /// `out = A x` and `x·out` (the sum as [`dot`]'s).
+    fn apply_and_dot(&self, span: usize, x: &[f64], out: &mut [f64]) -> f64 {
+        self.apply_with(span, x, out);
+        dot(x, out)
     }
 
     /// faer's sparse Cholesky of A (AMD ordering), factorised afresh every step.
@@ -313,7 +350,7 @@ impl PpeSystem {
             let (s, e) = (self.start[r] as usize, self.start[r + 1] as usize);
             for (&c, &v) in self.col[s..e].iter().zip(&self.val[s..e]) {
                 if (c as usize) > r {
-                    triplets.push(Triplet::new(c as usize, r, v));
+                    triplets.push(Triplet::new(c as usize, r, f64::from(v)));
                 }
             }
         }
@@ -389,7 +426,8 @@ fn dot_fn(n: usize, f: impl Fn(usize) -> f64 + Sync) -> f64 {
 mod tests {
     use super::*;
 
-    /// The 7-point Laplacian of an m³ grid with Dirichlet boundaries (diagonal 6, neighbours −1):
+    /// The 7-point Laplacian of an m³ grid with Dirichlet boundaries (diagonal 6, neighbours −1;
+    /// the upper triangle stored):
     /// symmetric positive definite, like the PPE; m = 17 gives 4 913 unknowns, two SGS blocks.
     fn laplacian(m: usize) -> PpeSystem {
         let n = m * m * m;
@@ -407,7 +445,7 @@ mod tests {
                 (y + 1 < m, i + m),
                 (z + 1 < m, i + m * m),
             ] {
-                if ok {
+                if ok && j > i {
                     s.col.push(j as u32);
                     s.val.push(-1.0);
                 }

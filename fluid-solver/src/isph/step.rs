@@ -38,11 +38,12 @@ use schemas::case::fluid::{IsphConfig, WallSlip};
 const ROW_BLOCK: usize = 256;
 
 /// Assembled PPE rows of one block: off-diagonal entries (unknown, value) contiguous, the end of
-/// each row's entries, its diagonal and right-hand side.
-#[derive(Default)]
+/// each row's entries, its diagonal and right-hand side; kept from step to step, so the buffers
+/// are not allocated again.
+#[derive(Debug, Clone, Default)]
 struct RowBlock {
     col: Vec<u32>,
-    val: Vec<f64>,
+    val: Vec<f32>,
     end: Vec<u32>,
     diag: Vec<f64>,
     rhs: Vec<f64>,
@@ -74,10 +75,10 @@ pub struct IsphStep {
     ratio: Vec<f64>,
     lambda: Vec<f64>,
     takes_part: Vec<u8>,
-    divergence: Vec<f64>,
     normals: VectorField,
     accel: VectorField,
     ppe: PpeSystem,
+    row_blocks: Vec<RowBlock>,
     solution: Vec<f64>,
     /// The bodies' face forces of the last pressure solve ([`pair_laws::body_faces`]).
     faces: pair_laws::BodyFaces,
@@ -110,10 +111,10 @@ impl IsphStep {
             ratio: Vec::new(),
             lambda: Vec::new(),
             takes_part: Vec::new(),
-            divergence: Vec::new(),
             normals: VectorField::default(),
             accel: VectorField::default(),
             ppe: PpeSystem::default(),
+            row_blocks: Vec::new(),
             solution: Vec::new(),
             dirichlet: Vec::new(),
             surface: Vec::new(),
@@ -345,7 +346,6 @@ impl IsphStep {
         let k = self.kernel;
         walls::normals(&k, &self.list, p, &mut self.normals);
         walls::depths(&k, &self.list, p, &self.normals, &mut self.depth);
-        operators::divergence(&k, &self.list, p, &mut self.divergence);
         let list = &self.list;
         let surface = &mut state.surface;
         // Unknowns: fluid, not on the surface, with at least one fluid neighbour.
@@ -393,34 +393,46 @@ impl IsphStep {
             spacing: self.kernel.spacing,
         };
         let (rho, alpha) = (self.physics.density, self.settings.alpha_d);
-        let (row_of, ratio, div, dirichlet) = (&ppe.row_of, &self.ratio, &self.divergence, &self.dirichlet);
-        // Rows in blocks of ROW_BLOCK unknowns, each block's entries contiguous (one allocation
-        // per block, not per row), then concatenated into the CSR arrays.
-        let blocks: Vec<RowBlock> = ppe
-            .particle
-            .par_chunks(ROW_BLOCK)
-            .map(|block| {
-                let mut out = RowBlock::default();
+        let (row_of, ratio, dirichlet) = (&ppe.row_of, &self.ratio, &self.dirichlet);
+        // Rows in blocks of ROW_BLOCK unknowns, each block's entries contiguous in its own
+        // reused buffers, then copied into the CSR arrays block by block in parallel.
+        let blocks = &mut self.row_blocks;
+        blocks.resize_with(ppe.particle.len().div_ceil(ROW_BLOCK), RowBlock::default);
+        blocks
+            .par_iter_mut()
+            .zip(ppe.particle.par_chunks(ROW_BLOCK))
+            .for_each(|(out, block)| {
+                out.col.clear();
+                out.val.clear();
+                out.end.clear();
+                out.diag.clear();
+                out.rhs.clear();
                 for &i in block {
                     let i = i as usize;
-                    let (mut diag, mut rhs) = (
-                        0.0,
-                        -(rho / dt * div[i] + alpha * rho * (1.0 - ratio[i]) / (dt * dt)),
-                    );
+                    let row = row_of[i];
+                    // Σ_j F_ij, the known terms, and S2-8's divergence of v* in the same pass.
+                    let (mut diag, mut rhs, mut div) = (0.0, 0.0, 0.0);
                     for &j in list.of(i) {
                         let j = j as usize;
                         let r = ((p.x[j] - p.x[i]).powi(2)
                             + (p.y[j] - p.y[i]).powi(2)
                             + (p.z[j] - p.z[i]).powi(2))
                         .sqrt();
-                        let f = -2.0 * k.volume * k.dw_over_r(r);
+                        // F_ij rounded to f32 once (the matrix is stored in f32), the diagonal and
+                        // the known terms built from the same rounded weight, so A keeps zero row
+                        // sums over the fluid and stays symmetric: a Laplacian whose weights
+                        // differ from S2-9's by 6e-8 relative.
+                        let f32 = (-2.0 * k.volume * k.dw_over_r(r)) as f32;
+                        let f = f64::from(f32);
                         if p.kind[j] == FLUID {
+                            div += operators::divergence_term(&k, p, i, j, r);
                             diag += f;
-                            if row_of[j] != NOT_AN_UNKNOWN {
-                                out.col.push(row_of[j]);
-                                out.val.push(-f);
-                            } else {
+                            if row_of[j] == NOT_AN_UNKNOWN {
                                 rhs += f * dirichlet[j];
+                            } else if row_of[j] > row {
+                                // The upper triangle only (super::ppe).
+                                out.col.push(row_of[j]);
+                                out.val.push(-f32);
                             }
                         } else {
                             rhs += f * pair.difference(i, j);
@@ -428,25 +440,40 @@ impl IsphStep {
                     }
                     out.end.push(out.col.len() as u32);
                     out.diag.push(diag);
-                    out.rhs.push(rhs);
+                    out.rhs
+                        .push(rhs - (rho / dt * div + alpha * rho * (1.0 - ratio[i]) / (dt * dt)));
                 }
-                out
-            })
-            .collect();
-        ppe.start.clear();
-        ppe.col.clear();
-        ppe.val.clear();
-        ppe.diag.clear();
-        ppe.rhs.clear();
-        ppe.start.push(0);
-        for b in blocks {
-            let offset = ppe.col.len() as u32;
-            ppe.start.extend(b.end.iter().map(|e| offset + e));
-            ppe.col.extend_from_slice(&b.col);
-            ppe.val.extend_from_slice(&b.val);
-            ppe.diag.extend_from_slice(&b.diag);
-            ppe.rhs.extend_from_slice(&b.rhs);
+            });
+        let rows = ppe.particle.len();
+        let entries: usize = blocks.iter().map(|b| b.col.len()).sum();
+        ppe.start.resize(rows + 1, 0);
+        ppe.col.resize(entries, 0);
+        ppe.val.resize(entries, 0.0);
+        ppe.diag.resize(rows, 0.0);
+        ppe.rhs.resize(rows, 0.0);
+        ppe.start[0] = 0;
+        // Each block's slice of every CSR array, split off in order.
+        let (mut start, mut col, mut val) = (&mut ppe.start[1..], &mut ppe.col[..], &mut ppe.val[..]);
+        let (mut diag, mut rhs) = (&mut ppe.diag[..], &mut ppe.rhs[..]);
+        let mut parts = Vec::with_capacity(blocks.len());
+        let mut offset = 0u32;
+        for b in blocks.iter() {
+            let (s, s_rest) = std::mem::take(&mut start).split_at_mut(b.end.len());
+            let (c, c_rest) = std::mem::take(&mut col).split_at_mut(b.col.len());
+            let (v, v_rest) = std::mem::take(&mut val).split_at_mut(b.col.len());
+            let (d, d_rest) = std::mem::take(&mut diag).split_at_mut(b.end.len());
+            let (r, r_rest) = std::mem::take(&mut rhs).split_at_mut(b.end.len());
+            (start, col, val, diag, rhs) = (s_rest, c_rest, v_rest, d_rest, r_rest);
+            parts.push((b, offset, s, c, v, d, r));
+            offset += b.col.len() as u32;
         }
+        parts.into_par_iter().for_each(|(b, offset, s, c, v, d, r)| {
+            s.iter_mut().zip(&b.end).for_each(|(s, e)| *s = offset + e);
+            c.copy_from_slice(&b.col);
+            v.copy_from_slice(&b.val);
+            d.copy_from_slice(&b.diag);
+            r.copy_from_slice(&b.rhs);
+        });
     }
 
     /// Solves the PPE warm-started from the particles' pressure and writes the fluid pressures
