@@ -4,10 +4,17 @@
 //! 1. neighbour search and list;
 //! 2. density ratio ρ̂/ρ0 (S2-7) and free-surface flags ([`super::free_surface`], S2-10 … S2-13);
 //! 3. `v* = v^n + (ν∇²v^n + g)Δt` (S2-3, S2-9);
-//! 4. the PPE `∇²p = (ρ/Δt)∇·v* + α_d(ρ0 − ρ̂)/Δt²` (S2-5) with p = 0 on the free surface (half a
-//!    spacing beyond the surface particles, [`free_surface::surface_pressure`]) and
+//! 4. the PPE `∇²p = (ρ/Δt)∇·v* + α_d(ρ0 − ρ̂)/(Δt Δt_case)` (S2-5) with p = 0 on the free surface
+//!    (half a spacing beyond the surface particles, [`free_surface::surface_pressure`]) and
 //!    the walls' Neumann differences ([`super::walls`]), assembled and solved ([`super::ppe`]);
-//!    a negative solution is written as 0 (no tension, [`IsphStep::solve_ppe`] says why);
+//!    a negative solution is written as 0 (no tension, [`IsphStep::solve_ppe`] says why).
+//!    S2-5 has Δt² (Δt_case = Δt): the projection then sets `∇·v^{n+1} = −α_d(1 − ρ̂/ρ0)/Δt`,
+//!    a relaxation by the fraction α_d per step, whatever the step's length. The steps that land
+//!    on an output, probe or coupling-window time are shorter (down to 1e-9 Δt), and there that
+//!    velocity grew as 1/Δt and its pressure as 1/Δt²: one step of 1e-4 Δt in the CI dam break at
+//!    t = 0.15 s threw a particle to 38 m/s (`tests/isph.rs`), and the final step of 0.28 Δt of
+//!    the `isph_vs_emps` scene (Δs = L/20, to 0.32 s) raised the far-wall probe by 20 kPa (now
+//!    6.5 kPa). At Δt_case the rate α_d/Δt_case is S2-5's; a short step relaxes by its share;
 //! 5. the walls' pressure by Adami's extrapolation (for outputs and probes; the gradient reads the
 //!    per-pair wall pressure of [`super::walls`]);
 //! 6. `v^{n+1} = v* − (Δt/ρ)∇p` (S2-4), `x^{n+1} = x^n + v^{n+1}Δt`; bodies move with their own
@@ -393,7 +400,9 @@ impl IsphStep {
             depth: &self.depth,
             spacing: self.kernel.spacing,
         };
-        let (rho, alpha) = (self.physics.density, self.settings.alpha_d);
+        // The density relaxation's rate α_d/Δt is the case's, whatever this step's length (module
+        // doc, 4).
+        let (rho, alpha, relax) = (self.physics.density, self.settings.alpha_d, self.time_step);
         let (row_of, ratio, div, dirichlet) = (&ppe.row_of, &self.ratio, &self.divergence, &self.dirichlet);
         // Rows in blocks of ROW_BLOCK unknowns, each block's entries contiguous (one allocation
         // per block, not per row), then concatenated into the CSR arrays.
@@ -406,7 +415,7 @@ impl IsphStep {
                     let i = i as usize;
                     let (mut diag, mut rhs) = (
                         0.0,
-                        -(rho / dt * div[i] + alpha * rho * (1.0 - ratio[i]) / (dt * dt)),
+                        -(rho / dt * div[i] + alpha * rho * (1.0 - ratio[i]) / (dt * relax)),
                     );
                     for &j in list.of(i) {
                         let j = j as usize;
