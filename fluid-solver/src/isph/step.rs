@@ -4,9 +4,17 @@
 //! 1. neighbour search and list;
 //! 2. density ratio ρ̂/ρ0 (S2-7) and free-surface flags ([`super::free_surface`], S2-10 … S2-13);
 //! 3. `v* = v^n + (ν∇²v^n + g)Δt` (S2-3, S2-9);
-//! 4. the PPE `∇²p = (ρ/Δt)∇·v* + α_d(ρ0 − ρ̂)/Δt²` (S2-5) with p = 0 on the free surface (half a
-//!    spacing beyond the surface particles, [`free_surface::surface_pressure`]) and
+//! 4. the PPE `∇²p = (ρ/Δt)∇·v* + α_d(ρ0 − ρ̂)/(Δt Δt_case)` (S2-5) with p = 0 on the free surface
+//!    (half a spacing beyond the surface particles, [`free_surface::surface_pressure`]) and
 //!    the walls' Neumann differences ([`super::walls`]), assembled and solved ([`super::ppe`]);
+//!    a negative solution is written as 0 (no tension, [`IsphStep::solve_ppe`] says why).
+//!    S2-5 has Δt² (Δt_case = Δt): the projection then sets `∇·v^{n+1} = −α_d(1 − ρ̂/ρ0)/Δt`,
+//!    a relaxation by the fraction α_d per step, whatever the step's length. The steps that land
+//!    on an output, probe or coupling-window time are shorter (down to 1e-9 Δt), and there that
+//!    velocity grew as 1/Δt and its pressure as 1/Δt²: one step of 1e-4 Δt in the CI dam break at
+//!    t = 0.15 s threw a particle to 38 m/s (`tests/isph.rs`), and the final step of 0.28 Δt of
+//!    the `isph_vs_emps` scene (Δs = L/20, to 0.32 s) raised the far-wall probe by 20 kPa (now
+//!    6.5 kPa). At Δt_case the rate α_d/Δt_case is S2-5's; a short step relaxes by its share;
 //! 5. the walls' pressure by Adami's extrapolation (for outputs and probes; the gradient reads the
 //!    per-pair wall pressure of [`super::walls`]);
 //! 6. `v^{n+1} = v* − (Δt/ρ)∇p` (S2-4), `x^{n+1} = x^n + v^{n+1}Δt`; bodies move with their own
@@ -392,7 +400,9 @@ impl IsphStep {
             depth: &self.depth,
             spacing: self.kernel.spacing,
         };
-        let (rho, alpha) = (self.physics.density, self.settings.alpha_d);
+        // The density relaxation's rate α_d/Δt is the case's, whatever this step's length (module
+        // doc, 4).
+        let (rho, alpha, relax) = (self.physics.density, self.settings.alpha_d, self.time_step);
         let (row_of, ratio, dirichlet) = (&ppe.row_of, &self.ratio, &self.dirichlet);
         // Rows in blocks of ROW_BLOCK unknowns, each block's entries contiguous in its own
         // reused buffers, then copied into the CSR arrays block by block in parallel.
@@ -441,7 +451,7 @@ impl IsphStep {
                     out.end.push(out.col.len() as u32);
                     out.diag.push(diag);
                     out.rhs
-                        .push(rhs - (rho / dt * div + alpha * rho * (1.0 - ratio[i]) / (dt * dt)));
+                        .push(rhs - (rho / dt * div + alpha * rho * (1.0 - ratio[i]) / (dt * relax)));
                 }
             });
         let rows = ppe.particle.len();
@@ -477,7 +487,19 @@ impl IsphStep {
     }
 
     /// Solves the PPE warm-started from the particles' pressure and writes the fluid pressures
-    /// (the Dirichlet value on the surface).
+    /// (the Dirichlet value on the surface), `p = max(0, p_PPE)`: no tension, as E-MPS's
+    /// equation of state (S1-14) and S2's p = 0 at the free surface. A negative solution is water
+    /// the projection would pull back together within one step where it is parting (below a
+    /// surface that opens, at a wall it leaves), at `p ≈ −ρ u Δs/Δt`, so the smaller Δt the
+    /// stronger; the difference-form gradient next to the surface then threw the particle
+    /// outwards instead. On the Koshizuka dam break at Δs = L/10 (10 × 20 × 5 particles,
+    /// Δt = 4e-4 s) two particles below the surface near the left wall at t ≈ 0.26 s read
+    /// −35 … −62 kPa and went from 2.5 to 5.7 m/s in five steps; the detector's mechanical
+    /// energy `Σ ½|u|² + g z` (1 430 J/kg at the start) gained 144 J/kg over the steps in which
+    /// it grew, to 0.3 s, and 1.1 with this limit (at 6e-4 and 3e-4 s: 3.7 and 0.4;
+    /// `tests/isph_dam_break.rs`, ignored test); the detector had stopped the report's ISPH rung
+    /// (Δt = 6e-4 s) for such growth at t = 0.22 s. Where nothing is clamped the projection is the
+    /// PPE's unchanged (`tests/isph_divergence.rs` checks its divergence identity to 1e-9).
     fn solve_ppe(&mut self, p: &mut Particles) -> Result<PpeReport, PpeFailure> {
         let ppe = &self.ppe;
         self.solution.clear();
@@ -500,7 +522,7 @@ impl IsphStep {
                 *pr = if row_of[i] == NOT_AN_UNKNOWN {
                     dirichlet[i]
                 } else {
-                    x[row_of[i] as usize]
+                    x[row_of[i] as usize].max(0.0)
                 };
             });
         Ok(report)
