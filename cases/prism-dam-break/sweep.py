@@ -7,9 +7,10 @@ usage: python3 cases/prism-dam-break/sweep.py [--spacing DS] [--end T] [--out DI
 --spacing: particle size (default 0.005, S2 Table 1); the time steps scale with it (Δt = 2e-4 s
 at 5 mm: c Δt/Δs = 0.6) and the water column keeps its size (so 0.01 gives 16 000 particles).
 Writes into DIR (default out/prism-dam-break): one coupler run per width (w0.0005/, …) and
-resolved/, force-per-width.csv (time, F_x/D of each run), force-per-width.svg, and prints each
+resolved/, force-per-width.csv (time, F_x/D of each run), force-per-width.png (drawn by
+`coupler plot`), and prints each
 run's peak and the two widest widths against the resolved force. --no-run only re-reads them.
-Only the Python standard library is used.
+Only the Python standard library is used (the plot is the coupler's).
 """
 import argparse
 import csv
@@ -60,38 +61,17 @@ def force_x(out):
     return [(float(r[1]), float(r[col])) for r in rows[1:]]
 
 
-def svg_plot(path, series, title):
-    """A line plot of `series` [(label, [(t, y)])] as SVG (no plotting library needed)."""
-    w, h, left, bottom, top, right = 720, 440, 70, 50, 30, 170
-    t_max = max(t for _, s in series for t, _ in s)
-    y_max = max(max(y for _, y in s) for _, s in series)
-    y_min = min(0.0, min(min(y for _, y in s) for _, s in series))
-    sx = lambda t: left + (w - left - right) * t / t_max
-    sy = lambda y: h - bottom - (h - bottom - top) * (y - y_min) / (y_max - y_min)
-    colours = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#000000"]
-    out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" font-family="sans-serif" font-size="12">' % (w, h),
-           '<rect width="100%" height="100%" fill="white"/>',
-           '<text x="%d" y="18">%s</text>' % (left, title)]
-    out.append('<line x1="%g" y1="%g" x2="%g" y2="%g" stroke="black"/>' % (left, sy(y_min), left, sy(y_max)))
-    out.append('<line x1="%g" y1="%g" x2="%g" y2="%g" stroke="black"/>' % (left, sy(0), sx(t_max), sy(0)))
-    for k in range(6):
-        t = t_max * k / 5
-        out.append('<text x="%g" y="%g" text-anchor="middle">%.2f</text>' % (sx(t), h - bottom + 18, t))
-        y = y_min + (y_max - y_min) * k / 5
-        out.append('<text x="%g" y="%g" text-anchor="end">%.3g</text>' % (left - 6, sy(y) + 4, y))
-    out.append('<text x="%g" y="%g" text-anchor="middle">t [s]</text>' % ((left + w - right) / 2, h - 10))
-    out.append('<text x="14" y="%g" transform="rotate(-90 14 %g)" text-anchor="middle">F_x / D [N/m]</text>' % (h / 2, h / 2))
-    for i, (label, s) in enumerate(series):
-        c = colours[i % len(colours)]
-        dash = ' stroke-dasharray="6 3"' if label.startswith("resolved") else ""
-        pts = " ".join("%.1f,%.1f" % (sx(t), sy(y)) for t, y in s)
-        out.append('<polyline fill="none" stroke="%s" stroke-width="1.3"%s points="%s"/>' % (c, dash, pts))
-        ly = top + 16 * i + 10
-        out.append('<line x1="%d" y1="%d" x2="%d" y2="%d" stroke="%s" stroke-width="2"%s/>' % (w - right + 10, ly, w - right + 35, ly, c, dash))
-        out.append('<text x="%d" y="%d">%s</text>' % (w - right + 40, ly + 4, label))
-    out.append("</svg>")
-    with open(path, "w") as f:
-        f.write("\n".join(out))
+def png_plot(coupler, csv_path, names, spacing):
+    """All series of `csv_path` on one PNG, the resolved run dashed, drawn by `coupler plot`
+    (the report's plotting; what was drawn goes beside it as force-per-width.plot.csv)."""
+    png = csv_path[:-len(".csv")] + ".png"
+    args = [coupler, "plot", csv_path, "--png", png,
+            "--title", "prism dam break: X force per unit width, particle size %g m" % spacing,
+            "--y-label", "F_x / D [N/m]"]
+    args += ["--dashed", "resolved_fx_per_width"] if "resolved" in names else []
+    done = subprocess.run(args)
+    if done.returncode != 0:
+        sys.exit("coupler plot failed on %s (exit %d)" % (csv_path, done.returncode))
 
 
 def main():
@@ -137,11 +117,8 @@ def main():
         rms = math.sqrt(sum((s[k][1] - ref[k][1]) ** 2 for k in range(m)) / m)
         print("%s against resolved: peak ratio %.3f, RMS difference %.3g N/m = %.1f %% of the resolved peak"
               % (n, max(y for _, y in s) / ref_peak, rms, 100 * rms / ref_peak))
-    svg_plot(os.path.join(a.out, "force-per-width.svg"),
-             [("D = %s m" % n[1:], series[n]) for n in names if n != "resolved"]
-             + [("resolved D = 0.05 m", series["resolved"])],
-             "prism dam break: X force per unit width, particle size %g m" % a.spacing)
-    print("wrote", os.path.join(a.out, "force-per-width.csv"), "and force-per-width.svg")
+    png_plot(a.coupler, os.path.join(a.out, "force-per-width.csv"), names, a.spacing)
+    print("wrote", os.path.join(a.out, "force-per-width.csv"), "and force-per-width.png")
 
 
 if __name__ == "__main__":

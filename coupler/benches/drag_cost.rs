@@ -6,7 +6,10 @@
 //!
 //! Per coupling window of one fluid step (samples = 1) the stack evaluates the law 4 times (two
 //! participants × two window times), samples once (the window end; the window start repeats
-//! the last window's end samples) and spreads once (every fluid step). `cargo bench -p coupler --bench drag_cost`.
+//! the last window's end samples) and spreads once (every fluid step). As in the fluid
+//! participant, the sampling also finds the shares of the window's reactions and the next
+//! step's spreading reuses them (the particles have not moved, the columns are fixed);
+//! `DRAG_COST_REUSE=0` spreads by searching the cell list again. `cargo bench -p coupler --bench drag_cost`.
 //!
 //! `DRAG_COST_AT` (s, default 0.3) and `DRAG_COST_REPS` (default 15) shorten it, e.g. to count
 //! instructions under `valgrind --tool=callgrind` (wall times on a shared machine are noisy);
@@ -15,7 +18,6 @@
 
 use coupler::laws::drag::{Drag, DragSettings};
 use coupler::laws::Law;
-use fluid_solver::unresolved::spreading::spread;
 use fluid_solver::FluidSolver;
 use schemas::case::drag::square_prism_drag;
 use schemas::case::Case;
@@ -103,6 +105,7 @@ fn main() {
         .iter()
         .flat_map(|l| l.sample_point.iter().copied())
         .collect();
+    let reuse = std::env::var("DRAG_COST_REUSE").map_or(true, |v| v != "0");
     let (v, lambda) = solver.sample_points(&points);
     let fluid = Fields {
         sampled_velocity: F64s(v),
@@ -115,6 +118,11 @@ fn main() {
         .iter()
         .flat_map(|l| l.centroid.iter().copied().chain(l.force.iter().map(|f| -f)))
         .collect();
+    if reuse {
+        // the shares of these reactions, as the window end's sampling finds them (the parts run
+        // alone, DRAG_COST_ONLY, spread with them; run together, each repetition's sampling does)
+        solver.sample_points_for(&points, &reactions);
+    }
     // The parts are timed in turn within each repetition, so a busy machine slows them alike.
     let reps = env("DRAG_COST_REPS", 15.0).max(1.0) as usize;
     let dt = cfg.time_step;
@@ -133,16 +141,14 @@ fn main() {
             std::hint::black_box(law.evaluate(&structure, &fluid));
         });
         timed(1, "sampling", &mut || {
-            std::hint::black_box(solver.sample_points(&points));
+            if reuse {
+                std::hint::black_box(solver.sample_points_for(&points, &reactions));
+            } else {
+                std::hint::black_box(solver.sample_points(&points));
+            }
         });
         timed(2, "spreading", &mut || {
-            std::hint::black_box(spread(
-                solver.particles(),
-                solver.cell_grid(),
-                cfg.spacing,
-                &reactions,
-                &points,
-            ));
+            std::hint::black_box(solver.spread_point_reactions(&reactions, &points));
         });
         timed(3, "step", &mut || {
             if let Err(e) = solver.step(dt) {
@@ -159,8 +165,9 @@ fn main() {
         solver.particles().len()
     );
     println!(
-        "  sub-members {subs} ({wet} wet); particles' drift from their cells since the sort {:.3} Δs",
-        solver.cell_grid().drift(solver.particles()) / cfg.spacing
+        "  sub-members {subs} ({wet} wet); particles' drift from their cells since the sort {:.3} Δs; shares {}",
+        solver.cell_grid().drift(solver.particles()) / cfg.spacing,
+        if reuse { "found while sampling, reused" } else { "searched again by the spreading" }
     );
     println!(
         "{:>34} {:>10} {:>8} {:>12}",

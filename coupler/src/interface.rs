@@ -120,6 +120,7 @@ impl Interface {
             sum.work.iter_mut().zip(&e.work).for_each(|(s, w)| *s += w);
             (0..2).for_each(|k| sum.stored[k] += e.stored[k]);
             sum.rounding += e.rounding;
+            sum.exchanged += e.exchanged;
         }
         sum
     }

@@ -127,6 +127,25 @@ enum Command {
         #[arg(long)]
         family: Vec<String>,
     },
+    /// Plot every column of a CSV file against its first column into a PNG (what was drawn
+    /// goes beside it as .plot.csv), e.g. the prism sweep's force-per-width.csv.
+    Plot {
+        /// The CSV file: a header line, then rows of numbers (an empty cell is a missing point).
+        csv: PathBuf,
+        /// The PNG to write (default: the CSV's name with .png).
+        #[arg(long)]
+        png: Option<PathBuf>,
+        #[arg(long, default_value = "")]
+        title: String,
+        /// Label of the x axis (the first column).
+        #[arg(long, default_value = "t [s]")]
+        x_label: String,
+        #[arg(long, default_value = "")]
+        y_label: String,
+        /// A column drawn dashed (repeatable).
+        #[arg(long)]
+        dashed: Vec<String>,
+    },
 }
 
 fn parse_exe(s: &str) -> Result<(String, PathBuf), String> {
@@ -194,6 +213,14 @@ fn main() -> ExitCode {
             readme,
             families: family,
         }),
+        Command::Plot {
+            csv,
+            png,
+            title,
+            x_label,
+            y_label,
+            dashed,
+        } => plot(&csv, png, &title, &x_label, &y_label, &dashed),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -202,6 +229,30 @@ fn main() -> ExitCode {
             ExitCode::from(e.exit_code() as u8)
         }
     }
+}
+
+/// `coupler plot`: see [`coupler::report::line_plot`].
+fn plot(
+    csv: &std::path::Path,
+    png: Option<PathBuf>,
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    dashed: &[String],
+) -> Result<(), CouplerError> {
+    use coupler::report::line_plot::{draw, read_lines};
+    let text = std::fs::read_to_string(csv)
+        .map_err(|e| CouplerError::Io(format!("cannot read {}: {e}", csv.display())))?;
+    let lines = read_lines(&text, csv, dashed).map_err(CouplerError::Usage)?;
+    let png = png.unwrap_or_else(|| csv.with_extension("png"));
+    draw(&png, title, x_label, y_label, &lines).map_err(CouplerError::Io)?;
+    println!(
+        "wrote {} ({} series) and {}",
+        png.display(),
+        lines.len(),
+        png.with_extension("plot.csv").display()
+    );
+    Ok(())
 }
 
 fn check(path: &std::path::Path, out: Option<&std::path::Path>, max_output: u64) -> Result<(), CouplerError> {

@@ -218,11 +218,13 @@ impl FluidParticipant {
         }
     }
 
-    /// The interface outputs of the current state, with the flow at the sample points of `inputs`.
+    /// The interface outputs of the current state, with the flow at the sample points of `inputs`
+    /// (and the shares of its reactions kept for the next step's spreading, used when the next
+    /// window's reactions act at the same centroids: a fixed member).
     fn outputs_at(&self, inputs: Option<&Fields>) -> Fields {
         let mut out = self.outputs();
-        if let Some(points) = inputs.map(|f| &f.sample_point).filter(|s| !s.is_empty()) {
-            let (v, lambda) = self.solver.sample_points(points);
+        if let Some(f) = inputs.filter(|f| !f.sample_point.is_empty()) {
+            let (v, lambda) = self.solver.sample_points_for(&f.sample_point, &f.reaction);
             out.sampled_velocity = F64s(v);
             out.sampled_lambda_min = F64s(lambda);
         }

@@ -18,7 +18,9 @@ use crate::stability::{Instability, StabilityMonitor};
 use crate::stage_timer::StageTimes;
 use crate::state::{BodyExchange, FluidState, RunState};
 use crate::unresolved;
+use crate::unresolved::spreading::{Share, Spread};
 use schemas::case::fluid::{Aabb, FluidConfig, FluidMethodName};
+use std::sync::Mutex;
 
 /// Landing on a time: a remainder below this fraction of Δt is rounding, not a step; a step up to
 /// (1 + this) Δt is taken whole.
@@ -39,6 +41,15 @@ pub struct RunTotals {
     pub reaction_impulse: [f64; 3],
     /// Σ (point reactions no fluid was near)·Δt: impulse that could not be applied [N s].
     pub unapplied_impulse: [f64; 3],
+}
+
+/// Shares of point reactions found while sampling, for the particles at `version`.
+#[derive(Debug)]
+struct ReactionShares {
+    version: u64,
+    points: Vec<f64>,
+    centroids: Vec<f64>,
+    shares: Vec<Option<Share>>,
 }
 
 /// A particle fluid with walls, stepped by the case's method.
@@ -64,6 +75,11 @@ pub struct FluidSolver {
     /// Point reactions of the unresolved coupling (6 each: point, force) and their paired sample
     /// points (3 each), applied at every step until replaced.
     point_reactions: (Vec<f64>, Vec<f64>),
+    /// Bumped whenever the particles may have moved, been added or removed, or been replaced
+    /// ([`FluidSolver::moved`]): the shares below are used only at the version they were found at.
+    pub(crate) positions_version: u64,
+    /// The shares of the point reactions found while sampling ([`FluidSolver::sample_points_for`]).
+    reaction_shares: Mutex<Option<ReactionShares>>,
     /// The GPU path ([`crate::gpu`]): the step on the device, when the case asks for it.
     pub(crate) device: Option<Box<crate::gpu::GpuEmps>>,
     /// The device's particles are ahead of the host's / the host's of the device's; the last
@@ -175,6 +191,8 @@ impl FluidSolver {
             max_removed_fraction: cfg.max_removed_fraction,
             layout_notes: layout.notes,
             point_reactions: Default::default(),
+            positions_version: 0,
+            reaction_shares: Mutex::default(),
             device: None,
             host_stale: false,
             host_dirty: false,
@@ -252,6 +270,7 @@ impl FluidSolver {
     /// Mutable particles, e.g. to set initial velocities or body kinematics (on the GPU path
     /// they are copied back first and go to the device before the next step).
     pub fn particles_mut(&mut self) -> &mut Particles {
+        self.moved();
         self.sync_host();
         self.host_dirty = self.device.is_some();
         &mut self.state.particles
@@ -318,6 +337,7 @@ impl FluidSolver {
         if velocity.iter().any(|&v| v != 0.0) {
             self.monitor.set_driven();
         }
+        self.moved();
         self.state.body_pose.copy_from_slice(pose);
         self.state.body_velocity.copy_from_slice(velocity);
         match self.device.as_deref_mut() {
@@ -361,6 +381,7 @@ impl FluidSolver {
     /// Removes the partition boards (done automatically before the first step, i.e. at t = 0).
     /// Returns how many particles were removed.
     pub fn remove_gates(&mut self) -> usize {
+        self.moved();
         self.state.gates_removed = true;
         let removed = self.state.particles.remove_kind(Kind::Gate);
         if removed > 0 {
@@ -375,6 +396,7 @@ impl FluidSolver {
     /// One step of length `dt` (≤ Δt); stops with a diagnostic if the state became unstable.
     pub fn step(&mut self, dt: f64) -> Result<StepTotals, Instability> {
         if self.device.is_some() {
+            self.moved();
             return self.step_on_device(dt);
         }
         if !self.state.gates_removed {
@@ -386,12 +408,23 @@ impl FluidSolver {
             self.started = true;
         }
         let balance = st.open_boundaries.balance();
+        let open = st.open_boundaries.is_active();
         st.open_boundaries.apply(&mut st.particles, st.time, dt);
         let escaped = self.remove_escaped()?;
         // particles added or removed: the cell list no longer matches their order
         let reordered = escaped > 0 || self.state.open_boundaries.balance() != balance;
+        if open || escaped > 0 {
+            self.moved();
+        }
         self.apply_point_reactions(dt, reordered);
-        self.step_on_host(dt)
+        let totals = self.step_on_host(dt);
+        self.moved();
+        totals
+    }
+
+    /// The particles may have changed: shares found before are not used again.
+    pub(crate) fn moved(&mut self) {
+        self.positions_version += 1;
     }
 
     /// Removes the fluid that left through the open top ([`crate::escape`]) and returns how many
@@ -487,8 +520,7 @@ impl FluidSolver {
         if reordered {
             st.grid.sort(&mut st.particles, &mut Vec::new());
         }
-        let spread =
-            unresolved::spreading::spread(&st.particles, &st.grid, self.kernel.spacing, reactions, samples);
+        let spread = self.spread_point_reactions(reactions, samples);
         let scale = dt / self.particle_mass();
         let p = &mut self.state.particles;
         for (i, f) in spread.force.chunks_exact(3).enumerate() {
@@ -500,6 +532,65 @@ impl FluidSolver {
             self.state.totals.reaction_impulse[c] += spread.total[c] * dt;
             self.state.totals.unapplied_impulse[c] += spread.unapplied_force[c] * dt;
         }
+    }
+
+    /// The point reactions `reactions` (6 each: point, force) spread over the fluid particles
+    /// (S2-24) with their paired sample points (3 each, or none), by the shares found while
+    /// sampling at these particles' positions, these centroids and sample points where there are
+    /// (the same to the last bit), else by searching the cell list.
+    pub fn spread_point_reactions(&self, reactions: &[f64], sample_points: &[f64]) -> Spread {
+        let st = &self.state;
+        let cache = self.reaction_shares.lock();
+        let known = match cache.as_deref() {
+            Ok(Some(c))
+                if c.version == self.positions_version
+                    && c.points == sample_points
+                    && c.centroids.len() == reactions.len() / 2
+                    && reactions
+                        .chunks_exact(6)
+                        .zip(c.centroids.chunks_exact(3))
+                        .all(|(r, c)| r[..3] == *c) =>
+            {
+                &c.shares[..]
+            }
+            _ => &[],
+        };
+        unresolved::spreading::spread_reusing(
+            &st.particles,
+            &st.grid,
+            self.kernel.spacing,
+            reactions,
+            sample_points,
+            known,
+        )
+    }
+
+    /// As [`FluidSolver::sample_points`], finding too the shares of the point reactions
+    /// `reactions` (6 each: centroid, force; paired with `points`) for the next step's spreading
+    /// ([`FluidSolver::spread_point_reactions`]; see [`unresolved::sampling::sample_with_shares`]).
+    pub fn sample_points_for(&self, points: &[f64], reactions: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let (samples, shares) = unresolved::sampling::sample_with_shares(
+            self.particles(),
+            &self.state.grid,
+            self.kernel.spacing,
+            points,
+            reactions,
+        );
+        if let Ok(mut cache) = self.reaction_shares.lock() {
+            *cache = (!shares.is_empty()).then(|| ReactionShares {
+                version: self.positions_version,
+                points: points.to_vec(),
+                centroids: reactions
+                    .chunks_exact(6)
+                    .flat_map(|r| r[..3].iter().copied())
+                    .collect(),
+                shares,
+            });
+        }
+        (
+            samples.iter().flat_map(|s| s.velocity).collect(),
+            samples.iter().map(|s| s.lambda_min).collect(),
+        )
     }
 
     /// Velocity and λ_min at `points` (3 per point) for the unresolved coupling (3 and 1 per point).
@@ -553,6 +644,7 @@ impl FluidSolver {
 
     /// Puts back a state saved by [`FluidSolver::save_state`].
     pub fn restore_state(&mut self, s: &FluidState) {
+        self.moved();
         self.state.clone_from(s);
         self.host_stale = false;
         self.host_dirty = self.device.is_some();

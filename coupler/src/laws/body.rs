@@ -150,6 +150,7 @@ impl Law for Bodies {
             work,
             stored: [0.0; 2],
             rounding,
+            exchanged: 0.0,
         }
     }
 }

@@ -97,6 +97,11 @@ pub struct LawEnergy {
     pub stored: [f64; 2],
     /// Rounding of these sums [J]: ε Σ |f| |x| over the samples (see [`work_rounding`]).
     pub rounding: f64,
+    /// Energy the law's forces exchanged with the flow in the window whatever its sign [J], for
+    /// a law whose work sums alone give no physical scale (drag: its forces do work on the fluid
+    /// as it moves past a fixed member, which the work sums count as created); 0 for the others.
+    /// It does not grow with the structure's own motion, so an instability still outgrows it.
+    pub exchanged: f64,
 }
 
 impl LawEnergy {

@@ -143,12 +143,14 @@ impl Law for Springs {
                 work,
                 stored: [0.0; 2],
                 rounding,
+                exchanged: 0.0,
             };
         }
         LawEnergy {
             work,
             stored: [self.stored(&first), self.stored(&last)],
             rounding,
+            exchanged: 0.0,
         }
     }
 }

@@ -15,6 +15,7 @@
 pub mod accuracy;
 pub mod case_copy;
 pub mod error_measure;
+pub mod line_plot;
 pub mod measure;
 pub mod order;
 pub mod plot;

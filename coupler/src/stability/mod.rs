@@ -13,10 +13,12 @@
 //! - `E_c(w) = Σ_{w' ≤ w} δE_w'`, the energy created so far, and its net growth since its lowest
 //!   point, `C(w) = E_c(w) − min_{w' ≤ w} E_c(w')` (energy the coupling keeps adding);
 //! - the physical energy scale of the run, `S(w) = max_{w' ≤ w} (L(w') − max_{w'' ≤ w'} C(w''))`, with
-//!   `L = E_stored + ½ Σ_p |W_p^cum|` the energy the interface holds plus what it has moved into
+//!   `L = E_stored + ½ Σ_p |W_p^cum| + X` the energy the interface holds plus what it has moved into
 //!   or out of the participants (for a body: ½ (|W_structure| + |W_fluid|) = the body's energy
-//!   gain from the flow), less what the coupling itself created, so an instability does not
-//!   raise its own yardstick;
+//!   gain from the flow) plus what the laws' forces exchanged with the flow whatever its sign
+//!   (drag: Σ |f| |v_fluid| Δt, see `LawEnergy::exchanged`; without it a member standing in
+//!   water that starts to fall is judged against a scale of 0 and stopped at once), less what
+//!   the coupling itself created, so an instability does not raise its own yardstick;
 //! - the interface force amplitude `A(w) = Σ_p |f_p|` at the window end.
 //!
 //! The run stops when `C > K · S` holds now and held two windows before (see [`HINDSIGHT`]),
@@ -87,6 +89,8 @@ struct Account {
     scale: f64,
     /// The energy the laws stored at t = 0.
     initial: f64,
+    /// Σ over windows of the energy the laws' forces exchanged with the flow (drag).
+    exchanged: f64,
     /// Interface force amplitude at the end of each window.
     amplitude: Vec<f64>,
 }
@@ -182,9 +186,12 @@ impl Detector {
             self.account.lowest_window = Some(window);
         }
         self.account.rounding += energy.rounding;
+        self.account.exchanged += energy.exchanged;
         let net = self.account.created - self.account.lowest;
         self.account.most = self.account.most.max(net);
-        let level = energy.stored[1] + 0.5 * self.account.cumulative.iter().map(|w| w.abs()).sum::<f64>();
+        let level = energy.stored[1]
+            + 0.5 * self.account.cumulative.iter().map(|w| w.abs()).sum::<f64>()
+            + self.account.exchanged;
         self.account.scale = self.account.scale.max(level - self.account.most);
         let amplitude = inputs
             .iter()

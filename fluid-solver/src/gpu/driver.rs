@@ -79,6 +79,7 @@ impl FluidSolver {
     /// re-sorting the host's cell list for its point queries. Nothing on the CPU path.
     pub fn sync_host(&mut self) {
         if let (Some(dev), true) = (self.device.as_deref_mut(), self.host_stale) {
+            self.positions_version += 1;
             let st = &mut self.state;
             dev.download(&mut st.particles);
             st.grid.sort(&mut st.particles, &mut Vec::new());

@@ -18,14 +18,18 @@
 //! `the_trimmed_point_query_sees_what_the_full_block_sees_after_particles_drifted`).
 //!
 //! Cost, callgrind on the drag cost bench (`coupler/benches/drag_cost.rs`, t = 0.004 s, 1
-//! thread, 10 080 sub-members, 3 270 wet), per call: sampling 71.7 M instructions (77.4 M
-//! before a point with no water in its block of cells returned dry without reading the walls
-//! around it, and before the point's cell was found without a libm floor; 82.5 M on the 7³
-//! block), spreading 49.8 M (48.5 M: the same within the measurement's ±1 M); the ~0.25 M
-//! particles within the support of the wet points cost ~100 instructions each and dominate.
-//! With the law (2.45 M × 4) a window costs 131 M, 16.1 % of the fluid step's 813 M (17.5 %
-//! before); the issue asks for 10 %. Results are equal to the last bit (the same particles in
-//! the same order, the same arithmetic).
+//! thread, 10 080 sub-members, 3 270 wet), per call: sampling 99.9 M instructions with the
+//! shares of the reactions found in the same search, spreading 7.6 M by reusing them (the
+//! fluid participant samples at the window end with the window's reactions and spreads the
+//! next step's at the same particle positions: [`crate::FluidSolver::sample_points_for`],
+//! guarded by a positions version and the centroids being the same, so a moving member is
+//! searched again); 107.5 M together against 123.0 M (72.2 M + 50.8 M) before, outputs equal
+//! to the last bit (the drag column run's ledger is byte-identical). The drift pass
+//! ([`crate::neighbour_search::CellGrid::drift`], one per call) went from 13.4 M to 10.1 M.
+//! Tried and left out (measured): per-row loops over sliced arrays with the sums held in
+//! locals (+2 M: no gain), a per-plane test for fluid before the per-row one (+0.4 M). With the law (2.45 M × 4) a window costs ~117 M, 14.4 % of the fluid step's 813 M
+//! (16.3 % before); the issue asks for 10 %. The particles within the support of the wet points
+//! (~0.2 M in sampling, ~120 instructions each, and ~0.5 M candidates at ~20) dominate.
 pub mod kernel;
 pub mod sampling;
 pub mod spreading;

@@ -20,6 +20,7 @@
 //! so no second grid is built: see [`super`] for when that list is valid.
 
 use super::kernel::Wendland;
+use super::spreading::{share_of, shares_around, Share};
 use crate::kind::{Kind, FLUID};
 use crate::neighbour_search::{CellGrid, Rows};
 use crate::particles::Particles;
@@ -47,6 +48,75 @@ pub fn sample(p: &Particles, grid: &CellGrid, spacing: f64, points: &[f64]) -> V
         .collect()
 }
 
+/// As [`sample`], with the shares of the reactions paired with the points (`reactions`, 6 per
+/// point: centroid, force; the force is not read) over the fluid around their centroids, as
+/// [`share_of`] finds them with the point as fall-back, for every wet point (None for a dry
+/// one: its sub-member takes no force). The fluid spreads the next step's reactions with them
+/// ([`super::spreading::spread_reusing`]) when the particles have not moved since and the
+/// centroids are the same (a fixed member). A centroid within half the kernel's support of its
+/// point is served by the point's own search of the cell list, widened by their distance: one
+/// search instead of two, and the same particles in the same order as each one's own search
+/// (the cell list is read in index order), so the same sums.
+pub fn sample_with_shares(
+    p: &Particles,
+    grid: &CellGrid,
+    spacing: f64,
+    points: &[f64],
+    reactions: &[f64],
+) -> (Vec<Sample>, Vec<Option<Share>>) {
+    if reactions.len() != 2 * points.len() {
+        return (sample(p, grid, spacing, points), Vec::new());
+    }
+    let kernel = Wendland::for_spacing(spacing);
+    let drift = grid.drift(p);
+    points
+        .par_chunks_exact(3)
+        .zip(reactions.par_chunks_exact(6))
+        .with_min_len(64)
+        .map(|(x, r)| {
+            let (x, c) = ([x[0], x[1], x[2]], [r[0], r[1], r[2]]);
+            let apart = (0..3).map(|a| (c[a] - x[a]).powi(2)).sum::<f64>().sqrt();
+            if apart > 0.5 * kernel.radius {
+                let s = sample_at(p, grid, drift, &kernel, spacing.powi(3), x);
+                let wet = s.velocity != [0.0; 3] || s.lambda_min != 0.0;
+                return (s, wet.then(|| share_of(p, grid, drift, &kernel, c, Some(x))));
+            }
+            let mut share = Vec::with_capacity(96);
+            let mut sum = 0.0;
+            let s = sample_near(p, grid, drift, &kernel, spacing.powi(3), x, apart, |j| {
+                if p.kind[j] != FLUID {
+                    return;
+                }
+                let d = [p.x[j] - c[0], p.y[j] - c[1], p.z[j] - c[2]];
+                let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+                if r2 < kernel.radius * kernel.radius {
+                    let w = kernel.value(r2.sqrt());
+                    if w > 0.0 {
+                        share.push((j as u32, w));
+                        sum += w;
+                    }
+                }
+            });
+            let Some(s) = s else {
+                return (dry(), None);
+            };
+            share.iter_mut().for_each(|(_, w)| *w /= sum);
+            if share.is_empty() {
+                return (s, Some((shares_around(p, grid, drift, &kernel, x), true)));
+            }
+            (s, Some((share, false)))
+        })
+        .unzip()
+}
+
+/// A point with no water within the support.
+fn dry() -> Sample {
+    Sample {
+        velocity: [0.0; 3],
+        lambda_min: 0.0,
+    }
+}
+
 /// The flow at `x`; `drift` is the grid's [`CellGrid::drift`] for `p`.
 pub fn sample_at(
     p: &Particles,
@@ -56,19 +126,42 @@ pub fn sample_at(
     volume: f64,
     x: [f64; 3],
 ) -> Sample {
-    let dry = Sample {
-        velocity: [0.0; 3],
-        lambda_min: 0.0,
-    };
+    sample_near(p, grid, drift, kernel, volume, x, 0.0, |_| {}).unwrap_or_else(dry)
+}
+
+/// The flow at `x` (None: dry), visiting the particles within the support widened by `wider`
+/// and calling `also(j)` for each of them, in the cell list's order.
+#[allow(clippy::too_many_arguments)]
+fn sample_near(
+    p: &Particles,
+    grid: &CellGrid,
+    drift: f64,
+    kernel: &Wendland,
+    volume: f64,
+    x: [f64; 3],
+    wider: f64,
+    mut also: impl FnMut(usize),
+) -> Option<Sample> {
     let mut u = [0.0; 3];
     let mut weight = 0.0;
     // the moment matrix is symmetric (a radial kernel): its upper triangle
     let mut m = [0.0; 6];
     let gate = Kind::Gate.code();
+    let r2max = kernel.radius * kernel.radius;
+    // widened a little more against the rounding of `wider`
+    let reach = if wider > 0.0 {
+        kernel.radius + wider + 1e-9 * kernel.radius
+    } else {
+        kernel.radius
+    };
     // no water within the support: dry, whatever walls are near
-    let wet = grid.for_each_near_point_trimmed(p, x, kernel.radius, drift, Rows::AllIfFluid, |j, r2, d| {
+    let wet = grid.for_each_near_point_trimmed(p, x, reach, drift, Rows::AllIfFluid, |j, r2, d| {
         let kind = p.kind[j];
         if kind == gate {
+            return;
+        }
+        also(j);
+        if r2 >= r2max {
             return;
         }
         let r = r2.sqrt();
@@ -90,13 +183,13 @@ pub fn sample_at(
     });
 
     if !wet || weight <= 0.0 {
-        return dry;
+        return None;
     }
     let lambda_min = smallest_eigenvalue(&m);
-    Sample {
+    Some(Sample {
         velocity: u.map(|c| c / weight),
         lambda_min,
-    }
+    })
 }
 
 /// Smallest eigenvalue of the symmetric 3 × 3 matrix with upper triangle `m` (order of

@@ -34,6 +34,10 @@ pub struct Spread {
     pub unapplied_force: [f64; 3],
 }
 
+/// The normalised shares of one reaction and whether they lie around its sample point instead of
+/// its centroid (empty: no fluid near either).
+pub type Share = (Vec<(u32, f64)>, bool);
+
 /// Spreads `reactions` (6 per reaction: point, force) over the fluid particles of spacing
 /// `spacing`; `sample_points` (3 per reaction, or empty) are the fall-back points; `grid` is the
 /// cell list sorted for `p`.
@@ -44,41 +48,68 @@ pub fn spread(
     reactions: &[f64],
     sample_points: &[f64],
 ) -> Spread {
+    spread_reusing(p, grid, spacing, reactions, sample_points, &[])
+}
+
+/// As [`spread`], taking reaction k's shares from `known[k]` where it holds them: those of
+/// [`share_of`] for these particles, centroids and sample points (computed while sampling,
+/// [`super::sampling::sample_with_shares`]), so the result is the same to the last bit. Only
+/// the other reactions with a force search the cell list.
+pub fn spread_reusing(
+    p: &Particles,
+    grid: &CellGrid,
+    spacing: f64,
+    reactions: &[f64],
+    sample_points: &[f64],
+    known: &[Option<Share>],
+) -> Spread {
     let kernel = Wendland::for_spacing(spacing);
     let paired = sample_points.len() * 2 == reactions.len();
-    let drift = grid.drift(p);
-    let shares: Vec<(Vec<(u32, f64)>, bool)> = reactions
+    let loaded = |r: &[f64]| r[3..6].iter().any(|&f| f != 0.0);
+    let searched = |k: usize, r: &[f64]| loaded(r) && known.get(k).is_none_or(Option::is_none);
+    let search = reactions.chunks_exact(6).enumerate().any(|(k, r)| searched(k, r));
+    // one pass over the particles, only when some reaction searches the cell list
+    let drift = if search { grid.drift(p) } else { 0.0 };
+    let found: Vec<Option<Share>> = reactions
         .par_chunks_exact(6)
         .enumerate()
         .with_min_len(64)
         .map(|(k, r)| {
-            if r[3..6].iter().all(|&f| f == 0.0) {
-                return (Vec::new(), false);
+            if !searched(k, r) {
+                return None;
             }
-            let around = shares_around(p, grid, drift, &kernel, [r[0], r[1], r[2]]);
-            if around.is_empty() && paired {
-                let s = &sample_points[3 * k..3 * k + 3];
-                (shares_around(p, grid, drift, &kernel, [s[0], s[1], s[2]]), true)
-            } else {
-                (around, false)
-            }
+            let fallback = paired.then(|| {
+                [
+                    sample_points[3 * k],
+                    sample_points[3 * k + 1],
+                    sample_points[3 * k + 2],
+                ]
+            });
+            Some(share_of(p, grid, drift, &kernel, [r[0], r[1], r[2]], fallback))
         })
         .collect();
     let mut out = Spread {
         force: vec![0.0; 3 * p.len()],
         ..Spread::default()
     };
-    for (r, (share, moved)) in reactions.chunks_exact(6).zip(shares) {
+    for (k, r) in reactions.chunks_exact(6).enumerate() {
         let f = [r[3], r[4], r[5]];
-        if share.is_empty() {
-            if f.iter().any(|&c| c != 0.0) {
-                out.unapplied += 1;
-                (0..3).for_each(|c| out.unapplied_force[c] += f[c]);
-            }
+        if !loaded(r) {
             continue;
         }
-        out.moved += usize::from(moved);
-        for (i, w) in share {
+        let Some((share, moved)) = found[k]
+            .as_ref()
+            .or_else(|| known.get(k).and_then(Option::as_ref))
+        else {
+            continue;
+        };
+        if share.is_empty() {
+            out.unapplied += 1;
+            (0..3).for_each(|c| out.unapplied_force[c] += f[c]);
+            continue;
+        }
+        out.moved += usize::from(*moved);
+        for &(i, w) in share {
             for (c, fc) in f.iter().enumerate() {
                 out.force[3 * i as usize + c] += w * fc;
                 out.total[c] += w * fc;
@@ -88,9 +119,26 @@ pub fn spread(
     out
 }
 
+/// The shares of a reaction at `centroid`: around it, or, where no fluid particle is within the
+/// support, around its sample point `fallback` (moved).
+pub fn share_of(
+    p: &Particles,
+    grid: &CellGrid,
+    drift: f64,
+    kernel: &Wendland,
+    centroid: [f64; 3],
+    fallback: Option<[f64; 3]>,
+) -> Share {
+    let around = shares_around(p, grid, drift, kernel, centroid);
+    match fallback {
+        Some(s) if around.is_empty() => (shares_around(p, grid, drift, kernel, s), true),
+        _ => (around, false),
+    }
+}
+
 /// The normalised shares `V_k W_ik / Σ_j V_j W_ij` of the fluid particles around `x` (equal
 /// volumes cancel); empty when none is within the support.
-fn shares_around(
+pub(crate) fn shares_around(
     p: &Particles,
     grid: &CellGrid,
     drift: f64,

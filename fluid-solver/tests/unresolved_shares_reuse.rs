@@ -1,0 +1,105 @@
+//! Issue 13 (cost): the shares of the point reactions found while sampling at the window end
+//! (`FluidSolver::sample_points_for`) are reused by the next step's spreading only while the
+//! particles have not moved and the centroids and sample points are the same, and then give the
+//! same forces to the last bit as searching the cell list again; the samples are those of
+//! `sample_points` to the last bit.
+mod common;
+
+use fluid_solver::unresolved::spreading::spread;
+use fluid_solver::FluidSolver;
+use schemas::case::fluid::{Aabb, TankConfig};
+
+#[test]
+fn shares_found_while_sampling_spread_as_a_new_search_and_never_after_a_step() {
+    let (_, mut cfg) = common::load_case("hydrostatic-tank");
+    cfg.spacing = 0.02;
+    cfg.tank = TankConfig {
+        min: [0.0; 3],
+        max: [0.2, 0.2, 0.3],
+        lid: true,
+    };
+    cfg.block = vec![Aabb {
+        min: [0.0, 0.0, 0.0],
+        max: [0.2, 0.2, 0.12],
+    }];
+    cfg.time_step = 8.0e-4;
+    cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
+    let mut solver = FluidSolver::new(&cfg);
+    solver.step(cfg.time_step).unwrap_or_else(|e| panic!("{e}"));
+    // Sub-members (centroid, force −f) with their sample points: inside (sample point 4 mm
+    // upstream: one search for both), at the floor, at the surface, 6 cm upstream (two searches),
+    // just above the water with a wet sample point (spread around the sample point), in the air
+    // (dry), and one with no force.
+    let reactions = [
+        0.1, 0.1, 0.06, 0.3, 0.0, -0.1, //
+        0.05, 0.1, 0.005, -0.2, 0.1, 0.0, //
+        0.1, 0.1, 0.115, 0.05, 0.05, 0.2, //
+        0.15, 0.15, 0.06, 0.1, 0.0, 0.0, //
+        0.1, 0.05, 0.165, 0.0, 0.0, 0.1, //
+        0.1, 0.1, 0.25, 0.1, 0.0, 0.0, //
+        0.12, 0.1, 0.05, 0.0, 0.0, 0.0,
+    ];
+    let points = [
+        0.096, 0.1, 0.06, //
+        0.046, 0.1, 0.005, //
+        0.096, 0.1, 0.115, //
+        0.09, 0.15, 0.06, //
+        0.1, 0.05, 0.145, //
+        0.096, 0.1, 0.25, //
+        0.116, 0.1, 0.05,
+    ];
+    let searched = |s: &FluidSolver| spread(s.particles(), s.cell_grid(), cfg.spacing, &reactions, &points);
+    let (v, lambda) = solver.sample_points_for(&points, &reactions);
+    assert_eq!(
+        (v, lambda),
+        solver.sample_points(&points),
+        "the samples are those of sample_points"
+    );
+    let reused = solver.spread_point_reactions(&reactions, &points);
+    let fresh = searched(&solver);
+    println!(
+        "total {:?}, moved {}, unapplied {}",
+        fresh.total, fresh.moved, fresh.unapplied
+    );
+    assert_eq!(
+        reused, fresh,
+        "reused shares spread as a new search, to the last bit"
+    );
+    assert_eq!(
+        (fresh.moved, fresh.unapplied),
+        (1, 1),
+        "one moved to its sample point, one unapplied"
+    );
+    // other reactions (a centroid moved by 1 mm): searched, not taken from the shares
+    let mut shifted = reactions;
+    shifted[0] += 0.001;
+    assert_eq!(
+        solver.spread_point_reactions(&shifted, &points),
+        spread(
+            solver.particles(),
+            solver.cell_grid(),
+            cfg.spacing,
+            &shifted,
+            &points
+        )
+    );
+    // after a step the particles have moved: the shares of the last sampling are stale
+    solver.step(cfg.time_step).unwrap_or_else(|e| panic!("{e}"));
+    let after = solver.spread_point_reactions(&reactions, &points);
+    assert_eq!(
+        after,
+        searched(&solver),
+        "after a step the cell list is searched again"
+    );
+    assert_ne!(after.force, reused.force, "the particles moved");
+    // and after a particle near the first centroid was moved by hand
+    solver.sample_points_for(&points, &reactions);
+    let before = solver.spread_point_reactions(&reactions, &points);
+    let near = solver
+        .cell_grid()
+        .particles_near(solver.particles(), [0.1, 0.1, 0.06], 0.02)[0];
+    solver.particles_mut().x[near] += 1e-3;
+    let changed = solver.spread_point_reactions(&reactions, &points);
+    assert_eq!(changed, searched(&solver));
+    assert_ne!(changed.force, before.force, "the moved particle's share changed");
+}
