@@ -16,13 +16,14 @@ pub enum CouplerError {
         window: Option<u64>,
         message: String,
     },
-    /// An implicit window did not converge.
+    /// An implicit window did not converge; `history` is the worst relative residual of each sweep.
     NotConverged {
         window: u64,
         time: f64,
         iterations: u32,
         residual: f64,
         field: String,
+        history: Vec<f64>,
     },
     /// The coupling created energy at the interface beyond the detector's threshold
     /// ([`crate::stability`]).
@@ -68,22 +69,69 @@ impl fmt::Display for CouplerError {
         match self {
             CouplerError::Case(e) => write!(f, "bad case file: {e}"),
             CouplerError::Usage(m) => write!(f, "{m}"),
-            CouplerError::Participant { name, window, message } => {
+            CouplerError::Participant {
+                name,
+                window,
+                message,
+            } => {
                 write!(f, "participant `{name}`{}: {message}", at(window))
             }
-            CouplerError::NotConverged { window, time, iterations, residual, field } => write!(
-                f,
-                "window {window} (t = {time:.6} s) did not converge in {iterations} iterations: relative residual \
-                 {residual:.3e} in `{field}`; raise coupling.max_iterations, shorten coupling.window or change \
-                 coupling.acceleration"
-            ),
-            CouplerError::Unstable { window, time, message } => {
-                write!(f, "coupling instability in window {window} (t = {time:.6} s): {message}")
+            CouplerError::NotConverged {
+                window,
+                time,
+                iterations,
+                residual,
+                field,
+                history,
+            } => {
+                write!(
+                    f,
+                    "window {window} (t = {time:.6} s) did not converge in {iterations} iterations: relative residual \
+                     {residual:.3e} in `{field}`; "
+                )?;
+                match stalled(history) {
+                    Some((early, late)) => write!(
+                        f,
+                        "the residual stopped falling (best {early:.3e} in the first half of the sweeps, {late:.3e} \
+                         in the second), so this window may have no fixed point: the response jumps between \
+                         iterates (for a light body, the fluid's collision stage switching on and off); more \
+                         iterations will not help: shorten coupling.window, make the body heavier or use \
+                         coupling.scheme = \"explicit\""
+                    ),
+                    None => write!(
+                        f,
+                        "raise coupling.max_iterations, shorten coupling.window or change coupling.acceleration"
+                    ),
+                }
             }
-            CouplerError::Interrupted { window } => write!(f, "interrupted{}; participants stopped", at(window)),
+            CouplerError::Unstable {
+                window,
+                time,
+                message,
+            } => {
+                write!(
+                    f,
+                    "coupling instability in window {window} (t = {time:.6} s): {message}"
+                )
+            }
+            CouplerError::Interrupted { window } => {
+                write!(f, "interrupted{}; participants stopped", at(window))
+            }
             CouplerError::Io(m) | CouplerError::Replay(m) => write!(f, "{m}"),
         }
     }
+}
+
+/// The best residual of the first and of the second half of a window's sweeps when the second
+/// half did not halve it (at least 6 sweeps): iterating longer is then not the way out.
+fn stalled(history: &[f64]) -> Option<(f64, f64)> {
+    if history.len() < 6 {
+        return None;
+    }
+    let best = |r: &[f64]| r.iter().copied().fold(f64::INFINITY, f64::min);
+    let (first, second) = history.split_at(history.len() / 2);
+    let (early, late) = (best(first), best(second));
+    (late > 0.5 * early).then_some((early, late))
 }
 
 impl std::error::Error for CouplerError {}
@@ -91,5 +139,36 @@ impl std::error::Error for CouplerError {}
 impl From<CaseError> for CouplerError {
     fn from(e: CaseError) -> Self {
         CouplerError::Case(e)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn not_converged(history: Vec<f64>) -> String {
+        CouplerError::NotConverged {
+            window: 34,
+            time: 0.34,
+            iterations: history.len() as u32,
+            residual: *history.last().unwrap_or(&f64::NAN),
+            field: "fluid.force".into(),
+            history,
+        }
+        .to_string()
+    }
+
+    /// A residual that keeps falling, only too slowly, asks for more iterations; one that
+    /// cycles (IQN-ILS on the light box's window 28 in the README, period 13) says why more
+    /// iterations will not help.
+    #[test]
+    fn a_stalled_window_is_told_apart_from_a_slow_one() {
+        let slow: Vec<f64> = (0..10).map(|k| 0.5f64.powi(k)).collect();
+        assert!(not_converged(slow).contains("raise coupling.max_iterations"));
+        let cycling: Vec<f64> = (0..10).map(|k| [3e-2, 1e-2, 4e-3, 2e-2][k % 4]).collect();
+        let message = not_converged(cycling);
+        assert!(message.contains("no fixed point"), "{message}");
+        assert!(!message.contains("raise coupling.max_iterations"), "{message}");
+        assert!(not_converged(vec![1.0, 0.9]).contains("raise coupling.max_iterations"));
     }
 }

@@ -282,6 +282,7 @@ impl Windows<'_> {
         accelerator: &mut dyn Accelerator,
     ) -> Result<(Vec<Vec<Fields>>, u32, f64), CouplerError> {
         let mut scales = Vec::new();
+        let mut history = Vec::new();
         let start_geometry: Vec<_> = self.stack.sessions.iter().map(|s| s.geometry.clone()).collect();
         for k in 0..self.config.max_iterations {
             if k > 0 {
@@ -328,6 +329,7 @@ impl Windows<'_> {
                 .map(|b| self.interface.field_scale(b.participant, b.name, estimate))
                 .collect();
             let (residual, block) = state::worst_residual(&x, &h, &blocks, &self.reference, &law_scales);
+            history.push(residual);
             if residual <= self.config.tolerance {
                 accelerator.end_window();
                 return Ok((inputs, k + 1, residual));
@@ -342,6 +344,7 @@ impl Windows<'_> {
                     iterations: k + 1,
                     residual,
                     field,
+                    history,
                 });
             }
             state::grow_scales(&mut scales, &h, &blocks);
