@@ -246,56 +246,75 @@ fn plot(
     let lines = read_lines(&text, csv, dashed).map_err(CouplerError::Usage)?;
     let png = png.unwrap_or_else(|| csv.with_extension("png"));
     draw(&png, title, x_label, y_label, &lines).map_err(CouplerError::Io)?;
-    println!(
+    print_lines(&[format!(
         "wrote {} ({} series) and {}",
         png.display(),
         lines.len(),
         png.with_extension("plot.csv").display()
-    );
-    Ok(())
+    )])
 }
 
 fn check(path: &std::path::Path, out: Option<&std::path::Path>, max_output: u64) -> Result<(), CouplerError> {
     let case = Case::load(path)?;
-    println!(
+    let mut lines = Vec::new();
+    lines.push(format!(
         "{}: case `{}`, end time {} s",
         path.display(),
         case.info.name,
         short(case.info.end_time)
-    );
+    ));
     for (name, kind) in case.participants() {
         let exe = coupler::launch::executable_for(&case, &name, kind, &BTreeMap::new())?;
-        println!("  participant {name}: {} ({})", kind.binary_name(), exe.display());
+        lines.push(format!(
+            "  participant {name}: {} ({})",
+            kind.binary_name(),
+            exe.display()
+        ));
     }
     if let Some(c) = &case.coupling {
-        println!(
+        lines.push(format!(
             "  coupling: {:?}, window {} s, {} sample(s) per window",
             c.scheme,
             short(c.window),
             c.samples
-        );
+        ));
         if let (Some(interval), Some(every)) = (c.checkpoint_interval, c.checkpoint_windows()) {
-            println!(
+            lines.push(format!(
                 "  checkpoints: every {} s ({every} windows), the last {} kept in OUT/checkpoint/",
                 short(interval),
                 coupler::checkpoint::KEEP
-            );
+            ));
         }
     }
     if let Some(r) = &case.reference {
-        println!(
+        lines.push(format!(
             "  reference: {:?}, {:?} error ({})",
             r.against, r.measure, r.source
-        );
+        ));
     }
     if let Some(r) = &case.report {
-        println!(
+        lines.push(format!(
             "  report: {} ladder(s), {} stability family(ies)",
             r.ladder.len(),
             r.stability.len()
-        );
+        ));
     }
     let estimate = Estimate::of(&case);
-    println!("  estimate: {}", estimate.describe());
+    lines.push(format!("  estimate: {}", estimate.describe()));
+    print_lines(&lines)?;
     estimate.check(&default_output_folder(&case, out), max_output)
+}
+
+/// Writes `lines` to standard output; a reader that closed the pipe early (`coupler check … | head`)
+/// is not an error.
+fn print_lines(lines: &[String]) -> Result<(), CouplerError> {
+    use std::io::Write;
+    let mut text = lines.join("\n");
+    text.push('\n');
+    match std::io::stdout().lock().write_all(text.as_bytes()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+            Err(CouplerError::Io(format!("cannot write to standard output: {e}")))
+        }
+        _ => Ok(()),
+    }
 }

@@ -32,3 +32,23 @@ fn every_shipped_case_file_passes_the_check() {
     println!("{checked} case files checked");
     assert!(checked >= 15, "only {checked} case files found under cases/");
 }
+
+/// `coupler check CASE | head -1`: the reader closes the pipe before the check has written its
+/// lines; the check still succeeds and says nothing of a panic.
+#[test]
+fn a_check_piped_into_a_reader_that_quits_early_does_not_panic() {
+    use std::process::{Command, Stdio};
+    let case = workspace().join("cases/oscillator/case.toml");
+    let mut child = Command::new(stack_tests::binary("coupler"))
+        .args(["check", case.to_str().unwrap_or_default()])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap_or_else(|e| panic!("cannot start the coupler: {e}"));
+    drop(child.stdout.take());
+    let run = child
+        .wait_with_output()
+        .unwrap_or_else(|e| panic!("coupler check did not end: {e}"));
+    assert!(run.status.success(), "{}", stderr(&run));
+    assert!(!stderr(&run).contains("panicked"), "{}", stderr(&run));
+}
