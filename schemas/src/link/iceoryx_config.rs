@@ -17,6 +17,13 @@ pub const INITIAL_MAX_SLICE_LEN: usize = 64 * 1024;
 /// One coupler and one participant per service: one publisher, one subscriber, one notifier and one
 /// listener, in two nodes. A second process claiming the same side fails instead of cross-talking.
 const PORTS_PER_SERVICE: usize = 1;
+
+/// How long one side waits for a service the other side is creating (iceoryx2's default is 1 s).
+/// Both sides open-or-create the same services at start-up; on a loaded 2-core machine (CI with
+/// the tests' processes in parallel) the creating process can be descheduled for over a second,
+/// and the other side then failed with `HangsInCreation` (seen intermittently in the oscillator
+/// report test). A creation that really hangs (its process died half-way) is reported after this.
+pub const CREATION_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(15);
 const NODES_PER_SERVICE: usize = 2;
 
 /// Prefix of every shared-memory file of the link. Keeps the link's nodes apart from other iceoryx2
@@ -30,6 +37,7 @@ pub fn link_config() -> Result<Config, LinkError> {
         .map_err(|e| LinkError::Iceoryx(format!("invalid shared-memory prefix {FILE_PREFIX:?}: {e:?}")))?;
     // Dead nodes of a SIGKILLed run are removed when a node is created or a service opened (the
     // 0.10 defaults, set explicitly because the link relies on them).
+    config.global.creation_timeout = CREATION_TIMEOUT;
     config.global.node.cleanup_dead_nodes_on_creation = true;
     config.global.node.cleanup_dead_nodes_on_destruction = true;
     config.global.service.cleanup_dead_nodes_on_open = true;
