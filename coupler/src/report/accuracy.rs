@@ -78,6 +78,7 @@ pub fn run_case(
     let mut rows: Vec<Row> = Vec::new();
     let mut missing = Vec::new();
     let mut notes: Vec<String> = Vec::new();
+    let mut warnings = Warnings::default();
     // The finer (or resolved) run a `finer-run` (`resolved-run`) reference compares with.
     let finer: Option<PathBuf> = match reference.against {
         Against::FinerRun | Against::ResolvedRun => {
@@ -141,7 +142,7 @@ pub fn run_case(
         };
         let warned = super::stability::warnings(&t.last.stderr);
         if !warned.is_empty() {
-            notes.push(format!("Warning at {}, {what}: {warned}", job.ladder_label));
+            warnings.add(&warned, format!("{}, {what}", job.ladder_label));
         }
         let w = work(&changed, &run_out);
         let row = Row {
@@ -167,8 +168,32 @@ pub fn run_case(
         ));
         rows.push(row);
     }
+    notes.extend(warnings.notes());
     let markdown = case_markdown(case, reference, report, &rows, &missing, &notes, out)?;
     Ok(CaseReport { markdown, missing })
+}
+
+/// The solvers' warnings of a case's rungs, each text once with the rungs that gave it (a
+/// warning about the case itself, such as a member wider than the reaction's radius, repeats
+/// on every rung).
+#[derive(Default)]
+struct Warnings(Vec<(String, Vec<String>)>);
+
+impl Warnings {
+    fn add(&mut self, text: &str, rung: String) {
+        match self.0.iter_mut().find(|(t, _)| t == text) {
+            Some((_, rungs)) => rungs.push(rung),
+            None => self.0.push((text.to_string(), vec![rung])),
+        }
+    }
+
+    /// One note per distinct warning: `Warning at RUNG: TEXT` or `Warning at N rungs (A; B; …): TEXT`.
+    fn notes(self) -> impl Iterator<Item = String> {
+        self.0.into_iter().map(|(text, rungs)| match rungs.as_slice() {
+            [one] => format!("Warning at {one}: {text}"),
+            _ => format!("Warning at {} rungs ({}): {text}", rungs.len(), rungs.join("; ")),
+        })
+    }
 }
 
 /// Whether the reference is a run of its own (finer or resolved) done before the ladders.
@@ -239,9 +264,13 @@ fn case_markdown(
     s.push_str(&markdown(&refs));
     s.push_str("\n| ladder | expected order | observed order between rungs |\n|---|---|---|\n");
     let mut series = Vec::new();
+    let mut growing = Vec::new();
     for l in &report.ladder {
         let of: Vec<&Row> = rows.iter().filter(|r| r.ladder == l.label).collect();
         let orders = order::observed(&of);
+        if order::grows_with_refinement(&orders) {
+            growing.push(format!("{} ({})", l.label, order::describe(&orders)));
+        }
         let _ = writeln!(
             s,
             "| {} | {} | {} |",
@@ -269,6 +298,19 @@ fn case_markdown(
         "\n{}\n\n![work–precision of {name}]({name}-work-precision.png)\n",
         summary::paragraph(&refs, report.target_error, &error_name(reference))
     );
+    if !growing.is_empty() {
+        let _ =
+            writeln!(
+            s,
+            "\n**The error grows as the parameter is refined** in {}: these rungs do not converge towards \
+             the reference, so something the refinement does not reduce dominates the measure{}.",
+            growing.join("; "),
+            if report.note.is_some() { " (the note below says what)" } else { "" }
+        );
+    }
+    if let Some(note) = &report.note {
+        let _ = writeln!(s, "\n{note}");
+    }
     for n in notes {
         let _ = writeln!(s, "\n{n}");
     }
@@ -283,4 +325,27 @@ fn case_markdown(
         );
     }
     Ok(s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Warnings;
+
+    /// The prism's --full report gave the wide-member warning once per rung (12 notes of one
+    /// text); a warning of one rung keeps its single form.
+    #[test]
+    fn a_warning_repeated_by_every_rung_is_written_once() {
+        let mut w = Warnings::default();
+        w.add("warning: wide", "explicit, window = 0.0008".into());
+        w.add("warning: energy", "implicit, window = 0.004".into());
+        w.add("warning: wide", "explicit, window = 0.004".into());
+        let notes: Vec<String> = w.notes().collect();
+        assert_eq!(
+            notes,
+            [
+                "Warning at 2 rungs (explicit, window = 0.0008; explicit, window = 0.004): warning: wide",
+                "Warning at implicit, window = 0.004: warning: energy",
+            ]
+        );
+    }
 }

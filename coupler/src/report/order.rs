@@ -20,6 +20,12 @@ pub fn observed(rows: &[&Row]) -> Vec<Option<f64>> {
         .collect()
 }
 
+/// Every defined order is negative (at least one is): the error grows as the parameter is refined.
+pub fn grows_with_refinement(orders: &[Option<f64>]) -> bool {
+    let defined: Vec<f64> = orders.iter().flatten().copied().collect();
+    !defined.is_empty() && defined.iter().all(|&p| p < 0.0)
+}
+
 /// The orders as text: `1.30, 1.15` (`–` for an undefined one).
 pub fn describe(orders: &[Option<f64>]) -> String {
     if orders.is_empty() {
@@ -30,4 +36,21 @@ pub fn describe(orders: &[Option<f64>]) -> String {
         .map(|o| o.map_or("–".into(), |p| format!("{p:.2}")))
         .collect::<Vec<_>>()
         .join(", ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The cantilever's ladder in the README (orders −0.28, −0.55): flagged; a converging or a
+    /// mixed ladder, or one whose orders are all undefined, is not.
+    #[test]
+    fn a_ladder_whose_error_grows_with_refinement_is_flagged() {
+        assert!(grows_with_refinement(&[Some(-0.28), Some(-0.55)]));
+        assert!(grows_with_refinement(&[None, Some(-3.86)]));
+        assert!(!grows_with_refinement(&[Some(1.07), Some(0.98)]));
+        assert!(!grows_with_refinement(&[Some(-0.2), Some(1.0)]));
+        assert!(!grows_with_refinement(&[None, None]));
+        assert!(!grows_with_refinement(&[]));
+    }
 }

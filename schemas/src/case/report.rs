@@ -62,6 +62,10 @@ pub struct ReportConfig {
     /// Bounds no sound run passes: a run that claims success beyond one failed silently.
     #[serde(default)]
     pub limit: Vec<Limit>,
+    /// What the ladders show and why, printed under the case's summary (e.g. why the error
+    /// does not fall as a parameter is refined).
+    #[serde(default)]
+    pub note: Option<String>,
 }
 
 /// `[[report.limit]]`: `|column| ≤ max_abs` in a participant's output file, and why.
