@@ -1,27 +1,17 @@
 //! Conservation: fluid mass is the particle count; the fluid's momentum changes only by
 //! gravity and the forces of the walls; save/restore and advance-to behave as the coupler needs.
 
+mod closed_box;
 mod common;
 
 use fluid_solver::{FluidSolver, Kind};
-use schemas::case::fluid::{Aabb, FluidConfig, TankConfig};
+use schemas::case::fluid::{Aabb, FluidConfig};
 
 /// A closed box 0.2 × 0.2 × 0.3 m with a water block held 0.1 m above the floor.
 fn free_drop() -> FluidConfig {
-    let (_, mut cfg) = common::load_case("hydrostatic-tank");
-    cfg.spacing = 0.02;
-    cfg.tank = TankConfig {
-        min: [0.0; 3],
-        max: [0.2, 0.2, 0.3],
-        lid: true,
-    };
-    cfg.block = vec![Aabb {
-        min: [0.04, 0.04, 0.1],
-        max: [0.16, 0.16, 0.22],
-    }];
+    let mut cfg = closed_box::closed_box([0.04, 0.04, 0.1], [0.16, 0.16, 0.22]);
     cfg.viscosity = 1.0e-4; // large enough that the viscous wall force matters
     cfg.viscosity_term = true;
-    cfg.time_step = 8.0e-4;
     cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
     cfg
 }

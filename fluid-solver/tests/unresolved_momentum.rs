@@ -2,25 +2,14 @@
 //! impulse: with reactions at the surface, at the floor and inside, the budget
 //! `Δp = M g t + wall impulse + reaction impulse` closes to round-off (as conservation.rs's does
 //! without them), and the reaction impulse is Σ F Δt.
+mod closed_box;
 mod common;
 
 use fluid_solver::{FluidSolver, Kind};
-use schemas::case::fluid::{Aabb, TankConfig};
 
 #[test]
 fn point_reactions_change_the_fluid_momentum_by_their_impulse() {
-    let (_, mut cfg) = common::load_case("hydrostatic-tank");
-    cfg.spacing = 0.02;
-    cfg.tank = TankConfig {
-        min: [0.0; 3],
-        max: [0.2, 0.2, 0.3],
-        lid: true,
-    };
-    cfg.block = vec![Aabb {
-        min: [0.0, 0.0, 0.0],
-        max: [0.2, 0.2, 0.12],
-    }];
-    cfg.time_step = 8.0e-4;
+    let cfg = closed_box::closed_box([0.0, 0.0, 0.0], [0.2, 0.2, 0.12]);
     cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
     let mut solver = FluidSolver::new(&cfg);
     let mass = solver.particles().count(Kind::Fluid) as f64 * solver.particle_mass();

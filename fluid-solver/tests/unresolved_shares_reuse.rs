@@ -3,26 +3,15 @@
 //! particles have not moved and the centroids and sample points are the same, and then give the
 //! same forces to the last bit as searching the cell list again; the samples are those of
 //! `sample_points` to the last bit.
+mod closed_box;
 mod common;
 
 use fluid_solver::unresolved::spreading::spread;
 use fluid_solver::FluidSolver;
-use schemas::case::fluid::{Aabb, TankConfig};
 
 #[test]
 fn shares_found_while_sampling_spread_as_a_new_search_and_never_after_a_step() {
-    let (_, mut cfg) = common::load_case("hydrostatic-tank");
-    cfg.spacing = 0.02;
-    cfg.tank = TankConfig {
-        min: [0.0; 3],
-        max: [0.2, 0.2, 0.3],
-        lid: true,
-    };
-    cfg.block = vec![Aabb {
-        min: [0.0, 0.0, 0.0],
-        max: [0.2, 0.2, 0.12],
-    }];
-    cfg.time_step = 8.0e-4;
+    let cfg = closed_box::closed_box([0.0, 0.0, 0.0], [0.2, 0.2, 0.12]);
     cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
     let mut solver = FluidSolver::new(&cfg);
     solver.step(cfg.time_step).unwrap_or_else(|e| panic!("{e}"));

@@ -4,7 +4,7 @@
 //! resolved run with it. What was drawn goes beside the PNG as `*.plot.csv` (series, x, y,
 //! dashed), checkable without reading pixels.
 
-use super::plot::{err, font, COLOURS};
+use super::plot::{err, font, legend_and_present, COLOURS};
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -122,16 +122,7 @@ pub fn draw(path: &Path, title: &str, x_label: &str, y_label: &str, lines: &[Lin
             .label(l.name.clone())
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font(("sans-serif", 14))
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()
-        .map_err(err(path))?;
-    root.present().map_err(err(path))?;
-    Ok(())
+    legend_and_present(&mut chart, &root, path)
 }
 
 #[cfg(test)]

@@ -119,6 +119,15 @@ pub fn work_precision(path: &Path, title: &str, error_label: &str, series: &[Ser
             }))
             .map_err(err(path))?;
     }
+    legend_and_present(&mut chart, &root, path)
+}
+
+/// Draws the series' legend in the upper right corner and writes the image to `path`.
+pub(crate) fn legend_and_present<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    root: &DrawingArea<DB, plotters::coord::Shift>,
+    path: &Path,
+) -> Result<(), String> {
     chart
         .configure_series_labels()
         .background_style(WHITE.mix(0.85))
@@ -127,8 +136,7 @@ pub fn work_precision(path: &Path, title: &str, error_label: &str, series: &[Ser
         .position(SeriesLabelPosition::UpperRight)
         .draw()
         .map_err(err(path))?;
-    root.present().map_err(err(path))?;
-    Ok(())
+    root.present().map_err(err(path))
 }
 
 /// The end state of a stability run, as drawn.
