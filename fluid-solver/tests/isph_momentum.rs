@@ -201,22 +201,32 @@ fn isph_body_loads_are_the_reaction_the_fluid_is_booked_with() {
 ///   the walls' reach, below the surface, drift towards the walls from the first steps); with
 ///   the uncorrected difference form near the walls 0.21 m/s (the surface layer there sees half
 ///   the gradient);
-/// - uncorrected symmetric with the walls' `2 p_i` part stripped of its tangential part (the
-///   edge columns' rise fits a lattice ripple: `Σ_w V W_iw` along a wall is largest level with a
-///   wall layer, so the `2 p_i` repulsion makes that an unstable position for sliding along it,
-///   and a column on two walls feels it twice — a reading, not proven): projected on each wall
-///   particle's normal 14.6 %, 0.18 m/s; on the fluid particle's mean wall normal 3.8 %,
-///   0.11 m/s; the lattice axes normal to a wall particle's normal zeroed, 0.23 m/s at 0.05 s.
-///   Each breaks the lattice cancellation `Σ_all V ∇W_ij = 0` at the tank's edges and corners,
-///   where the particles were then thrown first.
+/// - uncorrected symmetric with the walls' `2 p_i` part stripped of its tangential part: projected
+///   on each wall particle's normal 14.6 %, 0.18 m/s; on the fluid particle's mean wall normal
+///   3.8 %, 0.11 m/s; the lattice axes normal to a wall particle's normal zeroed, 0.23 m/s at
+///   0.05 s. Each breaks the lattice cancellation `Σ_all V ∇W_ij = 0` at the tank's edges and
+///   corners, where the particles were then thrown first.
+/// - not conservative, against the energy gain: the uncorrected symmetric form only on surface
+///   particles (λ_min ≤ 0.9) without a solid neighbour, S2-8 corrected elsewhere: 0.23 %,
+///   9.3e-3 m/s (the seam between the two forms moves).
+///
+/// Why the symmetric form's columns rise (a lattice sum, checked against the measured rate): a
+/// column of particles sliding by δ along its neighbours changes the zero-order sum by
+/// `∂(Σ_j V ∇_z W_ij)/∂δ = −0.067/Δs²` (Wendland at 2.4 Δs, on the simple cubic lattice), so
+/// `−(2p/ρ) Σ_j V ∇W_ij` pushes it on: growth rate `σ = √((2p/ρ) 0.067/Δs²)`, 22 /s at
+/// p = 1 500 Pa and Δs = 0.02 m, against the measured 18 /s. The sum is the same for a column in
+/// the edge (walls −0.041, water −0.039 of the −0.080) as in the interior: the edge is only where
+/// the settling seeds it most. Sliding is shear, without divergence, so the PPE does not restore
+/// it; in weakly compressible SPH the equation of state does (Dehnen & Aly 2012's stability of
+/// the Wendland kernels assumes it). σ grows as √p/Δs, so finer runs would go faster.
 /// - not conservative, against the energy gain: the uncorrected symmetric form only on surface
 ///   particles (λ_min ≤ 0.9) without a solid neighbour, S2-8 corrected elsewhere: 0.23 %,
 ///   9.3e-3 m/s (the seam between the two forms moves).
 ///
 /// None holds the tank, so the gradient stays S2-8's. The zero-order term `2 p_i Σ_j V ∇W_ij` of
-/// every conservative form is what the PPE (built on difference operators) does not see; a
-/// fix would have to put it into the PPE or make it vanish at walls (a wall whose term is a
-/// continuum integral, not a lattice sum).
+/// every conservative form is what the PPE (built on difference operators) does not see; a fix
+/// would need a restoring force for sliding (particle shifting, as ISPH codes use against
+/// irregular arrangements, Lind et al. 2012) or that term inside the PPE.
 #[test]
 #[ignore = "open (issue 12): S2-8's difference-form gradient is not antisymmetric"]
 fn isph_momentum_budget_closes_in_motion() {
