@@ -127,3 +127,53 @@ fn isph_dam_break_gains_no_energy_through_the_impact() {
         "the fluid gained {gained:.2} J/kg of {e0:.1} (bound 1 %)"
     );
 }
+
+/// The L/20 rung of `cases/dam-break-koshizuka` (the case as written: Δs = 0.0073 m, the tank 10
+/// particles wide, 8 000 fluid particles) with ISPH at Δt = 6e-4 s, before the surge reaches the
+/// far wall: the energy `Σ ½|u|² + g z` gained over the steps in which it grows from t = 0.10 to
+/// 0.16 s (about 20 s in release). Nothing feeds it, so it may only fall; bound 1 % of the
+/// initial energy, the bound of `isph_dam_break_gains_no_energy_through_the_impact`.
+///
+/// The open criterion of the README's "Left open" (issue 12). Measured with S2-8's corrected
+/// difference-form gradient (`isph::operators::pressure_gradient`): 11 446 J/kg at the start,
+/// 11 385 at 0.10 s, 11 605 at 0.16 s, 220.4 J/kg gained (1.9 %). With the uncorrected
+/// symmetric gradient `Σ_j V (p_i + p_j) ∇W_ij` (walls at p_i + Δp_ij), which conserves momentum
+/// pairwise: 11 306 → 11 081 J/kg, nothing gained; that gradient is not used because the
+/// hydrostatic tank's corner columns run away from 0.25 s (`isph_momentum.rs` lists the
+/// gradients tried).
+#[test]
+#[ignore = "open (issue 12): the corrected difference-form gradient gains 1.9 % before the impact"]
+fn isph_dam_break_gains_no_energy_before_the_impact_at_l_20() {
+    let (_, mut cfg) = common::load_case("dam-break-koshizuka");
+    cfg.method = schemas::case::fluid::FluidMethodName::Isph;
+    cfg.isph = Some(schemas::case::fluid::IsphConfig::default());
+    cfg.sound_speed = None;
+    cfg.time_step = 6e-4;
+    cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
+    let mut solver = fluid_solver::FluidSolver::new(&cfg);
+    let g = cfg.gravity_magnitude();
+    let energy = |s: &fluid_solver::FluidSolver| {
+        let p = s.particles();
+        (0..p.len())
+            .filter(|&i| p.kind_of(i) == fluid_solver::Kind::Fluid)
+            .map(|i| 0.5 * (p.vx[i].powi(2) + p.vy[i].powi(2) + p.vz[i].powi(2)) + g * p.z[i])
+            .sum::<f64>()
+    };
+    let e0 = energy(&solver);
+    solver.advance_to(0.1).unwrap_or_else(|e| panic!("{e}"));
+    let e1 = energy(&solver);
+    let (mut last, mut gained) = (e1, 0.0);
+    while let Some(dt) = solver.next_step_towards(0.16) {
+        solver.step(dt).unwrap_or_else(|e| panic!("{e}"));
+        let e = energy(&solver);
+        gained += (e - last).max(0.0);
+        last = e;
+    }
+    println!(
+        "energy {e0:.1} at t = 0, {e1:.1} at 0.10 s, {last:.1} J/kg at 0.16 s; gained {gained:.2} in the steps it grew"
+    );
+    assert!(
+        gained < 0.01 * e0,
+        "the fluid gained {gained:.2} J/kg of {e0:.1} (bound 1 %)"
+    );
+}

@@ -147,7 +147,10 @@ pub fn laplacian(
 /// exact lattice and that the PPE (built on the difference operators) does not see. In the
 /// closed tank at Δs = 0.02 m it drove the hydrostatic error of the corner columns up by 0.3 %
 /// in 0.3 s and then a column along the tank's vertical edge away at 5 % per step (stopped
-/// near 0.9 s); with S2-8 the same tank holds ρgh to 0.01 %.
+/// near 0.9 s); with S2-8 the same tank holds ρgh to 0.01 %. Conservative variants measured
+/// against this tank (Bonet & Lok's antisymmetrised corrected kernel gradient, their variational
+/// form, hybrids with the walls booked with the rest, the walls' zero-order part projected):
+/// none holds it; `tests/isph_momentum.rs` lists them with their numbers.
 ///
 /// `from_non_fluid` is Σ over fluid–wall pairs (bodies excluded: their load is the face law of
 /// [`super::pair_laws`], which the step books) of the symmetric pair term
