@@ -14,8 +14,8 @@
 //! themselves).
 //!
 //! `cargo bench -p fluid-solver --bench isph_vs_emps -- [spacing] [end time] [ppe solver]
-//! [--s2] [--only=isph|emps] [--probe-log=PREFIX]`; defaults Δs = L/20 = 0.0073 m (8 000 fluid particles), 0.5 s (past
-//! the impact on the far wall at about 0.3 s), "jacobi-pcg" (or "sgs-pcg", "faer-cholesky"). `--s2` is S2's
+//! [--s2] [--only=isph|emps] [--probe-log=PREFIX] [--alpha-d=α]`; defaults Δs = L/20 = 0.0073 m (8 000 fluid particles), 0.5 s (past
+//! the impact on the far wall at about 0.3 s), "jacobi-pcg" (or "sgs-pcg", "faer-cholesky"), S2's α_d = 5e-3. `--s2` is S2's
 //! scale (Table 1): Δs = 5 mm and a slab 76 Δs deep, 127 832 fluid particles (S2: 128 000).
 //! `--probe-log=PREFIX` writes `PREFIX-emps.csv` and `PREFIX-isph.csv`, one row per step: what the
 //! probe reads and where it comes from ([`probe_log`]).
@@ -155,8 +155,14 @@ fn main() {
     let mut isph = case(ds, layers);
     isph.method = FluidMethodName::Isph;
     isph.sound_speed = None;
+    let alpha_d = all
+        .iter()
+        .find_map(|a| a.strip_prefix("--alpha-d="))
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(IsphConfig::default().alpha_d);
     isph.isph = Some(IsphConfig {
         ppe_solver: solver,
+        alpha_d,
         ..IsphConfig::default()
     });
     isph.time_step = 0.3 * ds / isph.advective_velocity(); // advective Courant 0.3 (limit 0.4)

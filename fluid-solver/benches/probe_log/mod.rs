@@ -6,7 +6,7 @@
 //! the step before (by particle id).
 //!
 //! Columns: `time, dt, probe, fluid, solid, solid_weight` (the solids' share of Σw), `nearest_kind,
-//! nearest_r` (in Δs), `nearest_p, solid_max, fluid_near, surface_near, flips_near` (fluid within
+//! nearest_id, nearest_r` (in Δs), `nearest_p, solid_max, fluid_near, surface_near, flips_near` (fluid within
 //! 2 r_e,grad of the probe).
 
 use fluid_solver::emps::kernel::weight;
@@ -28,7 +28,7 @@ impl ProbeLog {
     /// Creates the file with its header for the point probe `probe`.
     pub fn create(path: &str, probe: &ProbeConfig) -> std::io::Result<ProbeLog> {
         let mut out = BufWriter::new(File::create(path)?);
-        writeln!(out, "time,dt,probe,fluid,solid,solid_weight,nearest_kind,nearest_r,nearest_p,solid_max,fluid_near,surface_near,flips_near")?;
+        writeln!(out, "time,dt,probe,fluid,solid,solid_weight,nearest_kind,nearest_id,nearest_r,nearest_p,solid_max,fluid_near,surface_near,flips_near")?;
         Ok(ProbeLog {
             out,
             at: [probe.position[0], probe.position[1], probe.position[2]],
@@ -45,7 +45,7 @@ impl ProbeLog {
             _ => None,
         };
         let (mut wf, mut ws, mut pf, mut ps) = (0.0, 0.0, 0.0, 0.0);
-        let (mut nearest, mut solid_max) = ((f64::INFINITY, Kind::Fluid, 0.0), f64::NEG_INFINITY);
+        let (mut nearest, mut solid_max) = ((f64::INFINITY, Kind::Fluid, 0.0, 0u32), f64::NEG_INFINITY);
         let (mut fluid_near, mut surface_near, mut flips) = (0, 0, 0);
         let mut surface = HashMap::new();
         for i in 0..p.len() {
@@ -69,7 +69,7 @@ impl ProbeLog {
                 continue;
             }
             if r < nearest.0 {
-                nearest = (r, kind, p.pressure[i]);
+                nearest = (r, kind, p.pressure[i], p.id[i]);
             }
             if kind == Kind::Fluid {
                 (wf, pf) = (wf + w, pf + w * p.pressure[i]);
@@ -82,7 +82,7 @@ impl ProbeLog {
         let total = (wf + ws).max(f64::MIN_POSITIVE);
         let _ = writeln!(
             self.out,
-            "{:.6},{:.3e},{:.1},{:.1},{:.1},{:.3},{:?},{:.3},{:.1},{:.1},{},{},{}",
+            "{:.6},{:.3e},{:.1},{:.1},{:.1},{:.3},{:?},{},{:.3},{:.1},{:.1},{},{},{}",
             solver.time(),
             dt,
             probe,
@@ -90,6 +90,7 @@ impl ProbeLog {
             ps / total,
             ws / total,
             nearest.1,
+            nearest.3,
             nearest.0 / ds,
             nearest.2,
             solid_max,
