@@ -1,8 +1,12 @@
 //! ISPH against E-MPS on the same dam break (the Koshizuka & Oka column, L = 0.146 m, a slab
 //! `--depth` deep) at the same particle size and threads: fluid-particle-steps per second, PPE
 //! iterations per step and the PPE's share of the step, wall time to the same physical end time
-//! (each method at its own largest stable Δt: E-MPS acoustic, ISPH advective), and the RMS of the
-//! step-to-step change of a pressure probe on the far wall.
+//! (each method at its own largest stable Δt: E-MPS acoustic, ISPH advective), and the roughness
+//! of a pressure probe on the far wall: the RMS of its step-to-step change (the measure),
+//! and, since E-MPS takes more, smaller steps (2.4× at Δs = L/20), three measures that do not favour the
+//! smaller step ([`probe_signal`]): per unit time RMS(Δp/Δt), the RMS change with both series
+//! resampled at ISPH's Δt, and the RMS of the high-passed signal (minus its moving average over
+//! 11 ISPH steps).
 //!
 //! Then each method's stages (the step's stage timers) with their share, and the load average
 //! before and after and the process's CPU time (wall times on a shared machine mean little
@@ -10,9 +14,11 @@
 //! themselves).
 //!
 //! `cargo bench -p fluid-solver --bench isph_vs_emps -- [spacing] [end time] [ppe solver]
-//! [--s2] [--only=isph|emps]`; defaults Δs = L/20 = 0.0073 m (8 000 fluid particles), 0.5 s (past
-//! the impact on the far wall at about 0.3 s), "jacobi-pcg" (or "sgs-pcg", "faer-cholesky"). `--s2` is S2's
+//! [--s2] [--only=isph|emps] [--probe-log=PREFIX] [--alpha-d=α]`; defaults Δs = L/20 = 0.0073 m (8 000 fluid particles), 0.5 s (past
+//! the impact on the far wall at about 0.3 s), "jacobi-pcg" (or "sgs-pcg", "faer-cholesky"), S2's α_d = 5e-3. `--s2` is S2's
 //! scale (Table 1): Δs = 5 mm and a slab 76 Δs deep, 127 832 fluid particles (S2: 128 000).
+//! `--probe-log=PREFIX` writes `PREFIX-emps.csv` and `PREFIX-isph.csv`, one row per step: what the
+//! probe reads and where it comes from ([`probe_log`]).
 
 use fluid_solver::probes;
 use fluid_solver::{FluidSolver, Kind};
@@ -22,7 +28,10 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 mod bench_process;
+mod probe_log;
+mod probe_signal;
 use bench_process::{cpu_seconds, load_average};
+use probe_signal::Series;
 
 fn case(ds: f64, layers: f64) -> FluidConfig {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../cases/dam-break-koshizuka/case.toml");
@@ -56,10 +65,11 @@ struct Row {
     cpu: f64,
     ppe_iterations: u64,
     ppe_share: f64,
-    probe_rms: f64,
+    /// The far-wall probe after each step.
+    probe: Series,
 }
 
-fn run(name: &str, cfg: &FluidConfig, end: f64) -> Row {
+fn run(name: &str, cfg: &FluidConfig, end: f64, log: Option<&str>) -> Row {
     let mut solver = FluidSolver::new(cfg);
     let fluid = solver.particles().count(Kind::Fluid);
     let probe = ProbeConfig {
@@ -69,7 +79,18 @@ fn run(name: &str, cfg: &FluidConfig, end: f64) -> Row {
         ..Default::default()
     };
     let tank = solver.tank();
-    let (mut last, mut sum2, mut n) = (0.0, 0.0, 0u64);
+    let mut series = Series::default();
+    let mut log = log.map(|prefix| {
+        let path = format!("{prefix}-{}.csv", name.replace('-', "").to_lowercase());
+        probe_log::ProbeLog::create(&path, &probe).unwrap_or_else(|e| {
+            eprintln!("error: {path}: {e}");
+            std::process::exit(1)
+        })
+    });
+    series.0.push((
+        solver.time(),
+        probes::sample(&probe, solver.particles(), solver.kernel(), &tank),
+    ));
     let start = Instant::now();
     let cpu0 = cpu_seconds();
     while let Some(dt) = solver.next_step_towards(end) {
@@ -78,9 +99,10 @@ fn run(name: &str, cfg: &FluidConfig, end: f64) -> Row {
             break;
         }
         let p = probes::sample(&probe, solver.particles(), solver.kernel(), &tank);
-        sum2 += (p - last).powi(2);
-        last = p;
-        n += 1;
+        series.0.push((solver.time(), p));
+        if let Some(log) = &mut log {
+            log.row(&solver, dt, p);
+        }
     }
     let wall = start.elapsed().as_secs_f64();
     let cpu = cpu_seconds() - cpu0;
@@ -101,7 +123,7 @@ fn run(name: &str, cfg: &FluidConfig, end: f64) -> Row {
         } else {
             0.0
         },
-        probe_rms: (sum2 / n.max(1) as f64).sqrt(),
+        probe: series,
     }
 }
 
@@ -123,14 +145,24 @@ fn main() {
         Some("sgs-pcg") => PpeSolver::SgsPcg,
         _ => PpeSolver::JacobiPcg,
     };
+    let log = all
+        .iter()
+        .find_map(|a| a.strip_prefix("--probe-log="))
+        .map(str::to_owned);
     let layers = if s2 { 76.0 } else { 10.0 };
     let mut emps = case(ds, layers);
     emps.time_step = 0.45 * ds / emps.sound_speed(); // acoustic Courant 0.45, as the case file
     let mut isph = case(ds, layers);
     isph.method = FluidMethodName::Isph;
     isph.sound_speed = None;
+    let alpha_d = all
+        .iter()
+        .find_map(|a| a.strip_prefix("--alpha-d="))
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(IsphConfig::default().alpha_d);
     isph.isph = Some(IsphConfig {
         ppe_solver: solver,
+        alpha_d,
         ..IsphConfig::default()
     });
     isph.time_step = 0.3 * ds / isph.advective_velocity(); // advective Courant 0.3 (limit 0.4)
@@ -151,15 +183,15 @@ fn main() {
             .as_deref()
             .is_none_or(|o| o.eq_ignore_ascii_case(&name.replace('-', "")))
         {
-            rows.push(run(name, cfg, end));
+            rows.push(run(name, cfg, end, log.as_deref()));
         }
     }
     println!("load average after: {}", load_average());
     let threads = rayon::current_num_threads() as f64;
-    println!("method  Δt [s]    t [s]   steps  fluid    wall [s]  CPU [s]  fluid-steps/s  per CPU-s × threads  PPE it/step  PPE share  wall-probe RMS Δp [Pa]");
+    println!("method  Δt [s]    t [s]   steps  fluid    wall [s]  CPU [s]  fluid-steps/s  per CPU-s × threads  PPE it/step  PPE share");
     for row in &rows {
         println!(
-            "{:6}  {:.2e}  {:6.4}  {:5}  {:6}  {:9.2}  {:7.2}  {:13.3e}  {:19.3e}  {:11.1}  {:8.1} %  {:.2}",
+            "{:6}  {:.2e}  {:6.4}  {:5}  {:6}  {:9.2}  {:7.2}  {:13.3e}  {:19.3e}  {:11.1}  {:8.1} %",
             row.name,
             row.dt,
             row.reached,
@@ -171,7 +203,26 @@ fn main() {
             row.fluid as f64 * row.steps as f64 * threads / row.cpu.max(1e-9),
             row.ppe_iterations as f64 / row.steps.max(1) as f64,
             100.0 * row.ppe_share,
-            row.probe_rms
+        );
+    }
+    // The common grid: ISPH's Δt.
+    let h = isph.time_step;
+    println!(
+        "far-wall probe (point probe Δs/2 from the wall, 0.02 m up), common grid h = ISPH's Δt = {h:.2e} s, high-pass = minus the moving average over {} points:",
+        2 * probe_signal::HALF_WINDOW + 1
+    );
+    println!("method  RMS Δp per step [Pa]  max |Δp| [Pa]  RMS Δp/Δt [Pa/s]  RMS Δp at h [Pa]  RMS high-pass [Pa]  max p [Pa]");
+    for row in &rows {
+        let s = &row.probe;
+        println!(
+            "{:6}  {:20.1}  {:13.1}  {:16.4e}  {:16.1}  {:18.1}  {:10.1}",
+            row.name,
+            s.step_rms(),
+            s.step_max(),
+            s.rate_rms(),
+            s.resampled_step_rms(h),
+            s.high_pass_rms(h),
+            s.max()
         );
     }
     for row in &rows {
