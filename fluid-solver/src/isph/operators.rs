@@ -150,7 +150,11 @@ pub fn laplacian(
 /// near 0.9 s); with S2-8 the same tank holds ρgh to 0.01 %. Conservative variants measured
 /// against this tank (Bonet & Lok's antisymmetrised corrected kernel gradient, their variational
 /// form, hybrids with the walls booked with the rest, the walls' zero-order part projected):
-/// none holds it; `tests/isph_momentum.rs` lists them with their numbers.
+/// none holds it; `tests/isph_momentum.rs` lists them with their numbers. Particle shifting
+/// (Lind et al. 2012) does not rescue the symmetric form: it moves particles down the same
+/// zero-order sum, which a line or plane of the lattice sliding along itself lowers at this
+/// support (2.4 Δs); at 2.0 Δs that sum restores them and the symmetric form holds the tank
+/// for 1 s (`tests/isph_lattice_modes.rs`).
 ///
 /// `from_non_fluid` is Σ over fluid–wall pairs (bodies excluded: their load is the face law of
 /// [`super::pair_laws`], which the step books) of the symmetric pair term
