@@ -14,7 +14,9 @@
 //! `DRAG_COST_AT` (s, default 0.3) and `DRAG_COST_REPS` (default 15) shorten it, e.g. to count
 //! instructions under `valgrind --tool=callgrind` (wall times on a shared machine are noisy);
 //! `DRAG_COST_ONLY` = law, sampling, spreading or step runs that part alone (the difference of
-//! two instruction counts with different `DRAG_COST_REPS` is then that part's count).
+//! two instruction counts with different `DRAG_COST_REPS` is then that part's count). It
+//! prints a digest of the last samples and spread forces (FNV-1a of their bits): a faster
+//! sampling or spreading must leave it unchanged.
 
 use coupler::laws::drag::{Drag, DragSettings};
 use coupler::laws::Law;
