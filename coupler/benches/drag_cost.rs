@@ -14,7 +14,9 @@
 //! `DRAG_COST_AT` (s, default 0.3) and `DRAG_COST_REPS` (default 15) shorten it, e.g. to count
 //! instructions under `valgrind --tool=callgrind` (wall times on a shared machine are noisy);
 //! `DRAG_COST_ONLY` = law, sampling, spreading or step runs that part alone (the difference of
-//! two instruction counts with different `DRAG_COST_REPS` is then that part's count).
+//! two instruction counts with different `DRAG_COST_REPS` is then that part's count). It
+//! prints a digest of the last samples and spread forces (FNV-1a of their bits): a faster
+//! sampling or spreading must leave it unchanged.
 
 use coupler::laws::drag::{Drag, DragSettings};
 use coupler::laws::Law;
@@ -37,6 +39,16 @@ fn time_ms(f: impl FnOnce()) -> f64 {
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v[v.len() / 2]
+}
+
+/// FNV-1a over the bits of `values`: equal outputs to the last bit give equal digests.
+fn bits_digest<'a>(values: impl Iterator<Item = &'a f64>) -> u64 {
+    values.fold(0xcbf2_9ce4_8422_2325, |h, v| {
+        v.to_bits()
+            .to_le_bytes()
+            .iter()
+            .fold(h, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3))
+    })
 }
 
 fn main() {
@@ -157,6 +169,14 @@ fn main() {
             }
         });
     }
+    // outputs that a faster sampling or spreading must keep to the last bit
+    let (v, lambda) = if reuse {
+        solver.sample_points_for(&points, &reactions)
+    } else {
+        solver.sample_points(&points)
+    };
+    let spread = solver.spread_point_reactions(&reactions, &points);
+    let digest = bits_digest(v.iter().chain(&lambda).chain(&spread.force).chain(&spread.total));
     let [law_ms, sample_ms, spread_ms, step_ms] = [0, 1, 2, 3].map(|k| median(times[k].clone()));
     let window = 4.0 * law_ms + sample_ms + spread_ms;
     println!(
@@ -169,6 +189,7 @@ fn main() {
         solver.cell_grid().drift(solver.particles()) / cfg.spacing,
         if reuse { "found while sampling, reused" } else { "searched again by the spreading" }
     );
+    println!("  digest of the last samples and spread forces (bits, FNV-1a): {digest:016x}");
     println!(
         "{:>34} {:>10} {:>8} {:>12}",
         "part", "ms", "× window", "% of step"

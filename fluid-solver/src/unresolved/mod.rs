@@ -18,18 +18,26 @@
 //! `the_trimmed_point_query_sees_what_the_full_block_sees_after_particles_drifted`).
 //!
 //! Cost, callgrind on the drag cost bench (`coupler/benches/drag_cost.rs`, t = 0.004 s, 1
-//! thread, 10 080 sub-members, 3 270 wet), per call: sampling 99.9 M instructions with the
+//! thread, 10 080 sub-members, 3 270 wet), per call: sampling 94.4 M instructions with the
 //! shares of the reactions found in the same search, spreading 7.6 M by reusing them (the
 //! fluid participant samples at the window end with the window's reactions and spreads the
 //! next step's at the same particle positions: [`crate::FluidSolver::sample_points_for`],
 //! guarded by a positions version and the centroids being the same, so a moving member is
-//! searched again); 107.5 M together against 123.0 M (72.2 M + 50.8 M) before, outputs equal
-//! to the last bit (the drag column run's ledger is byte-identical). The drift pass
-//! ([`crate::neighbour_search::CellGrid::drift`], one per call) went from 13.4 M to 10.1 M.
-//! Tried and left out (measured): per-row loops over sliced arrays with the sums held in
-//! locals (+2 M: no gain), a per-plane test for fluid before the per-row one (+0.4 M). With the law (2.45 M × 4) a window costs ~117 M, 14.4 % of the fluid step's 813 M
-//! (16.3 % before); the issue asks for 10 %. The particles within the support of the wet points
-//! (~0.2 M in sampling, ~120 instructions each, and ~0.5 M candidates at ~20) dominate.
+//! searched again), outputs equal to the last bit (the bench prints a digest of them). With the
+//! law (2.45 M × 4) a window costs ~112 M, 13.8 % of the fluid step's 813 M; the issue asks for
+//! 10 %. Where the sampling's instructions go (callgrind `--dump-instr`, per call): the
+//! accepted particles' work (Shepard sums, moment matrix, shares: ~210 k particles within the
+//! support, ~255 k fluid particles within the widened reach) and the candidates' distance test
+//! (~590 k at ~24 instructions) ~47 M; choosing the rows of cells (~110 k rows, ~110
+//! instructions each, and ~250 per point) ~17 M; the drift pass
+//! ([`crate::neighbour_search::CellGrid::drift`]) 10 M; λ_min ~1 M (not worth skipping).
+//! History: 99.9 M with one call per particle; 97.3 M with one loop over each row's arrays
+//! ([`crate::neighbour_search::CellGrid::for_each_row_near_point`]); 94.4 M with the test for
+//! water done plane by plane first. Tried and left out (measured): the moment matrix's terms
+//! written out (no gain), the drift pass cell by cell over the sorted ranges (+4.8 M: the
+//! empty cells cost more than finding each particle's cell again). Next step: batching the
+//! sample points of one member (they lie a Δs apart, so each particle is within the support
+//! of ~5 of them): their rows and candidates read once for all of them.
 pub mod kernel;
 pub mod sampling;
 pub mod spreading;

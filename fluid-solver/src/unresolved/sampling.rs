@@ -25,6 +25,7 @@ use crate::kind::{Kind, FLUID};
 use crate::neighbour_search::{CellGrid, Rows};
 use crate::particles::Particles;
 use rayon::prelude::*;
+use std::ops::Range;
 
 /// Index pairs of the upper triangle of a 3 × 3 matrix, row by row.
 const UPPER: [(usize, usize); 6] = [(0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)];
@@ -44,7 +45,10 @@ pub fn sample(p: &Particles, grid: &CellGrid, spacing: f64, points: &[f64]) -> V
     points
         .par_chunks_exact(3)
         .with_min_len(64)
-        .map(|x| sample_at(p, grid, drift, &kernel, spacing.powi(3), [x[0], x[1], x[2]]))
+        .map_init(Vec::new, |rows, x| {
+            let x = [x[0], x[1], x[2]];
+            sample_near(p, grid, drift, &kernel, spacing.powi(3), x, None, rows).unwrap_or_else(dry)
+        })
         .collect()
 }
 
@@ -73,33 +77,27 @@ pub fn sample_with_shares(
         .par_chunks_exact(3)
         .zip(reactions.par_chunks_exact(6))
         .with_min_len(64)
-        .map(|(x, r)| {
+        // the index ranges of each point's cells, in one buffer per rayon job
+        .map_init(Vec::new, |rows, (x, r)| {
             let (x, c) = ([x[0], x[1], x[2]], [r[0], r[1], r[2]]);
             let apart = (0..3).map(|a| (c[a] - x[a]).powi(2)).sum::<f64>().sqrt();
+            let volume = spacing.powi(3);
             if apart > 0.5 * kernel.radius {
-                let s = sample_at(p, grid, drift, &kernel, spacing.powi(3), x);
+                let s = sample_near(p, grid, drift, &kernel, volume, x, None, rows).unwrap_or_else(dry);
                 let wet = s.velocity != [0.0; 3] || s.lambda_min != 0.0;
                 return (s, wet.then(|| share_of(p, grid, drift, &kernel, c, Some(x))));
             }
-            let mut share = Vec::with_capacity(96);
-            let mut sum = 0.0;
-            let s = sample_near(p, grid, drift, &kernel, spacing.powi(3), x, apart, |j| {
-                if p.kind[j] != FLUID {
-                    return;
-                }
-                let d = [p.x[j] - c[0], p.y[j] - c[1], p.z[j] - c[2]];
-                let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-                if r2 < kernel.radius * kernel.radius {
-                    let w = kernel.value(r2.sqrt());
-                    if w > 0.0 {
-                        share.push((j as u32, w));
-                        sum += w;
-                    }
-                }
-            });
+            let mut share = ShareSearch {
+                centroid: c,
+                apart,
+                share: Vec::new(),
+                sum: 0.0,
+            };
+            let s = sample_near(p, grid, drift, &kernel, volume, x, Some(&mut share), rows);
             let Some(s) = s else {
                 return (dry(), None);
             };
+            let ShareSearch { mut share, sum, .. } = share;
             share.iter_mut().for_each(|(_, w)| *w /= sum);
             if share.is_empty() {
                 return (s, Some((shares_around(p, grid, drift, &kernel, x), true)));
@@ -117,20 +115,18 @@ fn dry() -> Sample {
     }
 }
 
-/// The flow at `x`; `drift` is the grid's [`CellGrid::drift`] for `p`.
-pub fn sample_at(
-    p: &Particles,
-    grid: &CellGrid,
-    drift: f64,
-    kernel: &Wendland,
-    volume: f64,
-    x: [f64; 3],
-) -> Sample {
-    sample_near(p, grid, drift, kernel, volume, x, 0.0, |_| {}).unwrap_or_else(dry)
+/// The shares of a reaction at `centroid`, `apart` from the sample point, found by the sample
+/// point's search: the unnormalised weights `W(x_c − x_k)` of the fluid particles and their sum.
+struct ShareSearch {
+    centroid: [f64; 3],
+    apart: f64,
+    share: Vec<(u32, f64)>,
+    sum: f64,
 }
 
-/// The flow at `x` (None: dry), visiting the particles within the support widened by `wider`
-/// and calling `also(j)` for each of them, in the cell list's order.
+/// The flow at `x` (None: dry); with `shares`, the search widened by its `apart` also collects
+/// the shares around its centroid, in the cell list's order. `rows` is scratch space for the
+/// index ranges of the cells to read ([`CellGrid::for_each_row_near_point`]).
 #[allow(clippy::too_many_arguments)]
 fn sample_near(
     p: &Particles,
@@ -139,50 +135,33 @@ fn sample_near(
     kernel: &Wendland,
     volume: f64,
     x: [f64; 3],
-    wider: f64,
-    mut also: impl FnMut(usize),
+    shares: Option<&mut ShareSearch>,
+    rows: &mut Vec<Range<usize>>,
 ) -> Option<Sample> {
-    let mut u = [0.0; 3];
-    let mut weight = 0.0;
-    // the moment matrix is symmetric (a radial kernel): its upper triangle
-    let mut m = [0.0; 6];
-    let gate = Kind::Gate.code();
-    let r2max = kernel.radius * kernel.radius;
-    // widened a little more against the rounding of `wider`
-    let reach = if wider > 0.0 {
-        kernel.radius + wider + 1e-9 * kernel.radius
-    } else {
-        kernel.radius
+    // widened by the centroid's distance, a little more against its rounding
+    let reach = match &shares {
+        Some(s) if s.apart > 0.0 => kernel.radius + s.apart + 1e-9 * kernel.radius,
+        _ => kernel.radius,
     };
+    rows.clear();
     // no water within the support: dry, whatever walls are near
-    let wet = grid.for_each_near_point_trimmed(p, x, reach, drift, Rows::AllIfFluid, |j, r2, d| {
-        let kind = p.kind[j];
-        if kind == gate {
-            return;
+    if !grid.for_each_row_near_point(x, reach, drift, Rows::AllIfFluid, |r| rows.push(r)) {
+        return None;
+    }
+    let sums = match shares {
+        Some(s) => sums_over::<true>(p, kernel, volume, x, reach, rows, s),
+        None => {
+            let mut none = ShareSearch {
+                centroid: x,
+                apart: 0.0,
+                share: Vec::new(),
+                sum: 0.0,
+            };
+            sums_over::<false>(p, kernel, volume, x, reach, rows, &mut none)
         }
-        also(j);
-        if r2 >= r2max {
-            return;
-        }
-        let r = r2.sqrt();
-        let (value, derivative) = kernel.value_and_derivative(r);
-        if kind == FLUID {
-            let w = volume * value;
-            weight += w;
-            u[0] += w * p.vx[j];
-            u[1] += w * p.vy[j];
-            u[2] += w * p.vz[j];
-        }
-        if r > 0.0 {
-            // V (x_j − x) ⊗ ∇_x W(x − x_j) = −V W'(r)/r (d ⊗ d), d = x_j − x
-            let s = -volume * derivative / r;
-            for (k, (a, b)) in UPPER.iter().enumerate() {
-                m[k] += s * d[*a] * d[*b];
-            }
-        }
-    });
-
-    if !wet || weight <= 0.0 {
+    };
+    let (u, weight, m) = sums;
+    if weight <= 0.0 {
         return None;
     }
     let lambda_min = smallest_eigenvalue(&m);
@@ -190,6 +169,91 @@ fn sample_near(
         velocity: u.map(|c| c / weight),
         lambda_min,
     })
+}
+
+/// The Shepard sums at `x` over the particles of `rows` within the kernel's support (velocity
+/// times weight, weight, the moment matrix's upper triangle), and with `SHARES` the weights of
+/// the fluid particles around `shares.centroid` among those within `reach` (the same operations
+/// in the same order as a call per particle, so equal sums to the last bit; one loop over the
+/// arrays with the sums in registers does both).
+fn sums_over<const SHARES: bool>(
+    p: &Particles,
+    kernel: &Wendland,
+    volume: f64,
+    x: [f64; 3],
+    reach: f64,
+    rows: &[Range<usize>],
+    shares: &mut ShareSearch,
+) -> ([f64; 3], f64, [f64; 6]) {
+    let kernel = *kernel;
+    let mut u = [0.0; 3];
+    let mut weight = 0.0;
+    // the moment matrix is symmetric (a radial kernel): its upper triangle
+    let mut m = [0.0; 6];
+    let gate = Kind::Gate.code();
+    let r2max = kernel.radius * kernel.radius;
+    let reach2 = reach * reach;
+    let c = shares.centroid;
+    let mut sum = shares.sum;
+    for range in rows {
+        let first = range.start;
+        let xs = &p.x[range.clone()];
+        let n = xs.len();
+        let (ys, zs) = (&p.y[range.clone()][..n], &p.z[range.clone()][..n]);
+        let kinds = &p.kind[range.clone()][..n];
+        let (vx, vy, vz) = (
+            &p.vx[range.clone()][..n],
+            &p.vy[range.clone()][..n],
+            &p.vz[range.clone()][..n],
+        );
+        for k in 0..n {
+            let d = [xs[k] - x[0], ys[k] - x[1], zs[k] - x[2]];
+            let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            if r2 >= reach2 {
+                continue;
+            }
+            let kind = kinds[k];
+            if kind == gate {
+                continue;
+            }
+            if SHARES && kind == FLUID {
+                let e = [xs[k] - c[0], ys[k] - c[1], zs[k] - c[2]];
+                let rc2 = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
+                if rc2 < r2max {
+                    let w = kernel.value(rc2.sqrt());
+                    if w > 0.0 {
+                        if shares.share.capacity() == 0 {
+                            // a full support holds about 60 particles: one allocation
+                            shares.share.reserve(96);
+                        }
+                        shares.share.push(((first + k) as u32, w));
+                        sum += w;
+                    }
+                }
+            }
+            if r2 >= r2max {
+                continue;
+            }
+            let r = r2.sqrt();
+            let (value, derivative) = kernel.value_and_derivative(r);
+            if kind == FLUID {
+                let w = volume * value;
+                weight += w;
+                u[0] += w * vx[k];
+                u[1] += w * vy[k];
+                u[2] += w * vz[k];
+            }
+            if r > 0.0 {
+                // V (x_j − x) ⊗ ∇_x W(x − x_j) = −V W'(r)/r (d ⊗ d), d = x_j − x
+                let s = -volume * derivative / r;
+                for (k, (a, b)) in UPPER.iter().enumerate() {
+                    m[k] += s * d[*a] * d[*b];
+                }
+            }
+        }
+    }
+    shares.sum = sum;
+    (u, weight, m)
 }
 
 /// Smallest eigenvalue of the symmetric 3 × 3 matrix with upper triangle `m` (order of
