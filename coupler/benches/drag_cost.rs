@@ -1,8 +1,14 @@
 //! Cost of the unresolved drag coupling against the fluid step (issue 13: under 10 % for
-//! 10 000 sub-members): the drag law (coupler), the sampling and the spreading (fluid), on the
-//! dam-break tank of `cases/dam-break-tank` (Δs = 0.01 m) at t = 0.3 s, with 336 vertical
-//! columns 0.3 m high over the whole tank floor, cut into 10 080 sub-members of one Δs, wet
-//! and dry alike.
+//! 10 000 sub-members on the prism scene): the drag law (coupler), the sampling and the
+//! spreading (fluid). Two scenes (`DRAG_COST_SCENE`):
+//! - `tank` (default): the dam-break tank of `cases/dam-break-tank` (Δs = 0.01 m, 110 072
+//!   particles) at t = 0.3 s, with 336 vertical columns 0.3 m high over the whole tank floor,
+//!   cut into 10 080 sub-members of one Δs, wet and dry alike: about one sub-member for every
+//!   11 particles, harder than the issue's scene;
+//! - `prism`: the issue's scene, `cases/prism-dam-break` at S2 Table 1's Δs = 5 mm (128 000
+//!   fluid particles) at t = 0.004 s, with 250 columns 0.2 m high standing in the water column
+//!   (25 × 10 over its 0.4 × 0.2 m floor), cut into 10 000 sub-members, all wet (a sample with
+//!   water near it is the costly kind).
 //!
 //! Per coupling window of one fluid step (samples = 1) the stack evaluates the law 4 times (two
 //! participants × two window times), samples once (the window end; the window start repeats
@@ -11,7 +17,7 @@
 //! step's spreading reuses them (the particles have not moved, the columns are fixed);
 //! `DRAG_COST_REUSE=0` spreads by searching the cell list again. `cargo bench -p coupler --bench drag_cost`.
 //!
-//! `DRAG_COST_AT` (s, default 0.3) and `DRAG_COST_REPS` (default 15) shorten it, e.g. to count
+//! `DRAG_COST_AT` (s, default 0.3 for the tank, 0.004 for the prism) and `DRAG_COST_REPS` (default 15) shorten it, e.g. to count
 //! instructions under `valgrind --tool=callgrind` (wall times on a shared machine are noisy);
 //! `DRAG_COST_ONLY` = law, sampling, spreading or step runs that part alone (the difference of
 //! two instruction counts with different `DRAG_COST_REPS` is then that part's count). It
@@ -51,14 +57,60 @@ fn bits_digest<'a>(values: impl Iterator<Item = &'a f64>) -> u64 {
     })
 }
 
+/// Where the bench runs: a case's fluid, when, and vertical columns of thin members in it.
+struct Scene {
+    name: &'static str,
+    case: &'static str,
+    fluid: &'static str,
+    at: f64,
+    /// Columns: count along x and y, first centre, pitch [m], height [m].
+    columns: [usize; 2],
+    first: [f64; 2],
+    pitch: [f64; 2],
+    height: f64,
+}
+
+const TANK: Scene = Scene {
+    name: "dam-break tank",
+    case: "dam-break-tank",
+    fluid: "tank",
+    at: 0.3,
+    columns: [14, 24],
+    first: [0.02, 0.01],
+    pitch: [0.04, 0.0187],
+    height: 0.3,
+};
+
+const PRISM: Scene = Scene {
+    name: "prism dam break (S2 Table 1)",
+    case: "prism-dam-break",
+    fluid: "water",
+    at: 0.004,
+    columns: [25, 10],
+    first: [0.008, 0.01],
+    pitch: [0.016, 0.02],
+    height: 0.2,
+};
+
 fn main() {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../cases/dam-break-tank/case.toml");
+    let scene = match std::env::var("DRAG_COST_SCENE").as_deref() {
+        Err(_) | Ok("tank") => &TANK,
+        Ok("prism") => &PRISM,
+        Ok(other) => {
+            eprintln!("error: DRAG_COST_SCENE = {other}: tank or prism");
+            std::process::exit(2)
+        }
+    };
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../cases")
+        .join(scene.case)
+        .join("case.toml");
     let case = Case::load(&path).unwrap_or_else(|e| {
         eprintln!("error: {e}");
         std::process::exit(2)
     });
-    let Some(cfg) = case.fluid.get("tank") else {
-        eprintln!("error: {} has no [fluid.tank]", path.display());
+    let Some(cfg) = case.fluid.get(scene.fluid) else {
+        eprintln!("error: {} has no [fluid.{}]", path.display(), scene.fluid);
         std::process::exit(2)
     };
     let threads = rayon::current_num_threads();
@@ -68,19 +120,19 @@ fn main() {
             .and_then(|v| v.parse::<f64>().ok())
             .unwrap_or(default)
     };
-    let at = env("DRAG_COST_AT", 0.3);
+    let at = env("DRAG_COST_AT", scene.at);
     let mut solver = FluidSolver::new(cfg);
     if let Err(e) = solver.advance_to(at) {
         eprintln!("error: {e}");
         std::process::exit(1)
     }
-    // Columns: 14 × 24 over the floor, 0.3 m high, each one member.
     let (mut positions, mut members) = (Vec::new(), Vec::new());
-    for i in 0..14 {
-        for j in 0..24 {
-            let (x, y) = (0.02 + 0.04 * f64::from(i), 0.01 + 0.0187 * f64::from(j));
+    for i in 0..scene.columns[0] {
+        for j in 0..scene.columns[1] {
+            let x = scene.first[0] + scene.pitch[0] * i as f64;
+            let y = scene.first[1] + scene.pitch[1] * j as f64;
             let n = (positions.len() / 3) as u32;
-            positions.extend_from_slice(&[x, y, 0.0, x, y, 0.3]);
+            positions.extend_from_slice(&[x, y, 0.0, x, y, scene.height]);
             members.extend_from_slice(&[n, n + 1]);
         }
     }
@@ -180,7 +232,8 @@ fn main() {
     let [law_ms, sample_ms, spread_ms, step_ms] = [0, 1, 2, 3].map(|k| median(times[k].clone()));
     let window = 4.0 * law_ms + sample_ms + spread_ms;
     println!(
-        "Drag coupling cost, dam-break tank Δs = {} m at t = {at} s ({} particles), {threads} threads, median of {reps}:",
+        "Drag coupling cost, {} Δs = {} m at t = {at} s ({} particles), {threads} threads, median of {reps}:",
+        scene.name,
         cfg.spacing,
         solver.particles().len()
     );
