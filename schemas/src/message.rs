@@ -8,7 +8,7 @@ use crate::f64s::F64s;
 use bincode::{Decode, Encode};
 
 /// Version of this message set; a participant with another version is refused at the handshake.
-pub const PROTOCOL_VERSION: u32 = 2;
+pub const PROTOCOL_VERSION: u32 = 3;
 
 /// Which solver a participant is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Encode, Decode)]
