@@ -87,6 +87,9 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     base = scaled(open(os.path.join(HERE, "case.toml")).read(), a.spacing, a.end)
     resolved = scaled(open(os.path.join(HERE, "resolved.toml")).read(), a.spacing, a.end)
+    # the unresolved cases name resolved.toml as their [reference] case: it must exist first
+    with open(os.path.join(a.out, "resolved.toml"), "w") as f:
+        f.write(resolved)
     runs = [("w%g" % w, w, with_width(base, w)) for w in widths]
     runs.append(("resolved", RESOLVED_WIDTH, resolved))
     series = {}
