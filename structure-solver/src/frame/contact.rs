@@ -3,6 +3,24 @@
 //! particles of elements that share no node, and particles that cross a wall, are pushed apart by a
 //! penalty spring and dashpot. The forces are taken at the start of each step (explicit), so the
 //! penalty stiffness must stay below the mass of the lightest particle over Δt².
+//!
+//! # A member standing on a wall
+//!
+//! A wall does not push on the particles of an element that is *held on it*: one of the element's
+//! nodes is a support fixed along the wall's normal and lies on the wall or behind it (its distance
+//! in front of the wall at most the particle radius). A column standing on the channel floor, a pier
+//! founded on the seabed, a member pinned to a bearing on a wall: their first element's particles lie
+//! within one radius of the wall at t = 0 (radius: half the section's larger side), so a penalty would
+//! push them off the wall against their own support — a self-equilibrated axial load that the support
+//! takes and the model does not mean, and that yields a weak foot under its own weight and makes it
+//! ratchet. The support already keeps that element on the wall. As soon as the element lets go of the
+//! support — a fracture gives it a new node, or the support is on another element — the wall acts on
+//! it again, so a piece broken off the foot, or a deck resting on bearings without being tied to
+//! them, lands and stays on the wall. The rule reads the present topology, not the state at t = 0: a
+//! rule "a particle that starts inside a wall never touches it" would let the broken foot fall
+//! through the floor, since its particle starts exactly at one radius. A member modelled below the
+//! wall beyond its supported element (a pile driven through the seabed) is still pushed: model it
+//! from the wall up.
 
 use super::section::Section;
 use super::topology::{Element, Node};
@@ -75,6 +93,9 @@ impl Contact {
         };
         for p in &particles {
             for (point, normal) in &self.walls {
+                if held_on_wall(&elements[p.element], nodes, point, normal, p.radius) {
+                    continue;
+                }
                 let gap = (p.position - point).dot(normal) - p.radius;
                 if gap < 0.0 {
                     let magnitude = self.normal_force(-gap, p.velocity.dot(normal), p.mass);
@@ -110,6 +131,9 @@ impl Contact {
     ) -> Result<(), String> {
         for p in particles(nodes, elements, sections, 0.0) {
             for (w, (point, normal)) in self.walls.iter().enumerate() {
+                if held_on_wall(&elements[p.element], nodes, point, normal, p.radius) {
+                    continue;
+                }
                 let depth = -(p.position - point).dot(normal);
                 if depth > p.radius {
                     return Err(format!(
@@ -128,6 +152,23 @@ impl Contact {
         let c = 2.0 * self.damping_ratio * (self.stiffness * mass).sqrt();
         (self.stiffness * overlap - c * approach_velocity).max(0.0)
     }
+}
+
+/// Whether `element` is held on a wall by a support: one of its nodes fixed along the wall's normal
+/// (every translation the normal has a component along is fixed) and at most `radius` in front of
+/// the wall (on it, or behind it).
+fn held_on_wall(
+    element: &Element,
+    nodes: &[Node],
+    point: &Vector3<f64>,
+    normal: &Vector3<f64>,
+    radius: f64,
+) -> bool {
+    element.nodes.iter().any(|&n| {
+        let node = &nodes[n];
+        let held = (0..3).all(|k| node.fixed[k] || normal[k].abs() < 1e-12);
+        held && (node.position - point).dot(normal) <= radius
+    })
 }
 
 /// Particles per element: about one per diameter, at least one.
