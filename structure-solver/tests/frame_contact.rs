@@ -273,3 +273,24 @@ fn free_piece_beside_a_standing_column_lands_on_the_wall() {
     );
     assert!((x[3 * top + 2] - 0.15).abs() < 1e-3, "the column moved");
 }
+
+/// The same prism free (no support) standing on the floor, as a piece broken off its foot stands at
+/// the fracture: it rests on its end node (the foot within 1 mm of the floor, never thrown up), not
+/// one particle radius above it. Its foot element is 0.025 m long, so a sphere of radius 0.025 m at
+/// its middle would start 12.5 mm inside the floor and be thrown off by 125 N.
+#[test]
+fn free_column_standing_on_a_wall_rests_on_its_end() {
+    let mut cfg = standing_prism(true);
+    cfg.support.clear();
+    let mut frame = Frame::from_config(&cfg, "structure.test.frame").expect("valid test config");
+    let foot = frame.node_index(1).expect("node");
+    let loads = vec![0.0; 6 * frame.node_count()];
+    let (mut low, mut high) = (f64::INFINITY, f64::NEG_INFINITY);
+    for _ in 0..1000 {
+        frame.step(2e-4, &loads).expect("stable step");
+        let z = frame.node_positions()[3 * foot + 2];
+        (low, high) = (low.min(z), high.max(z));
+    }
+    println!("foot node between {low:.2e} and {high:.2e} m");
+    assert!(low > -1e-3 && high < 1e-3, "foot between {low} and {high} m");
+}

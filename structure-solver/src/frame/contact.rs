@@ -1,26 +1,33 @@
 //! Contact between members and with walls (S2 §3(2)): each element is represented by particles along
 //! its axis (radius: half the section's larger side, spacing about one diameter); overlapping
 //! particles of elements that share no node, and particles that cross a wall, are pushed apart by a
-//! penalty spring and dashpot. The forces are taken at the start of each step (explicit), so the
+//! penalty spring and dashpot. Towards a wall a particle is the short cylinder of the element it
+//! stands for (its share of the element's length, radius the particle's): it reaches
+//! `ℓ/2 |t·n| + r √(1 − (t·n)²)` past its centre (t the element's axis, n the wall's normal), the
+//! radius for a member lying on the wall, half its share of the length for one standing on it end
+//! first, so that a short piece standing on a wall rests on its end node instead of one radius
+//! above it. The forces are taken at the start of each step (explicit), so the
 //! penalty stiffness must stay below the mass of the lightest particle over Δt².
 //!
 //! # A member standing on a wall
 //!
 //! A wall does not push on the particles of an element that is *held on it*: one of the element's
-//! nodes is a support fixed along the wall's normal and lies on the wall or behind it (its distance
-//! in front of the wall at most the particle radius). A column standing on the channel floor, a pier
-//! founded on the seabed, a member pinned to a bearing on a wall: their first element's particles lie
-//! within one radius of the wall at t = 0 (radius: half the section's larger side), so a penalty would
-//! push them off the wall against their own support — a self-equilibrated axial load that the support
-//! takes and the model does not mean, and that yields a weak foot under its own weight and makes it
-//! ratchet. The support already keeps that element on the wall. As soon as the element lets go of the
-//! support — a fracture gives it a new node, or the support is on another element — the wall acts on
-//! it again, so a piece broken off the foot, or a deck resting on bearings without being tied to
-//! them, lands and stays on the wall. The rule reads the present topology, not the state at t = 0: a
-//! rule "a particle that starts inside a wall never touches it" would let the broken foot fall
-//! through the floor, since its particle starts exactly at one radius. A member modelled below the
-//! wall beyond its supported element (a pile driven through the seabed) is still pushed: model it
-//! from the wall up.
+//! nodes is a support fixed along the wall's normal and lies on the wall or behind it (at most one
+//! particle radius in front of it). A column standing on the channel floor, a pier founded on the
+//! seabed, a member pinned to a bearing on a wall: their first element touches the wall at t = 0,
+//! and any shortening under their own weight would let the wall push that element off the wall
+//! against its own support — an axial load the support takes back and the model does not mean.
+//! Before this rule (and with spherical particles of radius half the section's larger side, which
+//! put the prism of `cases/prism-washout` half a radius inside the floor) that load yielded a weak
+//! foot and made it ratchet to 50 % axial strain. The support already keeps that element on the
+//! wall. As soon as the element lets go of the support — a fracture gives it a new node — the wall
+//! acts on it again, so a piece broken off the foot, or a deck resting on bearings without being
+//! tied to them, lands and stays on the wall; the piece broken off standing starts touching the wall
+//! with its end (the cylinder's reach above), not half a radius inside it, which would throw it off.
+//! The rule reads the present topology, not the state at t = 0: a rule "a particle that starts
+//! inside a wall never touches it" would let the broken foot fall through the floor. A member
+//! modelled below the wall beyond its supported element (a pile driven through the seabed) is still
+//! pushed: model it from the wall up.
 
 use super::section::Section;
 use super::topology::{Element, Node};
@@ -46,7 +53,19 @@ struct Particle {
     position: Vector3<f64>,
     velocity: Vector3<f64>,
     radius: f64,
+    /// The element's unit axis (its chord now).
+    axis: Vector3<f64>,
+    /// Half the particle's share of the element's length (now).
+    half_length: f64,
     mass: f64,
+}
+
+impl Particle {
+    /// How far the particle's cylinder reaches past its centre along a wall's normal.
+    fn reach(&self, normal: &Vector3<f64>) -> f64 {
+        let c = self.axis.dot(normal).abs().min(1.0);
+        self.half_length * c + self.radius * (1.0 - c * c).sqrt()
+    }
 }
 
 impl Contact {
@@ -96,7 +115,7 @@ impl Contact {
                 if held_on_wall(&elements[p.element], nodes, point, normal, p.radius) {
                     continue;
                 }
-                let gap = (p.position - point).dot(normal) - p.radius;
+                let gap = (p.position - point).dot(normal) - p.reach(normal);
                 if gap < 0.0 {
                     let magnitude = self.normal_force(-gap, p.velocity.dot(normal), p.mass);
                     push(p, normal * magnitude);
@@ -121,7 +140,7 @@ impl Contact {
         forces
     }
 
-    /// Stops a run in which a member went through a wall (a particle's centre more than one radius
+    /// Stops a run in which a member went through a wall (a particle's centre more than its reach
     /// behind it).
     pub fn check_walls(
         &self,
@@ -135,7 +154,7 @@ impl Contact {
                     continue;
                 }
                 let depth = -(p.position - point).dot(normal);
-                if depth > p.radius {
+                if depth > p.reach(normal) {
                     return Err(format!(
                         "frame: element {} went through wall {w} ({depth:.3e} m behind it): the run is unstable; \
                          raise the contact stiffness or reduce the time step",
@@ -188,6 +207,14 @@ fn particles(nodes: &[Node], elements: &[Element], sections: &[Section], density
             Vector3::from_column_slice(&b.velocity[..3]),
         );
         let mass = density * section.area * e.length0 / count as f64;
+        let chord = b.position - a.position;
+        let length = chord.norm();
+        let axis = if length > 0.0 {
+            chord / length
+        } else {
+            Vector3::zeros()
+        };
+        let half_length = 0.5 * length / count as f64;
         for k in 0..count {
             let t = (k as f64 + 0.5) / count as f64;
             out.push(Particle {
@@ -196,6 +223,8 @@ fn particles(nodes: &[Node], elements: &[Element], sections: &[Section], density
                 position: a.position * (1.0 - t) + b.position * t,
                 velocity: va * (1.0 - t) + vb * t,
                 radius,
+                axis,
+                half_length,
                 mass,
             });
         }
