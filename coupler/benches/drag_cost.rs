@@ -130,10 +130,12 @@ fn main() {
         .iter()
         .flat_map(|l| l.centroid.iter().copied().chain(l.force.iter().map(|f| -f)))
         .collect();
+    // the members' widths, as the law sends them (2 mm: points, S2-24)
+    let widths: Vec<f64> = law.sub_members().iter().map(|s| s.width).collect();
     if reuse {
         // the shares of these reactions, as the window end's sampling finds them (the parts run
         // alone, DRAG_COST_ONLY, spread with them; run together, each repetition's sampling does)
-        solver.sample_points_for(&points, &reactions);
+        solver.sample_points_for(&points, &reactions, &widths);
     }
     // The parts are timed in turn within each repetition, so a busy machine slows them alike.
     let reps = env("DRAG_COST_REPS", 15.0).max(1.0) as usize;
@@ -154,13 +156,13 @@ fn main() {
         });
         timed(1, "sampling", &mut || {
             if reuse {
-                std::hint::black_box(solver.sample_points_for(&points, &reactions));
+                std::hint::black_box(solver.sample_points_for(&points, &reactions, &widths));
             } else {
                 std::hint::black_box(solver.sample_points(&points));
             }
         });
         timed(2, "spreading", &mut || {
-            std::hint::black_box(solver.spread_point_reactions(&reactions, &points));
+            std::hint::black_box(solver.spread_point_reactions(&reactions, &points, &widths));
         });
         timed(3, "step", &mut || {
             if let Err(e) = solver.step(dt) {
@@ -171,11 +173,11 @@ fn main() {
     }
     // outputs that a faster sampling or spreading must keep to the last bit
     let (v, lambda) = if reuse {
-        solver.sample_points_for(&points, &reactions)
+        solver.sample_points_for(&points, &reactions, &widths)
     } else {
         solver.sample_points(&points)
     };
-    let spread = solver.spread_point_reactions(&reactions, &points);
+    let spread = solver.spread_point_reactions(&reactions, &points, &widths);
     let digest = bits_digest(v.iter().chain(&lambda).chain(&spread.force).chain(&spread.total));
     let [law_ms, sample_ms, spread_ms, step_ms] = [0, 1, 2, 3].map(|k| median(times[k].clone()));
     let window = 4.0 * law_ms + sample_ms + spread_ms;

@@ -108,6 +108,21 @@ fn a_member_across_a_uniform_stream_takes_half_cd_rho_v2_d_l_and_buoyancy() {
     }
     assert_eq!(to_fluid.sample_point.len(), 60);
     assert_eq!(to_fluid.reaction.len(), 120);
+    // one width per reaction: the member's, over whose footprint the fluid spreads it
+    assert_eq!(&to_fluid.reaction_width[..], &[WIDTH; 20]);
+}
+
+#[test]
+fn each_reaction_carries_the_width_the_case_gives_its_member() {
+    let s = DragSettings {
+        width: Some(0.05),
+        ..settings(false, None)
+    };
+    let (law, structure) = member([0.0, 0.0, 0.0], [0.0, 0.0, 0.02], s);
+    let fluid = uniform_flow(&law, [1.0, 0.0, 0.0], 1.0);
+    let (to_fluid, ..) = apply(&law, &structure, &fluid);
+    assert_eq!(&to_fluid.reaction_width[..], &[0.05; 4]);
+    assert_eq!(to_fluid.reaction.len(), 6 * to_fluid.reaction_width.len());
 }
 
 #[test]

@@ -224,7 +224,9 @@ impl FluidParticipant {
     fn outputs_at(&self, inputs: Option<&Fields>) -> Fields {
         let mut out = self.outputs();
         if let Some(f) = inputs.filter(|f| !f.sample_point.is_empty()) {
-            let (v, lambda) = self.solver.sample_points_for(&f.sample_point, &f.reaction);
+            let (v, lambda) = self
+                .solver
+                .sample_points_for(&f.sample_point, &f.reaction, &f.reaction_width);
             out.sampled_velocity = F64s(v);
             out.sampled_lambda_min = F64s(lambda);
         }
@@ -249,7 +251,7 @@ impl FluidParticipant {
     }
 
     /// Hands the point reactions of `f` to the solver (6 per reaction; their paired sample
-    /// points, when given, 3 per reaction).
+    /// points, when given, 3 per reaction; their members' widths, when given, 1 per reaction).
     fn set_point_reactions(&mut self, f: &Fields) -> Result<(), String> {
         if !f.reaction.len().is_multiple_of(6) || !f.sample_point.len().is_multiple_of(3) {
             return Err(format!(
@@ -259,7 +261,22 @@ impl FluidParticipant {
                 f.sample_point.len()
             ));
         }
-        self.solver.set_point_reactions(&f.reaction, &f.sample_point);
+        if !f.reaction_width.is_empty() && 6 * f.reaction_width.len() != f.reaction.len() {
+            return Err(format!(
+                "fluid `{}`: reaction_width needs 1 value per reaction (or none), got {} for {} reactions",
+                self.name,
+                f.reaction_width.len(),
+                f.reaction.len() / 6
+            ));
+        }
+        if let Some(w) = f.reaction_width.iter().find(|w| !(w.is_finite() && **w >= 0.0)) {
+            return Err(format!(
+                "fluid `{}`: reaction_width must be finite and ≥ 0 m, got {w}",
+                self.name
+            ));
+        }
+        self.solver
+            .set_point_reactions(&f.reaction, &f.sample_point, &f.reaction_width);
         Ok(())
     }
 

@@ -16,7 +16,7 @@ use crate::particles::Particles;
 use crate::physics::Physics;
 use crate::stability::{Instability, StabilityMonitor};
 use crate::stage_timer::StageTimes;
-use crate::state::{BodyExchange, FluidState, RunState};
+use crate::state::{BodyExchange, FluidState, PointReactions, RunState};
 use crate::unresolved;
 use crate::unresolved::spreading::{Share, Spread};
 use schemas::case::fluid::{Aabb, FluidConfig, FluidMethodName};
@@ -49,6 +49,7 @@ struct ReactionShares {
     version: u64,
     points: Vec<f64>,
     centroids: Vec<f64>,
+    widths: Vec<f64>,
     shares: Vec<Option<Share>>,
 }
 
@@ -72,9 +73,8 @@ pub struct FluidSolver {
     max_removed_fraction: f64,
     /// What the lattice moved (see [`crate::lattice`]).
     layout_notes: Vec<String>,
-    /// Point reactions of the unresolved coupling (6 each: point, force) and their paired sample
-    /// points (3 each), applied at every step until replaced.
-    point_reactions: (Vec<f64>, Vec<f64>),
+    /// Reactions of the unresolved coupling, applied at every step until replaced.
+    point_reactions: PointReactions,
     /// Bumped whenever the particles may have moved, been added or removed, or been replaced
     /// ([`FluidSolver::moved`]): the shares below are used only at the version they were found at.
     pub(crate) positions_version: u64,
@@ -499,28 +499,32 @@ impl FluidSolver {
     }
 
     /// Sets the point reactions of the unresolved coupling (6 per reaction: point, force) with
-    /// their paired sample points (3 per reaction), applied from the next step on.
-    pub fn set_point_reactions(&mut self, reactions: &[f64], sample_points: &[f64]) {
-        let (r, s) = &mut self.point_reactions;
-        r.clear();
-        r.extend_from_slice(reactions);
-        s.clear();
-        s.extend_from_slice(sample_points);
+    /// their paired sample points (3 per reaction, or none) and their members' widths (1 per
+    /// reaction, or none: all points), applied from the next step on.
+    pub fn set_point_reactions(&mut self, reactions: &[f64], sample_points: &[f64], widths: &[f64]) {
+        let r = &mut self.point_reactions;
+        r.reactions.clear();
+        r.reactions.extend_from_slice(reactions);
+        r.sample_points.clear();
+        r.sample_points.extend_from_slice(sample_points);
+        r.widths.clear();
+        r.widths.extend_from_slice(widths);
     }
 
     /// The point reactions as accelerations over a step of `dt`: each fluid particle's velocity
-    /// changes by its share of the reactions (S2-24) / its mass × dt. `reordered`: particles were
-    /// added or removed since the cell list was sorted (it is sorted again first).
+    /// changes by its share of the reactions (S2-24 over the members' footprints) / its mass × dt.
+    /// `reordered`: particles were added or removed since the cell list was sorted (it is sorted
+    /// again first).
     fn apply_point_reactions(&mut self, dt: f64, reordered: bool) {
-        let (reactions, samples) = &self.point_reactions;
-        if reactions.is_empty() {
+        if self.point_reactions.reactions.is_empty() {
             return;
         }
         let st = &mut self.state;
         if reordered {
             st.grid.sort(&mut st.particles, &mut Vec::new());
         }
-        let spread = self.spread_point_reactions(reactions, samples);
+        let r = &self.point_reactions;
+        let spread = self.spread_point_reactions(&r.reactions, &r.sample_points, &r.widths);
         let scale = dt / self.particle_mass();
         let p = &mut self.state.particles;
         for (i, f) in spread.force.chunks_exact(3).enumerate() {
@@ -535,16 +539,18 @@ impl FluidSolver {
     }
 
     /// The point reactions `reactions` (6 each: point, force) spread over the fluid particles
-    /// (S2-24) with their paired sample points (3 each, or none), by the shares found while
-    /// sampling at these particles' positions, these centroids and sample points where there are
-    /// (the same to the last bit), else by searching the cell list.
-    pub fn spread_point_reactions(&self, reactions: &[f64], sample_points: &[f64]) -> Spread {
+    /// (S2-24 over the footprints of members `widths` wide, 1 each or none) with their paired
+    /// sample points (3 each, or none), by the shares found while sampling at these particles'
+    /// positions, these centroids, sample points and widths where there are (the same to the
+    /// last bit), else by searching the cell list.
+    pub fn spread_point_reactions(&self, reactions: &[f64], sample_points: &[f64], widths: &[f64]) -> Spread {
         let st = &self.state;
         let cache = self.reaction_shares.lock();
         let known = match cache.as_deref() {
             Ok(Some(c))
                 if c.version == self.positions_version
                     && c.points == sample_points
+                    && c.widths == widths
                     && c.centroids.len() == reactions.len() / 2
                     && reactions
                         .chunks_exact(6)
@@ -561,20 +567,28 @@ impl FluidSolver {
             self.kernel.spacing,
             reactions,
             sample_points,
+            widths,
             known,
         )
     }
 
     /// As [`FluidSolver::sample_points`], finding too the shares of the point reactions
-    /// `reactions` (6 each: centroid, force; paired with `points`) for the next step's spreading
-    /// ([`FluidSolver::spread_point_reactions`]; see [`unresolved::sampling::sample_with_shares`]).
-    pub fn sample_points_for(&self, points: &[f64], reactions: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    /// `reactions` (6 each: centroid, force; paired with `points`; their members `widths` wide, 1
+    /// each or none) for the next step's spreading ([`FluidSolver::spread_point_reactions`]; see
+    /// [`unresolved::sampling::sample_with_shares`]).
+    pub fn sample_points_for(
+        &self,
+        points: &[f64],
+        reactions: &[f64],
+        widths: &[f64],
+    ) -> (Vec<f64>, Vec<f64>) {
         let (samples, shares) = unresolved::sampling::sample_with_shares(
             self.particles(),
             &self.state.grid,
             self.kernel.spacing,
             points,
             reactions,
+            widths,
         );
         if let Ok(mut cache) = self.reaction_shares.lock() {
             *cache = (!shares.is_empty()).then(|| ReactionShares {
@@ -584,6 +598,7 @@ impl FluidSolver {
                     .chunks_exact(6)
                     .flat_map(|r| r[..3].iter().copied())
                     .collect(),
+                widths: widths.to_vec(),
                 shares,
             });
         }

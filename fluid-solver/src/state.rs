@@ -40,10 +40,22 @@ pub struct FluidState {
 
 /// The rest of a fluid solver's state that a resumed run needs: whether the first step was taken,
 /// the stability monitor's energy reference (initial energy, allowed growth, driven), and the point
-/// reactions of the unresolved coupling in force (6 each) with their sample points (3 each).
+/// reactions of the unresolved coupling in force.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RunState {
     pub started: bool,
     pub energy_reference: (Option<f64>, f64, bool),
-    pub point_reactions: (Vec<f64>, Vec<f64>),
+    pub point_reactions: PointReactions,
+}
+
+/// The reactions of the unresolved coupling (see [`crate::unresolved::spreading`]), applied at
+/// every step until replaced.
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct PointReactions {
+    /// Centroid and force, 6 per reaction.
+    pub reactions: Vec<f64>,
+    /// The paired sample points (fall-backs), 3 per reaction, or none.
+    pub sample_points: Vec<f64>,
+    /// Width of each reaction's member, 1 per reaction, or none (all points, S2-24).
+    pub widths: Vec<f64>,
 }

@@ -149,7 +149,7 @@ fn a_spread_reaction_sums_to_the_reaction_near_a_wall_and_the_surface() {
         ("inside", [0.0, 0.0, -4.0 * DS]),
     ] {
         let reactions = [x[0], x[1], x[2], f[0], f[1], f[2]];
-        let s = spread(&p, &grid, DS, &reactions, &[]);
+        let s = spread(&p, &grid, DS, &reactions, &[], &[]);
         let mut sum = [0.0; 3];
         for (i, fi) in s.force.chunks_exact(3).enumerate() {
             if p.kind[i] != Kind::Fluid.code() {
@@ -174,7 +174,14 @@ fn a_reaction_with_no_water_near_its_centroid_goes_to_its_sample_point_or_is_rep
     let f = [1.0, 2.0, 3.0];
     let dry = [0.0, 0.0, 5.0 * DS];
     let wet = [0.0, 0.0, -2.0 * DS];
-    let s = spread(&p, &grid, DS, &[dry[0], dry[1], dry[2], f[0], f[1], f[2]], &wet);
+    let s = spread(
+        &p,
+        &grid,
+        DS,
+        &[dry[0], dry[1], dry[2], f[0], f[1], f[2]],
+        &wet,
+        &[],
+    );
     let sum: Vec<f64> = (0..3)
         .map(|c| s.force.chunks_exact(3).map(|fi| fi[c]).sum())
         .collect();
@@ -183,7 +190,14 @@ fn a_reaction_with_no_water_near_its_centroid_goes_to_its_sample_point_or_is_rep
         sum.iter().zip(&f).all(|(a, b)| (a - b).abs() <= 1e-14 * 3.0),
         "{sum:?}"
     );
-    let s = spread(&p, &grid, DS, &[dry[0], dry[1], dry[2], f[0], f[1], f[2]], &dry);
+    let s = spread(
+        &p,
+        &grid,
+        DS,
+        &[dry[0], dry[1], dry[2], f[0], f[1], f[2]],
+        &dry,
+        &[],
+    );
     assert_eq!((s.unapplied, s.unapplied_force), (1, f));
     assert!(s.force.iter().all(|&v| v == 0.0));
 }
@@ -259,4 +273,145 @@ fn the_trimmed_point_query_sees_what_the_full_block_sees_after_particles_drifted
         }
     }
     assert!(points > 300, "{points} points saw particles");
+}
+
+/// The total of a spread, per axis, and whether any wall particle got a share.
+fn spread_total(p: &Particles, force: &[f64]) -> ([f64; 3], bool) {
+    let mut sum = [0.0; 3];
+    let mut on_walls = false;
+    for (i, fi) in force.chunks_exact(3).enumerate() {
+        on_walls |= p.kind[i] != Kind::Fluid.code() && fi != [0.0; 3];
+        (0..3).for_each(|c| sum[c] += fi[c]);
+    }
+    (sum, on_walls)
+}
+
+#[test]
+fn a_wide_members_reaction_is_spread_flat_over_its_footprint_and_sums_to_itself() {
+    let (p, grid) = pool(|_| [0.0; 3]);
+    let f = [3.0, -1.5, 40.0];
+    // a member 5 particles wide: flat within a = 2 Δs of the centroid, the kernel's tail to a + R
+    let width = 5.0 * DS;
+    let a = 2.0 * DS;
+    let reach = a + Wendland::for_spacing(DS).radius;
+    for (what, x) in [
+        ("at the surface", [0.0, 0.0, -0.3 * DS]),
+        ("at the floor", [0.2 * DS, 0.0, -f64::from(DEPTH) * DS + 0.1 * DS]),
+        (
+            "at a side and the surface",
+            [f64::from(HALF) * DS - 0.2 * DS, 0.0, -0.1 * DS],
+        ),
+        ("inside", [0.0, 0.0, -4.0 * DS]),
+    ] {
+        let reactions = [x[0], x[1], x[2], f[0], f[1], f[2]];
+        let s = spread(&p, &grid, DS, &reactions, &[], &[width]);
+        let (sum, on_walls) = spread_total(&p, &s.force);
+        assert!(!on_walls, "{what}: a wall particle got a share");
+        for c in 0..3 {
+            // shares normalised to one: round-off of ~600 terms
+            assert!(
+                (sum[c] - f[c]).abs() <= 1e-13 * 40.0,
+                "{what}: Σ f_k = {sum:?}, reaction {f:?}"
+            );
+        }
+        assert_eq!((s.moved, s.unapplied), (0, 0));
+        // the z share of each fluid particle against its distance from the centroid
+        let shares: Vec<(f64, f64)> = (0..p.len())
+            .filter(|&i| p.kind[i] == Kind::Fluid.code())
+            .map(|i| {
+                let r = ((p.x[i] - x[0]).powi(2) + (p.y[i] - x[1]).powi(2) + (p.z[i] - x[2]).powi(2)).sqrt();
+                (r, s.force[3 * i + 2] / f[2])
+            })
+            .collect();
+        let flat: Vec<f64> = shares.iter().filter(|(r, _)| *r <= a).map(|s| s.1).collect();
+        let top = flat.iter().copied().fold(0.0, f64::max);
+        println!(
+            "{what}: {} particles in the flat part, share {top:.3e} each",
+            flat.len()
+        );
+        assert!(flat.len() >= 8, "{what}: the footprint holds water");
+        // equal weights W(0), normalised: the same share to round-off
+        assert!(
+            flat.iter().all(|w| (w - top).abs() <= 1e-14),
+            "{what}: the footprint's shares differ"
+        );
+        for (r, w) in &shares {
+            if *r > a {
+                assert!(*w <= top, "{what}: a share beyond the footprint is larger");
+            }
+            if *r >= reach {
+                assert_eq!(*w, 0.0, "{what}: a share beyond a + R at r = {r}");
+            }
+        }
+    }
+}
+
+#[test]
+fn a_member_no_wider_than_a_particle_spreads_as_s2_24_and_a_wider_one_departs_continuously() {
+    let (p, grid) = pool(|_| [0.0; 3]);
+    let f = [3.0, -1.5, 40.0];
+    let reactions = [
+        0.0,
+        0.0,
+        -0.3 * DS,
+        f[0],
+        f[1],
+        f[2], //
+        0.2 * DS,
+        0.0,
+        -7.9 * DS,
+        f[0],
+        f[1],
+        f[2],
+    ];
+    let point = spread(&p, &grid, DS, &reactions, &[], &[]);
+    // D ≤ Δs: a = 0, S2-24 to the last bit
+    for widths in [[DS, 0.5 * DS], [0.0, DS]] {
+        assert_eq!(spread(&p, &grid, DS, &reactions, &[], &widths), point);
+    }
+    // D just over Δs: the weights move by little (continuous in D)
+    let near = spread(&p, &grid, DS, &reactions, &[], &[1.0001 * DS, 1.0001 * DS]);
+    let largest = point.force.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let moved = near
+        .force
+        .iter()
+        .zip(&point.force)
+        .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    println!("D = 1.0001 Δs: largest change {moved:.3e} of {largest:.3e}");
+    assert!(moved > 0.0 && moved < 1e-3 * largest, "{moved} of {largest}");
+}
+
+#[test]
+fn a_wide_members_reaction_with_no_water_in_its_reach_goes_to_its_sample_point_or_is_reported() {
+    let (p, grid) = pool(|_| [0.0; 3]);
+    let f = [1.0, 2.0, 3.0];
+    let width = 5.0 * DS;
+    // 5.5 Δs over the surface: beyond a + R = 4.4 Δs of the top layer at −0.5 Δs
+    let dry = [0.0, 0.0, 5.5 * DS];
+    let wet = [0.0, 0.0, -2.0 * DS];
+    let reaction = [dry[0], dry[1], dry[2], f[0], f[1], f[2]];
+    let s = spread(&p, &grid, DS, &reaction, &wet, &[width]);
+    let (sum, _) = spread_total(&p, &s.force);
+    assert_eq!((s.moved, s.unapplied), (1, 0));
+    assert!(
+        sum.iter().zip(&f).all(|(a, b)| (a - b).abs() <= 1e-14 * 3.0),
+        "{sum:?}"
+    );
+    // the point's own footprint is the same at the sample point: equal to a reaction there
+    let there = spread(
+        &p,
+        &grid,
+        DS,
+        &[wet[0], wet[1], wet[2], f[0], f[1], f[2]],
+        &[],
+        &[width],
+    );
+    assert_eq!(s.force, there.force);
+    let s = spread(&p, &grid, DS, &reaction, &dry, &[width]);
+    assert_eq!((s.unapplied, s.unapplied_force), (1, f));
+    assert!(s.force.iter().all(|&v| v == 0.0));
+    // a point reaction at 2.5 Δs over the water is dry; the wide member's reach finds water there
+    let low = [0.0, 0.0, 2.5 * DS, f[0], f[1], f[2]];
+    assert_eq!(spread(&p, &grid, DS, &low, &dry, &[]).unapplied, 1);
+    assert_eq!(spread(&p, &grid, DS, &low, &dry, &[width]).unapplied, 0);
 }

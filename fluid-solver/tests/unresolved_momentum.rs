@@ -1,7 +1,8 @@
 //! Issue 13: point reactions of the drag coupling change the fluid's momentum by exactly their
 //! impulse: with reactions at the surface, at the floor and inside, the budget
 //! `Δp = M g t + wall impulse + reaction impulse` closes to round-off (as conservation.rs's does
-//! without them), and the reaction impulse is Σ F Δt.
+//! without them), and the reaction impulse is Σ F Δt; the same for reactions spread over a wide
+//! member's footprint.
 mod closed_box;
 mod common;
 
@@ -9,6 +10,18 @@ use fluid_solver::{FluidSolver, Kind};
 
 #[test]
 fn point_reactions_change_the_fluid_momentum_by_their_impulse() {
+    momentum_budget_closes(&[]);
+}
+
+/// The same reactions from members 0.06 m wide (3 particles: spread over their footprints).
+#[test]
+fn a_wide_members_reactions_change_the_fluid_momentum_by_their_impulse() {
+    momentum_budget_closes(&[0.06; 3]);
+}
+
+/// Steps the box with three reactions from members `widths` wide (none: points) and checks the
+/// fluid's momentum budget.
+fn momentum_budget_closes(widths: &[f64]) {
     let cfg = closed_box::closed_box([0.0, 0.0, 0.0], [0.2, 0.2, 0.12]);
     cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
     let mut solver = FluidSolver::new(&cfg);
@@ -19,7 +32,7 @@ fn point_reactions_change_the_fluid_momentum_by_their_impulse() {
         0.05, 0.1, 0.005, -0.2, 0.1, 0.0, //
         0.15, 0.15, 0.06, 0.05, 0.05, 0.2,
     ];
-    solver.set_point_reactions(&reactions, &[]);
+    solver.set_point_reactions(&reactions, &[], widths);
     let steps = 100;
     for _ in 0..steps {
         solver.step(cfg.time_step).unwrap_or_else(|e| panic!("{e}"));

@@ -37,14 +37,23 @@ fn shares_found_while_sampling_spread_as_a_new_search_and_never_after_a_step() {
         0.096, 0.1, 0.25, //
         0.116, 0.1, 0.05,
     ];
-    let searched = |s: &FluidSolver| spread(s.particles(), s.cell_grid(), cfg.spacing, &reactions, &points);
-    let (v, lambda) = solver.sample_points_for(&points, &reactions);
+    let searched = |s: &FluidSolver| {
+        spread(
+            s.particles(),
+            s.cell_grid(),
+            cfg.spacing,
+            &reactions,
+            &points,
+            &[],
+        )
+    };
+    let (v, lambda) = solver.sample_points_for(&points, &reactions, &[]);
     assert_eq!(
         (v, lambda),
         solver.sample_points(&points),
         "the samples are those of sample_points"
     );
-    let reused = solver.spread_point_reactions(&reactions, &points);
+    let reused = solver.spread_point_reactions(&reactions, &points, &[]);
     let fresh = searched(&solver);
     println!(
         "total {:?}, moved {}, unapplied {}",
@@ -63,18 +72,19 @@ fn shares_found_while_sampling_spread_as_a_new_search_and_never_after_a_step() {
     let mut shifted = reactions;
     shifted[0] += 0.001;
     assert_eq!(
-        solver.spread_point_reactions(&shifted, &points),
+        solver.spread_point_reactions(&shifted, &points, &[]),
         spread(
             solver.particles(),
             solver.cell_grid(),
             cfg.spacing,
             &shifted,
-            &points
+            &points,
+            &[]
         )
     );
     // after a step the particles have moved: the shares of the last sampling are stale
     solver.step(cfg.time_step).unwrap_or_else(|e| panic!("{e}"));
-    let after = solver.spread_point_reactions(&reactions, &points);
+    let after = solver.spread_point_reactions(&reactions, &points, &[]);
     assert_eq!(
         after,
         searched(&solver),
@@ -82,13 +92,51 @@ fn shares_found_while_sampling_spread_as_a_new_search_and_never_after_a_step() {
     );
     assert_ne!(after.force, reused.force, "the particles moved");
     // and after a particle near the first centroid was moved by hand
-    solver.sample_points_for(&points, &reactions);
-    let before = solver.spread_point_reactions(&reactions, &points);
+    solver.sample_points_for(&points, &reactions, &[]);
+    let before = solver.spread_point_reactions(&reactions, &points, &[]);
     let near = solver
         .cell_grid()
         .particles_near(solver.particles(), [0.1, 0.1, 0.06], 0.02)[0];
     solver.particles_mut().x[near] += 1e-3;
-    let changed = solver.spread_point_reactions(&reactions, &points);
+    let changed = solver.spread_point_reactions(&reactions, &points, &[]);
     assert_eq!(changed, searched(&solver));
     assert_ne!(changed.force, before.force, "the moved particle's share changed");
+}
+
+#[test]
+fn a_wide_members_shares_found_while_sampling_spread_as_a_new_search_for_the_same_widths_only() {
+    let cfg = closed_box::closed_box([0.0, 0.0, 0.0], [0.2, 0.2, 0.12]);
+    cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
+    let mut solver = FluidSolver::new(&cfg);
+    solver.step(cfg.time_step).unwrap_or_else(|e| panic!("{e}"));
+    // a member 3 particles wide (a = Δs), its sample points one width upstream, and a thin one
+    let reactions = [
+        0.1, 0.1, 0.06, 0.3, 0.0, -0.1, //
+        0.1, 0.1, 0.005, -0.2, 0.1, 0.0, //
+        0.1, 0.1, 0.115, 0.05, 0.05, 0.2, //
+        0.15, 0.15, 0.06, 0.1, 0.0, 0.0,
+    ];
+    let points = [
+        0.04, 0.1, 0.06, //
+        0.04, 0.1, 0.005, //
+        0.04, 0.1, 0.115, //
+        0.146, 0.15, 0.06,
+    ];
+    let widths = [0.06, 0.06, 0.06, 0.004];
+    let searched = |s: &FluidSolver, w: &[f64]| {
+        spread(s.particles(), s.cell_grid(), cfg.spacing, &reactions, &points, w)
+    };
+    let (v, lambda) = solver.sample_points_for(&points, &reactions, &widths);
+    assert_eq!((v, lambda), solver.sample_points(&points));
+    let reused = solver.spread_point_reactions(&reactions, &points, &widths);
+    assert_eq!(
+        reused,
+        searched(&solver, &widths),
+        "reused shares, to the last bit"
+    );
+    assert_eq!(reused.unapplied, 0);
+    // other widths (the points' shares): searched again, not taken from the footprints' shares
+    let as_points = solver.spread_point_reactions(&reactions, &points, &[]);
+    assert_eq!(as_points, searched(&solver, &[]));
+    assert_ne!(as_points.force, reused.force);
 }

@@ -8,7 +8,7 @@ use crate::f64s::F64s;
 use bincode::{Decode, Encode};
 
 /// Version of this message set; a participant with another version is refused at the handshake.
-pub const PROTOCOL_VERSION: u32 = 2;
+pub const PROTOCOL_VERSION: u32 = 3;
 
 /// Which solver a participant is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Encode, Decode)]
@@ -127,6 +127,10 @@ fields! {
     sampled_lambda_min,
     /// Coupler → fluid: point reactions, point and force (6 per reaction, S2-24).
     reaction,
+    /// Coupler → fluid: width of the member each reaction comes from [m] (1 per reaction, or
+    /// none: every reaction a point); the fluid spreads a reaction over the member's footprint
+    /// (`fluid-solver/src/unresolved/spreading.rs`).
+    reaction_width,
 }
 
 /// Interface data at a series of instants of one window; `times[0]` is the window start and

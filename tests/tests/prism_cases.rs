@@ -58,7 +58,8 @@ fn impulse_x(rows: &[Vec<f64>], fx: usize) -> f64 {
 /// ledger's own 1e-12), and the X impulse per unit width of the unresolved prism lies within
 /// [0.4, 1.6] of the resolved one. Why so loose: at Δs = 0.02 m the resolved prism is 2.5
 /// particles wide and the unresolved sample points sit 2.5 particles upstream, so neither is
-/// converged; measured 0.63 here (0.69 at Δs = 0.01 m, see the case's README). A factor off by more
+/// converged; measured 0.62 here with the reaction spread over the prism's footprint (0.63
+/// with S2-24's point spreading; the case's README has the finer runs). A factor off by more
 /// (a lost width factor, drag on the wrong side, no submersion) leaves the bound.
 #[test]
 fn the_unresolved_prism_takes_the_impulse_of_the_resolved_one_within_the_coarse_bound() {

@@ -3,7 +3,8 @@
 //!
 //! - [`kernel`]: the smooth SPH kernel of these two operations (support 2.4 Δs, S2 Table 1).
 //! - [`sampling`]: velocity (Shepard-normalised) and λ_min (moment matrix, S2-10) at a point.
-//! - [`spreading`]: a point reaction spread over the fluid particles around it (S2-24).
+//! - [`spreading`]: a reaction spread over the fluid particles around it (S2-24), over the
+//!   footprint of a member wider than a particle.
 //!
 //! Both find the particles near a point in the step's own cell list
 //! ([`crate::neighbour_search::CellGrid::for_each_near_point_trimmed`]) instead of a second grid

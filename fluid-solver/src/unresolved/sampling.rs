@@ -20,7 +20,7 @@
 //! so no second grid is built: see [`super`] for when that list is valid.
 
 use super::kernel::Wendland;
-use super::spreading::{share_of, shares_around, Share};
+use super::spreading::{half_width_of, share_of, shares_around, Share};
 use crate::kind::{Kind, FLUID};
 use crate::neighbour_search::{CellGrid, Rows};
 use crate::particles::Particles;
@@ -53,20 +53,23 @@ pub fn sample(p: &Particles, grid: &CellGrid, spacing: f64, points: &[f64]) -> V
 }
 
 /// As [`sample`], with the shares of the reactions paired with the points (`reactions`, 6 per
-/// point: centroid, force; the force is not read) over the fluid around their centroids, as
-/// [`share_of`] finds them with the point as fall-back, for every wet point (None for a dry
-/// one: its sub-member takes no force). The fluid spreads the next step's reactions with them
-/// ([`super::spreading::spread_reusing`]) when the particles have not moved since and the
-/// centroids are the same (a fixed member). A centroid within half the kernel's support of its
-/// point is served by the point's own search of the cell list, widened by their distance: one
-/// search instead of two, and the same particles in the same order as each one's own search
-/// (the cell list is read in index order), so the same sums.
+/// point: centroid, force; the force is not read; `widths`, 1 per reaction or empty, their
+/// members' widths) over the fluid around their centroids, as [`share_of`] finds them with the
+/// point as fall-back, for every wet point (None for a dry one: its sub-member takes no force).
+/// The fluid spreads the next step's reactions with them ([`super::spreading::spread_reusing`])
+/// when the particles have not moved since and the centroids are the same (a fixed member). A
+/// reaction of a member no wider than a particle whose centroid lies within half the kernel's
+/// support of its point is served by the point's own search of the cell list, widened by their
+/// distance: one search instead of two, and the same particles in the same order as each one's
+/// own search (the cell list is read in index order), so the same sums. A wider member's
+/// reaction (its footprint, [`super::spreading`]) is searched on its own.
 pub fn sample_with_shares(
     p: &Particles,
     grid: &CellGrid,
     spacing: f64,
     points: &[f64],
     reactions: &[f64],
+    widths: &[f64],
 ) -> (Vec<Sample>, Vec<Option<Share>>) {
     if reactions.len() != 2 * points.len() {
         return (sample(p, grid, spacing, points), Vec::new());
@@ -76,16 +79,21 @@ pub fn sample_with_shares(
     points
         .par_chunks_exact(3)
         .zip(reactions.par_chunks_exact(6))
+        .enumerate()
         .with_min_len(64)
         // the index ranges of each point's cells, in one buffer per rayon job
-        .map_init(Vec::new, |rows, (x, r)| {
+        .map_init(Vec::new, |rows, (k, (x, r))| {
             let (x, c) = ([x[0], x[1], x[2]], [r[0], r[1], r[2]]);
             let apart = (0..3).map(|a| (c[a] - x[a]).powi(2)).sum::<f64>().sqrt();
             let volume = spacing.powi(3);
-            if apart > 0.5 * kernel.radius {
+            let half_width = half_width_of(widths, k, spacing);
+            if apart > 0.5 * kernel.radius || half_width > 0.0 {
                 let s = sample_near(p, grid, drift, &kernel, volume, x, None, rows).unwrap_or_else(dry);
                 let wet = s.velocity != [0.0; 3] || s.lambda_min != 0.0;
-                return (s, wet.then(|| share_of(p, grid, drift, &kernel, c, Some(x))));
+                return (
+                    s,
+                    wet.then(|| share_of(p, grid, drift, &kernel, c, Some(x), half_width)),
+                );
             }
             let mut share = ShareSearch {
                 centroid: c,
@@ -100,7 +108,7 @@ pub fn sample_with_shares(
             let ShareSearch { mut share, sum, .. } = share;
             share.iter_mut().for_each(|(_, w)| *w /= sum);
             if share.is_empty() {
-                return (s, Some((shares_around(p, grid, drift, &kernel, x), true)));
+                return (s, Some((shares_around(p, grid, drift, &kernel, x, 0.0), true)));
             }
             (s, Some((share, false)))
         })
