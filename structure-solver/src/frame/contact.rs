@@ -1,8 +1,36 @@
 //! Contact between members and with walls (S2 §3(2)): each element is represented by particles along
 //! its axis (radius: half the section's larger side, spacing about one diameter); overlapping
 //! particles of elements that share no node, and particles that cross a wall, are pushed apart by a
-//! penalty spring and dashpot. The forces are taken at the start of each step (explicit), so the
+//! penalty spring and dashpot. Towards a wall a particle is the short cylinder of the element it
+//! stands for (its share of the element's length, radius the particle's): it reaches
+//! `ℓ/2 |t·n| + r √(1 − (t·n)²)` past its centre (t the element's axis, n the wall's normal), the
+//! radius for a member lying on the wall, half its share of the length for one standing on it end
+//! first, so that a short piece standing on a wall rests on its end node instead of one radius
+//! above it. The forces are taken at the start of each step (explicit), so the
 //! penalty stiffness must stay below the mass of the lightest particle over Δt².
+//!
+//! # A member standing on a wall
+//!
+//! A wall does not push on the particles of an element that is *held on it*: one of the element's
+//! nodes is a support fixed along the wall's normal and lies on the wall or behind it (at most one
+//! particle radius in front of it). A column standing on the channel floor, a pier founded on the
+//! seabed, a member pinned to a bearing on a wall: their first element touches the wall at t = 0,
+//! and any shortening under their own weight would let the wall push that element off the wall
+//! against its own support — an axial load the support takes back and the model does not mean.
+//! Before this rule (and with spherical particles of radius half the section's larger side, which
+//! put the prism of `cases/prism-washout` half a radius inside the floor) that load yielded a weak
+//! foot and made it ratchet to 50 % axial strain. The support already keeps that element on the
+//! wall. As soon as the element lets go of the support — a fracture gives it a new node — the wall
+//! acts on it again, so a piece broken off the foot, or a deck resting on bearings without being
+//! tied to them, lands and stays on the wall; the piece broken off standing starts touching the wall
+//! with its end (the cylinder's reach above), not half a radius inside it, which would throw it off.
+//! The rule reads the present topology, not the state at t = 0: a rule "a particle that starts
+//! inside a wall never touches it" would let the broken foot fall through the floor. A member
+//! modelled below the wall beyond its supported element (a pile driven through the seabed) is still
+//! pushed: model it from the wall up.
+//!
+//! Member contact likewise skips elements that are joined or were joined before a fracture split
+//! their node ([`adjacent`]): neighbours overlap near their common node.
 
 use super::section::Section;
 use super::topology::{Element, Node};
@@ -28,7 +56,19 @@ struct Particle {
     position: Vector3<f64>,
     velocity: Vector3<f64>,
     radius: f64,
+    /// The element's unit axis (its chord now).
+    axis: Vector3<f64>,
+    /// Half the particle's share of the element's length (now).
+    half_length: f64,
     mass: f64,
+}
+
+impl Particle {
+    /// How far the particle's cylinder reaches past its centre along a wall's normal.
+    fn reach(&self, normal: &Vector3<f64>) -> f64 {
+        let c = self.axis.dot(normal).abs().min(1.0);
+        self.half_length * c + self.radius * (1.0 - c * c).sqrt()
+    }
 }
 
 impl Contact {
@@ -75,7 +115,10 @@ impl Contact {
         };
         for p in &particles {
             for (point, normal) in &self.walls {
-                let gap = (p.position - point).dot(normal) - p.radius;
+                if held_on_wall(&elements[p.element], nodes, point, normal, p.radius) {
+                    continue;
+                }
+                let gap = (p.position - point).dot(normal) - p.reach(normal);
                 if gap < 0.0 {
                     let magnitude = self.normal_force(-gap, p.velocity.dot(normal), p.mass);
                     push(p, normal * magnitude);
@@ -83,7 +126,7 @@ impl Contact {
             }
         }
         if self.members {
-            for (i, j) in touching_pairs(&particles, elements) {
+            for (i, j) in touching_pairs(&particles, elements, nodes) {
                 let (pi, pj) = (&particles[i], &particles[j]);
                 let d = pj.position - pi.position;
                 let distance = d.norm();
@@ -100,7 +143,7 @@ impl Contact {
         forces
     }
 
-    /// Stops a run in which a member went through a wall (a particle's centre more than one radius
+    /// Stops a run in which a member went through a wall (a particle's centre more than its reach
     /// behind it).
     pub fn check_walls(
         &self,
@@ -110,8 +153,11 @@ impl Contact {
     ) -> Result<(), String> {
         for p in particles(nodes, elements, sections, 0.0) {
             for (w, (point, normal)) in self.walls.iter().enumerate() {
+                if held_on_wall(&elements[p.element], nodes, point, normal, p.radius) {
+                    continue;
+                }
                 let depth = -(p.position - point).dot(normal);
-                if depth > p.radius {
+                if depth > p.reach(normal) {
                     return Err(format!(
                         "frame: element {} went through wall {w} ({depth:.3e} m behind it): the run is unstable; \
                          raise the contact stiffness or reduce the time step",
@@ -128,6 +174,23 @@ impl Contact {
         let c = 2.0 * self.damping_ratio * (self.stiffness * mass).sqrt();
         (self.stiffness * overlap - c * approach_velocity).max(0.0)
     }
+}
+
+/// Whether `element` is held on a wall by a support: one of its nodes fixed along the wall's normal
+/// (every translation the normal has a component along is fixed) and at most `radius` in front of
+/// the wall (on it, or behind it).
+fn held_on_wall(
+    element: &Element,
+    nodes: &[Node],
+    point: &Vector3<f64>,
+    normal: &Vector3<f64>,
+    radius: f64,
+) -> bool {
+    element.nodes.iter().any(|&n| {
+        let node = &nodes[n];
+        let held = (0..3).all(|k| node.fixed[k] || normal[k].abs() < 1e-12);
+        held && (node.position - point).dot(normal) <= radius
+    })
 }
 
 /// Particles per element: about one per diameter, at least one.
@@ -147,6 +210,14 @@ fn particles(nodes: &[Node], elements: &[Element], sections: &[Section], density
             Vector3::from_column_slice(&b.velocity[..3]),
         );
         let mass = density * section.area * e.length0 / count as f64;
+        let chord = b.position - a.position;
+        let length = chord.norm();
+        let axis = if length > 0.0 {
+            chord / length
+        } else {
+            Vector3::zeros()
+        };
+        let half_length = 0.5 * length / count as f64;
         for k in 0..count {
             let t = (k as f64 + 0.5) / count as f64;
             out.push(Particle {
@@ -155,6 +226,8 @@ fn particles(nodes: &[Node], elements: &[Element], sections: &[Section], density
                 position: a.position * (1.0 - t) + b.position * t,
                 velocity: va * (1.0 - t) + vb * t,
                 radius,
+                axis,
+                half_length,
                 mass,
             });
         }
@@ -162,9 +235,22 @@ fn particles(nodes: &[Node], elements: &[Element], sections: &[Section], density
     out
 }
 
-/// Pairs of particles closer than the sum of the largest radii, on elements that share no node,
-/// found with a cell list.
-fn touching_pairs(particles: &[Particle], elements: &[Element]) -> Vec<(usize, usize)> {
+/// Whether two elements are joined, or were joined before a fracture split their common node: a
+/// node made by fracture keeps the initial position of the node it was split from. Neighbours
+/// always overlap near their common node (their particles are closer than two radii), so they do
+/// not touch each other, nor do they once a fracture separated them: the pieces would otherwise be
+/// thrown apart by the overlap they had while joined (250 N for the prism of `prism-washout`).
+fn adjacent(a: &Element, b: &Element, nodes: &[Node]) -> bool {
+    a.nodes.iter().any(|&n| {
+        b.nodes
+            .iter()
+            .any(|&m| n == m || nodes[n].initial == nodes[m].initial)
+    })
+}
+
+/// Pairs of particles closer than the sum of the largest radii, on elements that are not
+/// [`adjacent`], found with a cell list.
+fn touching_pairs(particles: &[Particle], elements: &[Element], nodes: &[Node]) -> Vec<(usize, usize)> {
     let reach = 2.0 * particles.iter().map(|p| p.radius).fold(0.0, f64::max);
     if reach <= 0.0 {
         return Vec::new();
@@ -188,8 +274,7 @@ fn touching_pairs(particles: &[Particle], elements: &[Element]) -> Vec<(usize, u
                             continue;
                         }
                         let (ei, ej) = (&elements[p.element], &elements[particles[j].element]);
-                        let adjacent = ei.nodes.iter().any(|n| ej.nodes.contains(n));
-                        if !adjacent && (particles[j].position - p.position).norm() < reach {
+                        if (particles[j].position - p.position).norm() < reach && !adjacent(ei, ej, nodes) {
                             pairs.push((i, j));
                         }
                     }
