@@ -9,7 +9,7 @@ use crate::launch::executable_for;
 use crate::run::{new_run_id, output_folder, participant_args};
 use crate::stack::{variant, Launch, Stack};
 use schemas::case::{Case, Kind};
-use schemas::message::{Fields, FromParticipant, Role, ToParticipant};
+use schemas::message::{Fields, FromParticipant, Role, ToParticipant, PROTOCOL_VERSION};
 use schemas::recording::{Message, Recording, RecordingEnd};
 use schemas::signals;
 use std::collections::BTreeMap;
@@ -54,6 +54,15 @@ pub struct ReplayReport {
 /// recording is damaged.
 pub fn replay(opts: &ReplayOptions) -> Result<ReplayReport, CouplerError> {
     let recording = Recording::read(&opts.recording).map_err(|e| CouplerError::Usage(e.to_string()))?;
+    if recording.header.protocol != PROTOCOL_VERSION {
+        return Err(CouplerError::Usage(format!(
+            "{}: recorded with message protocol version {}, this coupler speaks version {PROTOCOL_VERSION}: \
+             its messages do not read back with this build. Replay it with the build that recorded it, or \
+             record the case again with this one",
+            opts.recording.display(),
+            recording.header.protocol
+        )));
+    }
     let name = &opts.participant;
     if !recording.header.participants.contains(name) {
         return Err(CouplerError::Usage(format!(

@@ -156,6 +156,36 @@ fn a_version_1_recording_still_replays_with_a_note() {
     assert!(text.contains("PASS"), "{text}");
 }
 
+/// A recording made by a build of another message protocol does not read back: the replay says
+/// so from the header instead of calling the recording corrupt.
+#[test]
+fn a_recording_of_another_protocol_version_is_refused_by_name() {
+    let dir = out_dir("replay-protocol");
+    let rec = record(&dir);
+    let recording = schemas::recording::Recording::read(&rec).unwrap_or_else(|e| panic!("{e}"));
+    let mut header = recording.header.clone();
+    header.protocol = schemas::message::PROTOCOL_VERSION - 1;
+    let old = dir.join("older.rec");
+    let mut writer = schemas::recording::Recorder::create(&old, &header).unwrap_or_else(|e| panic!("{e}"));
+    for frame in recording.frames {
+        writer
+            .record(&frame.participant, frame.wall_time, frame.message)
+            .unwrap_or_else(|e| panic!("{e}"));
+    }
+    drop(writer);
+    let (ok, text) = replay(&old, "mass-left", &[], &[]);
+    assert!(!ok, "{text}");
+    assert!(
+        text.contains(&format!(
+            "recorded with message protocol version {}, this coupler speaks version {}",
+            schemas::message::PROTOCOL_VERSION - 1,
+            schemas::message::PROTOCOL_VERSION
+        )),
+        "{text}"
+    );
+    assert!(!text.contains("CORRUPT"), "{text}");
+}
+
 #[test]
 fn a_recording_of_a_run_that_died_replays_everything_answered_and_says_where_it_ended() {
     let dir = out_dir("replay-died");
