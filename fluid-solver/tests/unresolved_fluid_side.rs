@@ -15,6 +15,20 @@ const DS: f64 = 0.01;
 const DEPTH: i32 = 8;
 const HALF: i32 = 8;
 
+/// Where the spreading tests put a reaction: at the surface, at the floor, at a side and the
+/// surface, and inside the pool.
+fn reaction_places() -> [(&'static str, [f64; 3]); 4] {
+    [
+        ("at the surface", [0.0, 0.0, -0.3 * DS]),
+        ("at the floor", [0.2 * DS, 0.0, -f64::from(DEPTH) * DS + 0.1 * DS]),
+        (
+            "at a side and the surface",
+            [f64::from(HALF) * DS - 0.2 * DS, 0.0, -0.1 * DS],
+        ),
+        ("inside", [0.0, 0.0, -4.0 * DS]),
+    ]
+}
+
 /// Water in |x|, |y| < HALF Δs, −DEPTH Δs < z < 0, on a floor 3 layers thick; every fluid
 /// particle moves with `velocity(position)`.
 fn pool(velocity: impl Fn([f64; 3]) -> [f64; 3]) -> (Particles, CellGrid) {
@@ -139,15 +153,7 @@ fn lambda_min_is_one_inside_one_half_on_the_surface_and_zero_in_the_air() {
 fn a_spread_reaction_sums_to_the_reaction_near_a_wall_and_the_surface() {
     let (p, grid) = pool(|_| [0.0; 3]);
     let f = [3.0, -1.5, 40.0];
-    for (what, x) in [
-        ("at the surface", [0.0, 0.0, -0.3 * DS]),
-        ("at the floor", [0.2 * DS, 0.0, -f64::from(DEPTH) * DS + 0.1 * DS]),
-        (
-            "at a side and the surface",
-            [f64::from(HALF) * DS - 0.2 * DS, 0.0, -0.1 * DS],
-        ),
-        ("inside", [0.0, 0.0, -4.0 * DS]),
-    ] {
+    for (what, x) in reaction_places() {
         let reactions = [x[0], x[1], x[2], f[0], f[1], f[2]];
         let s = spread(&p, &grid, DS, &reactions, &[], &[]);
         let mut sum = [0.0; 3];
@@ -294,15 +300,7 @@ fn a_wide_members_reaction_is_spread_flat_over_its_footprint_and_sums_to_itself(
     let width = 5.0 * DS;
     let a = 2.0 * DS;
     let reach = a + Wendland::for_spacing(DS).radius;
-    for (what, x) in [
-        ("at the surface", [0.0, 0.0, -0.3 * DS]),
-        ("at the floor", [0.2 * DS, 0.0, -f64::from(DEPTH) * DS + 0.1 * DS]),
-        (
-            "at a side and the surface",
-            [f64::from(HALF) * DS - 0.2 * DS, 0.0, -0.1 * DS],
-        ),
-        ("inside", [0.0, 0.0, -4.0 * DS]),
-    ] {
+    for (what, x) in reaction_places() {
         let reactions = [x[0], x[1], x[2], f[0], f[1], f[2]];
         let s = spread(&p, &grid, DS, &reactions, &[], &[width]);
         let (sum, on_walls) = spread_total(&p, &s.force);

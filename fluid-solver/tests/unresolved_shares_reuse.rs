@@ -8,13 +8,11 @@ mod common;
 
 use fluid_solver::unresolved::spreading::spread;
 use fluid_solver::FluidSolver;
+use schemas::case::FluidConfig;
 
 #[test]
 fn shares_found_while_sampling_spread_as_a_new_search_and_never_after_a_step() {
-    let cfg = closed_box::closed_box([0.0, 0.0, 0.0], [0.2, 0.2, 0.12]);
-    cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
-    let mut solver = FluidSolver::new(&cfg);
-    solver.step(cfg.time_step).unwrap_or_else(|e| panic!("{e}"));
+    let (cfg, mut solver) = stepped_box();
     // Sub-members (centroid, force −f) with their sample points: inside (sample point 4 mm
     // upstream: one search for both), at the floor, at the surface, 6 cm upstream (two searches),
     // just above the water with a wet sample point (spread around the sample point), in the air
@@ -105,10 +103,7 @@ fn shares_found_while_sampling_spread_as_a_new_search_and_never_after_a_step() {
 
 #[test]
 fn a_wide_members_shares_found_while_sampling_spread_as_a_new_search_for_the_same_widths_only() {
-    let cfg = closed_box::closed_box([0.0, 0.0, 0.0], [0.2, 0.2, 0.12]);
-    cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
-    let mut solver = FluidSolver::new(&cfg);
-    solver.step(cfg.time_step).unwrap_or_else(|e| panic!("{e}"));
+    let (cfg, solver) = stepped_box();
     // a member 3 particles wide (a = Δs), its sample points one width upstream, and a thin one
     let reactions = [
         0.1, 0.1, 0.06, 0.3, 0.0, -0.1, //
@@ -139,4 +134,14 @@ fn a_wide_members_shares_found_while_sampling_spread_as_a_new_search_for_the_sam
     let as_points = solver.spread_point_reactions(&reactions, &points, &[]);
     assert_eq!(as_points, searched(&solver, &[]));
     assert_ne!(as_points.force, reused.force);
+}
+
+/// The closed box of water 0.2 × 0.2 × 0.12 m, its case and its solver after one step (the cell
+/// list sorted).
+fn stepped_box() -> (FluidConfig, FluidSolver) {
+    let cfg = closed_box::closed_box([0.0, 0.0, 0.0], [0.2, 0.2, 0.12]);
+    cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
+    let mut solver = FluidSolver::new(&cfg);
+    solver.step(cfg.time_step).unwrap_or_else(|e| panic!("{e}"));
+    (cfg, solver)
 }
