@@ -29,6 +29,34 @@ fn isph_surge_front_follows_the_experiments() {
     );
 }
 
+/// The same with `pressure_gradient = "symmetric"` at a support of 2.0 Δs, same bounds.
+#[test]
+fn isph_symmetric_gradient_surge_front_follows_the_experiments() {
+    let mut cfg = isph_slab::isph_slab();
+    cfg.isph = Some(schemas::case::fluid::IsphConfig {
+        influence_radius: 2.0,
+        pressure_gradient: schemas::case::fluid::PressureGradient::Symmetric,
+        ..schemas::case::fluid::IsphConfig::default()
+    });
+    cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
+    let e = front_common::front_errors(&cfg, 0.006, 4);
+    assert!(
+        e.koshizuka_oka < 0.33,
+        "RMS against Koshizuka & Oka {} (bound 0.33)",
+        e.koshizuka_oka
+    );
+    assert!(
+        e.martin_moyce < 0.05,
+        "RMS against Martin & Moyce {} (bound 0.05)",
+        e.martin_moyce
+    );
+    assert!(
+        e.shift.abs() < 0.3,
+        "the best shift {} sits on the search bound",
+        e.shift
+    );
+}
+
 /// The CI dam break of `isph_surge_front_follows_the_experiments` run on past the impact, the
 /// run-up and the return wave to t = 1.5 s (about 60 s in release): it stopped at t = 0.75 s
 /// when a splash particle that had landed on the top of the 4-particle slab's side wall was
