@@ -127,6 +127,18 @@ fn other_bad_keys_name_what_is_allowed() {
         e.contains("`fluid.water.artificial_viscosity`") && e.contains("E-MPS option"),
         "{e}"
     );
+    // ISPH's pressure gradient: one of two names.
+    let isph = |form: &str| {
+        GOOD.replace("time_step = 8.0e-4", "time_step = 8.0e-4\nmethod = \"isph\"")
+            + &format!("\n[fluid.water.isph]\npressure_gradient = \"{form}\"\n")
+    };
+    parse(&isph("symmetric")).unwrap_or_else(|e| panic!("{e}"));
+    parse(&isph("corrected-difference")).unwrap_or_else(|e| panic!("{e}"));
+    let e = error_of(&isph("conservative"));
+    assert!(
+        e.contains("pressure_gradient") && e.contains("corrected-difference") && e.contains("symmetric"),
+        "{e}"
+    );
     let probe =
         format!("{GOOD}\n[[fluid.water.probe]]\nname = \"p\"\nkind = \"pressure\"\nposition = [0.1, 0.1]\n");
     let e = error_of(&probe);

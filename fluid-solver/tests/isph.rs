@@ -12,7 +12,7 @@ use fluid_solver::method::MethodState;
 use fluid_solver::neighbour_search::CellGrid;
 use fluid_solver::particles::Particles;
 use fluid_solver::{FluidSolver, Kind};
-use schemas::case::fluid::{FluidConfig, FluidMethodName, IsphConfig, PpeSolver};
+use schemas::case::fluid::{FluidConfig, FluidMethodName, IsphConfig, PpeSolver, PressureGradient};
 
 /// The hydrostatic tank at CI size with ISPH: Δs = 0.02 m, water H = 0.3 m in a 0.2 × 0.2 m
 /// tank (1500 fluid particles), Δt = 2e-3 s (u Δt/Δs = 0.34, u = 2√(gH)).
@@ -28,6 +28,18 @@ fn isph_tank() -> FluidConfig {
     cfg
 }
 
+/// [`isph_tank`] with `pressure_gradient = "symmetric"` at a support of 2.0 Δs.
+fn isph_tank_symmetric() -> FluidConfig {
+    let mut cfg = isph_tank();
+    cfg.isph = Some(IsphConfig {
+        influence_radius: 2.0,
+        pressure_gradient: PressureGradient::Symmetric,
+        ..IsphConfig::default()
+    });
+    cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
+    cfg
+}
+
 fn surface_flags(solver: &FluidSolver) -> &[u8] {
     match solver.method_state() {
         MethodState::Isph(s) => &s.surface,
@@ -37,7 +49,17 @@ fn surface_flags(solver: &FluidSolver) -> &[u8] {
 
 #[test]
 fn isph_pressure_is_rho_g_h_and_the_water_stays_still() {
-    let cfg = isph_tank();
+    tank_holds_at_0_2_s(&isph_tank());
+}
+
+/// The same with the symmetric gradient at a support of 2.0 Δs (same bounds).
+#[test]
+fn isph_symmetric_gradient_holds_the_tank() {
+    tank_holds_at_0_2_s(&isph_tank_symmetric());
+}
+
+fn tank_holds_at_0_2_s(cfg: &FluidConfig) {
+    let cfg = cfg.clone();
     let (ds, h) = (cfg.spacing, 0.3);
     let rho_g = cfg.density * cfg.gravity_magnitude();
     let mut solver = FluidSolver::new(&cfg);
@@ -98,7 +120,18 @@ fn isph_pressure_is_rho_g_h_and_the_water_stays_still() {
 #[test]
 #[ignore]
 fn isph_tank_stays_still_for_one_second() {
-    let cfg = isph_tank();
+    tank_stays_still_for_one_second(&isph_tank());
+}
+
+/// The same with the symmetric gradient at a support of 2.0 Δs (about 20 s in release).
+#[test]
+#[ignore]
+fn isph_symmetric_gradient_tank_stays_still_for_one_second() {
+    tank_stays_still_for_one_second(&isph_tank_symmetric());
+}
+
+fn tank_stays_still_for_one_second(cfg: &FluidConfig) {
+    let cfg = cfg.clone();
     let rho_g = cfg.density * cfg.gravity_magnitude();
     let mut solver = FluidSolver::new(&cfg);
     for t in [0.25, 0.5, 0.75, 1.0] {

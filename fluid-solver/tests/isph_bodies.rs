@@ -6,11 +6,11 @@ mod bodies_common;
 
 use bodies_common::tank_with_body;
 use fluid_solver::FluidSolver;
-use schemas::case::fluid::{Aabb, FluidMethodName, IsphConfig};
+use schemas::case::fluid::{Aabb, FluidMethodName, IsphConfig, PressureGradient};
 
 #[test]
 fn isph_submerged_fixed_box_feels_rho_g_v() {
-    submerged_box_load(0.0);
+    submerged_box_load(0.0, IsphConfig::default());
 }
 
 /// The same box held a quarter spacing (5 mm) above its lattice site, so the fluid–body gap is
@@ -18,11 +18,38 @@ fn isph_submerged_fixed_box_feels_rho_g_v() {
 /// symmetric pair law gave 6.2 N for 9.0 N on the floating box held so).
 #[test]
 fn isph_box_load_does_not_depend_on_the_fluid_body_gap() {
-    submerged_box_load(0.005);
+    submerged_box_load(0.005, IsphConfig::default());
+}
+
+/// The symmetric gradient at a support of 2.0 Δs (`pressure_gradient = "symmetric"`), whose
+/// pair term is also the body's load (one function for the load and the fluid's reaction): the
+/// box at its lattice site reads ρgV (measured −0.00 %).
+#[test]
+fn isph_symmetric_gradient_box_at_its_site_feels_rho_g_v() {
+    submerged_box_load(0.0, symmetric());
+}
+
+/// Open (issue 12): the same box 5 mm above its site with the symmetric gradient. Measured
+/// −14.7 % (14.44 N for 16.93 N), and it stays there: −14.4 … −16.5 % in every 0.05 s to 1 s.
+/// The symmetric term's zero-order part `2 p_i Σ_j V ∇W_ij` gives ρgV only with the fluid one
+/// spacing from the body (as the default's face law does not need); the fluid carries the same
+/// error in reverse (momentum closes, `isph_momentum.rs`), so the walls carry the rest.
+#[test]
+#[ignore = "open (issue 12): the symmetric pair term depends on the fluid–body gap (−14.7 %)"]
+fn isph_symmetric_gradient_box_load_does_not_depend_on_the_fluid_body_gap() {
+    submerged_box_load(0.005, symmetric());
+}
+
+fn symmetric() -> IsphConfig {
+    IsphConfig {
+        influence_radius: 2.0,
+        pressure_gradient: PressureGradient::Symmetric,
+        ..IsphConfig::default()
+    }
 }
 
 /// Runs the scene with the box's centre `offset` above its lattice site and checks the load.
-fn submerged_box_load(offset: f64) {
+fn submerged_box_load(offset: f64, settings: IsphConfig) {
     // The E-MPS test's scene: Δs = 0.02 m, a 12 cm box centred 0.16 m below the surface, 4
     // particles of water around it; ISPH with Δt = 2e-3 s.
     let body = Aabb {
@@ -35,7 +62,7 @@ fn submerged_box_load(offset: f64) {
     };
     let mut cfg = tank_with_body([0.28, 0.28, 0.4], 0.02, 8.0e-4, water, body);
     cfg.method = FluidMethodName::Isph;
-    cfg.isph = Some(IsphConfig::default());
+    cfg.isph = Some(settings);
     cfg.sound_speed = None;
     cfg.time_step = 2.0e-3;
     cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
@@ -62,8 +89,8 @@ fn submerged_box_load(offset: f64) {
     mean.iter_mut().for_each(|v| *v /= f64::from(steps));
     let error = mean[2] / buoyancy - 1.0;
     println!(
-        "box {offset} m above its site, ISPH mean load over {steps} steps: F = [{:.4}, {:.4}, {:.4}] N; ρgV = {buoyancy:.4} N; error {:+.2} %; worst |load + reaction| {worst_balance:.2e}",
-        mean[0], mean[1], mean[2], 100.0 * error
+        "box {offset} m above its site, ISPH ({:?}, support {} Δs) mean load over {steps} steps: F = [{:.4}, {:.4}, {:.4}] N; ρgV = {buoyancy:.4} N; error {:+.2} %; worst |load + reaction| {worst_balance:.2e}",
+        settings.pressure_gradient, settings.influence_radius, mean[0], mean[1], mean[2], 100.0 * error
     );
     assert!(
         error.abs() < 0.05,

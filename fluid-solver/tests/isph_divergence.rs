@@ -47,7 +47,7 @@ use fluid_solver::neighbour_search::CellGrid;
 use fluid_solver::particles::Particles;
 use fluid_solver::vector_field::VectorField;
 use fluid_solver::{FluidSolver, Kind};
-use schemas::case::fluid::{FluidConfig, FluidMethodName, IsphConfig};
+use schemas::case::fluid::{FluidConfig, FluidMethodName, IsphConfig, PressureGradient};
 use std::collections::HashMap;
 
 /// RMS over the PPE rows of each term of the identity [1/s].
@@ -142,7 +142,14 @@ fn check_step(cfg: &FluidConfig, t: f64) -> Terms {
         spacing: ds,
     };
     let mut grad = VectorField::default();
-    operators::pressure_gradient(&k, &list, &q, &pair, &mut grad);
+    operators::pressure_gradient(
+        &k,
+        &list,
+        &q,
+        &pair,
+        PressureGradient::CorrectedDifference,
+        &mut grad,
+    );
 
     // 1. The step's velocities are the projection's, v* − (Δt/ρ) G p, except where the
     // collision stage acted after it (a particle within its reach of another).

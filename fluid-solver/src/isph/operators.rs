@@ -6,12 +6,14 @@
 use super::free_surface::LAMBDA_SPLASH;
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
+use super::pair_laws;
 use super::walls::NeumannPair;
 use crate::kind::{Kind, FLUID};
 use crate::moments::{smallest_eigenvalue, solve};
 use crate::particles::Particles;
 use crate::vector_field::{add, PassTotals, VectorField};
 use rayon::prelude::*;
+use schemas::case::fluid::PressureGradient;
 
 /// S2-7 with φ = 1, normalised: `ρ̂_i/ρ0 = Σ_j V W_ij / Σ_lattice V W` (self included) over
 /// every neighbour: the numerical density of S2-5 for fluid particles, reading 1 in a full
@@ -161,13 +163,27 @@ pub fn laplacian(
 /// `V (p_i + p_j^(i)) ∇W_ij`, the walls' load by the pair law of [`super::pair_laws`] (the
 /// difference form's solid part is not a load: its fluid pairs are not antisymmetric, so the
 /// walls would not carry the water's weight).
+///
+/// With `form` = [`PressureGradient::Symmetric`] (case key `isph.pressure_gradient =
+/// "symmetric"`) the gradient is instead the uncorrected symmetric form
+/// `⟨∇p⟩_i = Σ_j V (p_i + p_j) ∇W_ij` over fluid neighbours plus `Σ_w V (2p_i + Δp_iw) ∇W_iw`
+/// over solid ones (walls and bodies), each pair's term [`pair_laws::symmetric_term`], the same
+/// function the walls' and bodies' loads are made of; `from_non_fluid` is then Σ of that term
+/// over every fluid–solid pair, bodies included (their load is V times the same terms). It holds
+/// the hydrostatic tank only at a support of 2.0 Δs, where the lattice sums that its zero-order
+/// part `2 p_i Σ_j V ∇W_ij` acts on are restoring (README, "ISPH: the symmetric gradient as an
+/// option"); at 2.4 Δs the tank's edge columns run away (above).
 pub fn pressure_gradient(
     k: &Wendland,
     list: &NeighbourList,
     p: &Particles,
     walls: &NeumannPair,
+    form: PressureGradient,
     out: &mut VectorField,
 ) -> PassTotals {
+    if form == PressureGradient::Symmetric {
+        return symmetric_gradient(k, list, p, walls, out);
+    }
     out.resize(p.len());
     let body = Kind::Body.code();
     let scale = -k.volume / k.lattice_moment;
@@ -218,6 +234,45 @@ pub fn pressure_gradient(
             (*ox, *oy, *oz) = (g[0], g[1], g[2]);
             PassTotals {
                 from_non_fluid: wall,
+                candidates: list.of(i).len() as u64,
+            }
+        })
+        .reduce(PassTotals::default, add)
+}
+
+/// The symmetric form of [`pressure_gradient`]: `⟨∇p⟩_i = Σ_j t_ij` with
+/// [`pair_laws::symmetric_term`] over every listed neighbour, for fluid i (0 elsewhere), no
+/// moment-matrix correction; `from_non_fluid` is Σ t_ij over the solid neighbours.
+fn symmetric_gradient(
+    k: &Wendland,
+    list: &NeighbourList,
+    p: &Particles,
+    walls: &NeumannPair,
+    out: &mut VectorField,
+) -> PassTotals {
+    out.resize(p.len());
+    (&mut out.x, &mut out.y, &mut out.z)
+        .into_par_iter()
+        .enumerate()
+        .with_min_len(512)
+        .map(|(i, (ox, oy, oz))| {
+            let mut g = [0.0; 3];
+            let mut solids = [0.0; 3];
+            if p.kind[i] == FLUID {
+                for &j in list.of(i) {
+                    let j = j as usize;
+                    let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
+                    let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                    let t = pair_laws::symmetric_term(k, walls, i, j, d, r);
+                    (0..3).for_each(|a| g[a] += t[a]);
+                    if p.kind[j] != FLUID {
+                        (0..3).for_each(|a| solids[a] += t[a]);
+                    }
+                }
+            }
+            (*ox, *oy, *oz) = (g[0], g[1], g[2]);
+            PassTotals {
+                from_non_fluid: solids,
                 candidates: list.of(i).len() as u64,
             }
         })

@@ -17,6 +17,12 @@
 //! corrected difference form ([`super::operators::pressure_gradient`], which says why). Viscous,
 //! with no-slip walls: the pair terms of [`super::operators::laplacian`]. The pair laws read the
 //! per-pair pressure `p_i + Δp_ij` that fluid particle i's PPE saw ([`super::walls`]).
+//!
+//! With `pressure_gradient = "symmetric"` (case key, [`PressureGradient`]) the fluid's gradient
+//! is the uncorrected symmetric form and [`symmetric_term`] is its pair term: the fluid's
+//! gradient sums it over every neighbour, and the walls' and the bodies' loads are V times it,
+//! so a body's load and the fluid's reaction come from one function and the face law is not
+//! used (issue 12's seam).
 
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
@@ -25,6 +31,33 @@ use crate::kind::{Kind, FLUID};
 use crate::pair_law::{ExchangeScales, PairLaw};
 use crate::particles::Particles;
 use rayon::prelude::*;
+use schemas::case::fluid::PressureGradient;
+
+/// The symmetric form's term of fluid particle i's pressure gradient from neighbour j at
+/// `d = x_i − x_j`, `r = |d|`: `t_ij = V (p_i + p_j^(i)) ∇_i W_ij`, with p_j^(i) = p_j for a fluid
+/// j and p_i + Δp_ij for a solid j (wall or body: its pressure as i's PPE saw it,
+/// [`super::walls`]). The fluid's `⟨∇p⟩_i = Σ_j t_ij` ([`super::operators::pressure_gradient`]),
+/// so the force on i from j is `−(m/ρ) t_ij = −V t_ij`, and the force on a solid j from i is
+/// `V t_ij` ([`pressure`]); for two fluid particles `t_ij = −t_ji`, so momentum closes pair by
+/// pair.
+#[inline(always)]
+pub fn symmetric_term(
+    k: &Wendland,
+    walls: &NeumannPair,
+    i: usize,
+    j: usize,
+    d: [f64; 3],
+    r: f64,
+) -> [f64; 3] {
+    let p = walls.p;
+    let pij = if p.kind[j] == FLUID {
+        p.pressure[i] + p.pressure[j]
+    } else {
+        2.0 * p.pressure[i] + walls.difference(i, j)
+    };
+    let c = k.volume * k.dw_over_r(r) * pij;
+    d.map(|v| c * v)
+}
 
 /// Each body particle's pressure force and the sum of its fluid neighbours' weights (both 0 for
 /// other particles), in the present particle order.
@@ -114,11 +147,17 @@ pub fn body_faces(
         });
 }
 
-/// On a body particle j: its share `F_j W_ij / Σ_f W_fj` of the face force of [`body_faces`]
-/// (computed on the same state). On a wall particle: `V² (p_i + p_j^(i)) ∇_i W_ij`,
-/// p_j^(i) = p_i + Δp_ij the wall particle's pressure as fluid particle i's PPE saw it
-/// ([`super::walls`]).
-pub fn pressure<'a>(k: &Wendland, walls: NeumannPair<'a>, faces: &'a BodyFaces) -> PairLaw<'a> {
+/// With the corrected difference gradient: on a body particle j its share
+/// `F_j W_ij / Σ_f W_fj` of the face force of [`body_faces`] (computed on the same state); on a
+/// wall particle `V² (p_i + p_j^(i)) ∇_i W_ij`, p_j^(i) = p_i + Δp_ij the wall particle's pressure
+/// as fluid particle i's PPE saw it ([`super::walls`]). With the symmetric gradient: on walls
+/// and bodies alike `V t_ij` of [`symmetric_term`], the fluid's own pair term.
+pub fn pressure<'a>(
+    k: &Wendland,
+    walls: NeumannPair<'a>,
+    faces: &'a BodyFaces,
+    gradient: PressureGradient,
+) -> PairLaw<'a> {
     let k = *k;
     let p = walls.p;
     let body = Kind::Body.code();
@@ -127,6 +166,10 @@ pub fn pressure<'a>(k: &Wendland, walls: NeumannPair<'a>, faces: &'a BodyFaces) 
         let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
         if !(r2 < k.radius * k.radius && r2 > 0.0) {
             return None;
+        }
+        if gradient == PressureGradient::Symmetric {
+            let t = symmetric_term(&k, &walls, i, j, d, r2.sqrt());
+            return Some(t.map(|v| k.volume * v));
         }
         if p.kind[j] == body {
             let den = *faces.weight.get(j)?;

@@ -40,7 +40,7 @@ use crate::physics::Physics;
 use crate::stage_timer::StageTimes;
 use crate::vector_field::VectorField;
 use rayon::prelude::*;
-use schemas::case::fluid::{IsphConfig, WallSlip};
+use schemas::case::fluid::{IsphConfig, PressureGradient, WallSlip};
 
 /// Unknowns per block of the parallel PPE assembly.
 const ROW_BLOCK: usize = 256;
@@ -155,7 +155,12 @@ impl IsphStep {
     /// The pressure pair law on the present pressures (at rest: the fluid's velocities are
     /// taken as the step's start).
     pub fn pressure_law<'a>(&'a self, p: &'a Particles) -> PairLaw<'a> {
-        pair_laws::pressure(&self.kernel, self.neumann(p, self.time_step), &self.faces)
+        pair_laws::pressure(
+            &self.kernel,
+            self.neumann(p, self.time_step),
+            &self.faces,
+            self.settings.pressure_gradient,
+        )
     }
 
     /// The walls' Neumann differences for a step of `dt` with v* in the particles.
@@ -222,20 +227,24 @@ impl IsphStep {
             depth: &self.depth,
             spacing: self.kernel.spacing,
         };
-        let pass = operators::pressure_gradient(&self.kernel, &self.list, p, &walls, &mut self.accel);
+        let form = self.settings.pressure_gradient;
+        let pass = operators::pressure_gradient(&self.kernel, &self.list, p, &walls, form, &mut self.accel);
         (0..3).for_each(|a| totals.force_from_walls[a] -= self.kernel.volume * pass.from_non_fluid[a]);
-        pair_laws::body_faces(
-            &self.kernel,
-            &self.list,
-            &walls,
-            &self.takes_part,
-            &mut self.faces,
-        );
-        let on_bodies = self.faces.total();
-        (0..3).for_each(|a| totals.force_from_walls[a] -= on_bodies[a]);
+        // With the symmetric gradient the bodies' loads are in `from_non_fluid` (one pair term).
+        if form == PressureGradient::CorrectedDifference {
+            pair_laws::body_faces(
+                &self.kernel,
+                &self.list,
+                &walls,
+                &self.takes_part,
+                &mut self.faces,
+            );
+            let on_bodies = self.faces.total();
+            (0..3).for_each(|a| totals.force_from_walls[a] -= on_bodies[a]);
+        }
         bodies(
             Exchange::Pressure,
-            &pair_laws::pressure(&self.kernel, self.neumann(p, dt), &self.faces),
+            &pair_laws::pressure(&self.kernel, self.neumann(p, dt), &self.faces, form),
             grid,
             p,
         );
@@ -278,13 +287,15 @@ impl IsphStep {
             depth: &self.depth,
             spacing: self.kernel.spacing,
         };
-        pair_laws::body_faces(
-            &self.kernel,
-            &self.list,
-            &walls,
-            &self.takes_part,
-            &mut self.faces,
-        );
+        if self.settings.pressure_gradient == PressureGradient::CorrectedDifference {
+            pair_laws::body_faces(
+                &self.kernel,
+                &self.list,
+                &walls,
+                &self.takes_part,
+                &mut self.faces,
+            );
+        }
         (p.vx, p.vy, p.vz) = v;
         state.ppe = solved?;
         Ok(())

@@ -278,6 +278,21 @@ pub enum PpeSolver {
     SgsPcg,
 }
 
+/// The pressure gradient of ISPH's momentum equation (issue 12; see
+/// `fluid_solver::isph::operators::pressure_gradient` for both equations and the measurements).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PressureGradient {
+    /// S2-8's difference form `Σ_j V (p_j − p_i) ∇W_ij` corrected by the moment matrix (Bonet &
+    /// Lok 1999); bodies loaded by the face law of `fluid_solver::isph::pair_laws::body_faces`.
+    #[default]
+    CorrectedDifference,
+    /// The uncorrected symmetric form `Σ_j V (p_i + p_j) ∇W_ij` (solids `V (2p_i + Δp_ij) ∇W_ij`),
+    /// whose pair term is also the walls' and the bodies' load: momentum closes pair by pair.
+    /// Measured to hold the hydrostatic tank only at `influence_radius = 2.0` (README).
+    Symmetric,
+}
+
 /// `[fluid.NAME.isph]`: settings of the ISPH method (all optional).
 ///
 /// ```toml
@@ -288,6 +303,7 @@ pub enum PpeSolver {
 /// ppe_max_iterations = 1000 # beyond this the run stops with the residual
 /// ppe_solver = "jacobi-pcg" # or "faer-cholesky", "sgs-pcg"
 /// wall_slip = "free-slip"   # or "no-slip"
+/// pressure_gradient = "corrected-difference" # or "symmetric" (with influence_radius = 2.0)
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -304,6 +320,8 @@ pub struct IsphConfig {
     pub ppe_solver: PpeSolver,
     #[serde(default)]
     pub wall_slip: WallSlip,
+    #[serde(default)]
+    pub pressure_gradient: PressureGradient,
 }
 
 impl Default for IsphConfig {
@@ -315,6 +333,7 @@ impl Default for IsphConfig {
             ppe_max_iterations: default_ppe_max_iterations(),
             ppe_solver: PpeSolver::default(),
             wall_slip: WallSlip::default(),
+            pressure_gradient: PressureGradient::default(),
         }
     }
 }
