@@ -21,21 +21,19 @@ fn isph_box_load_does_not_depend_on_the_fluid_body_gap() {
     submerged_box_load(0.005, IsphConfig::default());
 }
 
-/// The symmetric gradient at a support of 2.0 Δs (`pressure_gradient = "symmetric"`), whose
-/// pair term is also the body's load (one function for the load and the fluid's reaction): the
-/// box at its lattice site reads ρgV (measured −0.00 %).
+/// The symmetric gradient at a support of 2.0 Δs (`pressure_gradient = "symmetric"`): the
+/// fluid's pair term with a body neighbour is the face law's share, so the load and the fluid's
+/// reaction are one function; the box at its lattice site reads ρgV (measured −0.08 %).
 #[test]
 fn isph_symmetric_gradient_box_at_its_site_feels_rho_g_v() {
     submerged_box_load(0.0, symmetric());
 }
 
-/// Open (issue 12): the same box 5 mm above its site with the symmetric gradient. Measured
-/// −14.7 % (14.44 N for 16.93 N), and it stays there: −14.4 … −16.5 % in every 0.05 s to 1 s.
-/// The symmetric term's zero-order part `2 p_i Σ_j V ∇W_ij` gives ρgV only with the fluid one
-/// spacing from the body (as the default's face law does not need); the fluid carries the same
-/// error in reverse (momentum closes, `isph_momentum.rs`), so the walls carry the rest.
+/// The same box 5 mm above its site with the symmetric gradient: measured +0.86 %. (With the
+/// symmetric pair term as the body's load too it read −14.7 %, −14.4 … −16.5 % in every 0.05 s
+/// to 1 s: that term's zero-order part `2 p_i Σ_j V ∇W_ij` gives ρgV only with the fluid one
+/// spacing from the body.)
 #[test]
-#[ignore = "open (issue 12): the symmetric pair term depends on the fluid–body gap (−14.7 %)"]
 fn isph_symmetric_gradient_box_load_does_not_depend_on_the_fluid_body_gap() {
     submerged_box_load(0.005, symmetric());
 }

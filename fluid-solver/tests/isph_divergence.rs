@@ -148,6 +148,7 @@ fn check_step(cfg: &FluidConfig, t: f64) -> Terms {
         &q,
         &pair,
         PressureGradient::CorrectedDifference,
+        &Default::default(),
         &mut grad,
     );
 

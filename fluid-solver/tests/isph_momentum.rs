@@ -266,7 +266,8 @@ fn isph_momentum_budget_closes_in_motion() {
 
 /// With `pressure_gradient = "symmetric"` (support 2.0 Δs) the budget closes in motion to
 /// round-off, as E-MPS's does (`conservation.rs`: 1e-9 of gravity's impulse): the drop on the
-/// floor of the closed box and the drop on a fixed box, whose load is the fluid's own pair term.
+/// floor of the closed box and the drop on a fixed box, whose load (the face law's shares) is the
+/// fluid's own pair term with it.
 /// The box is hit as hard as with the default gradient's face law.
 #[test]
 fn isph_symmetric_gradient_momentum_closes_in_motion() {

@@ -6,7 +6,7 @@
 use super::free_surface::LAMBDA_SPLASH;
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
-use super::pair_laws;
+use super::pair_laws::{self, BodyFaces};
 use super::walls::NeumannPair;
 use crate::kind::{Kind, FLUID};
 use crate::moments::{smallest_eigenvalue, solve};
@@ -179,10 +179,11 @@ pub fn pressure_gradient(
     p: &Particles,
     walls: &NeumannPair,
     form: PressureGradient,
+    faces: &BodyFaces,
     out: &mut VectorField,
 ) -> PassTotals {
     if form == PressureGradient::Symmetric {
-        return symmetric_gradient(k, list, p, walls, out);
+        return symmetric_gradient(k, list, p, walls, faces, out);
     }
     out.resize(p.len());
     let body = Kind::Body.code();
@@ -241,15 +242,19 @@ pub fn pressure_gradient(
 }
 
 /// The symmetric form of [`pressure_gradient`]: `⟨∇p⟩_i = Σ_j t_ij` with
-/// [`pair_laws::symmetric_term`] over every listed neighbour, for fluid i (0 elsewhere), no
-/// moment-matrix correction; `from_non_fluid` is Σ t_ij over the solid neighbours.
+/// [`pair_laws::symmetric_term`] over every listed fluid and wall neighbour, for fluid i (0
+/// elsewhere), no moment-matrix correction; a body neighbour j adds `F_ij / V`, its face-law
+/// share [`pair_laws::face_share`] (the force on i from j is then `−F_ij`, the reverse of the
+/// body's load from i); `from_non_fluid` is the sum over the solid neighbours.
 fn symmetric_gradient(
     k: &Wendland,
     list: &NeighbourList,
     p: &Particles,
     walls: &NeumannPair,
+    faces: &BodyFaces,
     out: &mut VectorField,
 ) -> PassTotals {
+    let body = Kind::Body.code();
     out.resize(p.len());
     (&mut out.x, &mut out.y, &mut out.z)
         .into_par_iter()
@@ -263,7 +268,11 @@ fn symmetric_gradient(
                     let j = j as usize;
                     let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
                     let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-                    let t = pair_laws::symmetric_term(k, walls, i, j, d, r);
+                    let t = if p.kind[j] == body {
+                        pair_laws::face_share(k, faces, j, r).map(|f| f / k.volume)
+                    } else {
+                        pair_laws::symmetric_term(k, walls, i, j, d, r)
+                    };
                     (0..3).for_each(|a| g[a] += t[a]);
                     if p.kind[j] != FLUID {
                         (0..3).for_each(|a| solids[a] += t[a]);

@@ -228,17 +228,26 @@ impl IsphStep {
             spacing: self.kernel.spacing,
         };
         let form = self.settings.pressure_gradient;
-        let pass = operators::pressure_gradient(&self.kernel, &self.list, p, &walls, form, &mut self.accel);
+        pair_laws::body_faces(
+            &self.kernel,
+            &self.list,
+            &walls,
+            &self.takes_part,
+            &mut self.faces,
+        );
+        let pass = operators::pressure_gradient(
+            &self.kernel,
+            &self.list,
+            p,
+            &walls,
+            form,
+            &self.faces,
+            &mut self.accel,
+        );
         (0..3).for_each(|a| totals.force_from_walls[a] -= self.kernel.volume * pass.from_non_fluid[a]);
-        // With the symmetric gradient the bodies' loads are in `from_non_fluid` (one pair term).
+        // With the symmetric gradient the bodies' loads are in `from_non_fluid` (their face-law
+        // shares are the fluid's pair terms with them).
         if form == PressureGradient::CorrectedDifference {
-            pair_laws::body_faces(
-                &self.kernel,
-                &self.list,
-                &walls,
-                &self.takes_part,
-                &mut self.faces,
-            );
             let on_bodies = self.faces.total();
             (0..3).for_each(|a| totals.force_from_walls[a] -= on_bodies[a]);
         }
@@ -287,15 +296,13 @@ impl IsphStep {
             depth: &self.depth,
             spacing: self.kernel.spacing,
         };
-        if self.settings.pressure_gradient == PressureGradient::CorrectedDifference {
-            pair_laws::body_faces(
-                &self.kernel,
-                &self.list,
-                &walls,
-                &self.takes_part,
-                &mut self.faces,
-            );
-        }
+        pair_laws::body_faces(
+            &self.kernel,
+            &self.list,
+            &walls,
+            &self.takes_part,
+            &mut self.faces,
+        );
         (p.vx, p.vy, p.vz) = v;
         state.ppe = solved?;
         Ok(())
