@@ -132,8 +132,16 @@ fn other_bad_keys_name_what_is_allowed() {
         GOOD.replace("time_step = 8.0e-4", "time_step = 8.0e-4\nmethod = \"isph\"")
             + &format!("\n[fluid.water.isph]\npressure_gradient = \"{form}\"\n")
     };
-    parse(&isph("symmetric")).unwrap_or_else(|e| panic!("{e}"));
+    parse(&(isph("symmetric") + "influence_radius = 2.0\n")).unwrap_or_else(|e| panic!("{e}"));
     parse(&isph("corrected-difference")).unwrap_or_else(|e| panic!("{e}"));
+    // The symmetric form only where the lattice is restored (S2's 2.4 spacings is not).
+    let e = error_of(&isph("symmetric"));
+    assert!(
+        e.contains("`fluid.water.isph.influence_radius`")
+            && e.contains("[1.95, 2.15]")
+            && e.contains("got 2.4"),
+        "{e}"
+    );
     let e = error_of(&isph("conservative"));
     assert!(
         e.contains("pressure_gradient") && e.contains("corrected-difference") && e.contains("symmetric"),

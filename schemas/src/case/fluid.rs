@@ -287,9 +287,10 @@ pub enum PressureGradient {
     /// Lok 1999); bodies loaded by the face law of `fluid_solver::isph::pair_laws::body_faces`.
     #[default]
     CorrectedDifference,
-    /// The uncorrected symmetric form `Σ_j V (p_i + p_j) ∇W_ij` (solids `V (2p_i + Δp_ij) ∇W_ij`),
-    /// whose pair term is also the walls' and the bodies' load: momentum closes pair by pair.
-    /// Measured to hold the hydrostatic tank only at `influence_radius = 2.0` (README).
+    /// The uncorrected symmetric form `Σ_j V (p_i + p_j) ∇W_ij` (walls `V (2p_i + Δp_ij) ∇W_ij`),
+    /// whose pair term is also the walls' load; with a body neighbour the pair term is the body's
+    /// face-law share: momentum closes pair by pair. Accepted only with `influence_radius` in
+    /// [`SYMMETRIC_SUPPORT`]; measured to hold the hydrostatic tank at 2.0 (README).
     Symmetric,
 }
 
@@ -323,6 +324,12 @@ pub struct IsphConfig {
     #[serde(default)]
     pub pressure_gradient: PressureGradient,
 }
+
+/// The kernel supports (spacings) at which `pressure_gradient = "symmetric"` is accepted: where
+/// a column or a plane of the particle lattice sliding along itself is pushed back by the
+/// symmetric form's zero-order term (both lattice sums κ ≥ 0.02 /Δs²,
+/// `fluid-solver/tests/isph_lattice_modes.rs`; the tank held at 2.0, failed at 2.4 and 3.0).
+pub const SYMMETRIC_SUPPORT: (f64, f64) = (1.95, 2.15);
 
 impl Default for IsphConfig {
     fn default() -> IsphConfig {
@@ -369,6 +376,18 @@ impl IsphConfig {
                 format!(
                     "must be in [1.5, wall_layers − 0.5 = {}] spacings (a fluid particle half a spacing off a wall must see only wall particles behind it), got {}",
                     layers - 0.5,
+                    self.influence_radius
+                ),
+            ));
+        }
+        let (lo, hi) = SYMMETRIC_SUPPORT;
+        if self.pressure_gradient == PressureGradient::Symmetric
+            && !(self.influence_radius >= lo && self.influence_radius <= hi)
+        {
+            return Err(FieldError::new(
+                k("influence_radius"),
+                format!(
+                    "must be in [{lo}, {hi}] spacings with pressure_gradient = \"symmetric\" (outside it a sliding column or plane of particles is not pushed back and a tank at rest comes apart: at S2's 2.4 the 1 s tank's edge columns rose at 0.12 m/s), got {}; set influence_radius = 2.0 or use pressure_gradient = \"corrected-difference\"",
                     self.influence_radius
                 ),
             ));
