@@ -3,7 +3,7 @@
 //! unknowns. For each: unknowns, the first solve (from the initial pressure, in
 //! `FluidSolver::new`) and the solves of the following steps (warm-started from the last
 //! pressure): iterations, seconds per solve and the relative residual reached against the case's
-//! tolerance, for Jacobi-PCG and block-SGS-PCG. Jacobi-PCG's iterations grow as the condition number's square root, ∝ 1/Δs ∝
+//! tolerance, for Jacobi-PCG, block-SGS-PCG and two-level PCG. Jacobi-PCG's iterations grow as the condition number's square root, ∝ 1/Δs ∝
 //! n^(1/3), and its time per solve as n^(4/3).
 //!
 //! `cargo bench -p fluid-solver --bench ppe_scaling -- [--large] [steps]` (default 2 steps).
@@ -79,6 +79,7 @@ fn main() {
         [
             ("jacobi-pcg", PpeSolver::JacobiPcg),
             ("sgs-pcg", PpeSolver::SgsPcg),
+            ("two-level", PpeSolver::TwoLevelPcg),
         ]
         .map(|s| (ds, s))
     }) {

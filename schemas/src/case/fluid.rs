@@ -276,6 +276,10 @@ pub enum PpeSolver {
     /// Conjugate gradient preconditioned by symmetric Gauss–Seidel within fixed blocks of rows
     /// (block Jacobi between them), warm-started from the last pressure.
     SgsPcg,
+    /// Conjugate gradient preconditioned by a two-level method: damped Jacobi smoothing and an
+    /// exact coarse correction on aggregates of neighbour-search cells, warm-started from the last
+    /// pressure.
+    TwoLevelPcg,
 }
 
 /// The pressure gradient of ISPH's momentum equation (issue 12; see
@@ -301,7 +305,7 @@ pub enum PressureGradient {
 /// influence_radius = 2.4    # kernel support in spacings (S2, Table 1)
 /// ppe_tolerance = 1e-6      # relative residual |r|/|b| the PPE must reach every step
 /// ppe_max_iterations = 1000 # beyond this the run stops with the residual
-/// ppe_solver = "jacobi-pcg" # or "faer-cholesky", "sgs-pcg"
+/// ppe_solver = "jacobi-pcg" # or "faer-cholesky", "sgs-pcg", "two-level-pcg"
 /// wall_slip = "free-slip"   # or "no-slip"
 /// pressure_gradient = "corrected-difference" # or "symmetric" (with influence_radius = 2.0)
 /// ```
