@@ -17,7 +17,7 @@
 //! `cargo bench -p fluid-solver --bench isph_vs_emps -- [spacing] [end time] [ppe solver]
 //! [--s2] [--only=isph|emps] [--probe-log=PREFIX] [--alpha-d=α] [--gradient=symmetric]
 //! [--radius=r_e/Δs]`; defaults Δs = L/20 = 0.0073 m (8 000 fluid particles), 0.5 s (past
-//! the impact on the far wall at about 0.3 s), "jacobi-pcg" (or "sgs-pcg", "faer-cholesky", "two-level-pcg"), S2's α_d = 5e-3, ISPH's
+//! the impact on the far wall at about 0.3 s), "two-level-pcg" (or "jacobi-pcg", "sgs-pcg", "faer-cholesky"), S2's α_d = 5e-3, ISPH's
 //! pressure gradient "corrected-difference" (`--gradient=symmetric`: the case key
 //! `isph.pressure_gradient`) at a support of 2.4 Δs (`--radius`: `isph.influence_radius`). `--s2` is S2's
 //! scale (Table 1): Δs = 5 mm and a slab 76 Δs deep, 127 832 fluid particles (S2: 128 000).
@@ -158,8 +158,8 @@ fn main() {
     let solver = match args.get(2).map(|s| s.as_str()) {
         Some("faer-cholesky") => PpeSolver::FaerCholesky,
         Some("sgs-pcg") => PpeSolver::SgsPcg,
-        Some("two-level-pcg") => PpeSolver::TwoLevelPcg,
-        _ => PpeSolver::JacobiPcg,
+        Some("jacobi-pcg") => PpeSolver::JacobiPcg,
+        _ => PpeSolver::TwoLevelPcg,
     };
     let log = all
         .iter()

@@ -183,28 +183,35 @@ impl Cycle {
         }
         // Row I of the stored part: `(A_c)_II` and `U_IJ = Σ_{i∈I, j∈J, j>i} A_ij` for J ≠ I;
         // `(A_c)_IJ = U_IJ + U_JI` (A symmetric).
+        // `slot[J]` is J's place in the row being summed (u32::MAX: none yet), one table per task.
         let rows: Vec<(f64, Vec<(u32, f64)>)> = (0..nc)
             .into_par_iter()
-            .map(|g| {
-                let (mut diag, mut within, mut out) = (0.0, 0.0, Vec::<(u32, f64)>::new());
-                for &i in &members[first[g]..first[g + 1]] {
-                    let i = i as usize;
-                    diag += a.diag[i];
-                    let (s, e) = (a.start[i] as usize, a.start[i + 1] as usize);
-                    for (&c, &v) in a.col[s..e].iter().zip(&a.val[s..e]) {
-                        let h = a.aggregate[c as usize];
-                        let v = f64::from(v);
-                        if h as usize == g {
-                            within += v;
-                        } else if let Some(e) = out.iter_mut().find(|e| e.0 == h) {
-                            e.1 += v;
-                        } else {
-                            out.push((h, v));
+            .with_min_len(64)
+            .map_init(
+                || vec![u32::MAX; nc],
+                |slot, g| {
+                    let (mut diag, mut within, mut out) = (0.0, 0.0, Vec::<(u32, f64)>::new());
+                    for &i in &members[first[g]..first[g + 1]] {
+                        let i = i as usize;
+                        diag += a.diag[i];
+                        let (s, e) = (a.start[i] as usize, a.start[i + 1] as usize);
+                        for (&c, &v) in a.col[s..e].iter().zip(&a.val[s..e]) {
+                            let h = a.aggregate[c as usize];
+                            let v = f64::from(v);
+                            if h as usize == g {
+                                within += v;
+                            } else if slot[h as usize] == u32::MAX {
+                                slot[h as usize] = out.len() as u32;
+                                out.push((h, v));
+                            } else {
+                                out[slot[h as usize] as usize].1 += v;
+                            }
                         }
                     }
-                }
-                (diag + 2.0 * within, out)
-            })
+                    out.iter().for_each(|e| slot[e.0 as usize] = u32::MAX);
+                    (diag + 2.0 * within, out)
+                },
+            )
             .collect();
         // Lower triangle in compressed columns: column I holds the diagonal, then rows J > I.
         let mut col_ptr = vec![0usize; nc + 1];
