@@ -8,7 +8,8 @@
 //! resampled at ISPH's Δt, and the RMS of the high-passed signal (minus its moving average over
 //! 11 ISPH steps).
 //!
-//! Then each method's stages (the step's stage timers) with their share, and the load average
+//! Then ISPH's PPE iterations per step in windows of 0.05 s of simulated time (before and after
+//! the impact), each method's stages (the step's stage timers) with their share, and the load average
 //! before and after and the process's CPU time (wall times on a shared machine mean little
 //! without them; "per CPU-s × threads" is the rate the threads would give with the cores to
 //! themselves).
@@ -16,7 +17,7 @@
 //! `cargo bench -p fluid-solver --bench isph_vs_emps -- [spacing] [end time] [ppe solver]
 //! [--s2] [--only=isph|emps] [--probe-log=PREFIX] [--alpha-d=α] [--gradient=symmetric]
 //! [--radius=r_e/Δs]`; defaults Δs = L/20 = 0.0073 m (8 000 fluid particles), 0.5 s (past
-//! the impact on the far wall at about 0.3 s), "jacobi-pcg" (or "sgs-pcg", "faer-cholesky"), S2's α_d = 5e-3, ISPH's
+//! the impact on the far wall at about 0.3 s), "two-level-pcg" (or "jacobi-pcg", "sgs-pcg", "faer-cholesky"), S2's α_d = 5e-3, ISPH's
 //! pressure gradient "corrected-difference" (`--gradient=symmetric`: the case key
 //! `isph.pressure_gradient`) at a support of 2.4 Δs (`--radius`: `isph.influence_radius`). `--s2` is S2's
 //! scale (Table 1): Δs = 5 mm and a slab 76 Δs deep, 127 832 fluid particles (S2: 128 000).
@@ -58,6 +59,9 @@ fn case(ds: f64, layers: f64) -> FluidConfig {
     cfg
 }
 
+/// Window of simulated time over which the PPE iterations per step are averaged [s].
+const WINDOW: f64 = 0.05;
+
 struct Row {
     name: String,
     stages: Vec<(&'static str, f64)>,
@@ -72,6 +76,8 @@ struct Row {
     ppe_share: f64,
     /// The far-wall probe after each step.
     probe: Series,
+    /// (time, PPE iterations) of each step.
+    ppe_per_step: Vec<(f64, u64)>,
 }
 
 fn run(name: &str, cfg: &FluidConfig, end: f64, log: Option<&str>) -> Row {
@@ -98,11 +104,14 @@ fn run(name: &str, cfg: &FluidConfig, end: f64, log: Option<&str>) -> Row {
     ));
     let start = Instant::now();
     let cpu0 = cpu_seconds();
+    let mut ppe_per_step = Vec::new();
     while let Some(dt) = solver.next_step_towards(end) {
+        let before = solver.totals().ppe_iterations;
         if let Err(e) = solver.step(dt) {
             eprintln!("{name}: {e}");
             break;
         }
+        ppe_per_step.push((solver.time(), solver.totals().ppe_iterations - before));
         let p = probes::sample(&probe, solver.particles(), solver.kernel(), &tank);
         series.0.push((solver.time(), p));
         if let Some(log) = &mut log {
@@ -129,6 +138,7 @@ fn run(name: &str, cfg: &FluidConfig, end: f64, log: Option<&str>) -> Row {
             0.0
         },
         probe: series,
+        ppe_per_step,
     }
 }
 
@@ -148,7 +158,8 @@ fn main() {
     let solver = match args.get(2).map(|s| s.as_str()) {
         Some("faer-cholesky") => PpeSolver::FaerCholesky,
         Some("sgs-pcg") => PpeSolver::SgsPcg,
-        _ => PpeSolver::JacobiPcg,
+        Some("jacobi-pcg") => PpeSolver::JacobiPcg,
+        _ => PpeSolver::TwoLevelPcg,
     };
     let log = all
         .iter()
@@ -240,6 +251,27 @@ fn main() {
             s.high_pass_rms(h),
             s.max()
         );
+    }
+    println!("PPE iterations per step by {WINDOW} s of simulated time (the front meets the far wall at about 0.3 s):");
+    for row in rows
+        .iter()
+        .filter(|r| !r.ppe_per_step.is_empty() && r.ppe_iterations > 0)
+    {
+        let windows = (row.reached / WINDOW).ceil() as usize;
+        let line: Vec<String> = (0..windows)
+            .map(|w| {
+                let (lo, hi) = (w as f64 * WINDOW, (w + 1) as f64 * WINDOW);
+                let its: Vec<u64> = row
+                    .ppe_per_step
+                    .iter()
+                    .filter(|(t, _)| *t > lo && *t <= hi)
+                    .map(|p| p.1)
+                    .collect();
+                let mean = its.iter().sum::<u64>() as f64 / its.len().max(1) as f64;
+                format!("{lo:.2}–{hi:.2}: {mean:.1}")
+            })
+            .collect();
+        println!("  {}  {}", row.name, line.join("  "));
     }
     for row in &rows {
         let total: f64 = row.stages.iter().map(|s| s.1).sum();

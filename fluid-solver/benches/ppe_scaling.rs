@@ -3,10 +3,12 @@
 //! unknowns. For each: unknowns, the first solve (from the initial pressure, in
 //! `FluidSolver::new`) and the solves of the following steps (warm-started from the last
 //! pressure): iterations, seconds per solve and the relative residual reached against the case's
-//! tolerance, for Jacobi-PCG and block-SGS-PCG. Jacobi-PCG's iterations grow as the condition number's square root, ∝ 1/Δs ∝
-//! n^(1/3), and its time per solve as n^(4/3).
+//! tolerance, for Jacobi-PCG, block-SGS-PCG and two-level PCG. Jacobi-PCG's iterations grow as
+//! the condition number's square root, ∝ 1/Δs ∝ n^(1/3), and its time per solve as n^(4/3); the
+//! two-level one's stay about constant (its coarse matrix grows with n).
 //!
-//! `cargo bench -p fluid-solver --bench ppe_scaling -- [--large] [steps]` (default 2 steps).
+//! `cargo bench -p fluid-solver --bench ppe_scaling -- [--large] [--only=SOLVER] [steps]` (default 2
+//! steps; `--only=` one of the table's solver names).
 
 use fluid_solver::method::MethodState;
 use fluid_solver::{FluidSolver, Kind};
@@ -60,6 +62,7 @@ fn last_solve(s: &FluidSolver) -> (u32, f64, usize) {
 fn main() {
     let all: Vec<String> = std::env::args().skip(1).collect();
     let large = all.iter().any(|a| a == "--large");
+    let only = all.iter().find_map(|a| a.strip_prefix("--only="));
     let steps: u64 = all
         .iter()
         .filter(|a| !a.starts_with("--"))
@@ -75,13 +78,18 @@ fn main() {
         rayon::current_num_threads()
     );
     println!("solver      Δs [m]    fluid    unknowns  solve       iterations  PPE wall [s]  step CPU [s]  residual  tolerance  load");
-    for (ds, (name, solver)) in spacings.iter().flat_map(|&ds| {
-        [
-            ("jacobi-pcg", PpeSolver::JacobiPcg),
-            ("sgs-pcg", PpeSolver::SgsPcg),
-        ]
-        .map(|s| (ds, s))
-    }) {
+    for (ds, (name, solver)) in spacings
+        .iter()
+        .flat_map(|&ds| {
+            [
+                ("jacobi-pcg", PpeSolver::JacobiPcg),
+                ("sgs-pcg", PpeSolver::SgsPcg),
+                ("two-level", PpeSolver::TwoLevelPcg),
+            ]
+            .map(|s| (ds, s))
+        })
+        .filter(|(_, (name, _))| only.is_none_or(|o| o == *name))
+    {
         let cfg = case(ds, solver);
         let tol = cfg.isph.map_or(0.0, |c| c.ppe_tolerance);
         let (t, cpu0) = (Instant::now(), cpu_seconds());

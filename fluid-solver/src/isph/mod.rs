@@ -7,6 +7,7 @@
 //! - [`free_surface`]: Marrone's λ_min thresholds and geometric scan (S2-10 … S2-13);
 //! - [`walls`]: particle walls with Adami's pressure extrapolation;
 //! - [`ppe`]: the pressure Poisson equation (S2-5) and its solvers;
+//! - [`ppe_two_level`]: its CG with a two-level (aggregation) preconditioner;
 //! - [`pair_laws`]: the fluid–body pair forces;
 //! - [`step`]: one time step, S2-3 … S2-5, as a list of named stages.
 
@@ -16,5 +17,6 @@ pub mod neighbour_list;
 pub mod operators;
 pub mod pair_laws;
 pub mod ppe;
+pub mod ppe_two_level;
 pub mod step;
 pub mod walls;

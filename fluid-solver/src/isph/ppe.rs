@@ -16,12 +16,13 @@
 //! (the unknowns are in cell order, so a row's columns lie within a few layers of cells): the
 //! even chunks in parallel, then the odd ones, each writing only its own and the next chunk.
 //!
-//! Three solvers ([`schemas::case::fluid::PpeSolver`]): a Jacobi-preconditioned CG over the rows
+//! Four solvers ([`schemas::case::fluid::PpeSolver`]): a Jacobi-preconditioned CG over the rows
 //! in rayon, warm-started from the last step's pressure (its dot products summed in fixed chunks,
 //! so a run is bit-reproducible); the same CG preconditioned by symmetric Gauss–Seidel within
 //! fixed blocks of [`CHUNK`] rows (block Jacobi between blocks, so the blocks run in parallel and
-//! the result does not depend on the thread count); and faer's sparse Cholesky factorisation of
-//! A. All must reach `|b − A p| ≤ tol |b|`, else the step fails with [`PpeFailure`].
+//! the result does not depend on the thread count); faer's sparse Cholesky factorisation of
+//! A; and CG with a two-level (aggregation) preconditioner, in [`super::ppe_two_level`]. All must
+//! reach `|b − A p| ≤ tol |b|`, else the step fails with [`PpeFailure`].
 
 use rayon::prelude::*;
 use schemas::case::fluid::PpeSolver;
@@ -30,7 +31,7 @@ use schemas::case::fluid::PpeSolver;
 pub const NOT_AN_UNKNOWN: u32 = u32::MAX;
 
 /// Fixed chunk of the reductions (independent of the thread count, for reproducible sums).
-const CHUNK: usize = 4096;
+pub(super) const CHUNK: usize = 4096;
 
 /// The assembled system `A p = b` over the unknowns.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -46,6 +47,8 @@ pub struct PpeSystem {
     pub val: Vec<f32>,
     pub diag: Vec<f64>,
     pub rhs: Vec<f64>,
+    /// Aggregate of each unknown for [`super::ppe_two_level`] (filled only for that solver).
+    pub aggregate: Vec<u32>,
 }
 
 /// A PPE that did not reach its tolerance.
@@ -86,7 +89,7 @@ impl PpeSystem {
     }
 
     /// [`PpeSystem::apply`] with the chunk length `span`.
-    fn apply_with(&self, span: usize, x: &[f64], out: &mut [f64]) {
+    pub(super) fn apply_with(&self, span: usize, x: &[f64], out: &mut [f64]) {
         let n = self.len();
         for phase in 0..2 {
             let offset = phase * span;
@@ -118,7 +121,7 @@ impl PpeSystem {
 
     /// The chunk length of [`PpeSystem::apply`]: the bandwidth `max (c − r)` rounded up to a
     /// multiple of [`CHUNK`] (at least one).
-    fn span(&self) -> usize {
+    pub(super) fn span(&self) -> usize {
         let band = (0..self.len())
             .into_par_iter()
             .with_min_len(CHUNK)
@@ -143,6 +146,7 @@ impl PpeSystem {
             PpeSolver::JacobiPcg => self.jacobi_pcg(x, tol, max_iterations),
             PpeSolver::FaerCholesky => self.faer_cholesky(x, tol),
             PpeSolver::SgsPcg => self.sgs_pcg(x, tol, max_iterations),
+            PpeSolver::TwoLevelPcg => super::ppe_two_level::solve(self, x, tol, max_iterations),
         }
     }
 
@@ -374,7 +378,7 @@ impl PpeSystem {
 }
 
 /// `Σ a_i b_i`, summed in fixed chunks (reproducible).
-fn dot(a: &[f64], b: &[f64]) -> f64 {
+pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
     let parts: Vec<f64> = a
         .par_chunks(CHUNK)
         .zip(b.par_chunks(CHUNK))
@@ -423,13 +427,13 @@ fn dot_fn(n: usize, f: impl Fn(usize) -> f64 + Sync) -> f64 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
     /// The 7-point Laplacian of an m³ grid with Dirichlet boundaries (diagonal 6, neighbours −1;
     /// the upper triangle stored):
     /// symmetric positive definite, like the PPE; m = 17 gives 4 913 unknowns, two SGS blocks.
-    fn laplacian(m: usize) -> PpeSystem {
+    pub(crate) fn laplacian(m: usize) -> PpeSystem {
         let n = m * m * m;
         let mut s = PpeSystem {
             start: vec![0],
@@ -458,15 +462,27 @@ mod tests {
         s
     }
 
+    /// Aggregates of the m³ grid of [`laplacian`]: blocks of k³ points.
+    pub(crate) fn block_aggregates(m: usize, k: usize) -> Vec<u32> {
+        let b = m.div_ceil(k);
+        (0..m * m * m)
+            .map(|i| {
+                let (x, y, z) = (i % m, (i / m) % m, i / (m * m));
+                (x / k + b * (y / k + b * (z / k))) as u32
+            })
+            .collect()
+    }
+
     #[test]
     fn every_solver_reaches_the_tolerance_and_they_agree() {
-        let a = laplacian(17);
+        let mut a = laplacian(17);
+        a.aggregate = block_aggregates(17, 3);
         let tol = 1e-8;
         let mut reference = vec![0.0; a.len()];
         let chol = a.solve(PpeSolver::FaerCholesky, &mut reference, tol, 1).unwrap();
         assert!(chol.residual <= tol);
         let norm = reference.iter().map(|v| v * v).sum::<f64>().sqrt();
-        for solver in [PpeSolver::JacobiPcg, PpeSolver::SgsPcg] {
+        for solver in [PpeSolver::JacobiPcg, PpeSolver::SgsPcg, PpeSolver::TwoLevelPcg] {
             let mut x = vec![0.0; a.len()];
             let report = a.solve(solver, &mut x, tol, 1000).unwrap();
             // The solver's own residual is the one it reports, and it meets the tolerance.

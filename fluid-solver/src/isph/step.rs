@@ -29,6 +29,7 @@ use super::neighbour_list::NeighbourList;
 use super::operators;
 use super::pair_laws;
 use super::ppe::{PpeFailure, PpeReport, PpeSystem, NOT_AN_UNKNOWN};
+use super::ppe_two_level;
 use super::walls::{self, NeumannPair};
 use crate::collision::{self, COLLISION_DISTANCE, RESTITUTION};
 use crate::kind::{Kind, FLUID};
@@ -40,7 +41,7 @@ use crate::physics::Physics;
 use crate::stage_timer::StageTimes;
 use crate::vector_field::VectorField;
 use rayon::prelude::*;
-use schemas::case::fluid::{IsphConfig, PressureGradient, WallSlip};
+use schemas::case::fluid::{IsphConfig, PpeSolver, PressureGradient, WallSlip};
 
 /// Unknowns per block of the parallel PPE assembly.
 const ROW_BLOCK: usize = 256;
@@ -211,6 +212,7 @@ impl IsphStep {
         self.predict_velocity(p, dt); // S2-3
         let t = self.times.lap(t, "viscous and prediction");
         self.assemble(p, state, dt); // S2-5
+        self.aggregate(grid);
         let t = self.times.lap(t, "PPE assembly");
         state.ppe = self.solve_ppe(p)?;
         totals.ppe_iterations = state.ppe.iterations;
@@ -284,6 +286,7 @@ impl IsphStep {
         let v = (p.vx.clone(), p.vy.clone(), p.vz.clone());
         self.predict_velocity_by_gravity(p, dt);
         self.assemble(p, state, dt);
+        self.aggregate(grid);
         let solved = self.solve_ppe(p);
         self.wall_pressure(p, dt);
         let walls = NeumannPair {
@@ -502,6 +505,13 @@ impl IsphStep {
             d.copy_from_slice(&b.diag);
             r.copy_from_slice(&b.rhs);
         });
+    }
+
+    /// The unknowns' aggregates by cells, for the two-level solver only.
+    fn aggregate(&mut self, grid: &CellGrid) {
+        if self.settings.ppe_solver == PpeSolver::TwoLevelPcg {
+            ppe_two_level::aggregate_by_cells(grid, &mut self.ppe);
+        }
     }
 
     /// Solves the PPE warm-started from the particles' pressure and writes the fluid pressures

@@ -268,14 +268,19 @@ pub enum WallSlip {
 #[serde(rename_all = "kebab-case")]
 pub enum PpeSolver {
     /// Jacobi-preconditioned conjugate gradient on the neighbour list, warm-started from the last
-    /// pressure (the faster one measured, see the README).
-    #[default]
+    /// pressure (the default until the two-level one was measured faster, see the README).
     JacobiPcg,
     /// faer's sparse Cholesky factorisation of the assembled matrix, every step.
     FaerCholesky,
     /// Conjugate gradient preconditioned by symmetric Gauss–Seidel within fixed blocks of rows
     /// (block Jacobi between them), warm-started from the last pressure.
     SgsPcg,
+    /// Conjugate gradient preconditioned by a two-level method: damped Jacobi smoothing and an
+    /// exact coarse correction on aggregates of neighbour-search cells, warm-started from the last
+    /// pressure (the faster one measured, before and after a dam break's impact: README section
+    /// "ISPH: a two-level preconditioner for the PPE").
+    #[default]
+    TwoLevelPcg,
 }
 
 /// The pressure gradient of ISPH's momentum equation (issue 12; see
@@ -302,7 +307,7 @@ pub enum PressureGradient {
 /// influence_radius = 2.4    # kernel support in spacings (S2, Table 1)
 /// ppe_tolerance = 1e-6      # relative residual |r|/|b| the PPE must reach every step
 /// ppe_max_iterations = 1000 # beyond this the run stops with the residual
-/// ppe_solver = "jacobi-pcg" # or "faer-cholesky", "sgs-pcg"
+/// ppe_solver = "two-level-pcg" # or "jacobi-pcg", "faer-cholesky", "sgs-pcg"
 /// wall_slip = "free-slip"   # or "no-slip"
 /// pressure_gradient = "corrected-difference" # or "symmetric" (with influence_radius = 2.0)
 /// ```

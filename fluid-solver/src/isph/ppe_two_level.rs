@@ -1,0 +1,432 @@
+//! Conjugate gradients on the PPE ([`super::ppe`]) preconditioned by a two-level method: a
+//! damped-Jacobi smoother and an exact coarse-grid correction on aggregates of neighbouring
+//! unknowns (`ppe_solver = "two-level-pcg"`).
+//!
+//! The method is unsmoothed (plain) aggregation as in Saad 2003, §13.2 – 13.5 (the two-grid
+//! cycle and its Galerkin coarse operator) and Notay 2010 (Electron. Trans. Numer. Anal. 37,
+//! "An aggregation-based algebraic multigrid method": piecewise-constant prolongation as the
+//! preconditioner of a Krylov method), with geometric aggregates instead of Notay's pairwise
+//! matching: the unknowns of each block of [`AGGREGATE_CELLS`]³ neighbour-search cells form one
+//! aggregate ([`aggregate_by_cells`]), so an aggregate is a compact group of about
+//! (1.05 × [`AGGREGATE_CELLS`])³ particles whatever the shape of the water. P is the n × n_c
+//! matrix with `P_iI = 1` when unknown i lies in aggregate I; the coarse matrix
+//! `A_c = Pᵀ A P` (Saad 2003, eq. 13.36) is summed every step from the stored upper triangle and
+//! factorised by faer's sparse Cholesky (AMD ordering, symbolic and numeric every step, sequential).
+//!
+//! The preconditioner is the multiplicative two-grid cycle V(1,1) (Saad 2003, Alg. 13.2 with one
+//! pre- and one post-smoothing step), applied to r from z = 0:
+//!
+//! 1. `z = ω D⁻¹ r` (pre-smoothing),
+//! 2. `z += P A_c⁻¹ Pᵀ (r − A z)` (coarse correction),
+//! 3. `z += ω D⁻¹ (r − A z)` (post-smoothing, the same smoother).
+//!
+//! Its error propagator is `E = (I − ωD⁻¹A)(I − P A_c⁻¹ Pᵀ A)(I − ωD⁻¹A)`, so `M⁻¹ = (I − E)A⁻¹`.
+//! Symmetry: `(I − ωD⁻¹A)` and `(I − P A_c⁻¹ PᵀA)` are self-adjoint in the A inner product and
+//! the product `S C S` of self-adjoint factors in mirrored order is self-adjoint too, so `M⁻¹` is
+//! symmetric. Positive definiteness: `C` is an A-orthogonal projector (`‖C‖_A ≤ 1`) and the
+//! smoother contracts in the A norm when `2D/ω − A` is positive definite, i.e. when
+//! `λ_max(D⁻¹A) < 2/ω`; by Gershgorin `λ_max(D⁻¹A) ≤ 2` for the PPE (diagonal
+//! `A_ii = Σ_j F_ij ≥ Σ_{j unknown} |A_ij|`), so ω = [`OMEGA`] < 1 makes `‖E‖_A < 1` and
+//! `M⁻¹ = (I − E)A⁻¹` positive definite: preconditioned CG applies (Saad 2003, Alg. 9.1).
+//! Each iteration costs three products with A (CG's and two in the cycle), one coarse solve and
+//! the vector updates.
+//!
+//! Contract as the other solvers: warm start from `x`, `|b − A x| ≤ tol |b|` or [`PpeFailure`],
+//! iterations reported; every reduction is summed per fixed chunk or aggregate in a fixed order
+//! and the coarse factorisation and solve are sequential, so a run is bit-reproducible whatever
+//! the thread count. A coarse matrix that is not numerically positive definite (water with no
+//! free-surface neighbour anywhere, where A is singular too) is solved by Jacobi-PCG instead.
+
+use super::ppe::{dot, PpeFailure, PpeReport, PpeSystem, CHUNK};
+use crate::neighbour_search::CellGrid;
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymmetricOrdering,
+};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{Conj, Mat, Par, Side};
+use rayon::prelude::*;
+
+/// Neighbour-search cells per edge of an aggregate (measured, README section "ISPH: a
+/// two-level preconditioner for the PPE").
+pub const AGGREGATE_CELLS: usize = 3;
+
+/// Damping ω of the Jacobi smoother: below 1 for positive definiteness (module doc).
+pub const OMEGA: f64 = 2.0 / 3.0;
+
+/// Numbers the unknowns' aggregates: the blocks of [`AGGREGATE_CELLS`]³ cells of `grid`, in the
+/// order the unknowns first meet them (the particles must be sorted by `grid`).
+pub fn aggregate_by_cells(grid: &CellGrid, ppe: &mut PpeSystem) {
+    let (_, _, dims) = grid.geometry();
+    let k = AGGREGATE_CELLS;
+    let blocks = dims.map(|d| d.div_ceil(k));
+    let mut id = vec![u32::MAX; blocks[0] * blocks[1] * blocks[2]];
+    let mut count = 0;
+    ppe.aggregate.clear();
+    for &i in &ppe.particle {
+        let c = grid.cell(i as usize) as usize;
+        let (x, y, z) = (c % dims[0], (c / dims[0]) % dims[1], c / (dims[0] * dims[1]));
+        let b = &mut id[x / k + blocks[0] * (y / k + blocks[1] * (z / k))];
+        if *b == u32::MAX {
+            *b = count;
+            count += 1;
+        }
+        ppe.aggregate.push(*b);
+    }
+}
+
+/// Solves `A x = b` by CG with the two-level preconditioner (module doc), from the warm start
+/// `x`; `a.aggregate` must number the unknowns' aggregates from 0 ([`aggregate_by_cells`]).
+pub fn solve(a: &PpeSystem, x: &mut [f64], tol: f64, max_iterations: u32) -> Result<PpeReport, PpeFailure> {
+    let n = a.len();
+    assert_eq!(a.aggregate.len(), n, "two-level PCG without aggregates");
+    let b2 = dot(&a.rhs, &a.rhs);
+    if b2 == 0.0 {
+        x.iter_mut().for_each(|v| *v = 0.0);
+        return Ok(PpeReport {
+            iterations: 0,
+            residual: 0.0,
+            unknowns: n,
+        });
+    }
+    let Some(mut cycle) = Cycle::new(a) else {
+        return a.solve(schemas::case::fluid::PpeSolver::JacobiPcg, x, tol, max_iterations);
+    };
+    let target2 = tol * tol * b2;
+    let mut r = vec![0.0; n];
+    a.apply_with(cycle.span, x, &mut r);
+    r.par_iter_mut().zip(&a.rhs).for_each(|(r, b)| *r = b - *r);
+    let mut z = vec![0.0; n];
+    let mut rz = cycle.precondition(a, &r, &mut z);
+    let mut d = z.clone();
+    let mut ad = vec![0.0; n];
+    let mut r2 = dot(&r, &r);
+    let mut k = 0;
+    while r2 > target2 {
+        if k == max_iterations || !r2.is_finite() {
+            return Err(PpeFailure {
+                iterations: k,
+                residual: (r2 / b2).sqrt(),
+                unknowns: n,
+            });
+        }
+        a.apply_with(cycle.span, &d, &mut ad);
+        let alpha = rz / dot(&d, &ad);
+        let parts: Vec<f64> = x
+            .par_chunks_mut(CHUNK)
+            .zip(r.par_chunks_mut(CHUNK))
+            .zip(d.par_chunks(CHUNK).zip(ad.par_chunks(CHUNK)))
+            .map(|((x, r), (d, ad))| {
+                for (x, d) in x.iter_mut().zip(d) {
+                    *x += alpha * d;
+                }
+                for (r, a) in r.iter_mut().zip(ad) {
+                    *r -= alpha * a;
+                }
+                r.iter().map(|r| r * r).sum::<f64>()
+            })
+            .collect();
+        r2 = parts.iter().sum();
+        let rz_new = cycle.precondition(a, &r, &mut z);
+        let beta = rz_new / rz;
+        rz = rz_new;
+        d.par_iter_mut()
+            .zip(&z)
+            .with_min_len(CHUNK)
+            .for_each(|(d, z)| *d = z + beta * *d);
+        k += 1;
+    }
+    Ok(PpeReport {
+        iterations: k,
+        residual: (r2 / b2).sqrt(),
+        unknowns: n,
+    })
+}
+
+/// The two-grid cycle of one system: aggregates, the factorised coarse matrix and scratch.
+struct Cycle {
+    /// Chunk length of [`PpeSystem::apply_with`].
+    span: usize,
+    /// `ω / A_ii`.
+    smoother: Vec<f64>,
+    /// Unknowns of aggregate I: `members[first[I] .. first[I + 1]]`, ascending.
+    first: Vec<usize>,
+    members: Vec<u32>,
+    symbolic: SymbolicCholesky<usize>,
+    /// Values of the Cholesky factor of `A_c`.
+    factor: Vec<f64>,
+    /// Coarse right-hand side and solution.
+    coarse: Mat<f64>,
+    stack: MemBuffer,
+    /// `A z` and the residual of the cycle.
+    az: Vec<f64>,
+}
+
+impl Cycle {
+    /// Sums `A_c = Pᵀ A P` and factorises it; `None` if it is not numerically positive definite.
+    fn new(a: &PpeSystem) -> Option<Cycle> {
+        let n = a.len();
+        let nc = a.aggregate.par_iter().max().map_or(0, |&m| m as usize + 1);
+        // Members of each aggregate by a counting sort (ascending within each).
+        let mut first = vec![0usize; nc + 1];
+        for &g in &a.aggregate {
+            first[g as usize + 1] += 1;
+        }
+        for g in 0..nc {
+            first[g + 1] += first[g];
+        }
+        let mut members = vec![0u32; n];
+        let mut next = first.clone();
+        for (i, &g) in a.aggregate.iter().enumerate() {
+            members[next[g as usize]] = i as u32;
+            next[g as usize] += 1;
+        }
+        // Row I of the stored part: `(A_c)_II` and `U_IJ = Σ_{i∈I, j∈J, j>i} A_ij` for J ≠ I;
+        // `(A_c)_IJ = U_IJ + U_JI` (A symmetric).
+        // `slot[J]` is J's place in the row being summed (u32::MAX: none yet), one table per task.
+        let rows: Vec<(f64, Vec<(u32, f64)>)> = (0..nc)
+            .into_par_iter()
+            .with_min_len(64)
+            .map_init(
+                || vec![u32::MAX; nc],
+                |slot, g| {
+                    let (mut diag, mut within, mut out) = (0.0, 0.0, Vec::<(u32, f64)>::new());
+                    for &i in &members[first[g]..first[g + 1]] {
+                        let i = i as usize;
+                        diag += a.diag[i];
+                        let (s, e) = (a.start[i] as usize, a.start[i + 1] as usize);
+                        for (&c, &v) in a.col[s..e].iter().zip(&a.val[s..e]) {
+                            let h = a.aggregate[c as usize];
+                            let v = f64::from(v);
+                            if h as usize == g {
+                                within += v;
+                            } else if slot[h as usize] == u32::MAX {
+                                slot[h as usize] = out.len() as u32;
+                                out.push((h, v));
+                            } else {
+                                out[slot[h as usize] as usize].1 += v;
+                            }
+                        }
+                    }
+                    out.iter().for_each(|e| slot[e.0 as usize] = u32::MAX);
+                    (diag + 2.0 * within, out)
+                },
+            )
+            .collect();
+        // Lower triangle in compressed columns: column I holds the diagonal, then rows J > I.
+        let mut col_ptr = vec![0usize; nc + 1];
+        for (g, (_, out)) in rows.iter().enumerate() {
+            col_ptr[g + 1] += 1;
+            for &(h, _) in out {
+                col_ptr[g.min(h as usize) + 1] += 1;
+            }
+        }
+        for g in 0..nc {
+            col_ptr[g + 1] += col_ptr[g];
+        }
+        let mut entries = vec![(0usize, 0.0f64); col_ptr[nc]];
+        let mut next = col_ptr.clone();
+        for (g, (d, _)) in rows.iter().enumerate() {
+            entries[next[g]] = (g, *d);
+            next[g] += 1;
+        }
+        for (g, (_, out)) in rows.iter().enumerate() {
+            for &(h, v) in out {
+                let (c, r) = (g.min(h as usize), g.max(h as usize));
+                entries[next[c]] = (r, v);
+                next[c] += 1;
+            }
+        }
+        // Sort each column by row and add the pairs (U_IJ, U_JI): two terms, so the sum does not
+        // depend on their order.
+        let mut ptr = vec![0usize; nc + 1];
+        let (mut row_idx, mut values) = (
+            Vec::with_capacity(entries.len()),
+            Vec::with_capacity(entries.len()),
+        );
+        for c in 0..nc {
+            let column = &mut entries[col_ptr[c]..col_ptr[c + 1]];
+            column.sort_unstable_by_key(|e| e.0);
+            for &(r, v) in column.iter() {
+                if row_idx.len() > ptr[c] && row_idx.last() == Some(&r) {
+                    *values.last_mut()? += v;
+                } else {
+                    row_idx.push(r);
+                    values.push(v);
+                }
+            }
+            ptr[c + 1] = row_idx.len();
+        }
+        let pattern = SymbolicSparseColMatRef::new_checked(nc, nc, &ptr, None, &row_idx);
+        let symbolic =
+            factorize_symbolic_cholesky(pattern, Side::Lower, SymmetricOrdering::Amd, Default::default())
+                .ok()?;
+        let mut factor = vec![0.0; symbolic.len_val()];
+        let mut scratch =
+            MemBuffer::new(symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()));
+        symbolic
+            .factorize_numeric_llt(
+                &mut factor,
+                SparseColMatRef::new(pattern, &values),
+                Side::Lower,
+                Default::default(),
+                Par::Seq,
+                MemStack::new(&mut scratch),
+                Default::default(),
+            )
+            .ok()?;
+        let stack = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
+        Some(Cycle {
+            span: a.span(),
+            smoother: a.diag.par_iter().map(|d| OMEGA / d).collect(),
+            first,
+            members,
+            symbolic,
+            factor,
+            coarse: Mat::zeros(nc, 1),
+            stack,
+            az: vec![0.0; n],
+        })
+    }
+
+    /// `z = M⁻¹ r` by the V(1,1) cycle of the module doc; returns `r·z` (as [`dot`]).
+    fn precondition(&mut self, a: &PpeSystem, r: &[f64], z: &mut [f64]) -> f64 {
+        z.par_iter_mut()
+            .zip(r)
+            .zip(&self.smoother)
+            .with_min_len(CHUNK)
+            .for_each(|((z, r), s)| *z = s * r);
+        a.apply_with(self.span, z, &mut self.az);
+        // Restriction of the residual r − A z, aggregate by aggregate in member order.
+        let az = &self.az;
+        let restricted: Vec<f64> = (0..self.first.len() - 1)
+            .into_par_iter()
+            .map(|g| {
+                self.members[self.first[g]..self.first[g + 1]]
+                    .iter()
+                    .map(|&i| r[i as usize] - az[i as usize])
+                    .sum()
+            })
+            .collect();
+        restricted
+            .iter()
+            .enumerate()
+            .for_each(|(g, v)| self.coarse[(g, 0)] = *v);
+        LltRef::new(&self.symbolic, &self.factor).solve_in_place_with_conj(
+            Conj::No,
+            self.coarse.as_mut(),
+            Par::Seq,
+            MemStack::new(&mut self.stack),
+        );
+        let coarse = self.coarse.col(0);
+        z.par_iter_mut()
+            .zip(&a.aggregate)
+            .with_min_len(CHUNK)
+            .for_each(|(z, &g)| *z += coarse[g as usize]);
+        a.apply_with(self.span, z, &mut self.az);
+        z.par_iter_mut()
+            .zip(r)
+            .zip(self.az.par_iter().zip(&self.smoother))
+            .with_min_len(CHUNK)
+            .for_each(|((z, r), (az, s))| *z += s * (r - az));
+        dot(r, z)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::isph::ppe::tests::{block_aggregates, laplacian};
+    use schemas::case::fluid::PpeSolver;
+
+    /// The 7-point Laplacian of an m³ grid as the PPE of a tank: Neumann (no flux) on the bottom
+    /// and the four sides, Dirichlet (p = 0 beyond) only on the top face, so the smallest
+    /// eigenvalue is about m⁻² of the largest, as in a tank whose free surface is its top.
+    fn open_top(m: usize) -> PpeSystem {
+        let mut s = laplacian(m);
+        for (i, d) in s.diag.iter_mut().enumerate() {
+            let (x, y, z) = (i % m, (i / m) % m, i / (m * m));
+            let inside = |c: usize| usize::from(c > 0) + usize::from(c + 1 < m);
+            *d = (inside(x) + inside(y) + inside(z)) as f64 + if z + 1 == m { 1.0 } else { 0.0 };
+        }
+        s
+    }
+
+    /// (iterations, solution) of `solver` from x = 0 to `tol`.
+    fn solved(a: &PpeSystem, solver: PpeSolver, tol: f64) -> (u32, Vec<f64>) {
+        let mut x = vec![0.0; a.len()];
+        let report = a.solve(solver, &mut x, tol, 5000).unwrap();
+        assert!(
+            report.residual <= tol && a.relative_residual(&x) <= 1.01 * tol,
+            "{solver:?}: {report:?}"
+        );
+        (report.iterations, x)
+    }
+
+    #[test]
+    fn two_level_iterations_grow_slower_than_jacobi_and_it_agrees_with_cholesky() {
+        let tol = 1e-8;
+        let mut counts = Vec::new();
+        for m in [12, 24] {
+            let mut a = open_top(m);
+            a.aggregate = block_aggregates(m, AGGREGATE_CELLS);
+            let (jacobi, _) = solved(&a, PpeSolver::JacobiPcg, tol);
+            let (two_level, x) = solved(&a, PpeSolver::TwoLevelPcg, tol);
+            let (_, reference) = solved(&a, PpeSolver::FaerCholesky, tol);
+            // |x − x*| ≤ κ(A) tol |x*| with κ(A) ≤ 12/λ_min, λ_min ≥ 2(1 − cos(π/(2m+1))) (the
+            // 1D Dirichlet–Neumann chain along z): 1.2e3 at m = 24.
+            let kappa = 12.0 / (2.0 * (1.0 - (std::f64::consts::PI / (2 * m + 1) as f64).cos()));
+            let norm = reference.iter().map(|v| v * v).sum::<f64>().sqrt();
+            let err = x
+                .iter()
+                .zip(&reference)
+                .map(|(a, b)| (a - b).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            assert!(err <= kappa * tol * norm, "m = {m}: error {err:e}");
+            println!("m = {m}: Jacobi-PCG {jacobi} iterations, two-level PCG {two_level}");
+            counts.push((jacobi, two_level));
+        }
+        let (small, large) = (counts[0], counts[1]);
+        assert!(large.1 < large.0, "{counts:?}");
+        // Jacobi's count grows as √κ ∝ m; the two-level one's must grow by a smaller factor.
+        assert!(
+            f64::from(large.1) / f64::from(small.1) < f64::from(large.0) / f64::from(small.0),
+            "{counts:?}"
+        );
+    }
+
+    #[test]
+    fn two_level_is_independent_of_the_thread_count_and_warm_starts() {
+        let m = 20;
+        let mut a = open_top(m);
+        a.aggregate = block_aggregates(m, AGGREGATE_CELLS);
+        let run = |threads| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| solved(&a, PpeSolver::TwoLevelPcg, 1e-6))
+        };
+        let (one, two) = (run(1), run(2));
+        assert_eq!(one.0, two.0);
+        assert!(one.1.iter().zip(&two.1).all(|(a, b)| a.to_bits() == b.to_bits()));
+        // From the solution it stops at once; from a solution 1e-3 off, in fewer iterations than
+        // from 0.
+        let mut x = one.1.clone();
+        assert_eq!(
+            a.solve(PpeSolver::TwoLevelPcg, &mut x, 1e-6, 100)
+                .unwrap()
+                .iterations,
+            0
+        );
+        let mut x: Vec<f64> = one
+            .1
+            .iter()
+            .enumerate()
+            .map(|(i, v)| v * (1.0 + 1e-3 * (i as f64).sin()))
+            .collect();
+        let warm = a.solve(PpeSolver::TwoLevelPcg, &mut x, 1e-6, 100).unwrap();
+        assert!(warm.iterations < one.0, "{warm:?} against {} from 0", one.0);
+    }
+}
