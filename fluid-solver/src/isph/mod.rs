@@ -8,6 +8,7 @@
 //! - [`walls`]: particle walls with Adami's pressure extrapolation;
 //! - [`ppe`]: the pressure Poisson equation (S2-5) and its solvers;
 //! - [`pair_laws`]: the fluid–body pair forces;
+//! - [`shifting`]: particle shifting (Lind et al. 2012), a case option;
 //! - [`step`]: one time step, S2-3 … S2-5, as a list of named stages.
 
 pub mod free_surface;
@@ -16,5 +17,6 @@ pub mod neighbour_list;
 pub mod operators;
 pub mod pair_laws;
 pub mod ppe;
+pub mod shifting;
 pub mod step;
 pub mod walls;
