@@ -16,10 +16,11 @@
 //!
 //! `cargo bench -p fluid-solver --bench isph_vs_emps -- [spacing] [end time] [ppe solver]
 //! [--s2] [--only=isph|emps] [--probe-log=PREFIX] [--alpha-d=α] [--gradient=symmetric]
-//! [--radius=r_e/Δs]`; defaults Δs = L/20 = 0.0073 m (8 000 fluid particles), 0.5 s (past
+//! [--radius=r_e/Δs] [--shifting=lind] [--shifting-coefficient=A]`; defaults Δs = L/20 = 0.0073 m (8 000 fluid particles), 0.5 s (past
 //! the impact on the far wall at about 0.3 s), "two-level-pcg" (or "jacobi-pcg", "sgs-pcg", "faer-cholesky"), S2's α_d = 5e-3, ISPH's
 //! pressure gradient "corrected-difference" (`--gradient=symmetric`: the case key
-//! `isph.pressure_gradient`) at a support of 2.4 Δs (`--radius`: `isph.influence_radius`). `--s2` is S2's
+//! `isph.pressure_gradient`) at a support of 2.4 Δs (`--radius`: `isph.influence_radius`), no shifting (`--shifting=lind`: `isph.shifting`, with
+//! `--shifting-coefficient`: `isph.shifting_coefficient`, default 0.5). `--s2` is S2's
 //! scale (Table 1): Δs = 5 mm and a slab 76 Δs deep, 127 832 fluid particles (S2: 128 000).
 //! `--probe-log=PREFIX` writes `PREFIX-emps.csv` and `PREFIX-isph.csv`, one row per step: what the
 //! probe reads and where it comes from ([`probe_log`]).
@@ -27,7 +28,7 @@
 use fluid_solver::probes;
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{
-    FluidConfig, FluidMethodName, IsphConfig, PpeSolver, PressureGradient, ProbeConfig, ProbeKind,
+    FluidConfig, FluidMethodName, IsphConfig, PpeSolver, PressureGradient, ProbeConfig, ProbeKind, Shifting,
 };
 use schemas::case::Case;
 use std::path::PathBuf;
@@ -185,11 +186,22 @@ fn main() {
         .find_map(|a| a.strip_prefix("--radius="))
         .and_then(|a| a.parse().ok())
         .unwrap_or(IsphConfig::default().influence_radius);
+    let shifting = match all.iter().find_map(|a| a.strip_prefix("--shifting=")) {
+        Some("lind") => Shifting::Lind,
+        _ => Shifting::Off,
+    };
+    let shifting_coefficient = all
+        .iter()
+        .find_map(|a| a.strip_prefix("--shifting-coefficient="))
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(IsphConfig::default().shifting_coefficient);
     isph.isph = Some(IsphConfig {
         ppe_solver: solver,
         alpha_d,
         pressure_gradient,
         influence_radius,
+        shifting,
+        shifting_coefficient,
         ..IsphConfig::default()
     });
     isph.time_step = 0.3 * ds / isph.advective_velocity(); // advective Courant 0.3 (limit 0.4)
@@ -200,7 +212,7 @@ fn main() {
         }
     }
     println!(
-        "dam break, Δs = {ds} m, slab {layers} Δs deep, end {end} s, ISPH gradient {pressure_gradient:?} at a support of {influence_radius} Δs, {} threads, load average {}",
+        "dam break, Δs = {ds} m, slab {layers} Δs deep, end {end} s, ISPH gradient {pressure_gradient:?} at a support of {influence_radius} Δs, shifting {shifting:?} (A = {shifting_coefficient}), {} threads, load average {}",
         rayon::current_num_threads(),
         load_average()
     );

@@ -147,6 +147,31 @@ fn other_bad_keys_name_what_is_allowed() {
         e.contains("pressure_gradient") && e.contains("corrected-difference") && e.contains("symmetric"),
         "{e}"
     );
+    // ISPH's particle shifting: one of two names, a coefficient in (0, 6].
+    let shift = |line: &str| {
+        GOOD.replace("time_step = 8.0e-4", "time_step = 8.0e-4\nmethod = \"isph\"")
+            + &format!("\n[fluid.water.isph]\n{line}\n")
+    };
+    parse(&shift("shifting = \"lind\"")).unwrap_or_else(|e| panic!("{e}"));
+    parse(&shift("shifting = \"off\"")).unwrap_or_else(|e| panic!("{e}"));
+    let e = error_of(&shift("shifting = \"xu\""));
+    assert!(
+        e.contains("shifting") && e.contains("off") && e.contains("lind"),
+        "{e}"
+    );
+    let e = error_of(&shift("shifting = \"lind\"\nshifting_coefficient = 0.0"));
+    assert!(
+        e.contains("`fluid.water.isph.shifting_coefficient`") && e.contains("(0, 6]"),
+        "{e}"
+    );
+    let e = error_of(
+        &(shift("shifting = \"lind\"")
+            + "\n[[fluid.water.body]]\nname = \"box\"\nmin = [0.14, 0.06, 0.02]\nmax = [0.18, 0.1, 0.06]\n"),
+    );
+    assert!(
+        e.contains("`fluid.water.isph.shifting`") && e.contains("bodies"),
+        "{e}"
+    );
     let probe =
         format!("{GOOD}\n[[fluid.water.probe]]\nname = \"p\"\nkind = \"pressure\"\nposition = [0.1, 0.1]\n");
     let e = error_of(&probe);

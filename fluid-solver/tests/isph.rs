@@ -12,7 +12,7 @@ use fluid_solver::method::MethodState;
 use fluid_solver::neighbour_search::CellGrid;
 use fluid_solver::particles::Particles;
 use fluid_solver::{FluidSolver, Kind};
-use schemas::case::fluid::{FluidConfig, FluidMethodName, IsphConfig, PpeSolver, PressureGradient};
+use schemas::case::fluid::{FluidConfig, FluidMethodName, IsphConfig, PpeSolver, PressureGradient, Shifting};
 
 /// The hydrostatic tank at CI size with ISPH: Δs = 0.02 m, water H = 0.3 m in a 0.2 × 0.2 m
 /// tank (1500 fluid particles), Δt = 2e-3 s (u Δt/Δs = 0.34, u = 2√(gH)).
@@ -40,6 +40,17 @@ fn isph_tank_symmetric() -> FluidConfig {
     cfg
 }
 
+/// [`isph_tank_symmetric`] with `shifting = "lind"` (the default coefficient).
+fn isph_tank_shifting() -> FluidConfig {
+    let mut cfg = isph_tank_symmetric();
+    cfg.isph = cfg.isph.map(|s| IsphConfig {
+        shifting: Shifting::Lind,
+        ..s
+    });
+    cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
+    cfg
+}
+
 fn surface_flags(solver: &FluidSolver) -> &[u8] {
     match solver.method_state() {
         MethodState::Isph(s) => &s.surface,
@@ -56,6 +67,12 @@ fn isph_pressure_is_rho_g_h_and_the_water_stays_still() {
 #[test]
 fn isph_symmetric_gradient_holds_the_tank() {
     tank_holds_at_0_2_s(&isph_tank_symmetric());
+}
+
+/// The same with particle shifting on the symmetric gradient at 2.0 Δs (same bounds; < 1 s).
+#[test]
+fn isph_shifting_holds_the_tank() {
+    tank_holds_at_0_2_s(&isph_tank_shifting());
 }
 
 fn tank_holds_at_0_2_s(cfg: &FluidConfig) {
@@ -128,6 +145,13 @@ fn isph_tank_stays_still_for_one_second() {
 #[ignore]
 fn isph_symmetric_gradient_tank_stays_still_for_one_second() {
     tank_stays_still_for_one_second(&isph_tank_symmetric());
+}
+
+/// The same with particle shifting on the symmetric gradient at 2.0 Δs (about 5 s in release).
+#[test]
+#[ignore]
+fn isph_shifting_tank_stays_still_for_one_second() {
+    tank_stays_still_for_one_second(&isph_tank_shifting());
 }
 
 fn tank_stays_still_for_one_second(cfg: &FluidConfig) {

@@ -9,6 +9,7 @@
 //! - [`ppe`]: the pressure Poisson equation (S2-5) and its solvers;
 //! - [`ppe_two_level`]: its CG with a two-level (aggregation) preconditioner;
 //! - [`pair_laws`]: the fluid–body pair forces;
+//! - [`shifting`]: particle shifting (Lind et al. 2012), a case option;
 //! - [`step`]: one time step, S2-3 … S2-5, as a list of named stages.
 
 pub mod free_surface;
@@ -18,5 +19,6 @@ pub mod operators;
 pub mod pair_laws;
 pub mod ppe;
 pub mod ppe_two_level;
+pub mod shifting;
 pub mod step;
 pub mod walls;

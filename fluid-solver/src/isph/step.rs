@@ -19,7 +19,9 @@
 //!    per-pair wall pressure of [`super::walls`]);
 //! 6. `v^{n+1} = v* − (Δt/ρ)∇p` (S2-4), `x^{n+1} = x^n + v^{n+1}Δt`; bodies move with their own
 //!    velocity;
-//! 7. the collision stage both methods share ([`crate::collision`]): at the case's time steps no
+//! 7. with `shifting = "lind"`, particle shifting ([`super::shifting`]): the shift's direction
+//!    `−∇C` at r^n, added to x^{n+1} scaled by D from v^{n+1};
+//! 8. the collision stage both methods share ([`crate::collision`]): at the case's time steps no
 //!    pair of a settled or smoothly moving flow comes within its 0.8 Δs, so it acts only on
 //!    violent contacts (jets meeting walls and bodies), as in E-MPS.
 
@@ -30,6 +32,7 @@ use super::operators;
 use super::pair_laws;
 use super::ppe::{PpeFailure, PpeReport, PpeSystem, NOT_AN_UNKNOWN};
 use super::ppe_two_level;
+use super::shifting;
 use super::walls::{self, NeumannPair};
 use crate::collision::{self, COLLISION_DISTANCE, RESTITUTION};
 use crate::kind::{Kind, FLUID};
@@ -41,7 +44,7 @@ use crate::physics::Physics;
 use crate::stage_timer::StageTimes;
 use crate::vector_field::VectorField;
 use rayon::prelude::*;
-use schemas::case::fluid::{IsphConfig, PpeSolver, PressureGradient, WallSlip};
+use schemas::case::fluid::{IsphConfig, PpeSolver, PressureGradient, Shifting, WallSlip};
 
 /// Unknowns per block of the parallel PPE assembly.
 const ROW_BLOCK: usize = 256;
@@ -86,6 +89,8 @@ pub struct IsphStep {
     takes_part: Vec<u8>,
     normals: VectorField,
     accel: VectorField,
+    /// The shift per unit D of every particle ([`shifting::directions`]).
+    shift: VectorField,
     ppe: PpeSystem,
     row_blocks: Vec<RowBlock>,
     solution: Vec<f64>,
@@ -122,6 +127,7 @@ impl IsphStep {
             takes_part: Vec::new(),
             normals: VectorField::default(),
             accel: VectorField::default(),
+            shift: VectorField::default(),
             ppe: PpeSystem::default(),
             row_blocks: Vec::new(),
             solution: Vec::new(),
@@ -259,8 +265,31 @@ impl IsphStep {
             grid,
             p,
         );
+        let shifting = self.settings.shifting == Shifting::Lind;
+        let t = if shifting {
+            let t = self.times.lap(t, "pressure gradient and correction");
+            shifting::directions(
+                &self.kernel,
+                &self.list,
+                p,
+                &self.lambda,
+                &self.takes_part,
+                &self.normals,
+                &mut self.shift,
+            );
+            self.times.lap(t, "shifting")
+        } else {
+            t
+        };
         self.correct(p, dt); // S2-4
         let t = self.times.lap(t, "pressure gradient and correction");
+        let t = if shifting {
+            let a = self.settings.shifting_coefficient;
+            shifting::apply(p, &self.shift, a, &self.kernel, dt);
+            self.times.lap(t, "shifting")
+        } else {
+            t
+        };
         let distance = COLLISION_DISTANCE * self.kernel.spacing;
         let pass = collision::collision(grid, p, distance, RESTITUTION, &mut self.accel);
         bodies(Exchange::Collision, &collision::contact_law(&scales, p), grid, p);
