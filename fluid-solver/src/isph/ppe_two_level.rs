@@ -49,7 +49,7 @@ use rayon::prelude::*;
 
 /// Neighbour-search cells per edge of an aggregate (measured, README section "ISPH: a
 /// two-level preconditioner for the PPE").
-pub const AGGREGATE_CELLS: usize = 3;
+pub const AGGREGATE_CELLS: usize = 4;
 
 /// Damping ω of the Jacobi smoother: below 1 for positive definiteness (module doc).
 pub const OMEGA: f64 = 2.0 / 3.0;
