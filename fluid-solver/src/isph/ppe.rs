@@ -225,6 +225,22 @@ impl PpeSystem {
     /// `M = (D + L) D⁻¹ (D + U)` restricted to each block of [`CHUNK`] rows, L and U the block's
     /// strictly lower and upper parts of A; symmetric positive definite as A is).
     fn sgs_pcg(&self, x: &mut [f64], tol: f64, max_iterations: u32) -> Result<PpeReport, PpeFailure> {
+        let span = self.span();
+        self.preconditioned_cg(span, x, tol, max_iterations, |r, z| self.block_sgs(r, z))
+    }
+
+    /// Preconditioned conjugate gradient (Saad 2003, Alg. 9.1) from the warm start `x`, with
+    /// `precondition(r, z)` setting `z = M⁻¹ r` and returning `r·z`; `span` is the chunk length
+    /// of [`PpeSystem::apply_with`]. Per iteration: `Ad` and `d·Ad`; the updates of x and r
+    /// with `r·r` summed per fixed chunk; the preconditioner; the new direction `d = z + βd`.
+    pub(super) fn preconditioned_cg(
+        &self,
+        span: usize,
+        x: &mut [f64],
+        tol: f64,
+        max_iterations: u32,
+        mut precondition: impl FnMut(&[f64], &mut [f64]) -> f64,
+    ) -> Result<PpeReport, PpeFailure> {
         let n = self.len();
         let b2 = dot(&self.rhs, &self.rhs);
         if b2 == 0.0 {
@@ -236,12 +252,11 @@ impl PpeSystem {
             });
         }
         let target2 = tol * tol * b2;
-        let span = self.span();
         let mut r = vec![0.0; n];
         self.apply_with(span, x, &mut r);
         r.par_iter_mut().zip(&self.rhs).for_each(|(r, b)| *r = b - *r);
         let mut z = vec![0.0; n];
-        let mut rz = self.block_sgs(&r, &mut z);
+        let mut rz = precondition(&r, &mut z);
         let mut d = z.clone();
         let mut ad = vec![0.0; n];
         let mut r2 = dot(&r, &r);
@@ -270,7 +285,7 @@ impl PpeSystem {
                 })
                 .collect();
             r2 = parts.iter().sum();
-            let rz_new = self.block_sgs(&r, &mut z);
+            let rz_new = precondition(&r, &mut z);
             let beta = rz_new / rz;
             rz = rz_new;
             d.par_iter_mut()

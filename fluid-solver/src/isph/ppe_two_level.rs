@@ -78,69 +78,12 @@ pub fn aggregate_by_cells(grid: &CellGrid, ppe: &mut PpeSystem) {
 /// Solves `A x = b` by CG with the two-level preconditioner (module doc), from the warm start
 /// `x`; `a.aggregate` must number the unknowns' aggregates from 0 ([`aggregate_by_cells`]).
 pub fn solve(a: &PpeSystem, x: &mut [f64], tol: f64, max_iterations: u32) -> Result<PpeReport, PpeFailure> {
-    let n = a.len();
-    assert_eq!(a.aggregate.len(), n, "two-level PCG without aggregates");
-    let b2 = dot(&a.rhs, &a.rhs);
-    if b2 == 0.0 {
-        x.iter_mut().for_each(|v| *v = 0.0);
-        return Ok(PpeReport {
-            iterations: 0,
-            residual: 0.0,
-            unknowns: n,
-        });
-    }
+    assert_eq!(a.aggregate.len(), a.len(), "two-level PCG without aggregates");
     let Some(mut cycle) = Cycle::new(a) else {
         return a.solve(schemas::case::fluid::PpeSolver::JacobiPcg, x, tol, max_iterations);
     };
-    let target2 = tol * tol * b2;
-    let mut r = vec![0.0; n];
-    a.apply_with(cycle.span, x, &mut r);
-    r.par_iter_mut().zip(&a.rhs).for_each(|(r, b)| *r = b - *r);
-    let mut z = vec![0.0; n];
-    let mut rz = cycle.precondition(a, &r, &mut z);
-    let mut d = z.clone();
-    let mut ad = vec![0.0; n];
-    let mut r2 = dot(&r, &r);
-    let mut k = 0;
-    while r2 > target2 {
-        if k == max_iterations || !r2.is_finite() {
-            return Err(PpeFailure {
-                iterations: k,
-                residual: (r2 / b2).sqrt(),
-                unknowns: n,
-            });
-        }
-        a.apply_with(cycle.span, &d, &mut ad);
-        let alpha = rz / dot(&d, &ad);
-        let parts: Vec<f64> = x
-            .par_chunks_mut(CHUNK)
-            .zip(r.par_chunks_mut(CHUNK))
-            .zip(d.par_chunks(CHUNK).zip(ad.par_chunks(CHUNK)))
-            .map(|((x, r), (d, ad))| {
-                for (x, d) in x.iter_mut().zip(d) {
-                    *x += alpha * d;
-                }
-                for (r, a) in r.iter_mut().zip(ad) {
-                    *r -= alpha * a;
-                }
-                r.iter().map(|r| r * r).sum::<f64>()
-            })
-            .collect();
-        r2 = parts.iter().sum();
-        let rz_new = cycle.precondition(a, &r, &mut z);
-        let beta = rz_new / rz;
-        rz = rz_new;
-        d.par_iter_mut()
-            .zip(&z)
-            .with_min_len(CHUNK)
-            .for_each(|(d, z)| *d = z + beta * *d);
-        k += 1;
-    }
-    Ok(PpeReport {
-        iterations: k,
-        residual: (r2 / b2).sqrt(),
-        unknowns: n,
-    })
+    let span = cycle.span;
+    a.preconditioned_cg(span, x, tol, max_iterations, |r, z| cycle.precondition(a, r, z))
 }
 
 /// The two-grid cycle of one system: aggregates, the factorised coarse matrix and scratch.
