@@ -47,6 +47,8 @@ pub struct Child {
     pub pid: u32,
     process: std::process::Child,
     status: Option<ExitStatus>,
+    /// It has answered `Finish`: its exit is expected, not a failure of the run.
+    finished: bool,
 }
 
 /// The participant processes of a run.
@@ -92,13 +94,25 @@ impl Children {
             pid,
             process,
             status: None,
+            finished: false,
         });
         Ok(pid)
     }
 
-    /// `Err((name, what happened))` for the first participant that has exited.
+    /// Marks participant `name` as done (it answered `Finish`): [`Children::check`] no longer
+    /// counts its exit as a failure while the others finish; [`Children::wait_all`] still
+    /// reports its status.
+    pub fn finished(&mut self, name: &str) {
+        self.list
+            .iter_mut()
+            .filter(|c| c.name == name)
+            .for_each(|c| c.finished = true);
+    }
+
+    /// `Err((name, what happened))` for the first participant that has exited without having
+    /// finished ([`Children::finished`]).
     pub fn check(&mut self) -> Result<(), (String, String)> {
-        for child in &mut self.list {
+        for child in self.list.iter_mut().filter(|c| !c.finished) {
             if child.status.is_none() {
                 if let Ok(Some(status)) = child.process.try_wait() {
                     child.status = Some(status);
@@ -192,6 +206,27 @@ pub fn log_tail(log: &Path, n: usize) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The end of a run: a participant that answered `Finish` and exited is not reported as
+    /// having died while the coupler waits for the others (CI once failed with "participant
+    /// `mass-left` before the first window: process … exited (exit code 0)" when the first
+    /// participant exited before the second answered `Finish`).
+    #[test]
+    fn a_finished_participant_that_exits_is_not_a_failure() {
+        let log = std::env::temp_dir().join(format!("coupler-finished-{}.log", std::process::id()));
+        let mut children = Children::default();
+        children
+            .spawn("first", Path::new("/bin/true"), &[], &log, false)
+            .unwrap_or_else(|e| panic!("{e}"));
+        let statuses = children.wait_all(Duration::from_secs(5));
+        assert!(matches!(statuses[0].1, Some(s) if s.success()), "{statuses:?}");
+        let (name, what) = children.check().err().unwrap_or_default();
+        assert_eq!(name, "first", "an exit before Finish is a failure");
+        assert!(what.contains("exit code 0"), "{what}");
+        children.finished("first");
+        assert_eq!(children.check(), Ok(()), "an exit after Finish is not");
+        let _ = std::fs::remove_file(&log);
+    }
 
     #[test]
     fn warnings_are_the_log_lines_that_start_with_the_prefix() {

@@ -322,7 +322,7 @@ impl Stack {
         for i in 0..self.sessions.len() {
             self.send(i, ToParticipant::Finish, None)?;
             match self.recv(i, None)? {
-                FromParticipant::Finished => {}
+                FromParticipant::Finished => self.children.finished(&self.sessions[i].name),
                 other => return Err(self.protocol_error(i, None, "Finished", &other)),
             }
         }

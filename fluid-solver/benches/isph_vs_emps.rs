@@ -16,11 +16,13 @@
 //!
 //! `cargo bench -p fluid-solver --bench isph_vs_emps -- [spacing] [end time] [ppe solver]
 //! [--s2] [--only=isph|emps] [--probe-log=PREFIX] [--alpha-d=α] [--gradient=symmetric]
-//! [--radius=r_e/Δs] [--shifting=lind] [--shifting-coefficient=A]`; defaults Δs = L/20 = 0.0073 m (8 000 fluid particles), 0.5 s (past
+//! [--radius=r_e/Δs] [--shifting=lind] [--shifting-coefficient=A] [--isph-courant=C]`; defaults Δs = L/20 = 0.0073 m (8 000 fluid particles), 0.5 s (past
 //! the impact on the far wall at about 0.3 s), "two-level-pcg" (or "jacobi-pcg", "sgs-pcg", "faer-cholesky"), S2's α_d = 5e-3, ISPH's
 //! pressure gradient "corrected-difference" (`--gradient=symmetric`: the case key
 //! `isph.pressure_gradient`) at a support of 2.4 Δs (`--radius`: `isph.influence_radius`), no shifting (`--shifting=lind`: `isph.shifting`, with
-//! `--shifting-coefficient`: `isph.shifting_coefficient`, default 0.5). `--s2` is S2's
+//! `--shifting-coefficient`: `isph.shifting_coefficient`, default 0.5), ISPH's Δt at advective
+//! Courant 0.3 (`--isph-courant`; 0.1275 gives E-MPS's Δt at L/20, for the probe at equal
+//! steps). `--s2` is S2's
 //! scale (Table 1): Δs = 5 mm and a slab 76 Δs deep, 127 832 fluid particles (S2: 128 000).
 //! `--probe-log=PREFIX` writes `PREFIX-emps.csv` and `PREFIX-isph.csv`, one row per step: what the
 //! probe reads and where it comes from ([`probe_log`]).
@@ -204,7 +206,13 @@ fn main() {
         shifting_coefficient,
         ..IsphConfig::default()
     });
-    isph.time_step = 0.3 * ds / isph.advective_velocity(); // advective Courant 0.3 (limit 0.4)
+    // Advective Courant 0.3 (limit 0.4), or `--isph-courant=C`.
+    let courant = all
+        .iter()
+        .find_map(|a| a.strip_prefix("--isph-courant="))
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(0.3);
+    isph.time_step = courant * ds / isph.advective_velocity();
     for c in [&emps, &isph] {
         if let Err(e) = c.validate("fluid.water") {
             eprintln!("error: {e:?}");
