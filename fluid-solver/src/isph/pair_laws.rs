@@ -18,9 +18,10 @@
 //! with no-slip walls: the pair terms of [`super::operators::laplacian`]. The pair laws read the
 //! per-pair pressure `p_i + Δp_ij` that fluid particle i's PPE saw ([`super::walls`]).
 //!
-//! With `pressure_gradient = "symmetric"` (case key, [`PressureGradient`]) the fluid's gradient
-//! is the uncorrected symmetric form and [`symmetric_term`] is its pair term with fluid and wall
-//! neighbours: the fluid's gradient sums it, and the walls' loads are V times it. With a body
+//! With `pressure_gradient = "symmetric"` (case key, `schemas::case::fluid::PressureGradient`)
+//! the fluid's gradient is the uncorrected symmetric form and [`symmetric_term`] is its pair term
+//! with fluid and wall neighbours: the fluid's gradient sums it, and the walls' loads are V times
+//! it (as in the default). The pair laws are the same for both gradients. With a body
 //! neighbour the fluid's pair term is the face law's share instead ([`face_share`], divided by
 //! V), so a body's load and the fluid's reaction are still one function, and the load does not
 //! depend on the fluid–body gap: with the symmetric term there too, a box held 0.25 Δs above its
@@ -33,7 +34,6 @@ use crate::kind::{Kind, FLUID};
 use crate::pair_law::{ExchangeScales, PairLaw};
 use crate::particles::Particles;
 use rayon::prelude::*;
-use schemas::case::fluid::PressureGradient;
 
 /// The symmetric form's term of fluid particle i's pressure gradient from neighbour j at
 /// `d = x_i − x_j`, `r = |d|`: `t_ij = V (p_i + p_j^(i)) ∇_i W_ij`, with p_j^(i) = p_j for a fluid
@@ -163,18 +163,12 @@ pub fn body_faces(
         });
 }
 
-/// With the corrected difference gradient: on a body particle j its share
-/// `F_j W_ij / Σ_f W_fj` of the face force of [`body_faces`] (computed on the same state); on a
-/// wall particle `V² (p_i + p_j^(i)) ∇_i W_ij`, p_j^(i) = p_i + Δp_ij the wall particle's pressure
-/// as fluid particle i's PPE saw it ([`super::walls`]). With the symmetric gradient: on walls
-/// `V t_ij` of [`symmetric_term`], the fluid's own pair term; on bodies the face share as
-/// above, which is then also the fluid's pair term with them.
-pub fn pressure<'a>(
-    k: &Wendland,
-    walls: NeumannPair<'a>,
-    faces: &'a BodyFaces,
-    gradient: PressureGradient,
-) -> PairLaw<'a> {
+/// Whatever the fluid's gradient: on a body particle j its share [`face_share`] of the face
+/// force of [`body_faces`] (computed on the same state; with the symmetric gradient also the
+/// fluid's pair term with j); on a wall particle `V t_ij` of [`symmetric_term`],
+/// `V² (p_i + p_j^(i)) ∇_i W_ij` with p_j^(i) = p_i + Δp_ij the wall particle's pressure as fluid
+/// particle i's PPE saw it ([`super::walls`]).
+pub fn pressure<'a>(k: &Wendland, walls: NeumannPair<'a>, faces: &'a BodyFaces) -> PairLaw<'a> {
     let k = *k;
     let p = walls.p;
     let body = Kind::Body.code();
@@ -187,12 +181,8 @@ pub fn pressure<'a>(
         if p.kind[j] == body {
             return Some(face_share(&k, faces, j, r2.sqrt()));
         }
-        if gradient == PressureGradient::Symmetric {
-            let t = symmetric_term(&k, &walls, i, j, d, r2.sqrt());
-            return Some(t.map(|v| k.volume * v));
-        }
-        let c = k.volume * k.volume * (2.0 * p.pressure[i] + walls.difference(i, j)) * k.dw_over_r(r2.sqrt());
-        Some(d.map(|v| c * v))
+        let t = symmetric_term(&k, &walls, i, j, d, r2.sqrt());
+        Some(t.map(|v| k.volume * v))
     })
 }
 

@@ -162,12 +162,7 @@ impl IsphStep {
     /// The pressure pair law on the present pressures (at rest: the fluid's velocities are
     /// taken as the step's start).
     pub fn pressure_law<'a>(&'a self, p: &'a Particles) -> PairLaw<'a> {
-        pair_laws::pressure(
-            &self.kernel,
-            self.neumann(p, self.time_step),
-            &self.faces,
-            self.settings.pressure_gradient,
-        )
+        pair_laws::pressure(&self.kernel, self.neumann(p, self.time_step), &self.faces)
     }
 
     /// The walls' Neumann differences for a step of `dt` with v* in the particles.
@@ -261,7 +256,7 @@ impl IsphStep {
         }
         bodies(
             Exchange::Pressure,
-            &pair_laws::pressure(&self.kernel, self.neumann(p, dt), &self.faces, form),
+            &pair_laws::pressure(&self.kernel, self.neumann(p, dt), &self.faces),
             grid,
             p,
         );
