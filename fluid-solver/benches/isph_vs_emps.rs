@@ -17,7 +17,7 @@
 //! `cargo bench -p fluid-solver --bench isph_vs_emps -- [spacing] [end time] [ppe solver]
 //! [--s2] [--only=isph|emps] [--probe-log=PREFIX] [--alpha-d=α] [--gradient=symmetric]
 //! [--radius=r_e/Δs] [--shifting=lind] [--shifting-coefficient=A] [--isph-courant=C]`; defaults Δs = L/20 = 0.0073 m (8 000 fluid particles), 0.5 s (past
-//! the impact on the far wall at about 0.3 s), "two-level-pcg" (or "jacobi-pcg", "sgs-pcg", "faer-cholesky"), S2's α_d = 5e-3, ISPH's
+//! the impact on the far wall at about 0.3 s), "additive-two-level-pcg" (or "two-level-pcg", "jacobi-pcg", "sgs-pcg", "faer-cholesky"), S2's α_d = 5e-3, ISPH's
 //! pressure gradient "corrected-difference" (`--gradient=symmetric`: the case key
 //! `isph.pressure_gradient`) at a support of 2.4 Δs (`--radius`: `isph.influence_radius`), no shifting (`--shifting=lind`: `isph.shifting`, with
 //! `--shifting-coefficient`: `isph.shifting_coefficient`, default 0.5), ISPH's Δt at advective
@@ -162,7 +162,8 @@ fn main() {
         Some("faer-cholesky") => PpeSolver::FaerCholesky,
         Some("sgs-pcg") => PpeSolver::SgsPcg,
         Some("jacobi-pcg") => PpeSolver::JacobiPcg,
-        _ => PpeSolver::TwoLevelPcg,
+        Some("two-level-pcg") => PpeSolver::TwoLevelPcg,
+        _ => PpeSolver::AdditiveTwoLevelPcg,
     };
     let log = all
         .iter()

@@ -3,9 +3,9 @@
 //! unknowns. For each: unknowns, the first solve (from the initial pressure, in
 //! `FluidSolver::new`) and the solves of the following steps (warm-started from the last
 //! pressure): iterations, seconds per solve and the relative residual reached against the case's
-//! tolerance, for Jacobi-PCG, block-SGS-PCG and two-level PCG. Jacobi-PCG's iterations grow as
+//! tolerance, for Jacobi-PCG, block-SGS-PCG and two-level PCG (multiplicative and additive). Jacobi-PCG's iterations grow as
 //! the condition number's square root, ∝ 1/Δs ∝ n^(1/3), and its time per solve as n^(4/3); the
-//! two-level one's stay about constant (its coarse matrix grows with n).
+//! two-level ones' stay about constant (its coarse matrix grows with n).
 //!
 //! `cargo bench -p fluid-solver --bench ppe_scaling -- [--large] [--only=SOLVER] [steps]` (default 2
 //! steps; `--only=` one of the table's solver names).
@@ -85,6 +85,7 @@ fn main() {
                 ("jacobi-pcg", PpeSolver::JacobiPcg),
                 ("sgs-pcg", PpeSolver::SgsPcg),
                 ("two-level", PpeSolver::TwoLevelPcg),
+                ("additive", PpeSolver::AdditiveTwoLevelPcg),
             ]
             .map(|s| (ds, s))
         })

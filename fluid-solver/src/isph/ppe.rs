@@ -24,6 +24,7 @@
 //! A; and CG with a two-level (aggregation) preconditioner, in [`super::ppe_two_level`]. All must
 //! reach `|b − A p| ≤ tol |b|`, else the step fails with [`PpeFailure`].
 
+use super::ppe_two_level::Form;
 use rayon::prelude::*;
 use schemas::case::fluid::PpeSolver;
 
@@ -146,7 +147,12 @@ impl PpeSystem {
             PpeSolver::JacobiPcg => self.jacobi_pcg(x, tol, max_iterations),
             PpeSolver::FaerCholesky => self.faer_cholesky(x, tol),
             PpeSolver::SgsPcg => self.sgs_pcg(x, tol, max_iterations),
-            PpeSolver::TwoLevelPcg => super::ppe_two_level::solve(self, x, tol, max_iterations),
+            PpeSolver::TwoLevelPcg => {
+                super::ppe_two_level::solve(self, Form::Multiplicative, x, tol, max_iterations)
+            }
+            PpeSolver::AdditiveTwoLevelPcg => {
+                super::ppe_two_level::solve(self, Form::Additive, x, tol, max_iterations)
+            }
         }
     }
 
@@ -497,7 +503,12 @@ pub(super) mod tests {
         let chol = a.solve(PpeSolver::FaerCholesky, &mut reference, tol, 1).unwrap();
         assert!(chol.residual <= tol);
         let norm = reference.iter().map(|v| v * v).sum::<f64>().sqrt();
-        for solver in [PpeSolver::JacobiPcg, PpeSolver::SgsPcg, PpeSolver::TwoLevelPcg] {
+        for solver in [
+            PpeSolver::JacobiPcg,
+            PpeSolver::SgsPcg,
+            PpeSolver::TwoLevelPcg,
+            PpeSolver::AdditiveTwoLevelPcg,
+        ] {
             let mut x = vec![0.0; a.len()];
             let report = a.solve(solver, &mut x, tol, 1000).unwrap();
             // The solver's own residual is the one it reports, and it meets the tolerance.

@@ -1,6 +1,7 @@
-//! Conjugate gradients on the PPE ([`super::ppe`]) preconditioned by a two-level method: a
-//! damped-Jacobi smoother and an exact coarse-grid correction on aggregates of neighbouring
-//! unknowns (`ppe_solver = "two-level-pcg"`).
+//! Conjugate gradients on the PPE ([`super::ppe`]) preconditioned by a two-level method: Jacobi
+//! and an exact coarse-grid correction on aggregates of neighbouring unknowns, combined either
+//! additively (`ppe_solver = "additive-two-level-pcg"`, the default) or multiplicatively as a
+//! V(1,1) cycle (`ppe_solver = "two-level-pcg"`).
 //!
 //! The method is unsmoothed (plain) aggregation as in Saad 2003, §13.2 – 13.5 (the two-grid
 //! cycle and its Galerkin coarse operator) and Notay 2010 (Electron. Trans. Numer. Anal. 37,
@@ -13,8 +14,19 @@
 //! `A_c = Pᵀ A P` (Saad 2003, eq. 13.36) is summed every step from the stored upper triangle and
 //! factorised by faer's sparse Cholesky (AMD ordering, symbolic and numeric every step, sequential).
 //!
-//! The preconditioner is the multiplicative two-grid cycle V(1,1) (Saad 2003, Alg. 13.2 with one
-//! pre- and one post-smoothing step), applied to r from z = 0:
+//! The additive form ([`Form::Additive`]) is `M⁻¹ = D⁻¹ + P A_c⁻¹ Pᵀ`, the "AD" preconditioner
+//! of Tang, Nabben, Vuik & Erlangga 2009 (J. Sci. Comput. 39, "Comparison of two-level
+//! preconditioners derived from deflation, domain decomposition and multigrid methods"), i.e.
+//! two-level additive Schwarz with one unknown per subdomain: `z = D⁻¹ r + P A_c⁻¹ Pᵀ r`. It is
+//! symmetric positive definite as the sum of D⁻¹ (SPD) and `P A_c⁻¹ Pᵀ` (semidefinite), and costs
+//! no product with A beyond CG's own. It needs about 1.8× the iterations of the cycle below
+//! but a third of its products with A, and the solve is memory-bound on them: at S2's scale
+//! 22.9 iterations and 94 ms per solve against 12.6 and 121 ms, through the L/20 impact 31.0
+//! against 17.3 iterations and 13.9 against 18.7 ms (README section "ISPH: a two-level
+//! preconditioner for the PPE").
+//!
+//! The multiplicative form ([`Form::Multiplicative`]) is the two-grid cycle V(1,1) (Saad 2003,
+//! Alg. 13.2 with one pre- and one post-smoothing step), applied to r from z = 0:
 //!
 //! 1. `z = ω D⁻¹ r` (pre-smoothing),
 //! 2. `z += P A_c⁻¹ Pᵀ (r − A z)` (coarse correction),
@@ -29,7 +41,7 @@
 //! `A_ii = Σ_j F_ij ≥ Σ_{j unknown} |A_ij|`), so ω = [`OMEGA`] < 1 makes `‖E‖_A < 1` and
 //! `M⁻¹ = (I − E)A⁻¹` positive definite: preconditioned CG applies (Saad 2003, Alg. 9.1).
 //! Each iteration costs three products with A (CG's and two in the cycle), one coarse solve and
-//! the vector updates.
+//! the vector updates: fewer iterations than the additive form, each dearer.
 //!
 //! Contract as the other solvers: warm start from `x`, `|b − A x| ≤ tol |b|` or [`PpeFailure`],
 //! iterations reported; every reduction is summed per fixed chunk or aggregate in a fixed order
@@ -51,8 +63,18 @@ use rayon::prelude::*;
 /// two-level preconditioner for the PPE").
 pub const AGGREGATE_CELLS: usize = 4;
 
-/// Damping ω of the Jacobi smoother: below 1 for positive definiteness (module doc).
+/// Damping ω of the multiplicative cycle's Jacobi smoother: below 1 for positive definiteness
+/// (module doc).
 pub const OMEGA: f64 = 2.0 / 3.0;
+
+/// How the Jacobi part and the coarse correction are combined (module doc).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Form {
+    /// `M⁻¹ = D⁻¹ + P A_c⁻¹ Pᵀ`.
+    Additive,
+    /// The V(1,1) cycle with damped Jacobi.
+    Multiplicative,
+}
 
 /// Numbers the unknowns' aggregates: the blocks of [`AGGREGATE_CELLS`]³ cells of `grid`, in the
 /// order the unknowns first meet them (the particles must be sorted by `grid`).
@@ -75,22 +97,31 @@ pub fn aggregate_by_cells(grid: &CellGrid, ppe: &mut PpeSystem) {
     }
 }
 
-/// Solves `A x = b` by CG with the two-level preconditioner (module doc), from the warm start
-/// `x`; `a.aggregate` must number the unknowns' aggregates from 0 ([`aggregate_by_cells`]).
-pub fn solve(a: &PpeSystem, x: &mut [f64], tol: f64, max_iterations: u32) -> Result<PpeReport, PpeFailure> {
+/// Solves `A x = b` by CG with the two-level preconditioner of `form` (module doc), from the warm
+/// start `x`; `a.aggregate` must number the unknowns' aggregates from 0 ([`aggregate_by_cells`]).
+pub fn solve(
+    a: &PpeSystem,
+    form: Form,
+    x: &mut [f64],
+    tol: f64,
+    max_iterations: u32,
+) -> Result<PpeReport, PpeFailure> {
     assert_eq!(a.aggregate.len(), a.len(), "two-level PCG without aggregates");
-    let Some(mut cycle) = Cycle::new(a) else {
+    let Some(mut cycle) = Cycle::new(a, form) else {
         return a.solve(schemas::case::fluid::PpeSolver::JacobiPcg, x, tol, max_iterations);
     };
     let span = cycle.span;
-    a.preconditioned_cg(span, x, tol, max_iterations, |r, z| cycle.precondition(a, r, z))
+    a.preconditioned_cg(span, x, tol, max_iterations, |r, z| match form {
+        Form::Additive => cycle.additive(a, r, z),
+        Form::Multiplicative => cycle.multiplicative(a, r, z),
+    })
 }
 
 /// The two-grid cycle of one system: aggregates, the factorised coarse matrix and scratch.
 struct Cycle {
     /// Chunk length of [`PpeSystem::apply_with`].
     span: usize,
-    /// `ω / A_ii`.
+    /// `ω / A_ii` (multiplicative form) or `1 / A_ii` (additive).
     smoother: Vec<f64>,
     /// Unknowns of aggregate I: `members[first[I] .. first[I + 1]]`, ascending.
     first: Vec<usize>,
@@ -107,7 +138,7 @@ struct Cycle {
 
 impl Cycle {
     /// Sums `A_c = Pᵀ A P` and factorises it; `None` if it is not numerically positive definite.
-    fn new(a: &PpeSystem) -> Option<Cycle> {
+    fn new(a: &PpeSystem, form: Form) -> Option<Cycle> {
         let n = a.len();
         let nc = a.aggregate.par_iter().max().map_or(0, |&m| m as usize + 1);
         // Members of each aggregate by a counting sort (ascending within each).
@@ -221,7 +252,10 @@ impl Cycle {
         let stack = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
         Some(Cycle {
             span: a.span(),
-            smoother: a.diag.par_iter().map(|d| OMEGA / d).collect(),
+            smoother: {
+                let omega = if form == Form::Additive { 1.0 } else { OMEGA };
+                a.diag.par_iter().map(|d| omega / d).collect()
+            },
             first,
             members,
             symbolic,
@@ -232,22 +266,46 @@ impl Cycle {
         })
     }
 
+    /// `z = M⁻¹ r` of the additive form: `z = D⁻¹ r + P A_c⁻¹ Pᵀ r`; returns `r·z` (as [`dot`]).
+    fn additive(&mut self, a: &PpeSystem, r: &[f64], z: &mut [f64]) -> f64 {
+        z.par_iter_mut()
+            .zip(r)
+            .zip(&self.smoother)
+            .with_min_len(CHUNK)
+            .for_each(|((z, r), s)| *z = s * r);
+        self.add_coarse_correction(a, |i| r[i], z);
+        dot(r, z)
+    }
+
     /// `z = M⁻¹ r` by the V(1,1) cycle of the module doc; returns `r·z` (as [`dot`]).
-    fn precondition(&mut self, a: &PpeSystem, r: &[f64], z: &mut [f64]) -> f64 {
+    fn multiplicative(&mut self, a: &PpeSystem, r: &[f64], z: &mut [f64]) -> f64 {
         z.par_iter_mut()
             .zip(r)
             .zip(&self.smoother)
             .with_min_len(CHUNK)
             .for_each(|((z, r), s)| *z = s * r);
         a.apply_with(self.span, z, &mut self.az);
-        // Restriction of the residual r − A z, aggregate by aggregate in member order.
-        let az = &self.az;
+        let az = std::mem::take(&mut self.az);
+        self.add_coarse_correction(a, |i| r[i] - az[i], z);
+        self.az = az;
+        a.apply_with(self.span, z, &mut self.az);
+        z.par_iter_mut()
+            .zip(r)
+            .zip(self.az.par_iter().zip(&self.smoother))
+            .with_min_len(CHUNK)
+            .for_each(|((z, r), (az, s))| *z += s * (r - az));
+        dot(r, z)
+    }
+
+    /// `z += P A_c⁻¹ Pᵀ e` for the fine vector `e(i)`: restricted aggregate by aggregate in member
+    /// order, solved with the factor, prolongated.
+    fn add_coarse_correction(&mut self, a: &PpeSystem, e: impl Fn(usize) -> f64 + Sync, z: &mut [f64]) {
         let restricted: Vec<f64> = (0..self.first.len() - 1)
             .into_par_iter()
             .map(|g| {
                 self.members[self.first[g]..self.first[g + 1]]
                     .iter()
-                    .map(|&i| r[i as usize] - az[i as usize])
+                    .map(|&i| e(i as usize))
                     .sum()
             })
             .collect();
@@ -266,13 +324,6 @@ impl Cycle {
             .zip(&a.aggregate)
             .with_min_len(CHUNK)
             .for_each(|(z, &g)| *z += coarse[g as usize]);
-        a.apply_with(self.span, z, &mut self.az);
-        z.par_iter_mut()
-            .zip(r)
-            .zip(self.az.par_iter().zip(&self.smoother))
-            .with_min_len(CHUNK)
-            .for_each(|((z, r), (az, s))| *z += s * (r - az));
-        dot(r, z)
     }
 }
 
@@ -306,37 +357,42 @@ mod tests {
         (report.iterations, x)
     }
 
+    /// Both forms of the two-level solver.
+    const FORMS: [PpeSolver; 2] = [PpeSolver::TwoLevelPcg, PpeSolver::AdditiveTwoLevelPcg];
+
     #[test]
     fn two_level_iterations_grow_slower_than_jacobi_and_it_agrees_with_cholesky() {
         let tol = 1e-8;
-        let mut counts = Vec::new();
-        for m in [12, 24] {
-            let mut a = open_top(m);
-            a.aggregate = block_aggregates(m, AGGREGATE_CELLS);
-            let (jacobi, _) = solved(&a, PpeSolver::JacobiPcg, tol);
-            let (two_level, x) = solved(&a, PpeSolver::TwoLevelPcg, tol);
-            let (_, reference) = solved(&a, PpeSolver::FaerCholesky, tol);
-            // |x − x*| ≤ κ(A) tol |x*| with κ(A) ≤ 12/λ_min, λ_min ≥ 2(1 − cos(π/(2m+1))) (the
-            // 1D Dirichlet–Neumann chain along z): 1.2e3 at m = 24.
-            let kappa = 12.0 / (2.0 * (1.0 - (std::f64::consts::PI / (2 * m + 1) as f64).cos()));
-            let norm = reference.iter().map(|v| v * v).sum::<f64>().sqrt();
-            let err = x
-                .iter()
-                .zip(&reference)
-                .map(|(a, b)| (a - b).powi(2))
-                .sum::<f64>()
-                .sqrt();
-            assert!(err <= kappa * tol * norm, "m = {m}: error {err:e}");
-            println!("m = {m}: Jacobi-PCG {jacobi} iterations, two-level PCG {two_level}");
-            counts.push((jacobi, two_level));
+        for solver in FORMS {
+            let mut counts = Vec::new();
+            for m in [12, 24] {
+                let mut a = open_top(m);
+                a.aggregate = block_aggregates(m, AGGREGATE_CELLS);
+                let (jacobi, _) = solved(&a, PpeSolver::JacobiPcg, tol);
+                let (two_level, x) = solved(&a, solver, tol);
+                let (_, reference) = solved(&a, PpeSolver::FaerCholesky, tol);
+                // |x − x*| ≤ κ(A) tol |x*| with κ(A) ≤ 12/λ_min, λ_min ≥ 2(1 − cos(π/(2m+1)))
+                // (the 1D Dirichlet–Neumann chain along z): 1.2e3 at m = 24.
+                let kappa = 12.0 / (2.0 * (1.0 - (std::f64::consts::PI / (2 * m + 1) as f64).cos()));
+                let norm = reference.iter().map(|v| v * v).sum::<f64>().sqrt();
+                let err = x
+                    .iter()
+                    .zip(&reference)
+                    .map(|(a, b)| (a - b).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+                assert!(err <= kappa * tol * norm, "{solver:?}, m = {m}: error {err:e}");
+                println!("m = {m}: Jacobi-PCG {jacobi} iterations, {solver:?} {two_level}");
+                counts.push((jacobi, two_level));
+            }
+            let (small, large) = (counts[0], counts[1]);
+            assert!(large.1 < large.0, "{solver:?}: {counts:?}");
+            // Jacobi's count grows as √κ ∝ m; the two-level one's must grow by a smaller factor.
+            assert!(
+                f64::from(large.1) / f64::from(small.1) < f64::from(large.0) / f64::from(small.0),
+                "{solver:?}: {counts:?}"
+            );
         }
-        let (small, large) = (counts[0], counts[1]);
-        assert!(large.1 < large.0, "{counts:?}");
-        // Jacobi's count grows as √κ ∝ m; the two-level one's must grow by a smaller factor.
-        assert!(
-            f64::from(large.1) / f64::from(small.1) < f64::from(large.0) / f64::from(small.0),
-            "{counts:?}"
-        );
     }
 
     #[test]
@@ -344,32 +400,33 @@ mod tests {
         let m = 20;
         let mut a = open_top(m);
         a.aggregate = block_aggregates(m, AGGREGATE_CELLS);
-        let run = |threads| {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            pool.install(|| solved(&a, PpeSolver::TwoLevelPcg, 1e-6))
-        };
-        let (one, two) = (run(1), run(2));
-        assert_eq!(one.0, two.0);
-        assert!(one.1.iter().zip(&two.1).all(|(a, b)| a.to_bits() == b.to_bits()));
-        // From the solution it stops at once; from a solution 1e-3 off, in fewer iterations than
-        // from 0.
-        let mut x = one.1.clone();
-        assert_eq!(
-            a.solve(PpeSolver::TwoLevelPcg, &mut x, 1e-6, 100)
-                .unwrap()
-                .iterations,
-            0
-        );
-        let mut x: Vec<f64> = one
-            .1
-            .iter()
-            .enumerate()
-            .map(|(i, v)| v * (1.0 + 1e-3 * (i as f64).sin()))
-            .collect();
-        let warm = a.solve(PpeSolver::TwoLevelPcg, &mut x, 1e-6, 100).unwrap();
-        assert!(warm.iterations < one.0, "{warm:?} against {} from 0", one.0);
+        for solver in FORMS {
+            let run = |threads| {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                pool.install(|| solved(&a, solver, 1e-6))
+            };
+            let (one, two) = (run(1), run(2));
+            assert_eq!(one.0, two.0);
+            assert!(one.1.iter().zip(&two.1).all(|(a, b)| a.to_bits() == b.to_bits()));
+            // From the solution it stops at once; from a solution 1e-3 off, in fewer iterations
+            // than from 0.
+            let mut x = one.1.clone();
+            assert_eq!(a.solve(solver, &mut x, 1e-6, 100).unwrap().iterations, 0);
+            let mut x: Vec<f64> = one
+                .1
+                .iter()
+                .enumerate()
+                .map(|(i, v)| v * (1.0 + 1e-3 * (i as f64).sin()))
+                .collect();
+            let warm = a.solve(solver, &mut x, 1e-6, 100).unwrap();
+            assert!(
+                warm.iterations < one.0,
+                "{solver:?}: {warm:?} against {} from 0",
+                one.0
+            );
+        }
     }
 }

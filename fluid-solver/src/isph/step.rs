@@ -533,7 +533,10 @@ impl IsphStep {
 
     /// The unknowns' aggregates by cells, for the two-level solver only.
     fn aggregate(&mut self, grid: &CellGrid) {
-        if self.settings.ppe_solver == PpeSolver::TwoLevelPcg {
+        if matches!(
+            self.settings.ppe_solver,
+            PpeSolver::TwoLevelPcg | PpeSolver::AdditiveTwoLevelPcg
+        ) {
             ppe_two_level::aggregate_by_cells(grid, &mut self.ppe);
         }
     }
