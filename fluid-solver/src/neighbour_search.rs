@@ -1,7 +1,8 @@
 //! Neighbour search by cell lists, rebuilt every step.
 //!
-//! The domain is cut into cubic cells of 1.05 Δs (r_e,grad / 2, and ≥ r_e / 3), so the gradient
-//! looks 2 cells and the number density 3 cells each way. A counting sort by cell index (x
+//! The domain is cut into cubic cells of 1.05 Δs (r_e,grad / 2, and ≥ r_e / 3), so E-MPS's
+//! gradient looks 2 cells and its number density 3 cells each way (ISPH's grid has cells of half
+//! its support, [`crate::isph::neighbour_list::cell_edge`], so its list looks 2 cells each way). A counting sort by cell index (x
 //! fastest) reorders the particles, so a run of cells along x is one contiguous index range:
 //! a neighbour query visits (2·reach + 1)² ranges, each read straight through memory. A
 //! running count of fluid particles per cell tells in (2·reach + 1)² look-ups whether a wall
@@ -39,7 +40,12 @@ pub struct CellGrid {
 impl CellGrid {
     /// A grid covering `[lo, hi]` for particles of spacing `spacing`.
     pub fn new(lo: [f64; 3], hi: [f64; 3], spacing: f64) -> CellGrid {
-        let cell = CELL_IN_SPACINGS * spacing;
+        CellGrid::with_cell(lo, hi, CELL_IN_SPACINGS * spacing)
+    }
+
+    /// A grid covering `[lo, hi]` with cells of edge `cell`, which should be at least
+    /// [`CELL_IN_SPACINGS`] Δs: the [`PAD`] cells of padding then hold every query within 3.15 Δs.
+    pub fn with_cell(lo: [f64; 3], hi: [f64; 3], cell: f64) -> CellGrid {
         let mut dims = [0; 3];
         let mut origin = [0.0; 3];
         for a in 0..3 {

@@ -5,11 +5,12 @@ use crate::bodies::RigidBodies;
 use crate::emps::kernel::Kernel;
 use crate::emps::step::EmpsStep;
 use crate::escape::OpenTop;
+use crate::isph::neighbour_list;
 use crate::isph::step::{IsphState, IsphStep};
 use crate::kind::Kind;
 use crate::layout::{self, Domain};
 use crate::method::{FluidMethod, MethodState, StepTotals};
-use crate::neighbour_search::CellGrid;
+use crate::neighbour_search::{CellGrid, CELL_IN_SPACINGS};
 use crate::open_boundary::OpenBoundaries;
 use crate::pair_law::{Exchange, PairLaw};
 use crate::particles::Particles;
@@ -109,7 +110,13 @@ impl FluidSolver {
             gravity: cfg.gravity,
             sound_speed: cfg.sound_speed(),
         };
-        let grid = CellGrid::new(layout.grid_box.lo, layout.grid_box.hi, cfg.spacing);
+        let cell = match cfg.method {
+            FluidMethodName::Emps => CELL_IN_SPACINGS * cfg.spacing,
+            FluidMethodName::Isph => {
+                neighbour_list::cell_edge(cfg.spacing, cfg.isph_settings().influence_radius)
+            }
+        };
+        let grid = CellGrid::with_cell(layout.grid_box.lo, layout.grid_box.hi, cell);
         let boxes: Vec<([f64; 3], [f64; 3])> = cfg.body.iter().map(|b| (b.min, b.max)).collect();
         let bodies = RigidBodies::new(&layout.bodies, &boxes, &layout.particles);
         let body_pose: Vec<f64> = (0..boxes.len())

@@ -9,7 +9,8 @@
 //! preconditioner of a Krylov method), with geometric aggregates instead of Notay's pairwise
 //! matching: the unknowns of each block of [`AGGREGATE_CELLS`]³ neighbour-search cells form one
 //! aggregate ([`aggregate_by_cells`]), so an aggregate is a compact group of about
-//! (1.05 × [`AGGREGATE_CELLS`])³ particles whatever the shape of the water. P is the n × n_c
+//! (c × [`AGGREGATE_CELLS`])³ particles whatever the shape of the water, c the cell edge in
+//! spacings ([`super::neighbour_list::cell_edge`]: 1.2 at S2's support, 110 particles). P is the n × n_c
 //! matrix with `P_iI = 1` when unknown i lies in aggregate I; the coarse matrix
 //! `A_c = Pᵀ A P` (Saad 2003, eq. 13.36) is summed every step from the stored upper triangle and
 //! factorised by faer's sparse Cholesky (AMD ordering, symbolic and numeric every step, sequential).
