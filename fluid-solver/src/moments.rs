@@ -24,6 +24,32 @@ pub trait RadialGradient: Sync {
 /// A symmetric 3×3 matrix.
 pub type Matrix3 = [[f64; 3]; 3];
 
+/// A sum of symmetric outer products `Σ c d ⊗ d`, kept as its six distinct entries (the
+/// moment matrices' inner loop: 6 multiply-adds per neighbour instead of 9).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct OuterSum([f64; 6]);
+
+impl OuterSum {
+    /// Adds `c d ⊗ d`.
+    #[inline(always)]
+    pub fn add(&mut self, c: f64, d: [f64; 3]) {
+        let (cx, cy) = (c * d[0], c * d[1]);
+        let s = &mut self.0;
+        s[0] += cx * d[0];
+        s[1] += cx * d[1];
+        s[2] += cx * d[2];
+        s[3] += cy * d[1];
+        s[4] += cy * d[2];
+        s[5] += c * d[2] * d[2];
+    }
+
+    /// The full symmetric matrix.
+    pub fn matrix(&self) -> Matrix3 {
+        let s = &self.0;
+        [[s[0], s[1], s[2]], [s[1], s[3], s[4]], [s[2], s[4], s[5]]]
+    }
+}
+
 /// `−V Σ_j (W'(r)/r) r_ij ⊗ r_ij` over lattice neighbours of one site, spacing `spacing`:
 /// the normalisation of [`moment_matrix_at`] (a multiple of I by the lattice's symmetry).
 pub fn lattice_moment(kernel: &impl RadialGradient, spacing: f64) -> f64 {
@@ -55,20 +81,15 @@ pub fn moment_matrix_at(
     volume_over_m0: f64,
     partner: impl Fn(u8) -> bool,
 ) -> Matrix3 {
-    let mut m = [[0.0; 3]; 3];
+    let mut m = OuterSum::default();
     grid.for_each_near_point(p, at, kernel.radius(), |j, r2| {
         if r2 == 0.0 || !partner(p.kind[j]) {
             return;
         }
         let d = [p.x[j] - at[0], p.y[j] - at[1], p.z[j] - at[2]];
-        let c = -volume_over_m0 * kernel.gradient_over_r(r2.sqrt());
-        for a in 0..3 {
-            for b in 0..3 {
-                m[a][b] += c * d[a] * d[b];
-            }
-        }
+        m.add(-volume_over_m0 * kernel.gradient_over_r(r2.sqrt()), d);
     });
-    m
+    m.matrix()
 }
 
 /// The smallest eigenvalue of a symmetric 3×3 matrix (S2-11's λ_min), by the trigonometric

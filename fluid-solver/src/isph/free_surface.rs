@@ -36,7 +36,7 @@
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
 use crate::kind::FLUID;
-use crate::moments::{smallest_eigenvalue, solve, Matrix3};
+use crate::moments::{smallest_eigenvalue, solve, Matrix3, OuterSum};
 use crate::particles::Particles;
 use rayon::prelude::*;
 
@@ -71,7 +71,7 @@ pub fn moment_matrix(
     takes_part: &[u8],
     i: usize,
 ) -> Matrix3 {
-    let mut m = [[0.0; 3]; 3];
+    let mut m = OuterSum::default();
     let scale = -k.volume / k.lattice_moment;
     for &j in list.of(i) {
         let j = j as usize;
@@ -80,14 +80,9 @@ pub fn moment_matrix(
         }
         let d = [p.x[j] - p.x[i], p.y[j] - p.y[i], p.z[j] - p.z[i]];
         let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-        let c = scale * k.dw_over_r(r);
-        for a in 0..3 {
-            for b in 0..3 {
-                m[a][b] += c * d[a] * d[b];
-            }
-        }
+        m.add(scale * k.dw_over_r(r), d);
     }
-    m
+    m.matrix()
 }
 
 /// λ_min of every fluid particle (S2-10, S2-11); 1 for other particles.
