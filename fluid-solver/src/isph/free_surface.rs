@@ -73,13 +73,11 @@ pub fn moment_matrix(
 ) -> Matrix3 {
     let mut m = OuterSum::default();
     let scale = -k.volume / k.lattice_moment;
-    for &j in list.of(i) {
-        let j = j as usize;
+    for (j, r) in list.pairs(i) {
         if takes_part[j] == 0 {
             continue;
         }
         let d = [p.x[j] - p.x[i], p.y[j] - p.y[i], p.z[j] - p.z[i]];
-        let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
         m.add(scale * k.dw_over_r(r), d);
     }
     m.matrix()
@@ -143,14 +141,12 @@ pub fn outward_normal(
     i: usize,
 ) -> Option<[f64; 3]> {
     let mut g = [0.0; 3];
-    for &j in list.of(i) {
-        let j = j as usize;
+    for (j, r) in list.pairs(i) {
         if takes_part[j] == 0 {
             continue;
         }
         // ∇_i W_ij = (W'/r)(x_i − x_j)
         let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
-        let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
         let c = k.volume * k.dw_over_r(r);
         for a in 0..3 {
             g[a] += c * d[a];
@@ -230,13 +226,11 @@ pub fn surface_pressure(
                 return;
             }
             let mut s = [0.0; 3];
-            for &j in list.of(i) {
-                let j = j as usize;
+            for (j, r) in list.pairs(i) {
                 if takes_part[j] == 0 {
                     continue;
                 }
                 let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
-                let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
                 let c = k.dw_over_r(r);
                 (0..3).for_each(|a| s[a] += c * d[a]);
             }
@@ -252,13 +246,11 @@ pub fn surface_pressure(
                 return;
             }
             let (mut num, mut den) = (0.0, 0.0);
-            for &j in list.of(i) {
-                let j = j as usize;
+            for (j, r) in list.pairs(i) {
                 if p.kind[j] != FLUID || j == i {
                     continue;
                 }
                 let d = [p.x[j] - p.x[i], p.y[j] - p.y[i], p.z[j] - p.z[i]];
-                let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
                 let dm = d[0] * m[0] + d[1] * m[1] + d[2] * m[2];
                 let w = k.w(r);
                 num += w * (p.pressure[j] - p.pressure[i]) * dm;

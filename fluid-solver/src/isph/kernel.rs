@@ -30,6 +30,10 @@ pub struct Wendland {
     pub lattice_moment: f64,
     /// `1/m0` of the raw kernel (module doc).
     gradient_scale: f64,
+    /// W's factor `21/(2π r_e³)` and W'/r's `−210/(π r_e⁵ m0)`, computed once (the passes call
+    /// the kernel about 60 times per particle).
+    w_factor: f64,
+    dw_factor: f64,
 }
 
 impl Wendland {
@@ -42,7 +46,10 @@ impl Wendland {
             lattice_density: 1.0,
             lattice_moment: 1.0,
             gradient_scale: 1.0,
+            w_factor: 0.0,
+            dw_factor: 0.0,
         };
+        k.set_factors();
         let reach = radius_in_spacings.ceil() as i32;
         let mut sum = 0.0;
         for i in -reach..=reach {
@@ -55,8 +62,15 @@ impl Wendland {
         }
         k.lattice_density = sum;
         k.gradient_scale = 1.0 / lattice_moment(&k, spacing);
+        k.set_factors();
         k.lattice_moment = lattice_moment(&k, spacing);
         k
+    }
+
+    /// Computes [`Self::w_factor`] and [`Self::dw_factor`] from the radius and gradient scale.
+    fn set_factors(&mut self) {
+        self.w_factor = 21.0 / (2.0 * std::f64::consts::PI * self.radius.powi(3));
+        self.dw_factor = -210.0 * self.gradient_scale / (std::f64::consts::PI * self.radius.powi(5));
     }
 
     /// W(r) (0 beyond the support).
@@ -65,7 +79,7 @@ impl Wendland {
         let q = r / self.radius;
         if q < 1.0 {
             let a = 1.0 - q;
-            21.0 / (2.0 * std::f64::consts::PI * self.radius.powi(3)) * a * a * a * a * (1.0 + 4.0 * q)
+            self.w_factor * a * a * a * a * (1.0 + 4.0 * q)
         } else {
             0.0
         }
@@ -78,7 +92,7 @@ impl Wendland {
         let q = r / self.radius;
         if q < 1.0 {
             let a = 1.0 - q;
-            -210.0 * self.gradient_scale / (std::f64::consts::PI * self.radius.powi(5)) * a * a * a
+            self.dw_factor * a * a * a
         } else {
             0.0
         }

@@ -27,11 +27,7 @@ pub fn density_ratio(k: &Wendland, list: &NeighbourList, p: &Particles, out: &mu
         .for_each(|(i, o)| {
             *o = if p.kind[i] == FLUID || !list.of(i).is_empty() {
                 let mut s = self_term;
-                for &j in list.of(i) {
-                    let j = j as usize;
-                    let r =
-                        ((p.x[j] - p.x[i]).powi(2) + (p.y[j] - p.y[i]).powi(2) + (p.z[j] - p.z[i]).powi(2))
-                            .sqrt();
+                for &r in list.distances(i) {
                     s += k.volume * k.w(r);
                 }
                 s / k.lattice_density
@@ -52,14 +48,10 @@ pub fn divergence(k: &Wendland, list: &NeighbourList, p: &Particles, out: &mut V
         .for_each(|(i, o)| {
             let mut s = 0.0;
             if p.kind[i] == FLUID {
-                for &j in list.of(i) {
-                    let j = j as usize;
+                for (j, r) in list.pairs(i) {
                     if p.kind[j] != FLUID {
                         continue;
                     }
-                    let r =
-                        ((p.x[j] - p.x[i]).powi(2) + (p.y[j] - p.y[i]).powi(2) + (p.z[j] - p.z[i]).powi(2))
-                            .sqrt();
                     s += divergence_term(k, p, i, j, r);
                 }
             }
@@ -95,15 +87,11 @@ pub fn laplacian(
             let mut l = [0.0; 3];
             let mut wall = [0.0; 3];
             if p.kind[i] == FLUID {
-                for &j in list.of(i) {
-                    let j = j as usize;
+                for (j, r) in list.pairs(i) {
                     let solid = p.kind[j] != FLUID;
                     if solid && !no_slip {
                         continue;
                     }
-                    let r =
-                        ((p.x[j] - p.x[i]).powi(2) + (p.y[j] - p.y[i]).powi(2) + (p.z[j] - p.z[i]).powi(2))
-                            .sqrt();
                     let f = -2.0 * k.volume * k.dw_over_r(r);
                     let d = [
                         f * (p.vx[j] - p.vx[i]),
@@ -197,10 +185,8 @@ pub fn pressure_gradient(
             let mut wall = [0.0; 3];
             if p.kind[i] == FLUID {
                 let mut m = [[0.0; 3]; 3];
-                for &j in list.of(i) {
-                    let j = j as usize;
+                for (j, r) in list.pairs(i) {
                     let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
-                    let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
                     let solid = p.kind[j] != FLUID;
                     // A solid neighbour's pressure as this particle's PPE saw it (walls.rs).
                     let dp = if solid {
@@ -264,10 +250,8 @@ fn symmetric_gradient(
             let mut g = [0.0; 3];
             let mut solids = [0.0; 3];
             if p.kind[i] == FLUID {
-                for &j in list.of(i) {
-                    let j = j as usize;
+                for (j, r) in list.pairs(i) {
                     let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
-                    let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
                     let t = if p.kind[j] == body {
                         pair_laws::face_share(k, faces, j, r).map(|f| f / k.volume)
                     } else {

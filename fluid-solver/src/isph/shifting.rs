@@ -87,10 +87,8 @@ fn direction(
     i: usize,
 ) -> [f64; 3] {
     let mut s = [0.0; 3];
-    for &j in list.of(i) {
-        let j = j as usize;
+    for (j, r) in list.pairs(i) {
         let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
-        let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
         // −V ∇_i W_ij = −V (W'/r)(x_i − x_j)
         let c = -k.volume * k.dw_over_r(r);
         (0..3).for_each(|a| s[a] += c * d[a]);

@@ -467,12 +467,7 @@ impl IsphStep {
                     let row = row_of[i];
                     // Σ_j F_ij, the known terms, and S2-8's divergence of v* in the same pass.
                     let (mut diag, mut rhs, mut div) = (0.0, 0.0, 0.0);
-                    for &j in list.of(i) {
-                        let j = j as usize;
-                        let r = ((p.x[j] - p.x[i]).powi(2)
-                            + (p.y[j] - p.y[i]).powi(2)
-                            + (p.z[j] - p.z[i]).powi(2))
-                        .sqrt();
+                    for (j, r) in list.pairs(i) {
                         // F_ij rounded to f32 once (the matrix is stored in f32), the diagonal and
                         // the known terms built from the same rounded weight, so A keeps zero row
                         // sums over the fluid and stays symmetric: a Laplacian whose weights

@@ -63,13 +63,11 @@ pub fn normals(k: &Wendland, list: &NeighbourList, p: &Particles, out: &mut Vect
         .for_each(|(w, (nx, ny, nz))| {
             let mut g = [0.0; 3];
             if p.kind[w] != FLUID {
-                for &j in list.of(w) {
-                    let j = j as usize;
+                for (j, r) in list.pairs(w) {
                     if p.kind[j] == FLUID {
                         continue;
                     }
                     let d = [p.x[w] - p.x[j], p.y[w] - p.y[j], p.z[w] - p.z[j]];
-                    let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
                     let c = k.dw_over_r(r);
                     (0..3).for_each(|a| g[a] += c * d[a]);
                 }
@@ -160,13 +158,11 @@ pub fn extrapolated(k: &Wendland, list: &NeighbourList, pair: &NeumannPair) -> V
         .filter(|&w| p.kind[w] != FLUID)
         .map(|w| {
             let (mut num, mut den) = (0.0, 0.0);
-            for &f in list.of(w) {
-                let f = f as usize;
+            for (f, r) in list.pairs(w) {
                 if p.kind[f] != FLUID {
                     continue;
                 }
-                let d = [p.x[w] - p.x[f], p.y[w] - p.y[f], p.z[w] - p.z[f]];
-                let wf = k.w((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt());
+                let wf = k.w(r);
                 num += wf * (p.pressure[f] + pair.difference(f, w));
                 den += wf;
             }
