@@ -16,6 +16,9 @@ pub enum CouplerError {
         window: Option<u64>,
         message: String,
     },
+    /// A participant failed while the run was being finished, after its last window (its output
+    /// of the whole run was written).
+    AfterLastWindow { name: String, message: String },
     /// An implicit window did not converge; `history` is the worst relative residual of each sweep.
     NotConverged {
         window: u64,
@@ -43,6 +46,19 @@ impl CouplerError {
             CouplerError::Case(_) | CouplerError::Usage(_) => 2,
             CouplerError::Interrupted { .. } => 130,
             _ => 1,
+        }
+    }
+
+    /// The error of a participant that failed while the run was being finished: the same error
+    /// placed after the last window instead of before the first.
+    pub fn after_last_window(self) -> CouplerError {
+        match self {
+            CouplerError::Participant {
+                name,
+                window: None,
+                message,
+            } => CouplerError::AfterLastWindow { name, message },
+            other => other,
         }
     }
 
@@ -75,6 +91,9 @@ impl fmt::Display for CouplerError {
                 message,
             } => {
                 write!(f, "participant `{name}`{}: {message}", at(window))
+            }
+            CouplerError::AfterLastWindow { name, message } => {
+                write!(f, "participant `{name}` after the last window: {message}")
             }
             CouplerError::NotConverged {
                 window,
@@ -170,5 +189,27 @@ mod tests {
         assert!(message.contains("no fixed point"), "{message}");
         assert!(!message.contains("raise coupling.max_iterations"), "{message}");
         assert!(not_converged(vec![1.0, 0.9]).contains("raise coupling.max_iterations"));
+    }
+
+    /// An error while finishing the run is placed after the last window (it read "before the
+    /// first window" for a participant that exited with an error after Finish); one with a
+    /// window keeps it.
+    #[test]
+    fn an_error_while_finishing_says_after_the_last_window() {
+        let failed = |window| CouplerError::Participant {
+            name: "fluid".into(),
+            window,
+            message: "exited with exit code 1 after the run".into(),
+        };
+        let message = failed(None).after_last_window().to_string();
+        assert_eq!(
+            message,
+            "participant `fluid` after the last window: exited with exit code 1 after the run"
+        );
+        assert_eq!(failed(None).after_last_window().exit_code(), 1);
+        assert!(failed(Some(7))
+            .after_last_window()
+            .to_string()
+            .contains("in window 7"));
     }
 }

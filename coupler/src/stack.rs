@@ -318,7 +318,13 @@ impl Stack {
 
     /// Ends the run: `Finish` to everyone, their `Finished`, and their exit; then the warnings in their
     /// logs are passed on to the user.
-    pub fn finish(mut self) -> Result<(), CouplerError> {
+    pub fn finish(self) -> Result<(), CouplerError> {
+        self.finish_participants()
+            .map_err(CouplerError::after_last_window)
+    }
+
+    /// The steps of [`Stack::finish`]; its participants' errors carry no window.
+    fn finish_participants(mut self) -> Result<(), CouplerError> {
         for i in 0..self.sessions.len() {
             self.send(i, ToParticipant::Finish, None)?;
             match self.recv(i, None)? {
