@@ -451,6 +451,11 @@ fn dot_fn(n: usize, f: impl Fn(usize) -> f64 + Sync) -> f64 {
 pub(super) mod tests {
     use super::*;
 
+    /// The Euclidean distance |a − b|.
+    pub(crate) fn distance(a: &[f64], b: &[f64]) -> f64 {
+        a.iter().zip(b).map(|(a, b)| (a - b).powi(2)).sum::<f64>().sqrt()
+    }
+
     /// The 7-point Laplacian of an m³ grid with Dirichlet boundaries (diagonal 6, neighbours −1;
     /// the upper triangle stored):
     /// symmetric positive definite, like the PPE; m = 17 gives 4 913 unknowns, two SGS blocks.
@@ -517,12 +522,7 @@ pub(super) mod tests {
                 "{solver:?}: {report:?}"
             );
             // |x − x*| ≤ κ(A) tol |x*|, κ ≈ 6/(6 − 6cos(π/18)) ≈ 66 for this grid.
-            let err = x
-                .iter()
-                .zip(&reference)
-                .map(|(a, b)| (a - b).powi(2))
-                .sum::<f64>()
-                .sqrt();
+            let err = distance(&x, &reference);
             assert!(err <= 66.0 * tol * norm, "{solver:?}: error {err:e}");
             println!(
                 "{solver:?}: {} iterations, residual {:.1e}",

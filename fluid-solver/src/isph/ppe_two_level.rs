@@ -267,24 +267,25 @@ impl Cycle {
         })
     }
 
-    /// `z = M⁻¹ r` of the additive form: `z = D⁻¹ r + P A_c⁻¹ Pᵀ r`; returns `r·z` (as [`dot`]).
-    fn additive(&mut self, a: &PpeSystem, r: &[f64], z: &mut [f64]) -> f64 {
+    /// `z = S r`, S the smoother's diagonal ([`Cycle::smoother`]).
+    fn smooth(&self, r: &[f64], z: &mut [f64]) {
         z.par_iter_mut()
             .zip(r)
             .zip(&self.smoother)
             .with_min_len(CHUNK)
             .for_each(|((z, r), s)| *z = s * r);
+    }
+
+    /// `z = M⁻¹ r` of the additive form: `z = D⁻¹ r + P A_c⁻¹ Pᵀ r`; returns `r·z` (as [`dot`]).
+    fn additive(&mut self, a: &PpeSystem, r: &[f64], z: &mut [f64]) -> f64 {
+        self.smooth(r, z);
         self.add_coarse_correction(a, |i| r[i], z);
         dot(r, z)
     }
 
     /// `z = M⁻¹ r` by the V(1,1) cycle of the module doc; returns `r·z` (as [`dot`]).
     fn multiplicative(&mut self, a: &PpeSystem, r: &[f64], z: &mut [f64]) -> f64 {
-        z.par_iter_mut()
-            .zip(r)
-            .zip(&self.smoother)
-            .with_min_len(CHUNK)
-            .for_each(|((z, r), s)| *z = s * r);
+        self.smooth(r, z);
         a.apply_with(self.span, z, &mut self.az);
         let az = std::mem::take(&mut self.az);
         self.add_coarse_correction(a, |i| r[i] - az[i], z);
@@ -331,7 +332,7 @@ impl Cycle {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::isph::ppe::tests::{block_aggregates, laplacian};
+    use crate::isph::ppe::tests::{block_aggregates, distance, laplacian};
     use schemas::case::fluid::PpeSolver;
 
     /// The 7-point Laplacian of an m³ grid as the PPE of a tank: Neumann (no flux) on the bottom
@@ -376,12 +377,7 @@ mod tests {
                 // (the 1D Dirichlet–Neumann chain along z): 1.2e3 at m = 24.
                 let kappa = 12.0 / (2.0 * (1.0 - (std::f64::consts::PI / (2 * m + 1) as f64).cos()));
                 let norm = reference.iter().map(|v| v * v).sum::<f64>().sqrt();
-                let err = x
-                    .iter()
-                    .zip(&reference)
-                    .map(|(a, b)| (a - b).powi(2))
-                    .sum::<f64>()
-                    .sqrt();
+                let err = distance(&x, &reference);
                 assert!(err <= kappa * tol * norm, "{solver:?}, m = {m}: error {err:e}");
                 println!("m = {m}: Jacobi-PCG {jacobi} iterations, {solver:?} {two_level}");
                 counts.push((jacobi, two_level));
