@@ -277,10 +277,24 @@ impl Cycle {
     }
 
     /// `z = M⁻¹ r` of the additive form: `z = D⁻¹ r + P A_c⁻¹ Pᵀ r`; returns `r·z` (as [`dot`]).
+    /// One pass writes z and sums `r·z` per chunk as [`dot`] does (so the same bits).
     fn additive(&mut self, a: &PpeSystem, r: &[f64], z: &mut [f64]) -> f64 {
-        self.smooth(r, z);
-        self.add_coarse_correction(a, |i| r[i], z);
-        dot(r, z)
+        self.coarse_solve(|i| r[i]);
+        let coarse = self.coarse.col(0);
+        let parts: Vec<f64> = z
+            .par_chunks_mut(CHUNK)
+            .zip(r.par_chunks(CHUNK))
+            .zip(self.smoother.par_chunks(CHUNK).zip(a.aggregate.par_chunks(CHUNK)))
+            .map(|((z, r), (s, g))| {
+                let mut rz = 0.0;
+                for (((z, r), s), &g) in z.iter_mut().zip(r).zip(s).zip(g) {
+                    *z = s * r + coarse[g as usize];
+                    rz += r * *z;
+                }
+                rz
+            })
+            .collect();
+        parts.iter().sum()
     }
 
     /// `z = M⁻¹ r` by the V(1,1) cycle of the module doc; returns `r·z` (as [`dot`]).
@@ -288,8 +302,13 @@ impl Cycle {
         self.smooth(r, z);
         a.apply_with(self.span, z, &mut self.az);
         let az = std::mem::take(&mut self.az);
-        self.add_coarse_correction(a, |i| r[i] - az[i], z);
+        self.coarse_solve(|i| r[i] - az[i]);
         self.az = az;
+        let coarse = self.coarse.col(0);
+        z.par_iter_mut()
+            .zip(&a.aggregate)
+            .with_min_len(CHUNK)
+            .for_each(|(z, &g)| *z += coarse[g as usize]);
         a.apply_with(self.span, z, &mut self.az);
         z.par_iter_mut()
             .zip(r)
@@ -299,9 +318,10 @@ impl Cycle {
         dot(r, z)
     }
 
-    /// `z += P A_c⁻¹ Pᵀ e` for the fine vector `e(i)`: restricted aggregate by aggregate in member
-    /// order, solved with the factor, prolongated.
-    fn add_coarse_correction(&mut self, a: &PpeSystem, e: impl Fn(usize) -> f64 + Sync, z: &mut [f64]) {
+    /// `A_c⁻¹ Pᵀ e` into [`Cycle::coarse`] for the fine vector `e(i)`: restricted aggregate by
+    /// aggregate in member order, solved with the factor (the caller prolongates: `P` adds
+    /// `coarse[aggregate[i]]` to unknown i).
+    fn coarse_solve(&mut self, e: impl Fn(usize) -> f64 + Sync) {
         let restricted: Vec<f64> = (0..self.first.len() - 1)
             .into_par_iter()
             .map(|g| {
@@ -321,11 +341,6 @@ impl Cycle {
             Par::Seq,
             MemStack::new(&mut self.stack),
         );
-        let coarse = self.coarse.col(0);
-        z.par_iter_mut()
-            .zip(&a.aggregate)
-            .with_min_len(CHUNK)
-            .for_each(|(z, &g)| *z += coarse[g as usize]);
     }
 }
 
