@@ -33,7 +33,7 @@ use super::pair_laws;
 use super::ppe::{PpeFailure, PpeReport, PpeSystem, NOT_AN_UNKNOWN};
 use super::ppe_two_level;
 use super::shifting;
-use super::walls::{self, NeumannPair};
+use super::walls::{self, NeumannPair, WallFields};
 use crate::collision::{self, COLLISION_DISTANCE, RESTITUTION};
 use crate::kind::{Kind, FLUID};
 use crate::method::StepTotals;
@@ -87,7 +87,9 @@ pub struct IsphStep {
     ratio: Vec<f64>,
     lambda: Vec<f64>,
     takes_part: Vec<u8>,
-    normals: VectorField,
+    /// The walls' normals and depths and the surface flags of the last PPE assembly, for the
+    /// wall differences ([`super::walls`]).
+    walls: WallFields,
     accel: VectorField,
     /// The shift per unit D of every particle ([`shifting::directions`]).
     shift: VectorField,
@@ -98,10 +100,6 @@ pub struct IsphStep {
     faces: pair_laws::BodyFaces,
     /// The Dirichlet pressure of each surface particle ([`free_surface::surface_pressure`]).
     dirichlet: Vec<f64>,
-    /// The surface flags of the last PPE assembly, for the wall differences ([`super::walls`]).
-    surface: Vec<u8>,
-    /// The solids' depths behind their walls' faces ([`walls::depths`]).
-    depth: Vec<f64>,
     times: StageTimes,
 }
 
@@ -125,15 +123,13 @@ impl IsphStep {
             ratio: Vec::new(),
             lambda: Vec::new(),
             takes_part: Vec::new(),
-            normals: VectorField::default(),
+            walls: WallFields::default(),
             accel: VectorField::default(),
             shift: VectorField::default(),
             ppe: PpeSystem::default(),
             row_blocks: Vec::new(),
             solution: Vec::new(),
             dirichlet: Vec::new(),
-            surface: Vec::new(),
-            depth: Vec::new(),
             faces: pair_laws::BodyFaces::default(),
             times: StageTimes::default(),
         }
@@ -167,16 +163,7 @@ impl IsphStep {
 
     /// The walls' Neumann differences for a step of `dt` with v* in the particles.
     fn neumann<'a>(&'a self, p: &'a Particles, dt: f64) -> NeumannPair<'a> {
-        NeumannPair {
-            density: self.physics.density,
-            gravity: self.physics.gravity,
-            dt,
-            p,
-            normals: &self.normals,
-            surface: &self.surface,
-            depth: &self.depth,
-            spacing: self.kernel.spacing,
-        }
+        self.walls.pair(&self.physics, self.kernel.spacing, p, dt)
     }
 
     /// Advances the particles by `dt` through the stages of the module doc; `bodies` is handed
@@ -220,24 +207,9 @@ impl IsphStep {
         let t = self.times.lap(t, "PPE solve");
         self.wall_pressure(p, dt);
         let t = self.times.lap(t, "wall pressure");
-        let walls = NeumannPair {
-            density: self.physics.density,
-            gravity: self.physics.gravity,
-            dt,
-            p,
-            normals: &self.normals,
-            surface: &self.surface,
-            depth: &self.depth,
-            spacing: self.kernel.spacing,
-        };
+        self.update_body_faces(p, dt);
+        let walls = self.walls.pair(&self.physics, self.kernel.spacing, p, dt);
         let form = self.settings.pressure_gradient;
-        pair_laws::body_faces(
-            &self.kernel,
-            &self.list,
-            &walls,
-            &self.takes_part,
-            &mut self.faces,
-        );
         let pass = operators::pressure_gradient(
             &self.kernel,
             &self.list,
@@ -269,7 +241,7 @@ impl IsphStep {
                 p,
                 &self.lambda,
                 &self.takes_part,
-                &self.normals,
+                &self.walls.normals,
                 &mut self.shift,
             );
             self.times.lap(t, "shifting")
@@ -313,23 +285,7 @@ impl IsphStep {
         self.aggregate(grid);
         let solved = self.solve_ppe(p);
         self.wall_pressure(p, dt);
-        let walls = NeumannPair {
-            density: self.physics.density,
-            gravity: self.physics.gravity,
-            dt,
-            p,
-            normals: &self.normals,
-            surface: &self.surface,
-            depth: &self.depth,
-            spacing: self.kernel.spacing,
-        };
-        pair_laws::body_faces(
-            &self.kernel,
-            &self.list,
-            &walls,
-            &self.takes_part,
-            &mut self.faces,
-        );
+        self.update_body_faces(p, dt);
         (p.vx, p.vy, p.vz) = v;
         state.ppe = solved?;
         Ok(())
@@ -397,8 +353,8 @@ impl IsphStep {
     /// particles; a fluid particle without fluid neighbours is put on the surface.
     fn assemble(&mut self, p: &Particles, state: &mut IsphState, dt: f64) {
         let k = self.kernel;
-        walls::normals(&k, &self.list, p, &mut self.normals);
-        walls::depths(&k, &self.list, p, &self.normals, &mut self.depth);
+        walls::normals(&k, &self.list, p, &mut self.walls.normals);
+        walls::depths(&k, &self.list, p, &self.walls.normals, &mut self.walls.depth);
         let list = &self.list;
         let surface = &mut state.surface;
         // Unknowns: fluid, not on the surface, with at least one fluid neighbour.
@@ -424,7 +380,7 @@ impl IsphStep {
             self.physics.gravity,
             &mut self.dirichlet,
         );
-        self.surface.clone_from(surface);
+        self.walls.surface.clone_from(surface);
         let ppe = &mut self.ppe;
         ppe.row_of.clear();
         ppe.row_of.resize(p.len(), NOT_AN_UNKNOWN);
@@ -435,16 +391,7 @@ impl IsphStep {
                 ppe.particle.push(i as u32);
             }
         }
-        let pair = NeumannPair {
-            density: self.physics.density,
-            gravity: self.physics.gravity,
-            dt,
-            p,
-            normals: &self.normals,
-            surface: &self.surface,
-            depth: &self.depth,
-            spacing: self.kernel.spacing,
-        };
+        let pair = self.walls.pair(&self.physics, self.kernel.spacing, p, dt);
         // The density relaxation's rate α_d/Δt is the case's, whatever this step's length (module
         // doc, 4).
         let (rho, alpha, relax) = (self.physics.density, self.settings.alpha_d, self.time_step);
@@ -578,18 +525,22 @@ impl IsphStep {
         Ok(report)
     }
 
+    /// The bodies' face laws ([`pair_laws::body_faces`]) from the present pressures, with v* of a
+    /// step of `dt` in the particles.
+    fn update_body_faces(&mut self, p: &Particles, dt: f64) {
+        let walls = self.walls.pair(&self.physics, self.kernel.spacing, p, dt);
+        pair_laws::body_faces(
+            &self.kernel,
+            &self.list,
+            &walls,
+            &self.takes_part,
+            &mut self.faces,
+        );
+    }
+
     /// Adami's extrapolation onto the wall, dummy, body and inflow particles.
     fn wall_pressure(&mut self, p: &mut Particles, dt: f64) {
-        let pair = NeumannPair {
-            density: self.physics.density,
-            gravity: self.physics.gravity,
-            dt,
-            p,
-            normals: &self.normals,
-            surface: &self.surface,
-            depth: &self.depth,
-            spacing: self.kernel.spacing,
-        };
+        let pair = self.neumann(p, dt);
         let solid = walls::extrapolated(&self.kernel, &self.list, &pair);
         for (w, pw) in solid {
             p.pressure[w] = pw;

@@ -49,6 +49,7 @@ use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
 use crate::kind::FLUID;
 use crate::particles::Particles;
+use crate::physics::Physics;
 use crate::vector_field::VectorField;
 use rayon::prelude::*;
 
@@ -103,6 +104,32 @@ pub fn depths(k: &Wendland, list: &NeighbourList, p: &Particles, normals: &Vecto
             }
             *depth = 0.5 * k.spacing + outer;
         });
+}
+
+/// What the pair differences read of a step besides the particles: the solids' normals into the
+/// fluid ([`normals`]) and depths behind their faces ([`depths`]), and the surface flags of the
+/// step's PPE assembly.
+#[derive(Debug, Clone, Default)]
+pub struct WallFields {
+    pub normals: VectorField,
+    pub surface: Vec<u8>,
+    pub depth: Vec<f64>,
+}
+
+impl WallFields {
+    /// The pair differences for a step of `dt` with v* in `p`.
+    pub fn pair<'a>(&'a self, physics: &Physics, spacing: f64, p: &'a Particles, dt: f64) -> NeumannPair<'a> {
+        NeumannPair {
+            density: physics.density,
+            gravity: physics.gravity,
+            dt,
+            p,
+            normals: &self.normals,
+            surface: &self.surface,
+            depth: &self.depth,
+            spacing,
+        }
+    }
 }
 
 /// What a pair difference needs: ρ, g, Δt, the velocities before gravity u = v* − gΔt of the
