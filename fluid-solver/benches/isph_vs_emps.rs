@@ -145,13 +145,20 @@ fn run(name: &str, cfg: &FluidConfig, end: f64, log: Option<&str>) -> Row {
     }
 }
 
+/// The value of the argument `NAME=VALUE`.
+fn flag<'a>(all: &'a [String], name: &str) -> Option<&'a str> {
+    all.iter().find_map(|a| a.strip_prefix(name)?.strip_prefix('='))
+}
+
+/// The number of the argument `NAME=VALUE`, or `default` when it is absent or not a number.
+fn number(all: &[String], name: &str, default: f64) -> f64 {
+    flag(all, name).and_then(|v| v.parse().ok()).unwrap_or(default)
+}
+
 fn main() {
     let all: Vec<String> = std::env::args().skip(1).collect();
     let s2 = all.iter().any(|a| a == "--s2");
-    let only = all
-        .iter()
-        .find_map(|a| a.strip_prefix("--only="))
-        .map(str::to_owned);
+    let only = flag(&all, "--only").map(str::to_owned);
     let args: Vec<&String> = all.iter().filter(|a| !a.starts_with("--")).collect();
     let ds: f64 = args
         .first()
@@ -165,39 +172,28 @@ fn main() {
         Some("two-level-pcg") => PpeSolver::TwoLevelPcg,
         _ => PpeSolver::AdditiveTwoLevelPcg,
     };
-    let log = all
-        .iter()
-        .find_map(|a| a.strip_prefix("--probe-log="))
-        .map(str::to_owned);
+    let log = flag(&all, "--probe-log").map(str::to_owned);
     let layers = if s2 { 76.0 } else { 10.0 };
     let mut emps = case(ds, layers);
     emps.time_step = 0.45 * ds / emps.sound_speed(); // acoustic Courant 0.45, as the case file
     let mut isph = case(ds, layers);
     isph.method = FluidMethodName::Isph;
     isph.sound_speed = None;
-    let alpha_d = all
-        .iter()
-        .find_map(|a| a.strip_prefix("--alpha-d="))
-        .and_then(|a| a.parse().ok())
-        .unwrap_or(IsphConfig::default().alpha_d);
-    let pressure_gradient = match all.iter().find_map(|a| a.strip_prefix("--gradient=")) {
+    let alpha_d = number(&all, "--alpha-d", IsphConfig::default().alpha_d);
+    let pressure_gradient = match flag(&all, "--gradient") {
         Some("symmetric") => PressureGradient::Symmetric,
         _ => PressureGradient::CorrectedDifference,
     };
-    let influence_radius = all
-        .iter()
-        .find_map(|a| a.strip_prefix("--radius="))
-        .and_then(|a| a.parse().ok())
-        .unwrap_or(IsphConfig::default().influence_radius);
-    let shifting = match all.iter().find_map(|a| a.strip_prefix("--shifting=")) {
+    let influence_radius = number(&all, "--radius", IsphConfig::default().influence_radius);
+    let shifting = match flag(&all, "--shifting") {
         Some("lind") => Shifting::Lind,
         _ => Shifting::Off,
     };
-    let shifting_coefficient = all
-        .iter()
-        .find_map(|a| a.strip_prefix("--shifting-coefficient="))
-        .and_then(|a| a.parse().ok())
-        .unwrap_or(IsphConfig::default().shifting_coefficient);
+    let shifting_coefficient = number(
+        &all,
+        "--shifting-coefficient",
+        IsphConfig::default().shifting_coefficient,
+    );
     isph.isph = Some(IsphConfig {
         ppe_solver: solver,
         alpha_d,
@@ -208,11 +204,7 @@ fn main() {
         ..IsphConfig::default()
     });
     // Advective Courant 0.3 (limit 0.4), or `--isph-courant=C`.
-    let courant = all
-        .iter()
-        .find_map(|a| a.strip_prefix("--isph-courant="))
-        .and_then(|a| a.parse().ok())
-        .unwrap_or(0.3);
+    let courant = number(&all, "--isph-courant", 0.3);
     isph.time_step = courant * ds / isph.advective_velocity();
     for c in [&emps, &isph] {
         if let Err(e) = c.validate("fluid.water") {
