@@ -114,24 +114,19 @@ impl CellGrid {
             .enumerate()
             .with_min_len(4096)
             .for_each(|(i, c)| *c = self.cell_index([p.x[i], p.y[i], p.z[i]]));
-        self.start.iter_mut().for_each(|s| *s = 0);
+        // Counts per cell, summed into each cell's end; the scatter runs backwards and takes each
+        // end down to its cell's start (stable, and no pass to shift the ends back).
+        self.start.fill(0);
         for &c in &cells {
-            self.start[c as usize + 1] += 1;
+            self.start[c as usize] += 1;
         }
-        for c in 0..self.cell_count() {
-            self.start[c + 1] += self.start[c];
-        }
+        running_sum(&mut self.start);
         self.perm.resize(n, 0);
-        // Scatter: `next` is the next free slot of each cell, taken from `start` (shifted back after).
-        for (i, &c) in cells.iter().enumerate() {
+        for (i, &c) in cells.iter().enumerate().rev() {
             let slot = &mut self.start[c as usize];
+            *slot -= 1;
             self.perm[*slot as usize] = i as u32;
-            *slot += 1;
         }
-        for c in (1..=self.cell_count()).rev() {
-            self.start[c] = self.start[c - 1];
-        }
-        self.start[0] = 0;
         let perm = &self.perm;
         self.cell_of.resize(n, 0);
         self.cell_of
@@ -140,15 +135,13 @@ impl CellGrid {
             .with_min_len(4096)
             .for_each(|(c, &j)| *c = cells[j as usize]);
         p.permute(&self.perm, scratch);
-        self.fluid_before.iter_mut().for_each(|f| *f = 0);
+        self.fluid_before.fill(0);
         for (&c, &k) in self.cell_of.iter().zip(&p.kind) {
             if k == FLUID {
                 self.fluid_before[c as usize + 1] += 1;
             }
         }
-        for c in 0..self.cell_count() {
-            self.fluid_before[c + 1] += self.fluid_before[c];
-        }
+        running_sum(&mut self.fluid_before);
     }
 
     /// The cell of particle `i` (after [`CellGrid::sort`]).
@@ -507,4 +500,14 @@ pub enum Rows {
     /// Every row holding a particle, but none when no fluid particle is in the block of cells
     /// (sums over every particle that mean nothing without water: the drag law's samples).
     AllIfFluid,
+}
+
+/// `v[c] ← v[0] + … + v[c]`, the sum carried in a register (a loop that reads back the entry it
+/// just stored took 3.3 ms over S2's 1.3 million cells, about 5 cycles a cell).
+fn running_sum(v: &mut [u32]) {
+    let mut sum = 0;
+    for e in v {
+        sum += *e;
+        *e = sum;
+    }
 }
