@@ -180,12 +180,15 @@ impl StabilityMonitor {
         dt: f64,
         body_pose: &[f64],
     ) -> Result<(), Instability> {
-        let found = (0..p.len())
+        // The lowest id found, then its finding again: carrying each finding through the
+        // reduction (`filter_map(..).min_by_key(..)`) took 7.5 ms a step over S2's 311 000
+        // particles, none of them found, and this 2.3 ms.
+        let first = (0..p.len())
             .into_par_iter()
             .with_min_len(4096)
-            .filter_map(|i| self.check_particle(p, i, dt, body_pose))
-            .min_by_key(|f| f.0);
-        if let Some((id, quantity, message)) = found {
+            .filter(|&i| self.check_particle(p, i, dt, body_pose).is_some())
+            .min_by_key(|&i| p.id[i]);
+        if let Some((id, quantity, message)) = first.and_then(|i| self.check_particle(p, i, dt, body_pose)) {
             return Err(Instability {
                 step,
                 time,
