@@ -201,7 +201,7 @@ fn detect(p: &mut Particles, ds: f64, lo: [f64; 3], hi: [f64; 3]) -> Vec<u8> {
     let mut grid = CellGrid::new(lo, hi, ds);
     grid.sort(p, &mut Vec::new());
     let mut list = NeighbourList::default();
-    list.build(&grid, p, k.radius);
+    list.build(&grid, p, &k);
     let (mut fill, mut takes_part, mut lambda, mut flags) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     operators::density_ratio(&k, &list, p, &mut fill);
     free_surface::fill_flags(p, &fill, &mut takes_part);
@@ -407,7 +407,7 @@ fn free_surface_of_a_dam_break_snapshot() {
     grid.sort(&mut p, &mut Vec::new());
     let flags = {
         let mut list = NeighbourList::default();
-        list.build(&grid, &p, k.radius);
+        list.build(&grid, &p, &k);
         let (mut fill, mut takes_part, mut lambda, mut flags) =
             (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         operators::density_ratio(&k, &list, &p, &mut fill);

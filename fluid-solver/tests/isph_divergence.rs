@@ -135,7 +135,7 @@ fn check_step(cfg: &FluidConfig, t: f64) -> Terms {
     let mut grid = CellGrid::new(d.lo, [d.hi[0], d.hi[1], d.hi[2].max(1.0)], ds);
     grid.sort(&mut q, &mut Vec::new());
     let mut list = NeighbourList::default();
-    list.build(&grid, &q, k.radius);
+    list.build(&grid, &q, &k);
     let n = q.len();
     let fluid = |i: usize| q.kind[i] == Kind::Fluid.code();
     let row = |i: usize| result[&q.id[i]].2;

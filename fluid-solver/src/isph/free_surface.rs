@@ -36,7 +36,7 @@
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
 use crate::kind::FLUID;
-use crate::moments::{smallest_eigenvalue, solve, Matrix3, OuterSum};
+use crate::moments::{smallest_eigenvalue_up_to, solve, Matrix3, OuterSum};
 use crate::particles::Particles;
 use rayon::prelude::*;
 
@@ -73,17 +73,19 @@ pub fn moment_matrix(
 ) -> Matrix3 {
     let mut m = OuterSum::default();
     let scale = -k.volume / k.lattice_moment;
-    for (j, r) in list.pairs(i) {
+    for (j, q) in list.pairs(i) {
         if takes_part[j] == 0 {
             continue;
         }
         let d = [p.x[j] - p.x[i], p.y[j] - p.y[i], p.z[j] - p.z[i]];
-        m.add(scale * k.dw_over_r(r), d);
+        m.add(scale * k.dw_over_r_at(q), d);
     }
     m.matrix()
 }
 
-/// λ_min of every fluid particle (S2-10, S2-11); 1 for other particles.
+/// λ_min of every fluid particle (S2-10, S2-11) where it is at most [`LAMBDA_INNER`], a lower
+/// bound of it above [`LAMBDA_INNER`] elsewhere (every reader only compares it with the two
+/// thresholds; [`smallest_eigenvalue_up_to`]); 1 for other particles.
 pub fn lambda_min(k: &Wendland, list: &NeighbourList, p: &Particles, takes_part: &[u8], out: &mut Vec<f64>) {
     out.resize(p.len(), 1.0);
     out.par_iter_mut()
@@ -91,7 +93,7 @@ pub fn lambda_min(k: &Wendland, list: &NeighbourList, p: &Particles, takes_part:
         .with_min_len(512)
         .for_each(|(i, l)| {
             *l = if p.kind[i] == FLUID {
-                smallest_eigenvalue(&moment_matrix(k, list, p, takes_part, i))
+                smallest_eigenvalue_up_to(&moment_matrix(k, list, p, takes_part, i), LAMBDA_INNER)
             } else {
                 1.0
             };
@@ -141,13 +143,13 @@ pub fn outward_normal(
     i: usize,
 ) -> Option<[f64; 3]> {
     let mut g = [0.0; 3];
-    for (j, r) in list.pairs(i) {
+    for (j, q) in list.pairs(i) {
         if takes_part[j] == 0 {
             continue;
         }
         // ∇_i W_ij = (W'/r)(x_i − x_j)
         let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
-        let c = k.volume * k.dw_over_r(r);
+        let c = k.volume * k.dw_over_r_at(q);
         for a in 0..3 {
             g[a] += c * d[a];
         }
@@ -226,12 +228,12 @@ pub fn surface_pressure(
                 return;
             }
             let mut s = [0.0; 3];
-            for (j, r) in list.pairs(i) {
+            for (j, q) in list.pairs(i) {
                 if takes_part[j] == 0 {
                     continue;
                 }
                 let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
-                let c = k.dw_over_r(r);
+                let c = k.dw_over_r_at(q);
                 (0..3).for_each(|a| s[a] += c * d[a]);
             }
             let norm = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
@@ -246,13 +248,13 @@ pub fn surface_pressure(
                 return;
             }
             let (mut num, mut den) = (0.0, 0.0);
-            for (j, r) in list.pairs(i) {
+            for (j, q) in list.pairs(i) {
                 if p.kind[j] != FLUID || j == i {
                     continue;
                 }
                 let d = [p.x[j] - p.x[i], p.y[j] - p.y[i], p.z[j] - p.z[i]];
                 let dm = d[0] * m[0] + d[1] * m[1] + d[2] * m[2];
-                let w = k.w(r);
+                let w = k.w_at(q);
                 num += w * (p.pressure[j] - p.pressure[i]) * dm;
                 den += w * dm * dm;
             }

@@ -3,12 +3,15 @@
 //! from the cell grid. Every later pass of the step (density, moments, divergence, PPE assembly,
 //! wall pressure, gradient) walks ~60 true neighbours instead of the ~300 candidates of the
 //! surrounding cells; the cells wholly beyond r_e are not visited
-//! ([`CellGrid::for_each_range_within`]). Each entry keeps its distance |x_j − x_i|, computed
-//! once here by the same expression the passes used (so every result is bit-identical to
-//! recomputing it): at S2's scale the passes spent most of their time on the square root, and
-//! the density pass fell from 28 to 12.7 ms per step; with the kernel's factors computed once
-//! ([`super::kernel::Wendland`]) the step went from 3.8e5 to 4.3e5 wall fluid-steps/s.
+//! ([`CellGrid::for_each_range_within`]). Each entry keeps its distance as the kernel reads it,
+//! q = |x_j − x_i| / r_e ([`super::kernel::Wendland::q`]), computed once here by the same
+//! expressions the passes used (so every result is bit-identical to recomputing it): at S2's
+//! scale the passes spent most of their time on the square root, and the density pass fell from
+//! 28 to 12.7 ms per step; with the kernel's factors computed once the step went from 3.8e5 to
+//! 4.3e5 wall fluid-steps/s, and with the division by r_e done here too the step fell by about
+//! 7 ms.
 
+use super::kernel::Wendland;
 use crate::kind::FLUID;
 use crate::neighbour_search::{CellGrid, CELL_IN_SPACINGS};
 use crate::particles::Particles;
@@ -35,17 +38,18 @@ pub struct NeighbourList {
 }
 
 /// Neighbours of the block's k-th particle are `index[start[k] .. start[k + 1]]` (the particle
-/// itself excluded), their distances `distance[start[k] .. start[k + 1]]`.
+/// itself excluded), their distances over the support `q[start[k] .. start[k + 1]]`.
 #[derive(Debug, Clone, Default, PartialEq)]
 struct Block {
     start: Vec<u32>,
     index: Vec<u32>,
-    distance: Vec<f64>,
+    q: Vec<f64>,
 }
 
 impl NeighbourList {
     /// Rebuilds the list for the particles in the grid's order; returns the candidates examined.
-    pub fn build(&mut self, grid: &CellGrid, p: &Particles, radius: f64) -> u64 {
+    pub fn build(&mut self, grid: &CellGrid, p: &Particles, k: &Wendland) -> u64 {
+        let (k, radius) = (*k, k.radius);
         let reach = grid.reach(radius);
         let r2max = radius * radius;
         let (x, y, z, kind) = (&p.x, &p.y, &p.z, &p.kind);
@@ -55,9 +59,9 @@ impl NeighbourList {
             .par_iter_mut()
             .enumerate()
             .map(|(b, block)| {
-                let (index, start, distance) = (&mut block.index, &mut block.start, &mut block.distance);
+                let (index, start, q) = (&mut block.index, &mut block.start, &mut block.q);
                 index.clear();
-                distance.clear();
+                q.clear();
                 start.clear();
                 start.push(0);
                 let mut seen = 0u64;
@@ -85,13 +89,13 @@ impl NeighbourList {
                                 let r2 = dx * dx + dy * dy + dz * dz;
                                 if r2 < r2max && j != i {
                                     index.push(j as u32);
-                                    distance.push(r2); // its square root once the row is complete
+                                    q.push(r2); // r / r_e once the row is complete
                                 }
                             }
                         });
                     }
                     let first = *start.last().unwrap_or(&0) as usize;
-                    distance[first..].iter_mut().for_each(|d| *d = d.sqrt());
+                    q[first..].iter_mut().for_each(|d| *d = k.q(d.sqrt()));
                     start.push(index.len() as u32);
                 }
                 seen
@@ -107,7 +111,7 @@ impl NeighbourList {
         &b.index[b.start[k] as usize..b.start[k + 1] as usize]
     }
 
-    /// The neighbours j of particle `i` with their distances |x_j − x_i|.
+    /// The neighbours j of particle `i` with their q = |x_j − x_i| / r_e.
     #[inline(always)]
     pub fn pairs(&self, i: usize) -> impl Iterator<Item = (usize, f64)> + '_ {
         let b = &self.blocks[i / BLOCK];
@@ -115,23 +119,23 @@ impl NeighbourList {
         let (s, e) = (b.start[k] as usize, b.start[k + 1] as usize);
         b.index[s..e]
             .iter()
-            .zip(&b.distance[s..e])
-            .map(|(&j, &r)| (j as usize, r))
+            .zip(&b.q[s..e])
+            .map(|(&j, &q)| (j as usize, q))
     }
 
-    /// The distances |x_j − x_i| of particle `i`'s neighbours, in the order of [`Self::of`].
+    /// The q = |x_j − x_i| / r_e of particle `i`'s neighbours, in the order of [`Self::of`].
     #[inline(always)]
-    pub fn distances(&self, i: usize) -> &[f64] {
+    pub fn q(&self, i: usize) -> &[f64] {
         let b = &self.blocks[i / BLOCK];
         let k = i % BLOCK;
-        &b.distance[b.start[k] as usize..b.start[k + 1] as usize]
+        &b.q[b.start[k] as usize..b.start[k + 1] as usize]
     }
 
     /// Bytes held.
     pub fn memory_bytes(&self) -> usize {
         self.blocks
             .iter()
-            .map(|b| 4 * (b.start.capacity() + b.index.capacity()) + 8 * b.distance.capacity())
+            .map(|b| 4 * (b.start.capacity() + b.index.capacity()) + 8 * b.q.capacity())
             .sum()
     }
 }

@@ -36,7 +36,7 @@ use crate::particles::Particles;
 use rayon::prelude::*;
 
 /// The symmetric form's term of fluid particle i's pressure gradient from neighbour j at
-/// `d = x_i − x_j`, `r = |d|`: `t_ij = V (p_i + p_j^(i)) ∇_i W_ij`, with p_j^(i) = p_j for a fluid
+/// `d = x_i − x_j`, `q = |d| / r_e`: `t_ij = V (p_i + p_j^(i)) ∇_i W_ij`, with p_j^(i) = p_j for a fluid
 /// j and p_i + Δp_ij for a solid j (wall or body: its pressure as i's PPE saw it,
 /// [`super::walls`]). The fluid's `⟨∇p⟩_i = Σ_j t_ij` ([`super::operators::pressure_gradient`]),
 /// so the force on i from j is `−(m/ρ) t_ij = −V t_ij`, and the force on a solid j from i is
@@ -49,7 +49,7 @@ pub fn symmetric_term(
     i: usize,
     j: usize,
     d: [f64; 3],
-    r: f64,
+    q: f64,
 ) -> [f64; 3] {
     let p = walls.p;
     let pij = if p.kind[j] == FLUID {
@@ -57,18 +57,18 @@ pub fn symmetric_term(
     } else {
         2.0 * p.pressure[i] + walls.difference(i, j)
     };
-    let c = k.volume * k.dw_over_r(r) * pij;
+    let c = k.volume * k.dw_over_r_at(q) * pij;
     d.map(|v| c * v)
 }
 
-/// Fluid particle i's share of body particle j's face force at distance `r`,
+/// Fluid particle i's share of body particle j's face force at `q = r / r_e`,
 /// `F_ij = F_j W(r) / Σ_f W_fj` (module doc): the force on j from i; 0 for a body particle
 /// without a load (dry, or no fluid neighbour) and for any other particle.
 #[inline(always)]
-pub fn face_share(k: &Wendland, faces: &BodyFaces, j: usize, r: f64) -> [f64; 3] {
+pub fn face_share(k: &Wendland, faces: &BodyFaces, j: usize, q: f64) -> [f64; 3] {
     match (faces.force.get(j), faces.weight.get(j)) {
         (Some(f), Some(&den)) if den > 0.0 => {
-            let share = k.w(r) / den;
+            let share = k.w_at(q) / den;
             f.map(|v| v * share)
         }
         _ => [0.0; 3],
@@ -179,9 +179,9 @@ pub fn pressure<'a>(k: &Wendland, walls: NeumannPair<'a>, faces: &'a BodyFaces) 
             return None;
         }
         if p.kind[j] == body {
-            return Some(face_share(&k, faces, j, r2.sqrt()));
+            return Some(face_share(&k, faces, j, k.q(r2.sqrt())));
         }
-        let t = symmetric_term(&k, &walls, i, j, d, r2.sqrt());
+        let t = symmetric_term(&k, &walls, i, j, d, k.q(r2.sqrt()));
         Some(t.map(|v| k.volume * v))
     })
 }

@@ -87,10 +87,10 @@ fn direction(
     i: usize,
 ) -> [f64; 3] {
     let mut s = [0.0; 3];
-    for (j, r) in list.pairs(i) {
+    for (j, q) in list.pairs(i) {
         let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
         // −V ∇_i W_ij = −V (W'/r)(x_i − x_j)
-        let c = -k.volume * k.dw_over_r(r);
+        let c = -k.volume * k.dw_over_r_at(q);
         (0..3).for_each(|a| s[a] += c * d[a]);
     }
     if lambda <= LAMBDA_INNER {

@@ -294,7 +294,7 @@ impl IsphStep {
     /// Sorts the particles into the cells at r^n and builds the neighbour list.
     fn neighbours(&mut self, p: &mut Particles, grid: &mut CellGrid) -> u64 {
         grid.sort(p, &mut self.scratch);
-        self.list.build(grid, p, self.kernel.radius)
+        self.list.build(grid, p, &self.kernel)
     }
 
     /// ρ̂/ρ0, λ_min and the surface flags; the fluid's `number_density` becomes n0 ρ̂/ρ0.
@@ -414,15 +414,15 @@ impl IsphStep {
                     let row = row_of[i];
                     // Σ_j F_ij, the known terms, and S2-8's divergence of v* in the same pass.
                     let (mut diag, mut rhs, mut div) = (0.0, 0.0, 0.0);
-                    for (j, r) in list.pairs(i) {
+                    for (j, q) in list.pairs(i) {
                         // F_ij rounded to f32 once (the matrix is stored in f32), the diagonal and
                         // the known terms built from the same rounded weight, so A keeps zero row
                         // sums over the fluid and stays symmetric: a Laplacian whose weights
                         // differ from S2-9's by 6e-8 relative.
-                        let f32 = (-2.0 * k.volume * k.dw_over_r(r)) as f32;
+                        let f32 = (-2.0 * k.volume * k.dw_over_r_at(q)) as f32;
                         let f = f64::from(f32);
                         if p.kind[j] == FLUID {
-                            div += operators::divergence_term(&k, p, i, j, r);
+                            div += operators::divergence_term(&k, p, i, j, q);
                             diag += f;
                             if row_of[j] == NOT_AN_UNKNOWN {
                                 rhs += f * dirichlet[j];

@@ -64,12 +64,12 @@ pub fn normals(k: &Wendland, list: &NeighbourList, p: &Particles, out: &mut Vect
         .for_each(|(w, (nx, ny, nz))| {
             let mut g = [0.0; 3];
             if p.kind[w] != FLUID {
-                for (j, r) in list.pairs(w) {
+                for (j, q) in list.pairs(w) {
                     if p.kind[j] == FLUID {
                         continue;
                     }
                     let d = [p.x[w] - p.x[j], p.y[w] - p.y[j], p.z[w] - p.z[j]];
-                    let c = k.dw_over_r(r);
+                    let c = k.dw_over_r_at(q);
                     (0..3).for_each(|a| g[a] += c * d[a]);
                 }
             }
@@ -185,11 +185,11 @@ pub fn extrapolated(k: &Wendland, list: &NeighbourList, pair: &NeumannPair) -> V
         .filter(|&w| p.kind[w] != FLUID)
         .map(|w| {
             let (mut num, mut den) = (0.0, 0.0);
-            for (f, r) in list.pairs(w) {
+            for (f, q) in list.pairs(w) {
                 if p.kind[f] != FLUID {
                     continue;
                 }
-                let wf = k.w(r);
+                let wf = k.w_at(q);
                 num += wf * (p.pressure[f] + pair.difference(f, w));
                 den += wf;
             }
