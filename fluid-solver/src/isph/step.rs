@@ -353,8 +353,7 @@ impl IsphStep {
     /// particles; a fluid particle without fluid neighbours is put on the surface.
     fn assemble(&mut self, p: &Particles, state: &mut IsphState, dt: f64) {
         let k = self.kernel;
-        walls::normals(&k, &self.list, p, &mut self.walls.normals);
-        walls::depths(&k, &self.list, p, &self.walls.normals, &mut self.walls.depth);
+        self.walls.update_geometry(&k, &self.list, p);
         let list = &self.list;
         let surface = &mut state.surface;
         // Unknowns: fluid, not on the surface, with at least one fluid neighbour.
