@@ -33,13 +33,15 @@ pub fn sample(probe: &ProbeConfig, p: &Particles, kernel: &Kernel, tank: &Aabb) 
         ProbeKind::Pressure => {
             let at = [probe.position[0], probe.position[1], probe.position[2]];
             let (mut pw, mut w) = (0.0, 0.0);
+            let re2 = kernel.re_grad * kernel.re_grad;
             for i in 0..p.len() {
                 let k = p.kind_of(i);
-                if k == Kind::Dummy || k == Kind::Gate {
+                let r2 = (p.x[i] - at[0]).powi(2) + (p.y[i] - at[1]).powi(2) + (p.z[i] - at[2]).powi(2);
+                // Beyond r_e the weight is 0: no square root for the particles there.
+                if r2 >= re2 || k == Kind::Dummy || k == Kind::Gate {
                     continue;
                 }
-                let r =
-                    ((p.x[i] - at[0]).powi(2) + (p.y[i] - at[1]).powi(2) + (p.z[i] - at[2]).powi(2)).sqrt();
+                let r = r2.sqrt();
                 let wi = weight(r.max(1e-6 * ds), kernel.re_grad);
                 pw += wi * p.pressure[i];
                 w += wi;
