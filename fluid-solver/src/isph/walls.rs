@@ -47,7 +47,7 @@
 use super::free_surface::SURFACE;
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
-use crate::kind::{Kind, FLUID};
+use crate::kind::{DUMMY, FLUID, WALL};
 use crate::particles::Particles;
 use crate::physics::Physics;
 use crate::vector_field::VectorField;
@@ -141,8 +141,7 @@ impl WallFields {
     /// [`normals`] and [`depths`] of the particles in their present order: those of a solid with
     /// fluid near it taken from [`FixedSolids`] once known there, while every solid is fixed.
     pub fn update_geometry(&mut self, k: &Wendland, list: &NeighbourList, p: &Particles) {
-        let fixed = |c: u8| c == FLUID || c == Kind::Wall.code() || c == Kind::Dummy.code();
-        if !p.kind.par_iter().all(|&c| fixed(c)) {
+        if !p.kind.par_iter().all(|&c| matches!(c, FLUID | WALL | DUMMY)) {
             normals(k, list, p, &mut self.normals);
             depths(k, list, p, &self.normals, &mut self.depth);
             return;
@@ -156,6 +155,8 @@ impl WallFields {
         }
         self.normals.resize(p.len());
         self.depth.resize(p.len(), 0.0);
+        // A solid with water near (it has a list): its geometry is read from, or recorded in, the cache.
+        let near_water = |w: usize| p.kind[w] != FLUID && !list.of(w).is_empty();
         let known = &cache.known;
         let (normal_of, depth_by_id) = (&cache.normal, &cache.depth);
         let new = (
@@ -169,12 +170,12 @@ impl WallFields {
             .with_min_len(512)
             .map(|(w, (nx, ny, nz, depth))| {
                 let id = p.id[w] as usize;
-                let listed = p.kind[w] != FLUID && !list.of(w).is_empty();
-                let (n, d, new) = if listed && known[id] {
+                let near = near_water(w);
+                let (n, d, new) = if near && known[id] {
                     (normal_of[id], depth_by_id[id], 0)
                 } else {
                     let n = normal(k, list, p, w);
-                    (n, depth_of(k, list, p, n, w), usize::from(listed))
+                    (n, depth_of(k, list, p, n, w), usize::from(near))
                 };
                 [*nx, *ny, *nz] = n;
                 *depth = d;
@@ -184,7 +185,7 @@ impl WallFields {
         if new > 0 {
             for w in 0..p.len() {
                 let id = p.id[w] as usize;
-                if p.kind[w] != FLUID && !cache.known[id] && !list.of(w).is_empty() {
+                if near_water(w) && !cache.known[id] {
                     cache.known[id] = true;
                     cache.normal[id] = [self.normals.x[w], self.normals.y[w], self.normals.z[w]];
                     cache.depth[id] = self.depth[w];
