@@ -148,6 +148,8 @@ fn check_step(cfg: &FluidConfig, t: f64) -> Terms {
     walls::normals(&k, &list, &q, &mut normals);
     let mut depth = Vec::new();
     walls::depths(&k, &list, &q, &normals, &mut depth);
+    let mut convex = Vec::new();
+    walls::convex(&k, &list, &q, &mut convex);
     // The step's surface flags, in this sorted order (rows are the fluid that is not surface).
     let surface: Vec<u8> = (0..n)
         .map(|i| if fluid(i) && !row(i) { SURFACE } else { 0 })
@@ -157,7 +159,9 @@ fn check_step(cfg: &FluidConfig, t: f64) -> Terms {
         gravity: g,
         dt,
         p: &q,
+        list: &list,
         normals: &normals,
+        convex: &convex,
         surface: &surface,
         depth: &depth,
         spacing: ds,

@@ -163,7 +163,8 @@ impl IsphStep {
 
     /// The walls' Neumann differences for a step of `dt` with v* in the particles.
     fn neumann<'a>(&'a self, p: &'a Particles, dt: f64) -> NeumannPair<'a> {
-        self.walls.pair(&self.physics, self.kernel.spacing, p, dt)
+        self.walls
+            .pair(&self.physics, self.kernel.spacing, &self.list, p, dt)
     }
 
     /// Advances the particles by `dt` through the stages of the module doc; `bodies` is handed
@@ -208,7 +209,9 @@ impl IsphStep {
         self.wall_pressure(p, dt);
         let t = self.times.lap(t, "wall pressure");
         self.update_body_faces(p, dt);
-        let walls = self.walls.pair(&self.physics, self.kernel.spacing, p, dt);
+        let walls = self
+            .walls
+            .pair(&self.physics, self.kernel.spacing, &self.list, p, dt);
         let form = self.settings.pressure_gradient;
         let pass = operators::pressure_gradient(
             &self.kernel,
@@ -353,7 +356,9 @@ impl IsphStep {
     /// particles; a fluid particle without fluid neighbours is put on the surface.
     fn assemble(&mut self, p: &Particles, state: &mut IsphState, dt: f64) {
         let k = self.kernel;
-        self.walls.update_geometry(&k, &self.list, p);
+        // The faces' normals at convex edges with S2-8's gradient only (walls module doc).
+        let edges = self.settings.pressure_gradient == PressureGradient::CorrectedDifference;
+        self.walls.update_geometry(&k, &self.list, p, edges);
         let list = &self.list;
         let surface = &mut state.surface;
         // Unknowns: fluid, not on the surface, with at least one fluid neighbour.
@@ -390,7 +395,9 @@ impl IsphStep {
                 ppe.particle.push(i as u32);
             }
         }
-        let pair = self.walls.pair(&self.physics, self.kernel.spacing, p, dt);
+        let pair = self
+            .walls
+            .pair(&self.physics, self.kernel.spacing, &self.list, p, dt);
         // The density relaxation's rate α_d/Δt is the case's, whatever this step's length (module
         // doc, 4).
         let (rho, alpha, relax) = (self.physics.density, self.settings.alpha_d, self.time_step);
@@ -527,7 +534,9 @@ impl IsphStep {
     /// The bodies' face laws ([`pair_laws::body_faces`]) from the present pressures, with v* of a
     /// step of `dt` in the particles.
     fn update_body_faces(&mut self, p: &Particles, dt: f64) {
-        let walls = self.walls.pair(&self.physics, self.kernel.spacing, p, dt);
+        let walls = self
+            .walls
+            .pair(&self.physics, self.kernel.spacing, &self.list, p, dt);
         pair_laws::body_faces(
             &self.kernel,
             &self.list,
