@@ -5,7 +5,7 @@
 mod bodies_common;
 
 use bodies_common::tank_with_body;
-use fluid_solver::FluidSolver;
+use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{Aabb, FluidMethodName, IsphConfig, PressureGradient};
 
 #[test]
@@ -75,6 +75,7 @@ fn submerged_box_load(offset: f64, settings: IsphConfig) {
     // No acoustic transient: average the loads over steps 25 … 100 (0.05 … 0.2 s).
     solver.advance_to(0.05).unwrap_or_else(|e| panic!("{e}"));
     let (mut mean, mut worst_balance, mut steps) = ([0.0; 6], 0.0f64, 0);
+    let mut fastest = 0.0f64;
     while let Some(dt) = solver.next_step_towards(0.2) {
         solver.step(dt).unwrap_or_else(|e| panic!("{e}"));
         let (loads, reaction) = (solver.body_loads(), solver.body_reactions());
@@ -83,11 +84,16 @@ fn submerged_box_load(offset: f64, settings: IsphConfig) {
         }
         mean.iter_mut().zip(&loads).for_each(|(m, l)| *m += l);
         steps += 1;
+        let p = solver.particles();
+        for i in (0..p.len()).filter(|&i| p.kind_of(i) == Kind::Fluid) {
+            let v = p.velocity(i);
+            fastest = fastest.max((v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt());
+        }
     }
     mean.iter_mut().for_each(|v| *v /= f64::from(steps));
     let error = mean[2] / buoyancy - 1.0;
     println!(
-        "box {offset} m above its site, ISPH ({:?}, support {} Δs) mean load over {steps} steps: F = [{:.4}, {:.4}, {:.4}] N; ρgV = {buoyancy:.4} N; error {:+.2} %; worst |load + reaction| {worst_balance:.2e}",
+        "box {offset} m above its site, ISPH ({:?}, support {} Δs) mean load over {steps} steps: F = [{:.4}, {:.4}, {:.4}] N; ρgV = {buoyancy:.4} N; error {:+.2} %; worst |load + reaction| {worst_balance:.2e}; fastest fluid particle {fastest:.2e} m/s",
         settings.pressure_gradient, settings.influence_radius, mean[0], mean[1], mean[2], 100.0 * error
     );
     assert!(
@@ -102,4 +108,18 @@ fn submerged_box_load(offset: f64, settings: IsphConfig) {
         worst_balance < 1e-9 * buoyancy,
         "action = −reaction: {worst_balance}"
     );
+    // The hydrostatic tank's bound (issue 12): nothing moves faster than 1e-3 √(gH), H = 0.3 m
+    // the water's depth; for the box at its lattice site (the water starts in equilibrium) with
+    // S2-8's gradient, the default: measured 9.1e-4 m/s. Reported, not bounded: the box 5 mm off
+    // its site, where the water first rearranges round it (2.6e-2 m/s at most over 0.05 … 0.2 s;
+    // 8.9e-2 before the faces' normals at convex solids, `isph::walls`), and the symmetric
+    // gradient, whose water at the box's edges moves at up to 0.2 m/s at the site and 0.44 m/s off
+    // it (measured 25 Nov 2026; open, README).
+    let still = 1e-3 * (cfg.gravity_magnitude() * water.max[2]).sqrt();
+    if settings.pressure_gradient == PressureGradient::CorrectedDifference && offset == 0.0 {
+        assert!(
+            fastest < still,
+            "a fluid particle moves at {fastest:.3e} m/s beside the held box (bound {still:.3e})"
+        );
+    }
 }
