@@ -129,8 +129,8 @@ impl FluidParticipant {
         for note in solver.layout_notes() {
             eprintln!("fluid `{name}`: note: {note}");
         }
-        for defect in solver.known_defects() {
-            eprintln!("warning: fluid `{name}`: {defect}");
+        for warning in solver.warnings() {
+            eprintln!("warning: fluid `{name}`: {warning}");
         }
         let frames = match out {
             Some(dir) => {

@@ -88,8 +88,8 @@ pub fn run_case(case: &Case, out: &Path, terminal: bool) -> Result<RunSummary, R
     for note in solver.layout_notes() {
         eprintln!("{name}: note: {note}");
     }
-    for defect in solver.known_defects() {
-        eprintln!("warning: {name}: {defect}");
+    for warning in solver.warnings() {
+        eprintln!("warning: {name}: {warning}");
     }
     let mut probes = ProbeSet::new(&cfg.probe, &solver).map_err(|message| RunError::Probe {
         file: case.path.clone(),

@@ -74,6 +74,8 @@ pub struct FluidSolver {
     max_removed_fraction: f64,
     /// What the lattice moved (see [`crate::lattice`]).
     layout_notes: Vec<String>,
+    /// [`FluidSolver::warnings`].
+    warnings: Vec<String>,
     /// Reactions of the unresolved coupling, applied at every step until replaced.
     point_reactions: PointReactions,
     /// Bumped whenever the particles may have moved, been added or removed, or been replaced
@@ -197,6 +199,7 @@ impl FluidSolver {
             open_top,
             max_removed_fraction: cfg.max_removed_fraction,
             layout_notes: layout.notes,
+            warnings: cfg.unused_by_method(),
             point_reactions: Default::default(),
             positions_version: 0,
             reaction_shares: Mutex::default(),
@@ -223,12 +226,11 @@ impl FluidSolver {
         &self.layout_notes
     }
 
-    /// What this run's settings are known to get wrong, for a `warning: ` line at the start and
-    /// the end of the run (the coupler passes those on). None at present: ISPH with resolved
-    /// bodies was warned of until its floating box rose to its draft (issue 12; measured in
-    /// `tests/tests/isph_floating.rs`).
-    pub fn known_defects(&self) -> Vec<String> {
-        Vec::new()
+    /// What the run tells the user before it starts, each as a `warning: ` line (the coupler
+    /// passes those on): the case's settings its method does not use
+    /// ([`FluidConfig::unused_by_method`]).
+    pub fn warnings(&self) -> &[String] {
+        &self.warnings
     }
 
     /// Fluid particles removed after leaving through the open top ([`crate::escape`]).

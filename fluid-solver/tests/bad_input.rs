@@ -122,11 +122,16 @@ fn other_bad_keys_name_what_is_allowed() {
         e.contains("`fluid.water.artificial_viscosity`") && e.contains("[0, 1]"),
         "{e}"
     );
-    let e = error_of(&damped("0.05\nmethod = \"isph\""));
+    // With ISPH the E-MPS-only keys are not refused but named as unused (issue 12: one key
+    // switches a case's method), `e_mps_settings_are_named_unused_when_isph_runs` below.
+    let isph =
+        parse(&damped("0.05\nmethod = \"isph\"\nsound_speed = 12.1")).unwrap_or_else(|e| panic!("{e}"));
+    let unused = isph.fluid["water"].unused_by_method();
+    assert_eq!(unused.len(), 2, "{unused:?}");
     assert!(
-        e.contains("`fluid.water.artificial_viscosity`") && e.contains("E-MPS option"),
-        "{e}"
+        unused[0].contains("`sound_speed` = 12.1") && unused[1].contains("`artificial_viscosity` = 0.05")
     );
+    assert!(parse(&damped("0.05")).map(|c| c.fluid["water"].unused_by_method().is_empty()) == Ok(true));
     // ISPH's pressure gradient: one of two names.
     let isph = |form: &str| {
         GOOD.replace("time_step = 8.0e-4", "time_step = 8.0e-4\nmethod = \"isph\"")
@@ -271,4 +276,35 @@ fn a_box_without_particles_is_refused() {
         e.contains("`fluid.water.gate[0]`") && e.contains("holds no particle"),
         "{e}"
     );
+}
+
+/// A case written for E-MPS (its sound speed set) runs with ISPH when `method = "isph"` is its
+/// only change, and the run says, before its first step, that the sound speed is not used.
+#[test]
+fn e_mps_settings_are_named_unused_when_isph_runs() {
+    let text = GOOD
+        .replace(
+            "time_step = 8.0e-4",
+            "time_step = 8.0e-4\nsound_speed = 12.1\nmethod = \"isph\"",
+        )
+        .replace("end_time = 0.2", "end_time = 0.0016")
+        .replace("name = \"small\"", "name = \"switched\"");
+    let dir =
+        PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("fluid-switched-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+    let case = dir.join("case.toml");
+    std::fs::write(&case, text).unwrap_or_else(|e| panic!("{e}"));
+    let run = Command::new(env!("CARGO_BIN_EXE_fluid-solver"))
+        .args(["run", case.to_str().unwrap_or_default(), "--out"])
+        .arg(dir.join("out"))
+        .output()
+        .unwrap_or_else(|e| panic!("{e}"));
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    println!("{stderr}");
+    assert!(run.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("warning: water: `sound_speed` = 12.1 m/s is not used: ISPH has no sound speed"),
+        "{stderr}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -7,8 +7,9 @@
 //! backend = "cpu"           # or "gpu": E-MPS on a Vulkan GPU (see FluidConfig::gpu_support)
 //! spacing = 0.01            # Δs [m]
 //! time_step = 5e-4          # Δt [s], checked against the acoustic and viscous limits
-//! sound_speed = 12.1        # c [m/s]; default u_max / 0.2 with u_max = √(2gH) (S1-16)
-//! artificial_viscosity = 0.0 # α of Monaghan's artificial viscosity (E-MPS only; default off)
+//! sound_speed = 12.1        # c [m/s]; default u_max / 0.2 with u_max = √(2gH) (S1-16); E-MPS
+//!                           # only: with "isph" it is left unused and the run says so
+//! artificial_viscosity = 0.0 # α of Monaghan's artificial viscosity (E-MPS only, as sound_speed; default off)
 //! viscosity_term = false    # switch ν⟨∇²u⟩ off when ν is far below the numerical dissipation
 //! output_interval = 0.05
 //! surface_mesh = true       # also a free-surface mesh (VTP) per frame; default false
@@ -716,18 +717,6 @@ impl FluidConfig {
                 self.validate_time_step(key)
             }
             FluidMethodName::Isph => {
-                if self.artificial_viscosity != 0.0 {
-                    return Err(FieldError::new(
-                        k("artificial_viscosity"),
-                        "the artificial viscosity is an E-MPS option (it is scaled by the sound speed, which ISPH has not): remove artificial_viscosity or use method = \"emps\"",
-                    ));
-                }
-                if self.sound_speed.is_some() {
-                    return Err(FieldError::new(
-                        k("sound_speed"),
-                        "ISPH has no sound speed (the PPE makes the flow incompressible): remove sound_speed or use method = \"emps\"",
-                    ));
-                }
                 self.isph_settings().validate(&k("isph"), self.wall_layers)?;
                 if self.isph_settings().shifting != Shifting::Off && !self.body.is_empty() {
                     return Err(FieldError::new(
@@ -738,6 +727,28 @@ impl FluidConfig {
                 self.validate_isph_time_step(key)
             }
         }
+    }
+
+    /// The section's E-MPS settings that ISPH does not use, one sentence each naming its key
+    /// (runs print each as a `warning: ` line): a case written for E-MPS runs with ISPH when
+    /// `method = "isph"` is its only change (issue 12: one key selects the method), and says what
+    /// it leaves unused. Empty for E-MPS.
+    pub fn unused_by_method(&self) -> Vec<String> {
+        let mut unused = Vec::new();
+        if self.method == FluidMethodName::Isph {
+            if let Some(c) = self.sound_speed {
+                unused.push(format!(
+                    "`sound_speed` = {c} m/s is not used: ISPH has no sound speed (the PPE makes the flow incompressible), and its time step is checked against the advective and viscous limits instead"
+                ));
+            }
+            if self.artificial_viscosity != 0.0 {
+                unused.push(format!(
+                    "`artificial_viscosity` = {} is not used: it is an E-MPS option, scaled by the sound speed ISPH has not",
+                    self.artificial_viscosity
+                ));
+            }
+        }
+        unused
     }
 
     /// Refuses what the GPU path (`backend = "gpu"`) does not run yet, naming the feature: a run
