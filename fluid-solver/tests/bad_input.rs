@@ -212,16 +212,8 @@ fn cli_reports_instability_and_keeps_the_last_good_frames() {
         .replace("time_step = 8.0e-4", "time_step = 0.01\nsound_speed = 1.0")
         .replace("name = \"small\"", "name = \"soft\"")
         .replace("end_time = 0.2", "end_time = 2.0");
-    let dir =
-        PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("fluid-bad-input-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
-    let case = dir.join("case.toml");
-    std::fs::write(&case, text).unwrap_or_else(|e| panic!("{e}"));
+    let (dir, run) = run_cli("fluid-bad-input", &text);
     let out = dir.join("out");
-    let run = Command::new(env!("CARGO_BIN_EXE_fluid-solver"))
-        .args(["run", &case.to_string_lossy(), "--out", &out.to_string_lossy()])
-        .output()
-        .unwrap_or_else(|e| panic!("{e}"));
     let stderr = String::from_utf8_lossy(&run.stderr);
     println!("{stderr}");
     assert!(!run.status.success());
@@ -289,16 +281,7 @@ fn e_mps_settings_are_named_unused_when_isph_runs() {
         )
         .replace("end_time = 0.2", "end_time = 0.0016")
         .replace("name = \"small\"", "name = \"switched\"");
-    let dir =
-        PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("fluid-switched-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
-    let case = dir.join("case.toml");
-    std::fs::write(&case, text).unwrap_or_else(|e| panic!("{e}"));
-    let run = Command::new(env!("CARGO_BIN_EXE_fluid-solver"))
-        .args(["run", case.to_str().unwrap_or_default(), "--out"])
-        .arg(dir.join("out"))
-        .output()
-        .unwrap_or_else(|e| panic!("{e}"));
+    let (dir, run) = run_cli("fluid-switched", &text);
     let stderr = String::from_utf8_lossy(&run.stderr);
     println!("{stderr}");
     assert!(run.status.success(), "{stderr}");
@@ -307,4 +290,23 @@ fn e_mps_settings_are_named_unused_when_isph_runs() {
         "{stderr}"
     );
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Writes `text` as `case.toml` in a fresh folder `PREFIX-PID` and runs `fluid-solver run` on it
+/// with its output in the folder's `out`; returns the folder and how the run ended.
+fn run_cli(prefix: &str, text: &str) -> (PathBuf, std::process::Output) {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("{prefix}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+    let case = dir.join("case.toml");
+    std::fs::write(&case, text).unwrap_or_else(|e| panic!("{e}"));
+    let run = Command::new(env!("CARGO_BIN_EXE_fluid-solver"))
+        .args([
+            "run",
+            &case.to_string_lossy(),
+            "--out",
+            &dir.join("out").to_string_lossy(),
+        ])
+        .output()
+        .unwrap_or_else(|e| panic!("{e}"));
+    (dir, run)
 }
