@@ -98,6 +98,9 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
     let estimate = Estimate::of(&case);
     estimate.check(&out, opts.max_output)?;
     eprintln!("estimate: {}", estimate.describe());
+    for unused in case.unused_settings() {
+        eprintln!("warning: {unused}");
+    }
     let folder = match &opts.resume {
         Some(_) => OutputFolder::hold(&out)?,
         None => OutputFolder::take(&out, opts.overwrite)?,

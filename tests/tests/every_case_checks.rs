@@ -52,3 +52,27 @@ fn a_check_piped_into_a_reader_that_quits_early_does_not_panic() {
     assert!(run.status.success(), "{}", stderr(&run));
     assert!(!stderr(&run).contains("panicked"), "{}", stderr(&run));
 }
+
+/// A case written for E-MPS switched to ISPH by `method = "isph"` alone passes the check, which
+/// names its sound speed as unused (issue 12: one key selects the method); `run` prints the same
+/// line before it starts.
+#[test]
+fn an_emps_case_switched_by_one_key_passes_the_check_and_names_its_unused_sound_speed() {
+    let text = std::fs::read_to_string(workspace().join("cases/dam-break-tank/case.toml"))
+        .unwrap_or_else(|e| panic!("{e}"))
+        .replace("[fluid.tank]\n", "[fluid.tank]\nmethod = \"isph\"\n");
+    assert!(text.contains("method = \"isph\"") && text.contains("sound_speed = 12.1"));
+    let dir = std::env::temp_dir().join(format!("switched-case-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+    let case = dir.join("case.toml");
+    std::fs::write(&case, text).unwrap_or_else(|e| panic!("{e}"));
+    let run = coupler(&["check", case.to_str().unwrap_or_default()]);
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    println!("{stdout}");
+    assert!(run.status.success(), "{}", stderr(&run));
+    assert!(
+        stdout.contains("warning: fluid.tank: `sound_speed` = 12.1 m/s is not used: ISPH has no sound speed"),
+        "{stdout}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

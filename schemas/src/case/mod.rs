@@ -156,6 +156,19 @@ impl Case {
         }
     }
 
+    /// Each fluid section's settings its method leaves unused
+    /// ([`fluid::FluidConfig::unused_by_method`]), as `fluid.NAME: …` for a `warning: ` line.
+    pub fn unused_settings(&self) -> Vec<String> {
+        self.fluid
+            .iter()
+            .flat_map(|(name, cfg)| {
+                cfg.unused_by_method()
+                    .into_iter()
+                    .map(move |u| format!("fluid.{name}: {u}"))
+            })
+            .collect()
+    }
+
     /// Participant names with their kind: fluid participants first, then structure ones.
     pub fn participants(&self) -> Vec<(String, Kind)> {
         let fluid = self.fluid.keys().map(|n| (n.clone(), Kind::Fluid));
