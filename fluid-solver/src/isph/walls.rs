@@ -144,9 +144,14 @@ pub fn convex(k: &Wendland, list: &NeighbourList, p: &Particles, out: &mut Vec<u
         .for_each(|(w, c)| *c = convex_flag(p, list, normal_and_fill(k, list, p, w).1, limit, w));
 }
 
+/// Whether `w` is a solid with fluid near it (it has a list).
+fn near_water(p: &Particles, list: &NeighbourList, w: usize) -> bool {
+    p.kind[w] != FLUID && !list.of(w).is_empty()
+}
+
 /// [`CONVEX`] when solid `w` has fluid near it and its solid `fill` is below `limit`.
 fn convex_flag(p: &Particles, list: &NeighbourList, fill: f64, limit: f64, w: usize) -> u8 {
-    if p.kind[w] != FLUID && !list.of(w).is_empty() && fill < limit {
+    if near_water(p, list, w) && fill < limit {
         CONVEX
     } else {
         0
@@ -225,20 +230,22 @@ impl WallFields {
     pub fn update_geometry(&mut self, k: &Wendland, list: &NeighbourList, p: &Particles, edges: bool) {
         let limit = if edges { convex_fill_limit(k) } else { 0.0 };
         let all_fixed = p.kind.par_iter().all(|&c| matches!(c, FLUID | WALL | DUMMY));
-        let ids = p.id.par_iter().max().map_or(0, |&m| m as usize + 1);
         let cache = &mut self.fixed;
-        if all_fixed && cache.known.len() < ids {
-            cache.known.resize(ids, false);
-            cache.normal.resize(ids, [0.0; 3]);
-            cache.depth.resize(ids, 0.0);
-            cache.convex.resize(ids, 0);
+        if all_fixed {
+            let ids = p.id.par_iter().max().map_or(0, |&m| m as usize + 1);
+            if cache.known.len() < ids {
+                cache.known.resize(ids, false);
+                cache.normal.resize(ids, [0.0; 3]);
+                cache.depth.resize(ids, 0.0);
+                cache.convex.resize(ids, 0);
+            }
         }
         self.normals.resize(p.len());
         self.depth.resize(p.len(), 0.0);
         self.convex.resize(p.len(), 0);
-        // A solid with water near (it has a list): its geometry is read from, or recorded in, the
-        // cache while every solid is fixed.
-        let cached = |w: usize| all_fixed && p.kind[w] != FLUID && !list.of(w).is_empty();
+        // A solid with water near: its geometry is read from, or recorded in, the cache while
+        // every solid is fixed.
+        let cached = |w: usize| all_fixed && near_water(p, list, w);
         let known = &cache.known;
         let (normal_of, depth_of_id, convex_of) = (&cache.normal, &cache.depth, &cache.convex);
         let new = (
