@@ -4,13 +4,14 @@
 //! wall pressure, gradient) walks ~60 true neighbours instead of the ~300 candidates of the
 //! surrounding cells; the cells wholly beyond r_e are not visited
 //! ([`CellGrid::for_each_range_within`]). Each entry keeps its distance as the kernel reads it,
-//! q = |x_j − x_i| / r_e ([`super::kernel::Wendland::q`]), computed once here by the same
-//! expressions the passes used (so every result is bit-identical to recomputing it): at S2's
-//! scale the passes spent most of their time on the square root, and the density pass fell from
-//! 28 to 12.7 ms per step; with the kernel's factors computed once the step went from 3.8e5 to
-//! 4.3e5 wall fluid-steps/s; keeping q (one multiplication by 1/r_e per pair here, instead of a
+//! q = |x_j − x_i| / r_e ([`super::kernel::Wendland::q`]), computed once here: at S2's scale the
+//! passes spent most of their time on the square root, and the density pass fell from 28 to
+//! 12.7 ms per step; with the kernel's factors computed once the step went from 3.8e5 to 4.3e5
+//! wall fluid-steps/s; keeping q (one multiplication by 1/r_e per pair here, instead of a
 //! division by r_e in every pass) took about 10 ms more off the step (2.91 → 2.80 s for
-//! `isph_vs_emps -- --s2 0.005 0.004`).
+//! `isph_vs_emps -- --s2 0.005 0.004`). q is stored in f32 (relative rounding 6e-8, far below
+//! the PPE's tolerance 1e-6): the passes that walk the list are memory-bound, and 8 bytes per
+//! pair instead of 12 took S2's step from 4.72–4.77e5 to 4.95–5.00e5 wall fluid-steps/s.
 
 use super::kernel::Wendland;
 use crate::kind::FLUID;
@@ -44,7 +45,7 @@ pub struct NeighbourList {
 struct Block {
     start: Vec<u32>,
     index: Vec<u32>,
-    q: Vec<f64>,
+    q: Vec<f32>,
 }
 
 impl NeighbourList {
@@ -90,13 +91,15 @@ impl NeighbourList {
                                 let r2 = dx * dx + dy * dy + dz * dz;
                                 if r2 < r2max && j != i {
                                     index.push(j as u32);
-                                    q.push(r2); // r / r_e once the row is complete
+                                    q.push(r2 as f32); // r / r_e once the row is complete
                                 }
                             }
                         });
                     }
                     let first = *start.last().unwrap_or(&0) as usize;
-                    q[first..].iter_mut().for_each(|d| *d = k.q(d.sqrt()));
+                    q[first..]
+                        .iter_mut()
+                        .for_each(|d| *d = k.q(f64::from(*d).sqrt()) as f32);
                     start.push(index.len() as u32);
                 }
                 seen
@@ -121,12 +124,12 @@ impl NeighbourList {
         b.index[s..e]
             .iter()
             .zip(&b.q[s..e])
-            .map(|(&j, &q)| (j as usize, q))
+            .map(|(&j, &q)| (j as usize, f64::from(q)))
     }
 
     /// The q = |x_j − x_i| / r_e of particle `i`'s neighbours, in the order of [`Self::of`].
     #[inline(always)]
-    pub fn q(&self, i: usize) -> &[f64] {
+    pub fn q(&self, i: usize) -> &[f32] {
         let b = &self.blocks[i / BLOCK];
         let k = i % BLOCK;
         &b.q[b.start[k] as usize..b.start[k + 1] as usize]
@@ -136,7 +139,7 @@ impl NeighbourList {
     pub fn memory_bytes(&self) -> usize {
         self.blocks
             .iter()
-            .map(|b| 4 * (b.start.capacity() + b.index.capacity()) + 8 * b.q.capacity())
+            .map(|b| 4 * (b.start.capacity() + b.index.capacity()) + 4 * b.q.capacity())
             .sum()
     }
 }

@@ -28,7 +28,7 @@ pub fn density_ratio(k: &Wendland, list: &NeighbourList, p: &Particles, out: &mu
             *o = if p.kind[i] == FLUID || !list.of(i).is_empty() {
                 let mut s = self_term;
                 for &q in list.q(i) {
-                    s += k.volume * k.w_at(q);
+                    s += k.volume * k.w_at(f64::from(q));
                 }
                 s / k.lattice_density
             } else {
