@@ -54,8 +54,8 @@ fn a_check_piped_into_a_reader_that_quits_early_does_not_panic() {
 }
 
 /// A case written for E-MPS switched to ISPH by `method = "isph"` alone passes the check, which
-/// names its sound speed as unused (issue 12: one key selects the method); `run` prints the same
-/// line before it starts.
+/// names its sound speed as unused and the longest time step ISPH would take instead (issue 12:
+/// one key selects the method); `run` prints the same line before it starts.
 #[test]
 fn an_emps_case_switched_by_one_key_passes_the_check_and_names_its_unused_sound_speed() {
     let text = std::fs::read_to_string(workspace().join("cases/dam-break-tank/case.toml"))
@@ -72,6 +72,13 @@ fn an_emps_case_switched_by_one_key_passes_the_check_and_names_its_unused_sound_
     assert!(run.status.success(), "{}", stderr(&run));
     assert!(
         stdout.contains("warning: fluid.tank: `sound_speed` = 12.1 m/s is not used: ISPH has no sound speed"),
+        "{stdout}"
+    );
+    // The longest step ISPH accepts there: advective Courant 0.4 at u = 2√(gH), the dam-break
+    // front's speed (Ritter 1892) for the 0.3 m column: 0.4 · 0.01 / (2√(9.8 · 0.3)) = 1.166e-3 s,
+    // 2.3 times the case's acoustic 5e-4 s (the viscous term is off).
+    assert!(
+        stdout.contains("they allow time_step up to 1.166e-3 s, 2.3× the case's 0.0005 s"),
         "{stdout}"
     );
     let _ = std::fs::remove_dir_all(&dir);

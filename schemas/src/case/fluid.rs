@@ -737,8 +737,11 @@ impl FluidConfig {
         let mut unused = Vec::new();
         if self.method == FluidMethodName::Isph {
             if let Some(c) = self.sound_speed {
+                let limit = self.isph_time_step_limit();
                 unused.push(format!(
-                    "`sound_speed` = {c} m/s is not used: ISPH has no sound speed (the PPE makes the flow incompressible), and its time step is checked against the advective and viscous limits instead"
+                    "`sound_speed` = {c} m/s is not used: ISPH has no sound speed (the PPE makes the flow incompressible), and its time step is checked against the advective and viscous limits instead: here they allow time_step up to {limit:.3e} s, {:.1}× the case's {} s (fewer, longer steps: raise `time_step`, and the coupling window with it)",
+                    limit / self.time_step,
+                    self.time_step
                 ));
             }
             if self.artificial_viscosity != 0.0 {
@@ -810,6 +813,18 @@ impl FluidConfig {
     /// The ISPH settings: the `[isph]` table or its defaults.
     pub fn isph_settings(&self) -> IsphConfig {
         self.isph.unwrap_or_default()
+    }
+
+    /// The largest Δt ISPH accepts for this section: the advective limit `0.4 Δs / u` (u of
+    /// [`FluidConfig::advective_velocity`]) and, with the viscous term on, the viscous limit
+    /// `Δs² / (6ν)`, whichever is shorter.
+    pub fn isph_time_step_limit(&self) -> f64 {
+        let advective = MAX_ADVECTIVE_COURANT * self.spacing / self.advective_velocity();
+        if self.viscosity_term {
+            advective.min(MAX_VISCOUS_NUMBER * self.spacing * self.spacing / self.viscosity)
+        } else {
+            advective
+        }
     }
 
     /// ISPH: refuses a Δt above the advective (u Δt/Δs ≤ 0.4, u of
