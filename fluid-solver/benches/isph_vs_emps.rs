@@ -6,7 +6,9 @@
 //! and, since E-MPS takes more, smaller steps (2.4× at Δs = L/20), three measures that do not favour the
 //! smaller step ([`probe_signal`]): per unit time RMS(Δp/Δt), the RMS change with both series
 //! resampled at ISPH's Δt, and the RMS of the high-passed signal (minus its moving average over
-//! 11 ISPH steps).
+//! 11 ISPH steps). The same measures for a wall-pressure sensor at the same height
+//! ([`fluid_solver::wall_sensor`]: the force on a 20 mm disc of the wall's face, per step), which
+//! reads the wall's load rather than the particles' pressure field.
 //!
 //! Then ISPH's PPE iterations per step in windows of 0.05 s of simulated time (before and after
 //! the impact), each method's stages (the step's stage timers) with their share, and the load average
@@ -27,7 +29,7 @@
 //! `--probe-log=PREFIX` writes `PREFIX-emps.csv` and `PREFIX-isph.csv`, one row per step: what the
 //! probe reads and where it comes from ([`probe_log`]).
 
-use fluid_solver::probes;
+use fluid_solver::probes::{self, ProbeSet};
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{
     FluidConfig, FluidMethodName, IsphConfig, PpeSolver, PressureGradient, ProbeConfig, ProbeKind, Shifting,
@@ -62,6 +64,10 @@ fn case(ds: f64, layers: f64) -> FluidConfig {
     cfg
 }
 
+/// Diameter of the far-wall pressure sensor [m]: a transducer's face (5–20 mm is usual; the
+/// SPHERIC test 2 sensors are about 9 mm wide).
+const SENSOR_DIAMETER: f64 = 0.02;
+
 /// Window of simulated time over which the PPE iterations per step are averaged [s].
 const WINDOW: f64 = 0.05;
 
@@ -79,6 +85,8 @@ struct Row {
     ppe_share: f64,
     /// The far-wall probe after each step.
     probe: Series,
+    /// The far-wall pressure sensor (a disc of [`SENSOR_DIAMETER`]) after each step.
+    sensor: Series,
     /// (time, PPE iterations) of each step.
     ppe_per_step: Vec<(f64, u64)>,
 }
@@ -93,6 +101,21 @@ fn run(name: &str, cfg: &FluidConfig, end: f64, log: Option<&str>) -> Row {
         ..Default::default()
     };
     let tank = solver.tank();
+    // The same height on the wall's face, read as the force on a disc (crate::wall_sensor).
+    let disc = ProbeConfig {
+        name: "sensor".into(),
+        kind: ProbeKind::WallPressure,
+        position: vec![0.584, 5.0 * cfg.spacing, 0.02],
+        normal: Some("-x".into()),
+        diameter: Some(SENSOR_DIAMETER),
+        ..Default::default()
+    };
+    let mut sensor_set = ProbeSet::new(&[disc], &solver).unwrap_or_else(|e| {
+        eprintln!("error: {e}");
+        std::process::exit(1)
+    });
+    let mut sensor = Series::default();
+    sensor.0.push((solver.time(), sensor_set.row(&solver)[0]));
     let mut series = Series::default();
     let mut log = log.map(|prefix| {
         let path = format!("{prefix}-{}.csv", name.replace('-', "").to_lowercase());
@@ -117,6 +140,7 @@ fn run(name: &str, cfg: &FluidConfig, end: f64, log: Option<&str>) -> Row {
         ppe_per_step.push((solver.time(), solver.totals().ppe_iterations - before));
         let p = probes::sample(&probe, solver.particles(), solver.kernel(), &tank);
         series.0.push((solver.time(), p));
+        sensor.0.push((solver.time(), sensor_set.row(&solver)[0]));
         if let Some(log) = &mut log {
             log.row(&solver, dt, p);
         }
@@ -141,6 +165,7 @@ fn run(name: &str, cfg: &FluidConfig, end: f64, log: Option<&str>) -> Row {
             0.0
         },
         probe: series,
+        sensor,
         ppe_per_step,
     }
 }
@@ -251,20 +276,11 @@ fn main() {
         "far-wall probe (point probe Δs/2 from the wall, 0.02 m up), common grid h = ISPH's Δt = {h:.2e} s, high-pass = minus the moving average over {} points:",
         2 * probe_signal::HALF_WINDOW + 1
     );
-    println!("method  RMS Δp per step [Pa]  max |Δp| [Pa]  RMS Δp/Δt [Pa/s]  RMS Δp at h [Pa]  RMS high-pass [Pa]  max p [Pa]");
-    for row in &rows {
-        let s = &row.probe;
-        println!(
-            "{:6}  {:20.1}  {:13.1}  {:16.4e}  {:16.1}  {:18.1}  {:10.1}",
-            row.name,
-            s.step_rms(),
-            s.step_max(),
-            s.rate_rms(),
-            s.resampled_step_rms(h),
-            s.high_pass_rms(h),
-            s.max()
-        );
-    }
+    print_roughness(&rows, h, |r| &r.probe);
+    println!(
+        "far-wall pressure sensor (the force on a disc of {SENSOR_DIAMETER} m on the wall's face, 0.02 m up, per step), same measures:"
+    );
+    print_roughness(&rows, h, |r| &r.sensor);
     println!("PPE iterations per step by {WINDOW} s of simulated time (the front meets the far wall at about 0.3 s):");
     for row in rows
         .iter()
@@ -296,5 +312,23 @@ fn main() {
                 100.0 * secs / total.max(f64::MIN_POSITIVE)
             );
         }
+    }
+}
+
+/// The roughness measures of one series of each row ([`probe_signal`]), on the common grid `h`.
+fn print_roughness(rows: &[Row], h: f64, series: impl Fn(&Row) -> &Series) {
+    println!("method  RMS Δp per step [Pa]  max |Δp| [Pa]  RMS Δp/Δt [Pa/s]  RMS Δp at h [Pa]  RMS high-pass [Pa]  max p [Pa]");
+    for row in rows {
+        let s = series(row);
+        println!(
+            "{:6}  {:20.1}  {:13.1}  {:16.4e}  {:16.1}  {:18.1}  {:10.1}",
+            row.name,
+            s.step_rms(),
+            s.step_max(),
+            s.rate_rms(),
+            s.resampled_step_rms(h),
+            s.high_pass_rms(h),
+            s.max()
+        );
     }
 }
