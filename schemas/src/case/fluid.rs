@@ -819,12 +819,22 @@ impl FluidConfig {
     /// [`FluidConfig::advective_velocity`]) and, with the viscous term on, the viscous limit
     /// `Δs² / (6ν)`, whichever is shorter.
     pub fn isph_time_step_limit(&self) -> f64 {
-        let advective = MAX_ADVECTIVE_COURANT * self.spacing / self.advective_velocity();
+        let advective = self.advective_time_step_limit();
         if self.viscosity_term {
-            advective.min(MAX_VISCOUS_NUMBER * self.spacing * self.spacing / self.viscosity)
+            advective.min(self.viscous_time_step_limit())
         } else {
             advective
         }
+    }
+
+    /// ISPH's advective limit on Δt: `0.4 Δs / u`, u of [`FluidConfig::advective_velocity`].
+    fn advective_time_step_limit(&self) -> f64 {
+        MAX_ADVECTIVE_COURANT * self.spacing / self.advective_velocity()
+    }
+
+    /// The viscous limit on Δt: `Δs² / (6ν)` (viscous number ν Δt/Δs² ≤ 1/6).
+    fn viscous_time_step_limit(&self) -> f64 {
+        MAX_VISCOUS_NUMBER * self.spacing * self.spacing / self.viscosity
     }
 
     /// ISPH: refuses a Δt above the advective (u Δt/Δs ≤ 0.4, u of
@@ -839,7 +849,7 @@ impl FluidConfig {
                 format!(
                     "Δt = {} s is too long for ISPH: the advective Courant number u·Δt/Δs = {courant:.3} (u = {u:.3} m/s, the case's max_velocity or u_in + 2√(gH)) must be ≤ {MAX_ADVECTIVE_COURANT}; use time_step ≤ {:.3e} s",
                     self.time_step,
-                    MAX_ADVECTIVE_COURANT * self.spacing / u
+                    self.advective_time_step_limit()
                 ),
             ));
         }
@@ -1026,7 +1036,7 @@ impl FluidConfig {
                     format!(
                         "Δt = {} s is unstable: the viscous number ν·Δt/Δs² = {vn:.3} must be ≤ 1/6; use time_step ≤ {:.3e} s",
                         self.time_step,
-                        MAX_VISCOUS_NUMBER * self.spacing * self.spacing / self.viscosity
+                        self.viscous_time_step_limit()
                     ),
                 ));
             }
