@@ -130,20 +130,34 @@ pub fn smallest_eigenvalue_up_to(m: &Matrix3, settled: f64) -> f64 {
     }
 }
 
-/// `m⁻¹ v` for a symmetric 3×3 `m`, or `None` when `m` is singular (|det| below 1e-12 of its scale).
-pub fn solve(m: &Matrix3, v: [f64; 3]) -> Option<[f64; 3]> {
+/// The cofactor `C_ab` of a 3×3 `m` and its determinant, or `None` when `m` is singular (|det|
+/// below 1e-12 of its scale). For symmetric m the cofactors are symmetric.
+fn cofactors(m: &Matrix3) -> Option<(Matrix3, f64)> {
     let c = |a: usize, b: usize| {
         let (a1, a2) = ((a + 1) % 3, (a + 2) % 3);
         let (b1, b2) = ((b + 1) % 3, (b + 2) % 3);
         m[a1][b1] * m[a2][b2] - m[a1][b2] * m[a2][b1]
     };
-    let det = m[0][0] * c(0, 0) + m[0][1] * c(0, 1) + m[0][2] * c(0, 2);
+    let c: Matrix3 = std::array::from_fn(|a| std::array::from_fn(|b| c(a, b)));
+    let det = m[0][0] * c[0][0] + m[0][1] * c[0][1] + m[0][2] * c[0][2];
     let scale = m.iter().flatten().map(|x| x.abs()).fold(0.0, f64::max).powi(3);
     if det.abs() <= 1e-12 * scale || det.is_nan() {
         return None;
     }
+    Some((c, det))
+}
+
+/// `m⁻¹ v` for a symmetric 3×3 `m`, or `None` when `m` is singular (|det| below 1e-12 of its scale).
+pub fn solve(m: &Matrix3, v: [f64; 3]) -> Option<[f64; 3]> {
     // Inverse = adjugate / det; for symmetric m the cofactor matrix is symmetric.
+    let (c, det) = cofactors(m)?;
     Some(std::array::from_fn(|a| {
-        (c(a, 0) * v[0] + c(a, 1) * v[1] + c(a, 2) * v[2]) / det
+        (c[a][0] * v[0] + c[a][1] * v[1] + c[a][2] * v[2]) / det
     }))
+}
+
+/// `m⁻¹` of a symmetric 3×3 `m`, or `None` when `m` is singular (as [`solve`]).
+pub fn inverse(m: &Matrix3) -> Option<Matrix3> {
+    let (c, det) = cofactors(m)?;
+    Some(c.map(|row| row.map(|x| x / det)))
 }
