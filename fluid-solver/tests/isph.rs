@@ -382,10 +382,12 @@ fn a_restored_checkpoint_continues_bit_identically_with_either_method() {
 ///   direction and no gap of a particle's size lies next to it;
 /// - the others (a one-particle gap, a dent) may go either way; they are counted.
 ///
-/// Measured: 104 surface particles, 425 interior, 271 either way; 0 interior marked (asserted).
-/// The detector misses 6 of the 104 (asserted at most 6), 4 of them within 1.5 Δs of a solid
-/// (2 of 102 before the walls stopped pushing surface particles before contact: the count
-/// moves by a few with any change of the flow, these are marginal cases). With
+/// Measured: 103 surface particles, 449 interior, 248 either way; 0 interior marked (asserted).
+/// The detector misses 9 of the 103 (asserted at most 9), all within 1.5 Δs of a solid. The
+/// count moves with any change of the flow, these are marginal cases: 6 of 104 (4 at a solid)
+/// before the divergence was corrected as the gradient in Marrone's band
+/// (`isph::operators::DivergenceSum`), 2 of 102 before the walls stopped pushing surface
+/// particles before contact. With
 /// S2-12's ∇λ normal, walls held back water leaving them at the free surface and the gradient
 /// blind to dry walls, it missed 12 of 124 (8 within 1.5 Δs of a solid, 4 in the toe);
 /// `isph::free_surface` says why it uses Marrone's normal. Where it still misses: at the
@@ -462,8 +464,8 @@ fn free_surface_of_a_dam_break_snapshot() {
     assert!(surface > 100 && interior > 100, "the snapshot has both");
     assert_eq!(wrong, 0, "no interior particle marked");
     assert!(
-        missed + contact_missed <= 6,
-        "{} surface particles missed (measured 6)",
+        missed + contact_missed <= 9,
+        "{} surface particles missed (measured 9)",
         missed + contact_missed
     );
 }

@@ -3,13 +3,13 @@
 //! weight is `F_ij = 2 V (x_j − x_i)·∇W_ij / r² = −2 V W'(r)/r ≥ 0`. Each pass is a gather
 //! (particle i writes its own slot), in parallel without locks.
 
-use super::free_surface::LAMBDA_SPLASH;
+use super::free_surface::{LAMBDA_INNER, LAMBDA_SPLASH};
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
 use super::pair_laws::{self, BodyFaces};
 use super::walls::NeumannPair;
 use crate::kind::{Kind, FLUID};
-use crate::moments::{smallest_eigenvalue_up_to, solve};
+use crate::moments::{inverse, smallest_eigenvalue_up_to, solve, OuterSum};
 use crate::particles::Particles;
 use crate::vector_field::{add, PassTotals, VectorField};
 use rayon::prelude::*;
@@ -37,35 +37,149 @@ pub fn density_ratio(k: &Wendland, list: &NeighbourList, p: &Particles, out: &mu
         });
 }
 
-/// S2-8's divergence `⟨∇·v⟩_i = Σ_j V (v_j − v_i)·∇W_ij` over fluid neighbours j, for fluid i
-/// (0 elsewhere). Solid neighbours take part through the Neumann differences of
+/// Below this λ_min the moment matrix that corrects the divergence is raised to it
+/// ([`DivergenceSum::value`]): the correction multiplies the divergence by at most 1/0.8 = 1.25.
+pub const DIVERGENCE_CORRECTION_FLOOR: f64 = 0.8;
+
+/// The divergence of the projection's source (S2-5), for fluid i (0 elsewhere), with the
+/// gradient's `form` and the free surface's λ_min (`lambda`, [`super::free_surface::lambda_min`])
+/// ([`DivergenceSum`]). Solid neighbours take part through the Neumann differences of
 /// [`super::walls`] instead.
-pub fn divergence(k: &Wendland, list: &NeighbourList, p: &Particles, out: &mut Vec<f64>) {
+pub fn divergence(
+    k: &Wendland,
+    list: &NeighbourList,
+    p: &Particles,
+    form: PressureGradient,
+    lambda: &[f64],
+    out: &mut Vec<f64>,
+) {
     out.resize(p.len(), 0.0);
     out.par_iter_mut()
         .enumerate()
         .with_min_len(512)
         .for_each(|(i, o)| {
-            let mut s = 0.0;
-            if p.kind[i] == FLUID {
+            *o = if p.kind[i] == FLUID {
+                let mut sum = DivergenceSum::new(form, lambda[i]);
                 for (j, q) in list.pairs(i) {
-                    if p.kind[j] != FLUID {
-                        continue;
-                    }
-                    s += divergence_term(k, p, i, j, q);
+                    sum.add(k, p, i, j, q);
                 }
-            }
-            *o = s;
+                sum.value(k)
+            } else {
+                0.0
+            };
         });
 }
 
-/// One fluid pair's term of S2-8's divergence, `V (v_j − v_i)·∇W_ij`, at `q = r / r_e`
-/// (the PPE assembly sums it in its own pass over the pairs).
-#[inline(always)]
-pub fn divergence_term(k: &Wendland, p: &Particles, i: usize, j: usize, q: f64) -> f64 {
-    let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
-    let dv = [p.vx[j] - p.vx[i], p.vy[j] - p.vy[i], p.vz[j] - p.vz[i]];
-    k.volume * k.dw_over_r_at(q) * (dv[0] * d[0] + dv[1] * d[1] + dv[2] * d[2])
+/// S2-8's divergence at one fluid particle i, summed pair by pair: `⟨∇·v⟩_i = tr T_i` with the
+/// velocity moment `T_i = Σ_{fluid j} V (v_j − v_i) ⊗ ∇W_ij`; with S2-8's corrected gradient
+/// (the default), in Marrone's band (λ_min ≤ 0.9, S2-11, the free-surface stage's value),
+/// corrected by the gradient's moment matrix, `⟨∇·v⟩_i = tr(T_i m_i⁻¹)`, m_i (S2-10) over every
+/// listed neighbour as in [`pressure_gradient`]: exact for a linear velocity field where the
+/// support is part empty, as the gradient is for a linear pressure.
+///
+/// Why: the projection's pressure does work `−Σ_i V v_i·⟨∇p⟩_i` on the water, which vanishes for
+/// a velocity that D calls divergence-free only if D and the gradient agree. With the gradient
+/// corrected and D not, they disagree wherever the support is part empty, and there the
+/// pressure fed energy into the flow: the L/20 dam break (`tests/isph_dam_break.rs`) gained
+/// 220.4 J/kg of 11 446 (1.9 %) from 0.10 to 0.16 s, at the surge's toe, where nothing feeds it.
+/// The interior (λ_min > 0.9), where the gradient's correction only undoes the particles'
+/// disorder, keeps S2-8's plain sum: there the two forms disagree without feeding energy (the
+/// gradient corrected only above 0.9 gained 19.9 J/kg in the same test), and the correction in
+/// every row took 15 of about 265 ms per step at S2's scale (`benches/isph_vs_emps.rs -- --s2`),
+/// in the band 1.
+///
+/// The floor: the PPE's Laplacian (S2-9) is not corrected, so where both D and the gradient are
+/// multiplied by up to 1/λ_min the projection answers a divergence by up to 1/λ_min² times the
+/// velocity its matrix expects. With the full m_i⁻¹ down to λ_min = 0.2 (the gradient's splash
+/// limit) that is up to 25 in the thin sheets of a run-up: the MARIN dam break at Δs = 0.04 m
+/// (`cases/dam-break-obstacle`, correction in every row) was stopped by the detector at
+/// t = 1.08 s (17.9 m/s). So m_i is raised to λ_min ≥ [`DIVERGENCE_CORRECTION_FLOOR`]
+/// (`m_i + (F − λ_min) I`), and F is set by the two energy tests of `tests/isph_dam_break.rs`,
+/// which pull opposite ways (J/kg gained; bounds 1 %: 114 before the impact at L/20, 14.3
+/// through the impact at L/10, Δt = 4e-4 s, to 0.3 s):
+///
+/// | F | before the impact, L/20 | through the impact, L/10 |
+/// |---|---|---|
+/// | no correction | 220.4 | 1.1 |
+/// | 0.5 | 18.9 | 16.2 |
+/// | 0.7 | 25.4 | 11.6 |
+/// | **0.8** | **38.6** | **6.2** |
+/// | 0.9 | 57.0 | 3.7 |
+///
+/// 0.8 keeps both furthest inside their bounds (34 % and 43 % of them). Splash particles
+/// (λ_min ≤ 0.2) keep the plain trace, as they keep the plain gradient. The symmetric gradient
+/// is not corrected, nor is D with it.
+#[derive(Debug, Clone, Copy)]
+pub struct DivergenceSum {
+    corrected: bool,
+    t: [[f64; 3]; 3],
+    /// `Σ_j (W'/r) d ⊗ d` over every neighbour (m_i up to the factor −V / lattice moment).
+    m: OuterSum,
+}
+
+impl DivergenceSum {
+    /// An empty sum for the gradient `form` at a particle whose free-surface λ_min is `lambda`.
+    #[inline(always)]
+    pub fn new(form: PressureGradient, lambda: f64) -> Self {
+        DivergenceSum {
+            corrected: form == PressureGradient::CorrectedDifference && lambda <= LAMBDA_INNER,
+            t: [[0.0; 3]; 3],
+            m: OuterSum::default(),
+        }
+    }
+
+    /// Adds neighbour j of fluid particle i at `q = r / r_e`: to m_i, and to T_i if j is fluid
+    /// (where uncorrected, only to the trace).
+    #[inline(always)]
+    pub fn add(&mut self, k: &Wendland, p: &Particles, i: usize, j: usize, q: f64) {
+        let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
+        let w = k.dw_over_r_at(q);
+        let fluid = p.kind[j] == FLUID;
+        if !self.corrected {
+            if fluid {
+                let dv = [p.vx[j] - p.vx[i], p.vy[j] - p.vy[i], p.vz[j] - p.vz[i]];
+                self.t[0][0] += k.volume * w * (dv[0] * d[0] + dv[1] * d[1] + dv[2] * d[2]);
+            }
+            return;
+        }
+        self.m.add(w, d);
+        if fluid {
+            let c = k.volume * w;
+            let dv = [
+                c * (p.vx[j] - p.vx[i]),
+                c * (p.vy[j] - p.vy[i]),
+                c * (p.vz[j] - p.vz[i]),
+            ];
+            for (row, dva) in self.t.iter_mut().zip(dv) {
+                (0..3).for_each(|b| row[b] += dva * d[b]);
+            }
+        }
+    }
+
+    /// The divergence (type doc).
+    pub fn value(&self, k: &Wendland) -> f64 {
+        let t = &self.t;
+        let plain = t[0][0] + t[1][1] + t[2][2];
+        if !self.corrected {
+            return plain;
+        }
+        let scale = -k.volume / k.lattice_moment;
+        let mut m = self.m.matrix().map(|row| row.map(|x| scale * x));
+        let lambda = smallest_eigenvalue_up_to(&m, DIVERGENCE_CORRECTION_FLOOR);
+        if lambda <= LAMBDA_SPLASH {
+            return plain;
+        }
+        if lambda < DIVERGENCE_CORRECTION_FLOOR {
+            (0..3).for_each(|a| m[a][a] += DIVERGENCE_CORRECTION_FLOOR - lambda);
+        }
+        match inverse(&m) {
+            // tr(T m⁻¹) = Σ_ab T_ab (m⁻¹)_ba
+            Some(inv) => (0..3)
+                .map(|a| (0..3).map(|b| t[a][b] * inv[b][a]).sum::<f64>())
+                .sum(),
+            None => plain,
+        }
+    }
 }
 
 /// S2-9 on the velocity: `⟨∇²v⟩_i = Σ_j F_ij (v_j − v_i)` for fluid i over fluid neighbours and,

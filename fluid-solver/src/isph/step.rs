@@ -4,7 +4,9 @@
 //! 1. neighbour search and list;
 //! 2. density ratio ρ̂/ρ0 (S2-7) and free-surface flags ([`super::free_surface`], S2-10 … S2-13);
 //! 3. `v* = v^n + (ν∇²v^n + g)Δt` (S2-3, S2-9);
-//! 4. the PPE `∇²p = (ρ/Δt)∇·v* + α_d(ρ0 − ρ̂)/(Δt Δt_case)` (S2-5) with p = 0 on the free surface
+//! 4. the PPE `∇²p = (ρ/Δt)∇·v* + α_d(ρ0 − ρ̂)/(Δt Δt_case)` (S2-5), ∇·v* corrected in Marrone's
+//!    band by the moment matrix, as the gradient is ([`operators::DivergenceSum`]), with p = 0 on
+//!    the free surface
 //!    (half a spacing beyond the surface particles, [`free_surface::surface_pressure`]) and
 //!    the walls' Neumann differences ([`super::walls`]), assembled and solved ([`super::ppe`]);
 //!    a negative solution is written as 0 (no tension, [`IsphStep::solve_ppe`] says why).
@@ -28,7 +30,7 @@
 use super::free_surface::{self, SURFACE};
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
-use super::operators;
+use super::operators::{self, DivergenceSum};
 use super::pair_laws;
 use super::ppe::{PpeFailure, PpeReport, PpeSystem, NOT_AN_UNKNOWN};
 use super::ppe_two_level;
@@ -401,6 +403,7 @@ impl IsphStep {
         // The density relaxation's rate α_d/Δt is the case's, whatever this step's length (module
         // doc, 4).
         let (rho, alpha, relax) = (self.physics.density, self.settings.alpha_d, self.time_step);
+        let (form, lambda) = (self.settings.pressure_gradient, &self.lambda);
         let (row_of, ratio, dirichlet) = (&ppe.row_of, &self.ratio, &self.dirichlet);
         // Rows in blocks of ROW_BLOCK unknowns, each block's entries contiguous in its own
         // reused buffers, then copied into the CSR arrays block by block in parallel.
@@ -418,9 +421,11 @@ impl IsphStep {
                 for &i in block {
                     let i = i as usize;
                     let row = row_of[i];
-                    // Σ_j F_ij, the known terms, and S2-8's divergence of v* in the same pass.
-                    let (mut diag, mut rhs, mut div) = (0.0, 0.0, 0.0);
+                    // Σ_j F_ij, the known terms, and the divergence of v* in the same pass.
+                    let (mut diag, mut rhs) = (0.0, 0.0);
+                    let mut div = DivergenceSum::new(form, lambda[i]);
                     for (j, q) in list.pairs(i) {
+                        div.add(&k, p, i, j, q);
                         // F_ij rounded to f32 once (the matrix is stored in f32), the diagonal and
                         // the known terms built from the same rounded weight, so A keeps zero row
                         // sums over the fluid and stays symmetric: a Laplacian whose weights
@@ -428,7 +433,6 @@ impl IsphStep {
                         let f32 = (-2.0 * k.volume * k.dw_over_r_at(q)) as f32;
                         let f = f64::from(f32);
                         if p.kind[j] == FLUID {
-                            div += operators::divergence_term(&k, p, i, j, q);
                             diag += f;
                             if row_of[j] == NOT_AN_UNKNOWN {
                                 rhs += f * dirichlet[j];
@@ -441,6 +445,7 @@ impl IsphStep {
                             rhs += f * pair.difference(i, j);
                         }
                     }
+                    let div = div.value(&k);
                     out.end.push(out.col.len() as u32);
                     out.diag.push(diag);
                     out.rhs
