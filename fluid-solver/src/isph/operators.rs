@@ -86,7 +86,7 @@ pub fn divergence(
 /// disorder, keeps S2-8's plain sum: there the two forms disagree without feeding energy (the
 /// gradient corrected only above 0.9 gained 19.9 J/kg in the same test), and the correction in
 /// every row took 15 of about 265 ms per step at S2's scale (`benches/isph_vs_emps.rs -- --s2`),
-/// in the band 1.
+/// in the band only about 1.
 ///
 /// The floor: the PPE's Laplacian (S2-9) is not corrected, so where both D and the gradient are
 /// multiplied by up to 1/λ_min the projection answers a divergence by up to 1/λ_min² times the
