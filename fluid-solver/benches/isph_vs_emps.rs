@@ -8,7 +8,9 @@
 //! resampled at ISPH's Δt, and the RMS of the high-passed signal (minus its moving average over
 //! 11 ISPH steps). The same measures for a wall-pressure sensor at the same height
 //! ([`fluid_solver::wall_sensor`]: the force on a 20 mm disc of the wall's face, per step), which
-//! reads the wall's load rather than the particles' pressure field.
+//! reads the wall's load rather than the particles' pressure field. Then the probe's RMS per step
+//! and high-passed by 0.05 s windows from its first wet reading: the front's arrival apart from
+//! the wall under water.
 //!
 //! Then ISPH's PPE iterations per step in windows of 0.05 s of simulated time (before and after
 //! the impact), each method's stages (the step's stage timers) with their share, and the load average
@@ -281,6 +283,7 @@ fn main() {
         "far-wall pressure sensor (the force on a disc of {SENSOR_DIAMETER} m on the wall's face, 0.02 m up, per step), same measures:"
     );
     print_roughness(&rows, h, |r| &r.sensor);
+    print_roughness_by_window(&rows, h);
     println!("PPE iterations per step by {WINDOW} s of simulated time (the front meets the far wall at about 0.3 s):");
     for row in rows
         .iter()
@@ -312,6 +315,28 @@ fn main() {
                 100.0 * secs / total.max(f64::MIN_POSITIVE)
             );
         }
+    }
+}
+
+/// The far-wall probe's RMS step-to-step change and high-passed RMS by [`WINDOW`] of simulated
+/// time, from the window in which it first reads water: the front's arrival (an impact, whose
+/// own rise a longer step sees as a larger change per step) apart from the wall under water.
+fn print_roughness_by_window(rows: &[Row], h: f64) {
+    let Some(wet) = rows.iter().filter_map(|r| r.probe.first_wet()).reduce(f64::min) else {
+        return;
+    };
+    println!("far-wall probe by {WINDOW} s of simulated time from its first wet reading, RMS Δp per step / RMS high-pass [Pa]:");
+    for row in rows {
+        let first = (wet / WINDOW).floor() as usize;
+        let last = (row.reached / WINDOW).ceil() as usize;
+        let line: Vec<String> = (first..last)
+            .map(|w| {
+                let (lo, hi) = (w as f64 * WINDOW, (w + 1) as f64 * WINDOW);
+                let s = row.probe.between(lo, hi);
+                format!("{lo:.2}–{hi:.2}: {:.1} / {:.1}", s.step_rms(), s.high_pass_rms(h))
+            })
+            .collect();
+        println!("  {:6} {}", row.name, line.join("  "));
     }
 }
 

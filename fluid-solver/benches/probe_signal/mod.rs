@@ -89,6 +89,22 @@ impl Series {
             .map(|w| w[HALF_WINDOW] - w.iter().sum::<f64>() / m as f64))
     }
 
+    /// The readings with `lo ≤ t ≤ hi`.
+    pub fn between(&self, lo: f64, hi: f64) -> Series {
+        Series(
+            self.0
+                .iter()
+                .copied()
+                .filter(|r| r.0 >= lo && r.0 <= hi)
+                .collect(),
+        )
+    }
+
+    /// Time of the first reading above 0 (the probe wetted), if any.
+    pub fn first_wet(&self) -> Option<f64> {
+        self.0.iter().find(|r| r.1 > 0.0).map(|r| r.0)
+    }
+
     /// Largest reading.
     pub fn max(&self) -> f64 {
         self.0.iter().map(|r| r.1).fold(f64::NEG_INFINITY, f64::max)
