@@ -313,8 +313,9 @@ pub enum Shifting {
     #[default]
     Off,
     /// Lind, Xu, Stansby & Rogers (2012): `δr = −D Σ_j V ∇W_ij` after each position update, with
-    /// `D = A h |u|_max Δt` after Skillen et al. (2013) (A = `shifting_coefficient`). Measured
-    /// only with `pressure_gradient = "symmetric"` at `influence_radius = 2.0`.
+    /// `D = A h |u|_max Δt` after Skillen et al. (2013) (A = `shifting_coefficient`); the water
+    /// in a resolved body's support is not shifted. Smoothest with `pressure_gradient =
+    /// "symmetric"` at `influence_radius = 2.0` (README).
     Lind,
 }
 
@@ -718,12 +719,6 @@ impl FluidConfig {
             }
             FluidMethodName::Isph => {
                 self.isph_settings().validate(&k("isph"), self.wall_layers)?;
-                if self.isph_settings().shifting != Shifting::Off && !self.body.is_empty() {
-                    return Err(FieldError::new(
-                        k("isph.shifting"),
-                        "particle shifting is not for cases with resolved bodies: it moved the load on a box held fixed in still water by +4 … +9 % of ρgV (fluid_solver::isph::shifting); use shifting = \"off\" (the default) with bodies",
-                    ));
-                }
                 self.validate_isph_time_step(key)
             }
         }
