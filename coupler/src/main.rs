@@ -301,7 +301,7 @@ fn check(path: &std::path::Path, out: Option<&std::path::Path>, max_output: u64)
     }
     let estimate = Estimate::of(&case);
     lines.push(format!("  estimate: {}", estimate.describe()));
-    lines.extend(case.unused_settings().iter().map(|u| format!("  warning: {u}")));
+    lines.extend(case.fluid_warnings().iter().map(|u| format!("  warning: {u}")));
     print_lines(&lines)?;
     estimate.check(&default_output_folder(&case, out), max_output)
 }

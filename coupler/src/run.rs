@@ -98,8 +98,8 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
     let estimate = Estimate::of(&case);
     estimate.check(&out, opts.max_output)?;
     eprintln!("estimate: {}", estimate.describe());
-    for unused in case.unused_settings() {
-        eprintln!("warning: {unused}");
+    for warning in case.fluid_warnings() {
+        eprintln!("warning: {warning}");
     }
     let folder = match &opts.resume {
         Some(_) => OutputFolder::hold(&out)?,

@@ -199,7 +199,7 @@ impl FluidSolver {
             open_top,
             max_removed_fraction: cfg.max_removed_fraction,
             layout_notes: layout.notes,
-            warnings: cfg.unused_by_method(),
+            warnings: cfg.warnings(),
             point_reactions: Default::default(),
             positions_version: 0,
             reaction_shares: Mutex::default(),
@@ -227,8 +227,7 @@ impl FluidSolver {
     }
 
     /// What the run tells the user before it starts, each as a `warning: ` line (the coupler
-    /// passes those on): the case's settings its method does not use
-    /// ([`FluidConfig::unused_by_method`]).
+    /// passes those on): [`FluidConfig::warnings`].
     pub fn warnings(&self) -> &[String] {
         &self.warnings
     }

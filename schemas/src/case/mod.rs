@@ -156,13 +156,14 @@ impl Case {
         }
     }
 
-    /// Each fluid section's settings its method leaves unused
-    /// ([`fluid::FluidConfig::unused_by_method`]), as `fluid.NAME: …` for a `warning: ` line.
-    pub fn unused_settings(&self) -> Vec<String> {
+    /// Each fluid section's warnings ([`fluid::FluidConfig::warnings`]: settings its method leaves
+    /// unused, ISPH settings that misread a load in its geometry), as `fluid.NAME: …` for a
+    /// `warning: ` line.
+    pub fn fluid_warnings(&self) -> Vec<String> {
         self.fluid
             .iter()
             .flat_map(|(name, cfg)| {
-                cfg.unused_by_method()
+                cfg.warnings()
                     .into_iter()
                     .map(move |u| format!("fluid.{name}: {u}"))
             })
