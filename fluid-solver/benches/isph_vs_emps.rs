@@ -12,6 +12,10 @@
 //! and high-passed by 0.05 s windows from its first wet reading: the front's arrival apart from
 //! the wall under water.
 //!
+//! "kicked/step" counts the fluid particles whose velocity the collision stage changed
+//! ([`fluid_solver::collision::kicked`]), per step: a kick is a velocity change whatever the
+//! step's length, which ISPH's next projection answers with a pressure ∝ 1/Δt.
+//!
 //! Then ISPH's PPE iterations per step in windows of 0.05 s of simulated time (before and after
 //! the impact), each method's stages (the step's stage timers) with their share, and the load average
 //! before and after and the process's CPU time (wall times on a shared machine mean little
@@ -85,6 +89,8 @@ struct Row {
     cpu: f64,
     ppe_iterations: u64,
     ppe_share: f64,
+    /// Fluid particles kicked by the collision stage, over all steps.
+    collisions: u64,
     /// The far-wall probe after each step.
     probe: Series,
     /// The far-wall pressure sensor (a disc of [`SENSOR_DIAMETER`]) after each step.
@@ -161,6 +167,7 @@ fn run(name: &str, cfg: &FluidConfig, end: f64, log: Option<&str>) -> Row {
         wall,
         cpu,
         ppe_iterations: solver.totals().ppe_iterations,
+        collisions: solver.totals().collisions,
         ppe_share: if times.total() > 0.0 {
             ppe / times.total()
         } else {
@@ -255,10 +262,10 @@ fn main() {
     }
     println!("load average after: {}", load_average());
     let threads = rayon::current_num_threads() as f64;
-    println!("method  Δt [s]    t [s]   steps  fluid    wall [s]  CPU [s]  fluid-steps/s  per CPU-s × threads  PPE it/step  PPE share");
+    println!("method  Δt [s]    t [s]   steps  fluid    wall [s]  CPU [s]  fluid-steps/s  per CPU-s × threads  PPE it/step  PPE share  kicked/step");
     for row in &rows {
         println!(
-            "{:6}  {:.2e}  {:6.4}  {:5}  {:6}  {:9.2}  {:7.2}  {:13.3e}  {:19.3e}  {:11.1}  {:8.1} %",
+            "{:6}  {:.2e}  {:6.4}  {:5}  {:6}  {:9.2}  {:7.2}  {:13.3e}  {:19.3e}  {:11.1}  {:8.1} %  {:11.1}",
             row.name,
             row.dt,
             row.reached,
@@ -270,6 +277,7 @@ fn main() {
             row.fluid as f64 * row.steps as f64 * threads / row.cpu.max(1e-9),
             row.ppe_iterations as f64 / row.steps.max(1) as f64,
             100.0 * row.ppe_share,
+            row.collisions as f64 / row.steps.max(1) as f64,
         );
     }
     // The common grid: ISPH's Δt.

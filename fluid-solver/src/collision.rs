@@ -69,6 +69,16 @@ pub fn collision(grid: &CellGrid, p: &Particles, distance: f64, e: f64, out: &mu
         .reduce(PassTotals::default, add)
 }
 
+/// The fluid particles whose velocity the pass changed (a nonzero Δu in `du`, as
+/// [`collision`] wrote it).
+pub fn kicked(du: &VectorField) -> u64 {
+    (&du.x, &du.y, &du.z)
+        .into_par_iter()
+        .with_min_len(4096)
+        .filter(|(x, y, z)| **x != 0.0 || **y != 0.0 || **z != 0.0)
+        .count() as u64
+}
+
 /// The collision stage's force on body particle j from fluid particle i, `−m Δu_i / Δt` with
 /// `Δu_i = (1+e) ((u_j − u_i)·r_ij) r_ij/|r_ij|²` when they are closer than the collision
 /// distance and approach each other (the body particle moves with its rigid velocity, as a

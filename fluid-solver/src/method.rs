@@ -25,6 +25,9 @@ pub struct StepTotals {
     pub candidates: u64,
     /// Iterations of the pressure Poisson equation's solver (ISPH; 0 for E-MPS).
     pub ppe_iterations: u32,
+    /// Fluid particles whose velocity the collision stage changed ([`crate::collision::kicked`];
+    /// not counted on the GPU path, 0 there).
+    pub collisions: u64,
 }
 
 /// The fluid method of a participant.

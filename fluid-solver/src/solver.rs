@@ -38,6 +38,9 @@ pub struct RunTotals {
     pub particle_steps: u64,
     /// Iterations of the pressure Poisson equation's solver (ISPH).
     pub ppe_iterations: u64,
+    /// Fluid particles kicked by the collision stage, summed over the steps
+    /// ([`crate::method::StepTotals::collisions`]).
+    pub collisions: u64,
     /// Σ (point reactions spread on the fluid)·Δt: impulse of the drag coupling [N s].
     pub reaction_impulse: [f64; 3],
     /// Σ (point reactions no fluid was near)·Δt: impulse that could not be applied [N s].
@@ -500,6 +503,7 @@ impl FluidSolver {
         }
         st.totals.candidates += totals.candidates;
         st.totals.ppe_iterations += u64::from(totals.ppe_iterations);
+        st.totals.collisions += totals.collisions;
         st.totals.particle_steps += st.particles.len() as u64;
         self.monitor
             .check(&st.particles, st.steps, st.time, dt, &st.body_pose)?;

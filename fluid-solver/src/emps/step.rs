@@ -173,6 +173,7 @@ impl EmpsStep {
             totals.force_from_walls[a] += m * t.from_non_fluid[a] / dt;
         }
         totals.candidates += t.candidates;
+        totals.collisions = collision::kicked(&self.accel);
         self.apply_collisions(p, dt);
     }
 

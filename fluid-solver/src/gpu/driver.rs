@@ -141,6 +141,7 @@ impl FluidSolver {
             force_from_walls: report.force_from_walls,
             candidates: report.candidates,
             ppe_iterations: 0,
+            collisions: 0,
         })
     }
 }

@@ -267,6 +267,7 @@ impl IsphStep {
         bodies(Exchange::Collision, &collision::contact_law(&scales, p), grid, p);
         (0..3).for_each(|a| totals.force_from_walls[a] += scales.particle_mass * pass.from_non_fluid[a] / dt);
         totals.candidates += pass.candidates;
+        totals.collisions = collision::kicked(&self.accel);
         self.apply_collisions(p, dt);
         self.times.lap(t, "collision");
         Ok(totals)
