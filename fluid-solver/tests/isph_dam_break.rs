@@ -123,8 +123,9 @@ fn isph_dam_break_gains_no_energy_through_the_impact() {
 /// initial energy, the bound of `isph_dam_break_gains_no_energy_through_the_impact`.
 ///
 /// Measured with S2-8's corrected difference-form gradient and the divergence corrected as it
-/// in Marrone's band (`isph::operators::DivergenceSum`): 11 446 J/kg at the start, 11 380 at
-/// 0.10 s, 11 387 at 0.16 s, 38.6 J/kg gained (0.34 %). With the divergence uncorrected
+/// in Marrone's band (`isph::operators::DivergenceSum`): 11 446 J/kg at the start, 11 379 at
+/// 0.10 s, 11 388 at 0.16 s, 40.1 J/kg gained (0.35 %; 38.6 before a short landing step took
+/// a whole step's pressure, `IsphStep::short_step`). With the divergence uncorrected
 /// (before 25 Nov 2026): 11 385 at 0.10 s, 11 605 at 0.16 s, 220.4 J/kg gained (1.9 %), the
 /// pressure's work where D and the gradient disagree (the operator's doc). Run in CI, unlike its twins below: at
 /// Δs = L/10 the uncorrected divergence gained only 10.9 of 1 431 J/kg (0.76 %, within the
