@@ -761,7 +761,7 @@ impl FluidConfig {
             && boxes
         {
             warnings.push(
-                "`isph.pressure_gradient` = \"symmetric\" with solid boxes (`wall` or `body`): that gradient has no face normals at a box's convex edges, and on the MARIN dam break's CI twin (cases/dam-break-obstacle, Δs = 0.04 m) the sensor 2 cm under the box's top edge read a pull (−177 … −200 % of the measured mean over 0.6–0.8 s); for loads near a box's edges use the default pressure_gradient = \"corrected-difference\"".into(),
+                "`isph.pressure_gradient` = \"symmetric\" with solid boxes (`wall` or `body`): that gradient has no face normals at a box's convex edges, and on the MARIN dam break's CI twin (cases/dam-break-obstacle, Δs = 0.04 m) the sensor 2 cm under the box's top edge read a pull (−169 … −204 % of the measured mean over 0.6–0.8 s); for loads near a box's edges use the default pressure_gradient = \"corrected-difference\"".into(),
             );
         }
         warnings
