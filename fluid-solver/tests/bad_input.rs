@@ -140,20 +140,29 @@ fn other_bad_keys_name_what_is_allowed() {
     let symmetric =
         parse(&(isph("symmetric") + "influence_radius = 2.0\n")).unwrap_or_else(|e| panic!("{e}"));
     assert!(symmetric.fluid["water"].warnings().is_empty());
-    // With a solid box the symmetric gradient is warned about (no face normals at its convex
-    // edges: a load near them reads wrong), the default is not.
+    // With a body the symmetric gradient is warned about (no face normals at its convex edges:
+    // a load near them reads wrong), the default is not; a wall box has them with either.
     let obstacle = "\n[[fluid.water.wall]]\nmin = [0.14, 0.06, 0.0]\nmax = [0.18, 0.1, 0.06]\n";
-    let symmetric =
-        parse(&(isph("symmetric") + "influence_radius = 2.0\n" + obstacle)).unwrap_or_else(|e| panic!("{e}"));
-    let warnings = symmetric.fluid["water"].warnings();
+    let body = "\n[[fluid.water.body]]\nname = \"box\"\nmin = [0.14, 0.06, 0.02]\nmax = [0.18, 0.1, 0.06]\n";
+    let symmetric_with = |solid: &str| {
+        parse(&(isph("symmetric") + "influence_radius = 2.0\n" + solid))
+            .unwrap_or_else(|e| panic!("{e}"))
+            .fluid["water"]
+            .warnings()
+    };
+    assert!(symmetric_with(obstacle).is_empty());
+    let warnings = symmetric_with(body);
     assert!(
         warnings.len() == 1
             && warnings[0].contains("`isph.pressure_gradient`")
+            && warnings[0].contains("body")
             && warnings[0].contains("corrected-difference"),
         "{warnings:?}"
     );
-    let default = parse(&(isph("corrected-difference") + obstacle)).unwrap_or_else(|e| panic!("{e}"));
-    assert!(default.fluid["water"].warnings().is_empty());
+    for solid in [obstacle, body] {
+        let default = parse(&(isph("corrected-difference") + solid)).unwrap_or_else(|e| panic!("{e}"));
+        assert!(default.fluid["water"].warnings().is_empty());
+    }
     parse(&isph("corrected-difference")).unwrap_or_else(|e| panic!("{e}"));
     // The symmetric form only where the lattice is restored (S2's 2.4 spacings is not).
     let e = error_of(&isph("symmetric"));

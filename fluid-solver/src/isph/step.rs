@@ -399,9 +399,10 @@ impl IsphStep {
     /// particles; a fluid particle without fluid neighbours is put on the surface.
     fn assemble(&mut self, p: &Particles, state: &mut IsphState, dt: f64) {
         let k = self.kernel;
-        // The faces' normals at convex edges with S2-8's gradient only (walls module doc).
-        let edges = self.settings.pressure_gradient == PressureGradient::CorrectedDifference;
-        self.walls.update_geometry(&k, &self.list, p, edges);
+        // The faces' normals at walls' convex edges, and at bodies' with S2-8's gradient only
+        // (walls module doc).
+        let body_edges = self.settings.pressure_gradient == PressureGradient::CorrectedDifference;
+        self.walls.update_geometry(&k, &self.list, p, body_edges);
         let list = &self.list;
         let surface = &mut state.surface;
         // Unknowns: fluid, not on the surface, with at least one fluid neighbour.

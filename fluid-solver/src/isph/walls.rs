@@ -57,15 +57,20 @@
 //! tension at convex solids instead gave +0.2 / +0.5 kPa there, but biased a held box's load:
 //! fluctuations were then only pushed.) Beside a box held 5 mm off its lattice site in still
 //! water (`tests/isph_bodies.rs`) the fastest fluid particle over 0.05 – 0.2 s fell from 8.9e-2
-//! to 2.6e-2 m/s. This holds with S2-8's corrected gradient, the default; with the symmetric
-//! gradient every solid keeps its own normal: its water at a held box's edges is not at rest
-//! (the fastest particle 0.2 m/s with the box at its site, against 9.1e-4 m/s with S2-8's), and
-//! with the faces' normals its load moved from −0.08 % to +9.6 % of ρgV (open).
+//! to 2.6e-2 m/s. This holds for walls and bodies with S2-8's corrected gradient, the default,
+//! and for walls only with the symmetric gradient: on the MARIN CI twin P4's mean over 0.6 –
+//! 0.8 s then reads −20 % of the experiment's (−23 % with shifting; S2-8's −36 %), against
+//! −204 % (−169 %) with the walls' own normals, and a wall box in still water leaves its water
+//! at rest either way (fastest particle 1.4e-3 m/s over 0.2 s, 6.7e-4 over 0.5 – 1 s). A body
+//! keeps its own normals with the symmetric gradient: its water at a held box's edges is not at
+//! rest (the fastest particle 0.2 m/s with the box at its site, against 9.1e-4 m/s with S2-8's),
+//! and with the faces' normals its load moved from −0.08 % to +9.6 % of ρgV (+9.8 % with
+//! shifting; open), so such a case is warned about (`FluidConfig::warnings`).
 
 use super::free_surface::SURFACE;
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
-use crate::kind::{DUMMY, FLUID, WALL};
+use crate::kind::{Kind, DUMMY, FLUID, WALL};
 use crate::particles::Particles;
 use crate::physics::Physics;
 use crate::vector_field::VectorField;
@@ -223,12 +228,12 @@ pub struct WallFields {
 }
 
 impl WallFields {
-    /// [`normals`], [`depths`] and, with `edges`, [`convex`] of the particles in their present
-    /// order (without `edges` no solid is convex: every pair takes the solid's own normal): those
-    /// of a solid with fluid near it taken from [`FixedSolids`] once known there, while every
-    /// solid is fixed.
-    pub fn update_geometry(&mut self, k: &Wendland, list: &NeighbourList, p: &Particles, edges: bool) {
-        let limit = if edges { convex_fill_limit(k) } else { 0.0 };
+    /// [`normals`], [`depths`] and [`convex`] of the particles in their present order (without
+    /// `body_edges` no body particle is convex: its pairs take its own normal): those of a solid
+    /// with fluid near it taken from [`FixedSolids`] once known there, while every solid is fixed.
+    pub fn update_geometry(&mut self, k: &Wendland, list: &NeighbourList, p: &Particles, body_edges: bool) {
+        let limit = convex_fill_limit(k);
+        let body = Kind::Body.code();
         let all_fixed = p.kind.par_iter().all(|&c| matches!(c, FLUID | WALL | DUMMY));
         let cache = &mut self.fixed;
         if all_fixed {
@@ -265,6 +270,7 @@ impl WallFields {
                     (normal_of[id], depth_of_id[id], convex_of[id], 0)
                 } else {
                     let (n, d, c) = geometry(k, list, p, limit, w);
+                    let c = if p.kind[w] == body && !body_edges { 0 } else { c };
                     (n, d, c, usize::from(keep))
                 };
                 [*nx, *ny, *nz] = n;
