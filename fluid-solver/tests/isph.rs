@@ -487,24 +487,8 @@ fn a_short_landing_step_changes_the_flow_as_little_as_a_whole_one() {
     let cfg = isph_slab::isph_slab();
     let mut solver = FluidSolver::new(&cfg);
     solver.advance_to(0.15).unwrap_or_else(|e| panic!("{e}"));
-    let velocities = |s: &FluidSolver| {
-        let p = s.particles();
-        let mut v: Vec<(u32, [f64; 3])> = (0..p.len())
-            .filter(|&i| p.kind[i] == Kind::Fluid.code())
-            .map(|i| (p.id[i], p.velocity(i)))
-            .collect();
-        v.sort_by_key(|e| e.0);
-        v
-    };
-    let pressures = |s: &FluidSolver| {
-        let p = s.particles();
-        let mut v: Vec<(u32, f64)> = (0..p.len())
-            .filter(|&i| p.kind[i] == Kind::Fluid.code())
-            .map(|i| (p.id[i], p.pressure[i]))
-            .collect();
-        v.sort_by_key(|e| e.0);
-        v
-    };
+    let velocities = |s: &FluidSolver| fluid_by_id(s, |p, i| p.velocity(i));
+    let pressures = |s: &FluidSolver| fluid_by_id(s, |p, i| p.pressure[i]);
     let before = velocities(&solver);
     let saved = solver.save_state();
     let change = |fraction: f64, solver: &mut FluidSolver| {
@@ -539,4 +523,19 @@ fn a_short_landing_step_changes_the_flow_as_little_as_a_whole_one() {
         short <= 2.0 * whole,
         "a step of 1e-4 Δt changed a velocity by {short:.3e} m/s, a whole step by {whole:.3e} (bound twice that)"
     );
+}
+
+/// `read(particles, i)` of every fluid particle with its id, in id order (the arrays are
+/// reordered every step).
+fn fluid_by_id<T>(
+    s: &FluidSolver,
+    read: impl Fn(&fluid_solver::particles::Particles, usize) -> T,
+) -> Vec<(u32, T)> {
+    let p = s.particles();
+    let mut v: Vec<(u32, T)> = (0..p.len())
+        .filter(|&i| p.kind[i] == Kind::Fluid.code())
+        .map(|i| (p.id[i], read(p, i)))
+        .collect();
+    v.sort_by_key(|e| e.0);
+    v
 }
