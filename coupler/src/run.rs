@@ -98,8 +98,12 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
     let estimate = Estimate::of(&case);
     estimate.check(&out, opts.max_output)?;
     eprintln!("estimate: {}", estimate.describe());
-    for warning in case.fluid_warnings() {
-        eprintln!("warning: {warning}");
+    // A solver that runs alone writes to this terminal and warns itself; coupled solvers write
+    // to their logs, so the coupler prints their warnings here, once.
+    if case.coupling.is_some() {
+        for warning in case.fluid_warnings() {
+            eprintln!("warning: {warning}");
+        }
     }
     let folder = match &opts.resume {
         Some(_) => OutputFolder::hold(&out)?,

@@ -72,6 +72,29 @@ fn a_fluid_only_case_starts_only_the_fluid_solver() {
     );
 }
 
+/// A fluid-only case's warning (here ISPH's unused sound speed) reaches the terminal once: the
+/// solver running alone prints it, the coupler does not repeat it (it did until session 19).
+#[test]
+fn a_fluid_only_case_warns_once() {
+    let dir = out_dir("alone-warns-once");
+    let case = short_case("hydrostatic-tank", "0.005", &dir);
+    let text = std::fs::read_to_string(&case).unwrap_or_default().replace(
+        "[fluid.water]\n",
+        "[fluid.water]\nmethod = \"isph\"\nsound_speed = 20.0\n",
+    );
+    assert!(text.contains("sound_speed = 20.0"));
+    std::fs::write(&case, text).unwrap_or_else(|e| panic!("{e}"));
+    let run = coupler_run(&case, &dir.join("out"));
+    let err = stderr(&run);
+    println!("{err}");
+    assert!(run.status.success(), "{err}");
+    assert_eq!(
+        err.matches("`sound_speed` = 20 m/s is not used").count(),
+        1,
+        "{err}"
+    );
+}
+
 fn walk(dir: &Path) -> Vec<String> {
     let mut found = Vec::new();
     for entry in std::fs::read_dir(dir).into_iter().flatten().flatten() {
