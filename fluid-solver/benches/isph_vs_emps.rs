@@ -35,6 +35,7 @@
 //! `--probe-log=PREFIX` writes `PREFIX-emps.csv` and `PREFIX-isph.csv`, one row per step: what the
 //! probe reads and where it comes from ([`probe_log`]).
 
+use fluid_solver::probe_signal::{self, Series};
 use fluid_solver::probes::{self, ProbeSet};
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{
@@ -46,9 +47,7 @@ use std::time::Instant;
 
 mod bench_process;
 mod probe_log;
-mod probe_signal;
 use bench_process::{cpu_seconds, load_average};
-use probe_signal::Series;
 
 fn case(ds: f64, layers: f64) -> FluidConfig {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../cases/dam-break-koshizuka/case.toml");

@@ -14,7 +14,8 @@
 //! - [`open_boundary`]: inflow and outflow boundaries (particles added and removed during a run).
 //! - [`unresolved`]: sample points and point reactions of the unresolved drag coupling (S2).
 //! - [`gpu`]: the E-MPS step on a GPU (wgpu, WGSL), chosen by `backend = "gpu"`.
-//! - [`stability`]: the instability detector; [`probes`], [`vtu`], [`surface_mesh`] + [`vtp`]: outputs; [`run`]: a standalone run;
+//! - [`stability`]: the instability detector; [`probes`] (with [`probe_signal`]: a probe's roughness
+//!   across time steps), [`vtu`], [`surface_mesh`] + [`vtp`]: outputs; [`run`]: a standalone run;
 //!   [`participant`]: the coupled-run side (`fluid-solver participant …`).
 
 pub mod bodies;
@@ -35,6 +36,7 @@ pub mod pair_law;
 pub mod participant;
 pub mod particles;
 pub mod physics;
+pub mod probe_signal;
 pub mod probes;
 pub mod progress;
 pub mod run;
