@@ -6,11 +6,11 @@
 //! each method's hot loops stay statically dispatched; and one `match` per entry point shows what
 //! each method does there.
 
+use crate::bodies::pair_law::{Exchange, ExchangeScales, PairLaw};
 use crate::emps::step::EmpsStep;
 use crate::isph::ppe::PpeFailure;
 use crate::isph::step::{IsphState, IsphStep};
-use crate::neighbour_search::CellGrid;
-use crate::pair_law::{Exchange, ExchangeScales, PairLaw};
+use crate::neighbours::neighbour_search::CellGrid;
 use crate::particles::Particles;
 use crate::stability::Instability;
 use crate::stage_timer::StageTimes;
@@ -25,7 +25,7 @@ pub struct StepTotals {
     pub candidates: u64,
     /// Iterations of the pressure Poisson equation's solver (ISPH; 0 for E-MPS).
     pub ppe_iterations: u32,
-    /// Fluid particles whose velocity the collision stage changed ([`crate::collision::kicked`];
+    /// Fluid particles whose velocity the collision stage changed ([`crate::neighbours::collision::kicked`];
     /// not counted on the GPU path, 0 there).
     pub collisions: u64,
 }

@@ -24,12 +24,12 @@ mod body_motion;
 mod resume;
 
 use crate::gpu::GpuDevice;
-use crate::probes::{ProbeFile, ProbeSet};
-use crate::progress::{peak_memory_bytes, Progress, RunSummary};
+use crate::output::progress::{peak_memory_bytes, Progress, RunSummary};
+use crate::output::vtp::SurfaceFrames;
+use crate::output::vtu;
+use crate::sensors::probes::{ProbeFile, ProbeSet};
 use crate::solver::FluidSolver;
 use crate::state::FluidState;
-use crate::vtp::SurfaceFrames;
-use crate::vtu;
 use schemas::case::fluid::FluidBackend;
 use schemas::case::Case;
 use schemas::f64s::F64s;

@@ -1,18 +1,18 @@
 //! A standalone run of a fluid-only case: steps to `case.end_time`, writes VTU frames with a
 //! PVD series (and free-surface VTP frames when `surface_mesh = true`) every `output_interval`
 //! and a probe CSV every `probe_interval` (with an inflow or outflow also `NAME_balance.csv`,
-//! the particle balance of [`crate::open_boundary`]); reports progress at a steady interval
-//! ([`crate::progress`]) and returns the run's summary.
+//! the particle balance of [`crate::boundaries::open_boundary`]); reports progress at a steady interval
+//! ([`crate::output::progress`]) and returns the run's summary.
 
+use crate::boundaries::open_boundary::BalanceFile;
 use crate::gpu::driver::GpuStartError;
-use crate::open_boundary::BalanceFile;
-use crate::probes::{ProbeFile, ProbeSet};
-pub use crate::progress::RunSummary;
-use crate::progress::{peak_memory_bytes, Progress};
+pub use crate::output::progress::RunSummary;
+use crate::output::progress::{peak_memory_bytes, Progress};
+use crate::output::vtp::SurfaceFrames;
+use crate::output::vtu;
+use crate::sensors::probes::{ProbeFile, ProbeSet};
 use crate::solver::FluidSolver;
 use crate::stability::Instability;
-use crate::vtp::SurfaceFrames;
-use crate::vtu;
 use schemas::case::{Case, FluidConfig};
 use schemas::pvd::Collection;
 use std::fmt;

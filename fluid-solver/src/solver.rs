@@ -1,18 +1,18 @@
 //! The fluid solver of one `[fluid.NAME]` participant: the particles, the step, the clock and
 //! the stability monitor; advances to a given time and saves/restores its state in memory.
 
+use crate::bodies::pair_law::{Exchange, PairLaw};
 use crate::bodies::RigidBodies;
+use crate::boundaries::escape::OpenTop;
+use crate::boundaries::open_boundary::OpenBoundaries;
 use crate::emps::kernel::Kernel;
 use crate::emps::step::EmpsStep;
-use crate::escape::OpenTop;
 use crate::isph::neighbour_list;
 use crate::isph::step::{IsphState, IsphStep};
-use crate::kind::Kind;
-use crate::layout::{self, Domain};
 use crate::method::{FluidMethod, MethodState, StepTotals};
-use crate::neighbour_search::{CellGrid, CELL_IN_SPACINGS};
-use crate::open_boundary::OpenBoundaries;
-use crate::pair_law::{Exchange, PairLaw};
+use crate::neighbours::neighbour_search::{CellGrid, CELL_IN_SPACINGS};
+use crate::particles::kind::Kind;
+use crate::particles::layout::{self, Domain};
 use crate::particles::Particles;
 use crate::physics::Physics;
 use crate::stability::{Instability, StabilityMonitor};
@@ -75,7 +75,7 @@ pub struct FluidSolver {
     /// Where fluid may leave (removed and counted), and the most that may leave.
     pub(crate) open_top: OpenTop,
     max_removed_fraction: f64,
-    /// What the lattice moved (see [`crate::lattice`]).
+    /// What the lattice moved (see [`crate::particles::lattice`]).
     layout_notes: Vec<String>,
     /// [`FluidSolver::warnings`].
     warnings: Vec<String>,
@@ -235,7 +235,7 @@ impl FluidSolver {
         &self.warnings
     }
 
-    /// Fluid particles removed after leaving through the open top ([`crate::escape`]).
+    /// Fluid particles removed after leaving through the open top ([`crate::boundaries::escape`]).
     pub fn escaped(&self) -> u64 {
         self.state.escaped
     }
@@ -372,7 +372,7 @@ impl FluidSolver {
     /// last set by [`FluidSolver::set_body_motion`], the step's end (6 per body): S1-4's viscous
     /// pair forces (when the term is on), S1-3's pressure pair forces at r* and the fluid–body collision impulses / Δt (see
     /// [`crate::bodies`]), exactly the momentum the fluid gave up to the bodies, plus the walls'
-    /// contact ([`crate::body_wall_contact`]). No gravity: the body's weight is the structure
+    /// contact ([`crate::bodies::body_wall_contact`]). No gravity: the body's weight is the structure
     /// solver's.
     pub fn body_loads(&self) -> Vec<f64> {
         self.state.body_exchange.loads.clone()
@@ -438,7 +438,7 @@ impl FluidSolver {
         self.positions_version += 1;
     }
 
-    /// Removes the fluid that left through the open top ([`crate::escape`]) and returns how many
+    /// Removes the fluid that left through the open top ([`crate::boundaries::escape`]) and returns how many
     /// particles left; stops when more than `max_removed_fraction` of the fluid has left.
     pub(crate) fn remove_escaped(&mut self) -> Result<u64, Instability> {
         let escaped = self.open_top.remove_escaped(&mut self.state.particles);

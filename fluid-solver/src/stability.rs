@@ -1,5 +1,5 @@
 //! Instability detector: NaN, fluid particles leaving the domain (other than through an open top,
-//! see [`crate::escape`]) or entering a wall or body, body
+//! see [`crate::boundaries::escape`]) or entering a wall or body, body
 //! particles entering a wall, a fluid particle moving more than half a spacing in one step, and
 //! mechanical energy growing without a source (checked until a body moves: moving bodies are a
 //! source). Each finding names the step, the particle and the quantity.
@@ -9,9 +9,9 @@
 //! of its outer particle layer).
 
 use crate::bodies::rotate;
-use crate::escape::OpenTop;
-use crate::kind::{Kind, FLUID};
-use crate::layout::Domain;
+use crate::boundaries::escape::OpenTop;
+use crate::particles::kind::{Kind, FLUID};
+use crate::particles::layout::Domain;
 use crate::particles::Particles;
 use rayon::prelude::*;
 use schemas::case::fluid::Aabb;

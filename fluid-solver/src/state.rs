@@ -2,9 +2,9 @@
 //! implicit coupling is `state.clone()` and its restore `clone_from` (no hand-listed fields to
 //! forget when a method gains state).
 
+use crate::boundaries::open_boundary::OpenBoundaries;
 use crate::method::MethodState;
-use crate::neighbour_search::CellGrid;
-use crate::open_boundary::OpenBoundaries;
+use crate::neighbours::neighbour_search::CellGrid;
 use crate::particles::Particles;
 
 /// The forces between fluid and bodies in the last step (6 per body: force, moment about the
@@ -32,7 +32,7 @@ pub struct FluidState {
     pub steps: u64,
     pub gates_removed: bool,
     pub open_boundaries: OpenBoundaries,
-    /// Fluid particles removed after leaving through the open top ([`crate::escape`]).
+    /// Fluid particles removed after leaving through the open top ([`crate::boundaries::escape`]).
     pub escaped: u64,
     /// Running totals (impulses, counts): a repeated window must not count its rejected tries.
     pub totals: crate::solver::RunTotals,

@@ -24,10 +24,10 @@
 //! resolutions. On a tank at rest it leaves the floor load (+0.55 %) and the noise (× 0.99).
 
 use super::kernel::Kernel;
-use crate::kind::FLUID;
-use crate::neighbour_search::CellGrid;
+use crate::neighbours::neighbour_search::CellGrid;
+use crate::neighbours::vector_field::VectorField;
+use crate::particles::kind::FLUID;
 use crate::particles::Particles;
-use crate::vector_field::VectorField;
 use rayon::prelude::*;
 
 /// Adds `⟨∇q⟩_i` (see the module doc) to `grad` for every fluid particle, with the sound speed

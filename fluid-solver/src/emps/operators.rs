@@ -1,16 +1,16 @@
 //! The E-MPS particle operators as passes over the cell list: number density (S1-15), the
 //! pressure gradient (S1-3) and the velocity Laplacian (S1-4). The collision pass both methods
-//! share is [`crate::collision`].
+//! share is [`crate::neighbours::collision`].
 //!
 //! Each pass is a gather: particle i sums over its neighbours and writes only its own slot, so
 //! the passes run in parallel without locks. The inner loops are branch-free over contiguous
-//! index ranges (see [`crate::neighbour_search`]).
+//! index ranges (see [`crate::neighbours::neighbour_search`]).
 
 use super::kernel::Kernel;
-use crate::kind::{DUMMY, FLUID};
-use crate::neighbour_search::CellGrid;
+use crate::neighbours::neighbour_search::CellGrid;
+use crate::neighbours::vector_field::{add, PassTotals, VectorField};
+use crate::particles::kind::{DUMMY, FLUID};
 use crate::particles::Particles;
-use crate::vector_field::{add, PassTotals, VectorField};
 use rayon::prelude::*;
 
 /// S1-15 (sum part): `n_i = Σ_{j≠i} w(|r_j − r_i|)` with r_e = 3.1 Δs, for fluid particles and

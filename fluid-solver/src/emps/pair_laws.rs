@@ -3,7 +3,7 @@
 //! Body particles carry pressure like walls (S1-14) and fill the fluid's number density (S1-15).
 
 use super::kernel::{weight, weight_grad, Kernel};
-use crate::pair_law::{ExchangeScales, PairLaw};
+use crate::bodies::pair_law::{ExchangeScales, PairLaw};
 use crate::particles::Particles;
 
 /// S1-3's pressure pair force on body particle j from fluid particle i (r_ij = r_j − r_i):

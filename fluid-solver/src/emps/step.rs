@@ -1,6 +1,6 @@
 //! One E-MPS time step, S1-9 … S1-15, read top to bottom as a list of named stages, each timed.
 //!
-//! One addition to the seed: a collision stage after S1-13 ([`crate::collision`], as in
+//! One addition to the seed: a collision stage after S1-13 ([`crate::neighbours::collision`], as in
 //! Koshizuka's MPS codes). The seed is silent on it; without it, at the seed's c = 12.1 m/s a
 //! lone fast particle is stopped by the walls' equation-of-state pressure only after it has
 //! passed the first wall layer (seen in the seed tank at t ≈ 0.18 s), or is shot out at
@@ -8,15 +8,15 @@
 
 use super::kernel::Kernel;
 use super::{artificial_viscosity, operators, pair_laws};
-use crate::collision::{self, COLLISION_DISTANCE, RESTITUTION};
-use crate::kind::{Kind, FLUID};
+use crate::bodies::pair_law::{Exchange, ExchangeScales, PairLaw};
 use crate::method::StepTotals;
-use crate::neighbour_search::CellGrid;
-use crate::pair_law::{Exchange, ExchangeScales, PairLaw};
+use crate::neighbours::collision::{self, COLLISION_DISTANCE, RESTITUTION};
+use crate::neighbours::neighbour_search::CellGrid;
+use crate::neighbours::vector_field::VectorField;
+use crate::particles::kind::{Kind, FLUID};
 use crate::particles::Particles;
 use crate::physics::Physics;
 use crate::stage_timer::StageTimes;
-use crate::vector_field::VectorField;
 use rayon::prelude::*;
 
 /// The work buffers of the step (reused every step) and its stage times.

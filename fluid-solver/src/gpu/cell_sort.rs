@@ -1,4 +1,4 @@
-//! Counting sort and prefix sum by cell on the device (the CPU's [`crate::neighbour_search`]):
+//! Counting sort and prefix sum by cell on the device (the CPU's [`crate::neighbours::neighbour_search`]):
 //! count per cell, exclusive scan in three levels (blocks of 4096 cells, groups of 256 blocks,
 //! and the groups' totals: any cell count a buffer holds), scatter, order each cell's slots by
 //! previous index (so a run is repeatable), gather positions, velocities and ids into the new

@@ -44,7 +44,7 @@ pub struct Params {
     pub n_members: u32,
     pub reach_contact: u32,
     /// The walls' contact spring k = m ω² and dashpot c = 2 m ω on body particles, ω = 2π /
-    /// (CONTACT_PERIOD_STEPS Δt) ([`crate::body_wall_contact`]); set with each step's Δt.
+    /// (CONTACT_PERIOD_STEPS Δt) ([`crate::bodies::body_wall_contact`]); set with each step's Δt.
     pub contact_k: f32,
     pub contact_c: f32,
 }

@@ -1,5 +1,5 @@
 //! Free-surface detection after Marrone et al. (2010), as S2 §2(4) uses it (S2-10 … S2-13):
-//! 1. λ_min of the moment matrix ([`crate::moments`], normalised so a full neighbourhood reads 1):
+//! 1. λ_min of the moment matrix ([`crate::neighbours::moments`], normalised so a full neighbourhood reads 1):
 //!    `λ_min ≤ 0.2` → surface, `λ_min > 0.9` → interior (S2-11);
 //! 2. in between, the geometric scan: the outward normal n_i, and the particle is on the surface
 //!    when the umbrella-shaped region along n_i holds no other particle.
@@ -35,8 +35,8 @@
 
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
-use crate::kind::FLUID;
-use crate::moments::{smallest_eigenvalue_up_to, solve, Matrix3, OuterSum};
+use crate::neighbours::moments::{smallest_eigenvalue_up_to, solve, Matrix3, OuterSum};
+use crate::particles::kind::FLUID;
 use crate::particles::Particles;
 use rayon::prelude::*;
 

@@ -12,7 +12,7 @@
 //! Without it the operators of S2-8 and S2-9 carry the kernel's discretisation error m0 ≠ 1
 //! (1.5 % at 2.4 Δs), and a column at rest gains 1.5 % of gΔt downwards every step.
 
-use crate::moments::{lattice_moment, RadialGradient};
+use crate::neighbours::moments::{lattice_moment, RadialGradient};
 
 /// The kernel at one support radius, with its sums on the simple cubic lattice.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -27,7 +27,7 @@ pub struct Wendland {
     pub volume: f64,
     /// `Σ_j V W_ij` on the full lattice, self included: the ρ̂/ρ0 of a full neighbourhood.
     pub lattice_density: f64,
-    /// The moment matrix's value on the full lattice (see [`crate::moments`]); 1 after the
+    /// The moment matrix's value on the full lattice (see [`crate::neighbours::moments`]); 1 after the
     /// renormalisation.
     pub lattice_moment: f64,
     /// `1/m0` of the raw kernel (module doc).

@@ -14,8 +14,8 @@
 //! pair instead of 12 took S2's step from 4.72–4.77e5 to 4.95–5.00e5 wall fluid-steps/s.
 
 use super::kernel::Wendland;
-use crate::kind::FLUID;
-use crate::neighbour_search::{CellGrid, CELL_IN_SPACINGS};
+use crate::neighbours::neighbour_search::{CellGrid, CELL_IN_SPACINGS};
+use crate::particles::kind::FLUID;
 use crate::particles::Particles;
 use rayon::prelude::*;
 

@@ -8,10 +8,10 @@ use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
 use super::pair_laws::{self, BodyFaces};
 use super::walls::NeumannPair;
-use crate::kind::{Kind, FLUID};
-use crate::moments::{inverse, smallest_eigenvalue_up_to, solve, OuterSum};
+use crate::neighbours::moments::{inverse, smallest_eigenvalue_up_to, solve, OuterSum};
+use crate::neighbours::vector_field::{add, PassTotals, VectorField};
+use crate::particles::kind::{Kind, FLUID};
 use crate::particles::Particles;
-use crate::vector_field::{add, PassTotals, VectorField};
 use rayon::prelude::*;
 use schemas::case::fluid::PressureGradient;
 

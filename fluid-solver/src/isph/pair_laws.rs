@@ -30,8 +30,8 @@
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
 use super::walls::NeumannPair;
-use crate::kind::{Kind, FLUID};
-use crate::pair_law::{ExchangeScales, PairLaw};
+use crate::bodies::pair_law::{ExchangeScales, PairLaw};
+use crate::particles::kind::{Kind, FLUID};
 use crate::particles::Particles;
 use rayon::prelude::*;
 

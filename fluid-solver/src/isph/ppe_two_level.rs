@@ -51,7 +51,7 @@
 //! free-surface neighbour anywhere, where A is singular too) is solved by Jacobi-PCG instead.
 
 use super::ppe::{dot, PpeFailure, PpeReport, PpeSystem, CHUNK};
-use crate::neighbour_search::CellGrid;
+use crate::neighbours::neighbour_search::CellGrid;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymmetricOrdering,

@@ -43,9 +43,9 @@
 use super::free_surface::{outward_normal, LAMBDA_INNER, LAMBDA_SPLASH};
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
-use crate::kind::{Kind, FLUID};
+use crate::neighbours::vector_field::VectorField;
+use crate::particles::kind::{Kind, FLUID};
 use crate::particles::Particles;
-use crate::vector_field::VectorField;
 use rayon::prelude::*;
 
 /// The largest shift of one step, in Δs.

@@ -25,7 +25,7 @@
 //!    velocity;
 //! 7. with `shifting = "lind"`, particle shifting ([`super::shifting`]): the shift's direction
 //!    `−∇C` at r^n, added to x^{n+1} scaled by D from v^{n+1};
-//! 8. the collision stage both methods share ([`crate::collision`]) on pairs closer than 0.8 Δs
+//! 8. the collision stage both methods share ([`crate::neighbours::collision`]) on pairs closer than 0.8 Δs
 //!    that approach. S2-8's gradient does not part two particles of equal pressure, so it acts on
 //!    more of the flow than in E-MPS: 19 % of the fluid per step in the L/20 dam break to 0.8 s
 //!    (E-MPS 3.4 %; `isph_vs_emps`, column `kicked/step`). Without its fluid–fluid part that run
@@ -40,15 +40,15 @@ use super::ppe::{PpeFailure, PpeReport, PpeSystem, NOT_AN_UNKNOWN};
 use super::ppe_two_level;
 use super::shifting;
 use super::walls::{self, NeumannPair, WallFields};
-use crate::collision::{self, COLLISION_DISTANCE, RESTITUTION};
-use crate::kind::{Kind, FLUID};
+use crate::bodies::pair_law::{Exchange, ExchangeScales, PairLaw};
 use crate::method::StepTotals;
-use crate::neighbour_search::CellGrid;
-use crate::pair_law::{Exchange, ExchangeScales, PairLaw};
+use crate::neighbours::collision::{self, COLLISION_DISTANCE, RESTITUTION};
+use crate::neighbours::neighbour_search::CellGrid;
+use crate::neighbours::vector_field::VectorField;
+use crate::particles::kind::{Kind, FLUID};
 use crate::particles::Particles;
 use crate::physics::Physics;
 use crate::stage_timer::StageTimes;
-use crate::vector_field::VectorField;
 use rayon::prelude::*;
 use schemas::case::fluid::{IsphConfig, PpeSolver, PressureGradient, Shifting, WallSlip};
 

@@ -70,10 +70,10 @@
 use super::free_surface::SURFACE;
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
-use crate::kind::{Kind, DUMMY, FLUID, WALL};
+use crate::neighbours::vector_field::VectorField;
+use crate::particles::kind::{Kind, DUMMY, FLUID, WALL};
 use crate::particles::Particles;
 use crate::physics::Physics;
-use crate::vector_field::VectorField;
 use rayon::prelude::*;
 
 /// A solid particle's convexity flag: 1 on a convex edge or corner of its wall or body.

@@ -5,9 +5,9 @@
 //! resumed run writes the same bytes as a run that never stopped.
 
 use super::{FluidParticipant, Frames, ProbeRows};
-use crate::probes::{ProbeFile, ProbeSet};
+use crate::output::vtp::SurfaceFrames;
+use crate::sensors::probes::{ProbeFile, ProbeSet};
 use crate::state::{FluidState, RunState};
-use crate::vtp::SurfaceFrames;
 use schemas::case::Case;
 use schemas::f64s::F64s;
 use schemas::pvd::Collection;

@@ -7,11 +7,11 @@
 //!   footprint of a member wider than a particle.
 //!
 //! Both find the particles near a point in the step's own cell list
-//! ([`crate::neighbour_search::CellGrid::for_each_near_point_trimmed`]) instead of a second grid
+//! ([`crate::neighbours::neighbour_search::CellGrid::for_each_near_point_trimmed`]) instead of a second grid
 //! over the query points (which copied every particle near them each call). The list must be
 //! sorted for the particles' present order (the solver re-sorts it when particles were added or
 //! removed since the step's sort); positions may have moved since the sort: one pass per call
-//! measures how far ([`crate::neighbour_search::CellGrid::drift`], 0 at the window end of an
+//! measures how far ([`crate::neighbours::neighbour_search::CellGrid::drift`], 0 at the window end of an
 //! E-MPS step), and each point visits only the cells that can hold a particle within the
 //! kernel's support given that drift (rows trimmed to the sphere, empty rows skipped, rows
 //! without water skipped for the spreading): the same particles in the same order as the 7³
@@ -31,9 +31,9 @@
 //! support, ~255 k fluid particles within the widened reach) and the candidates' distance test
 //! (~590 k at ~24 instructions) ~47 M; choosing the rows of cells (~110 k rows, ~110
 //! instructions each, and ~250 per point) ~17 M; the drift pass
-//! ([`crate::neighbour_search::CellGrid::drift`]) 10 M; λ_min ~1 M (not worth skipping).
+//! ([`crate::neighbours::neighbour_search::CellGrid::drift`]) 10 M; λ_min ~1 M (not worth skipping).
 //! History: 99.9 M with one call per particle; 97.3 M with one loop over each row's arrays
-//! ([`crate::neighbour_search::CellGrid::for_each_row_near_point`]); 94.4 M with the test for
+//! ([`crate::neighbours::neighbour_search::CellGrid::for_each_row_near_point`]); 94.4 M with the test for
 //! water done plane by plane first. Tried and left out (measured): the moment matrix's terms
 //! written out (no gain), the drift pass cell by cell over the sorted ranges (+4.8 M: the
 //! empty cells cost more than finding each particle's cell again). Next step: batching the

@@ -21,8 +21,8 @@
 
 use super::kernel::Wendland;
 use super::spreading::{half_width_of, share_of, shares_around, Share};
-use crate::kind::{Kind, FLUID};
-use crate::neighbour_search::{CellGrid, Rows};
+use crate::neighbours::neighbour_search::{CellGrid, Rows};
+use crate::particles::kind::{Kind, FLUID};
 use crate::particles::Particles;
 use rayon::prelude::*;
 use std::ops::Range;

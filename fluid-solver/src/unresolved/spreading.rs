@@ -32,8 +32,8 @@
 //! so no second grid is built: see [`super`] for when that list is valid.
 
 use super::kernel::Wendland;
-use crate::kind::FLUID;
-use crate::neighbour_search::{CellGrid, Rows};
+use crate::neighbours::neighbour_search::{CellGrid, Rows};
+use crate::particles::kind::FLUID;
 use crate::particles::Particles;
 use rayon::prelude::*;
 

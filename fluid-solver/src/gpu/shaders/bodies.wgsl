@@ -1,4 +1,4 @@
-// Resolved rigid bodies on the device (src/bodies.rs, src/body_wall_contact.rs): body particles
+// Resolved rigid bodies on the device (src/bodies/: rigid_bodies.rs, body_wall_contact.rs): body particles
 // placed from the pose the host hands over, the fluid's pair forces on each body particle as
 // gathers (the body particle sums over its fluid neighbours, no float atomics), and their force
 // and moment about the body's centre reduced per body on the device. Each body kernel writes the

@@ -19,7 +19,7 @@ struct Params {
     n_members: u32, reach_contact: u32, contact_k: f32, contact_c: f32,
 };
 
-// Kind codes (src/kind.rs).
+// Kind codes (src/particles/kind.rs).
 const FLUID: u32 = 0u;
 const WALL: u32 = 1u;
 const DUMMY: u32 = 2u;

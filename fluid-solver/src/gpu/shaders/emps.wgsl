@@ -203,7 +203,7 @@ fn correct(v: Invocation) {
     pos[i] = vec4<f32>(pos[i].xyz + du * prm.dt, pos[i].w);
 }
 
-// Collision of close approaching particles (src/collision.rs): for fluid i and j closer than
+// Collision of close approaching particles (src/neighbours/collision.rs): for fluid i and j closer than
 // the collision distance with (u_j − u_i)·r_ij < 0, Δu_i = s (1+e) ((u_j − u_i)·r_ij) r_ij/|r_ij|²
 // with s = 1/2 for fluid j and 1 for others; the part from non-fluid j, times m/Δt, is the
 // walls' contact force.

@@ -1,4 +1,4 @@
-// The bodies' reaction on the fluid summed from the fluid's side (src/bodies.rs, fluid_side_sum):
+// The bodies' reaction on the fluid summed from the fluid's side (src/bodies/rigid_bodies.rs, fluid_side_sum):
 // fluid particle i gathers, over the particles j of body b within the exchange's radius, minus
 // the pair force the fluid exerts on j — evaluated again from i's side, not read from the body
 // kernels — with its moment about the body's centre taken at r_j, as the loads take it. The

@@ -13,8 +13,8 @@ pub enum Exchange {
     Viscous,
     /// The pressure pair forces, with the pressures the step moves the fluid by.
     Pressure,
-    /// The collision stage's impulses, before they are applied ([`crate::collision`]); the walls'
-    /// contact on the bodies ([`crate::body_wall_contact`]) is added here.
+    /// The collision stage's impulses, before they are applied ([`crate::neighbours::collision`]); the walls'
+    /// contact on the bodies ([`crate::bodies::body_wall_contact`]) is added here.
     Collision,
 }
 

@@ -2,9 +2,9 @@
 //! time series (`schemas::pvd`). Frames hold every particle except dummies: position, velocity,
 //! pressure, kind, id.
 
-use crate::kind::DUMMY;
+use crate::output::vtk_appended::{self, Array, Section};
+use crate::particles::kind::DUMMY;
 use crate::particles::Particles;
-use crate::vtk_appended::{self, Array, Section};
 use std::io;
 use std::path::Path;
 

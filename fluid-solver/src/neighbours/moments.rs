@@ -10,7 +10,7 @@
 //! support is empty (free surface) and is what the unresolved coupling (S2-20) reads as the
 //! fraction of a sample point's support that holds water.
 
-use crate::neighbour_search::CellGrid;
+use crate::neighbours::neighbour_search::CellGrid;
 use crate::particles::Particles;
 
 /// A radial kernel as the moment matrix needs it: its support radius and `W'(r)/r`.

@@ -1,9 +1,9 @@
 //! ParaView output of free-surface meshes: one VTP (XML PolyData, raw appended binary) per frame
 //! and a PVD series `NAME_surface.pvd` beside the particle series `NAME.pvd`.
 
+use crate::output::surface_mesh::{fluid_surface, TriangleMesh};
+use crate::output::vtk_appended::{self, Array, Section};
 use crate::particles::Particles;
-use crate::surface_mesh::{fluid_surface, TriangleMesh};
-use crate::vtk_appended::{self, Array, Section};
 use schemas::pvd::Collection;
 use std::io;
 use std::path::{Path, PathBuf};

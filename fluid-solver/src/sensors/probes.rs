@@ -1,5 +1,5 @@
 //! Probes declared in the case, sampled into one CSV: water height at a gauge, pressure at a
-//! point, surge-front position, and wall-pressure sensors ([`crate::wall_sensor`]); the CSV's
+//! point, surge-front position, and wall-pressure sensors ([`crate::sensors::wall_sensor`]); the CSV's
 //! last column counts the fluid particles removed so far (open top and outflow).
 //!
 //! Droplets are left out of heights and fronts: a fluid particle counts only if its number
@@ -10,10 +10,10 @@
 //! so a drop against the lid, or spray above the column, is not read as water depth.
 
 use crate::emps::kernel::{weight, Kernel};
-use crate::kind::{Kind, FLUID};
+use crate::particles::kind::{Kind, FLUID};
 use crate::particles::Particles;
+use crate::sensors::wall_sensor::Disc;
 use crate::solver::FluidSolver;
-use crate::wall_sensor::Disc;
 use schemas::case::fluid::{Aabb, ProbeConfig, ProbeKind};
 use std::collections::VecDeque;
 use std::fs;
@@ -113,7 +113,7 @@ pub struct ProbeSet {
 impl ProbeSet {
     /// The probes of a case section on `solver`'s initial layout. A wall-pressure disc is moved
     /// along its normal onto the nearest lattice face, where the face it is mounted on was built
-    /// ([`crate::lattice`]); a disc with no wall behind it is an error naming it.
+    /// ([`crate::particles::lattice`]); a disc with no wall behind it is an error naming it.
     pub fn new(probes: &[ProbeConfig], solver: &FluidSolver) -> Result<ProbeSet, String> {
         let (ds, origin) = (solver.kernel().spacing, solver.tank().min);
         let discs: Vec<Option<Disc>> = probes

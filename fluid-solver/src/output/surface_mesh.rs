@@ -17,7 +17,7 @@
 //! shared by four triangles (not a manifold there: 373 such edges in the 129 k triangles of the dam
 //! break at t = 0.3 s, Δs = 1 cm).
 
-use crate::kind::FLUID;
+use crate::particles::kind::FLUID;
 use crate::particles::Particles;
 use fast_surface_nets::ndshape::{ConstShape, ConstShape3u32};
 use fast_surface_nets::{surface_nets, SurfaceNetsBuffer};

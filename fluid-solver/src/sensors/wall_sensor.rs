@@ -17,8 +17,8 @@
 //! and matches a transducer of the same diameter; its `window` box filter plays the sensor's
 //! sampling rate.
 
-use crate::kind::Kind;
-use crate::pair_law::PairLaw;
+use crate::bodies::pair_law::PairLaw;
+use crate::particles::kind::Kind;
 use crate::particles::Particles;
 use schemas::case::fluid::ProbeConfig;
 

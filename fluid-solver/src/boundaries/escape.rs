@@ -1,7 +1,7 @@
 //! Fluid particles leaving through an open top: removed and counted, not a reason to stop.
 //!
 //! A tank without a lid lets splash rise over its walls: a particle that has left the domain
-//! (the walls' outer faces, and [`crate::layout::SPLASH_HEADROOM`] tank heights above the top)
+//! (the walls' outer faces, and [`crate::particles::layout::SPLASH_HEADROOM`] tank heights above the top)
 //! while above the walls' top, less half a spacing, has left through the open top. The half
 //! spacing is the allowance every wall face gets ([`crate::stability`]): a particle centre may
 //! come to the centres of a wall's first layer, which on the walls' top face lie half a spacing
@@ -11,8 +11,8 @@
 //! `max_removed_fraction` of the fluid. A particle leaving any other way (through a closed wall,
 //! the floor or a lid) is an instability ([`crate::stability`]).
 
-use crate::kind::FLUID;
-use crate::layout::Domain;
+use crate::particles::kind::FLUID;
+use crate::particles::layout::Domain;
 use crate::particles::Particles;
 use rayon::prelude::*;
 

@@ -13,10 +13,10 @@
 //! The walls are fixed: the reaction goes into them (it is part of the fluid participant's
 //! reaction, which the coupler's ledger balances against the body's load).
 
+use crate::bodies::pair_law::ExchangeScales;
 use crate::bodies::RigidBodies;
-use crate::kind::{DUMMY, WALL};
-use crate::neighbour_search::CellGrid;
-use crate::pair_law::ExchangeScales;
+use crate::neighbours::neighbour_search::CellGrid;
+use crate::particles::kind::{DUMMY, WALL};
 use crate::particles::Particles;
 
 /// Steps per period of one water-mass particle on one contact spring.
@@ -69,7 +69,7 @@ fn wall_contact_pair<'a>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::kind::Kind;
+    use crate::particles::kind::Kind;
 
     fn two_particles(gap: f64, body_velocity: f64) -> Particles {
         let mut p = Particles::default();

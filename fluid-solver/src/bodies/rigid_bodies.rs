@@ -6,7 +6,7 @@
 //! (1, 0, 0, 0). Each body particle keeps its offset from the initial centre.
 //!
 //! What the fluid exchanges with a body, pair by pair between a fluid particle i and a body
-//! particle j, comes from the fluid method's pair laws ([`crate::pair_law`]): each pair force
+//! particle j, comes from the fluid method's pair laws ([`crate::bodies::pair_law`]): each pair force
 //! acts on the body and, reversed, on the fluid, with its moment taken at r_j on both sides, so
 //! action = reaction holds to round-off for forces and moments. E-MPS hands over
 //! ([`crate::emps::pair_laws`]):
@@ -14,7 +14,7 @@
 //!   the fluid's number density, S1-15; the seed's PMS, S1-19 … S1-21, moves them as fluid
 //!   instead and reads the body force from their velocity change);
 //! - the collision stage's impulses between close approaching fluid and body particles (see
-//!   [`crate::collision`]), with the body particle's rigid velocity, reported as impulse / Δt of
+//!   [`crate::neighbours::collision`]), with the body particle's rigid velocity, reported as impulse / Δt of
 //!   the last step;
 //! - when the viscous term is on, S1-4's pair terms with the body particles' rigid velocities
 //!   (no slip on the body).
@@ -23,10 +23,10 @@
 //! resultant (the pressure of the water's own weight acting on the body's surface); the body's
 //! weight is applied by the structure solver's `gravity`, never here.
 
-use crate::kind::{Kind, FLUID};
-use crate::layout::BodyParticles;
-use crate::neighbour_search::CellGrid;
-use crate::pair_law::PairLaw;
+use crate::bodies::pair_law::PairLaw;
+use crate::neighbours::neighbour_search::CellGrid;
+use crate::particles::kind::{Kind, FLUID};
+use crate::particles::layout::BodyParticles;
 use crate::particles::Particles;
 use rayon::prelude::*;
 

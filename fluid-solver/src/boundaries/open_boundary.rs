@@ -18,7 +18,7 @@
 //! counts by kind they close exactly: Δ(all particles) = inserted − removed and
 //! Δ(fluid) = entered − removed.
 
-use crate::kind::{Kind, FLUID};
+use crate::particles::kind::{Kind, FLUID};
 use crate::particles::Particles;
 use rayon::prelude::*;
 use schemas::case::fluid::{FluidConfig, InflowConfig};

@@ -8,7 +8,7 @@
 //! running count of fluid particles per cell tells in (2·reach + 1)² look-ups whether a wall
 //! particle has any water near it.
 
-use crate::kind::FLUID;
+use crate::particles::kind::FLUID;
 use crate::particles::Particles;
 use rayon::prelude::*;
 
@@ -229,7 +229,7 @@ impl CellGrid {
     /// Calls `f(j, |r_j − at|²)` for every particle j within `radius` of the point `at` (strictly
     /// closer; valid after [`CellGrid::sort`], until particles are added or removed). `at` may be
     /// any point: one outside the grid sees the particles of the border cells within `radius`
-    /// (spray above the grid is kept in its top layer, see [`crate::layout::GRID_HEADROOM`]).
+    /// (spray above the grid is kept in its top layer, see [`crate::particles::layout::GRID_HEADROOM`]).
     /// Used for sampling the fluid at points that are not particles (probes, coupling samples).
     pub fn for_each_near_point(
         &self,

@@ -2,11 +2,11 @@
 //! seeds are silent on it, see [`crate::emps::step`]): the pass over the fluid and the pair law
 //! of a fluid–body collision, from which the body exchange takes a body's load and its reaction.
 
-use crate::kind::FLUID;
-use crate::neighbour_search::CellGrid;
-use crate::pair_law::{ExchangeScales, PairLaw};
+use crate::bodies::pair_law::{ExchangeScales, PairLaw};
+use crate::neighbours::neighbour_search::CellGrid;
+use crate::neighbours::vector_field::{add, PassTotals, VectorField};
+use crate::particles::kind::FLUID;
 use crate::particles::Particles;
-use crate::vector_field::{add, PassTotals, VectorField};
 use rayon::prelude::*;
 
 /// Particles closer than this many spacings that approach each other collide.

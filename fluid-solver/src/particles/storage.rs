@@ -6,7 +6,7 @@
 //! particle, plus 8 B per grid cell (cell start, fluid count; one to three cells per particle,
 //! depending on how much of the grid is headroom above the water).
 
-use crate::kind::Kind;
+use crate::particles::kind::Kind;
 use rayon::prelude::*;
 
 /// Every particle's state, one array per quantity; index `i` is the same particle in each.

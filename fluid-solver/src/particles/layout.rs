@@ -5,10 +5,10 @@
 //! nearest sites. Sites outside the tank within `wall_layers` layers are walls: the two layers
 //! next to the tank are [`Kind::Wall`] (they carry pressure), the outer ones [`Kind::Dummy`].
 //! Sites inside the tank whose centre is inside a gate, a body, a solid wall box or a water block
-//! get that kind. Boxes and the tank are first moved onto the lattice ([`crate::lattice`]); the
+//! get that kind. Boxes and the tank are first moved onto the lattice ([`crate::particles::lattice`]); the
 //! layout keeps that config and the messages saying what moved.
 
-use crate::kind::Kind;
+use crate::particles::kind::Kind;
 use crate::particles::Particles;
 use schemas::case::fluid::{Aabb, FluidConfig};
 
@@ -56,7 +56,7 @@ pub struct Layout {
 
 /// Builds the lattice layout of `cfg` (already validated).
 pub fn build(cfg: &FluidConfig) -> Layout {
-    let (config, notes) = crate::lattice::snap(cfg);
+    let (config, notes) = crate::particles::lattice::snap(cfg);
     let cfg = &config;
     let ds = cfg.spacing;
     let tank = cfg.tank.inner();

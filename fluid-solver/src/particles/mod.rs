@@ -1,0 +1,14 @@
+//! The particles: their storage, what kind each one is, and the initial layout of a case on one
+//! simple cubic lattice (tank walls, water, gates, bodies).
+//!
+//! - [`storage`]: structure-of-arrays storage ([`Particles`]), re-exported here;
+//! - [`kind`]: fluid / wall / dummy / body / gate / inflow, and what each kind takes part in;
+//! - [`lattice`]: the case's boxes moved onto the lattice's faces;
+//! - [`layout`]: the initial particle layout of a case.
+
+pub mod kind;
+pub mod lattice;
+pub mod layout;
+pub mod storage;
+
+pub use storage::{Particles, STATE_BYTES_PER_PARTICLE};
