@@ -1,6 +1,6 @@
 //! ISPH (issue 12): the velocity divergence after the projection, term by term.
 //!
-//! One step of S2-3 … S2-5 (physics.md §4) at the positions r^n: `v* = v^n + gΔt` (S2-3, the
+//! One step of S2-3 … S2-5 (docs/physics.md §4) at the positions r^n: `v* = v^n + gΔt` (S2-3, the
 //! viscous term off), the PPE (S2-5) `L p = (ρ/Δt) D(v*) + α_d ρ (1 − ρ̂/ρ0)/Δt² + r`, solved to
 //! `|r| ≤ tol |b|` (b the solver's right-hand side, boundary data included), and the correction
 //! (S2-4) `v^{n+1} = v* − (Δt/ρ) G p`, with

@@ -59,7 +59,7 @@ fn interior(p: &Particles, i: usize) -> bool {
 fn weights_follow_s1_5_and_s1_6() {
     let re = 3.1 * DS;
     for r in [0.3 * DS, DS, 2.0 * DS, 3.0 * DS] {
-        let printed = re / r + r / re - 2.0; // physics.md's reading of S1-6
+        let printed = re / r + r / re - 2.0; // docs/physics.md's reading of S1-6
         assert!((weight(r, re) - printed).abs() < 1e-12 * printed.max(1.0));
         assert!(weight(r, re) >= 0.0);
         let g = 2.1 * DS;

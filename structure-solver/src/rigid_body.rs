@@ -1,7 +1,7 @@
 //! [`RigidBody`]: a 6-DOF body, `M dV/dt = F` (S1-17) and `I dω/dt + ω × Iω = N` (S1-18).
 //!
 //! Time integration is a kick–drift–kick splitting instead of the paper's explicit Euler (which
-//! gains energy on a torque-free top, see physics.md §5):
+//! gains energy on a torque-free top, see docs/physics.md §5):
 //! - kick: `V += F Δt/2M`, spatial angular momentum `L += N Δt/2`;
 //! - drift: `x += V Δt`; the torque-free rotation by the implicit midpoint rule on the body-frame
 //!   momentum `L_b` (it keeps the quadratic invariants `½ L_b·I⁻¹L_b` and `|L_b|²` exactly), and the

@@ -101,7 +101,7 @@ fn elastic_free_vibration_balances() {
 }
 
 /// Newmark's algorithmic damping: over periods 2–5 of the free vibration at Δt = T1/100 (the
-/// higher modes gone), D_alg grows at 2 ζ ω ⟨T + U⟩ with ζ = Ω/6, Ω = ωΔt (physics.md §5; the leading
+/// higher modes gone), D_alg grows at 2 ζ ω ⟨T + U⟩ with ζ = Ω/6, Ω = ωΔt (docs/physics.md §5; the leading
 /// term (γ − ½)Ω/2 of Newmark's damping ratio), ω from the measured period.
 #[test]
 fn algorithmic_dissipation_matches_newmark_damping() {

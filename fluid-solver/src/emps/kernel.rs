@@ -17,7 +17,7 @@ pub fn weight_grad(r: f64, re: f64) -> f64 {
     }
 }
 
-/// S1-6 as read in physics.md: `w(r) = r_e/r + r/r_e − 2 = (r_e − r)²/(r r_e)` for 0 < r < r_e, else 0.
+/// S1-6 as read in docs/physics.md: `w(r) = r_e/r + r/r_e − 2 = (r_e − r)²/(r r_e)` for 0 < r < r_e, else 0.
 #[inline(always)]
 pub fn weight(r: f64, re: f64) -> f64 {
     if r > 0.0 && r < re {

@@ -1,4 +1,4 @@
-//! The fluid's side of the unresolved drag coupling (S2 §4, physics.md §6): the coupler's
+//! The fluid's side of the unresolved drag coupling (S2 §4, docs/physics.md §6): the coupler's
 //! drag law asks for the flow at sample points and hands back point reactions.
 //!
 //! - [`kernel`]: the smooth SPH kernel of these two operations (support 2.4 Δs, S2 Table 1).

@@ -1,5 +1,5 @@
 //! The ASI-Gauss element: a linear Timoshenko beam with one integration point at ξ = s (S2 §3,
-//! physics.md §5), in a co-rotational frame so that rigid motion of any size leaves it unstrained.
+//! docs/physics.md §5), in a co-rotational frame so that rigid motion of any size leaves it unstrained.
 
 use super::section::Resultants;
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
@@ -12,7 +12,7 @@ pub const S_GAUSS: f64 = 2.0 / 1.732_050_807_568_877_2 - 1.0;
 pub const ELEMENT_DOFS: usize = 12;
 
 /// Strain–displacement matrix B(s) of the element (6 × 12): generalised strains at the integration
-/// point ξ = s from the local end displacements and rotations (physics.md §5, N1 = (1−ξ)/2, N2 = (1+ξ)/2).
+/// point ξ = s from the local end displacements and rotations (docs/physics.md §5, N1 = (1−ξ)/2, N2 = (1+ξ)/2).
 pub fn strain_matrix(length: f64, s: f64) -> [[f64; ELEMENT_DOFS]; 6] {
     let (n1, n2) = ((1.0 - s) / 2.0, (1.0 + s) / 2.0);
     let il = 1.0 / length;

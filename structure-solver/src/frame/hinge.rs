@@ -1,4 +1,4 @@
-//! Plastic hinges of ASI-Gauss elements (S2 §3, physics.md §5): a section that reaches the full-plastic
+//! Plastic hinges of ASI-Gauss elements (S2 §3, docs/physics.md §5): a section that reaches the full-plastic
 //! yield surface becomes a hinge; the integration point moves so that the hinge sits on the node, the
 //! flow follows the normality rule, and the hinge closes again when it unloads.
 
@@ -90,7 +90,7 @@ impl StressState {
     }
 
     /// Section stiffness relating resultant and strain increments: elastic D, or at a hinge the
-    /// normality-rule `D − D a aᵀ D / (aᵀ D a)` (physics.md §5).
+    /// normality-rule `D − D a aᵀ D / (aᵀ D a)` (docs/physics.md §5).
     pub fn tangent(&self, section: &Section) -> [[f64; 6]; 6] {
         let d = section.stiffness;
         let mut t = [[0.0; 6]; 6];

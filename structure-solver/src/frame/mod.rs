@@ -1,4 +1,4 @@
-//! ASI-Gauss framed structures (S2 §3, physics.md §5): members of two linear Timoshenko elements with
+//! ASI-Gauss framed structures (S2 §3, docs/physics.md §5): members of two linear Timoshenko elements with
 //! one integration point each, plastic hinges by the full-plastic yield function, fracture by S2-17,
 //! co-rotational (updated-Lagrangian) large displacements and rotations, Newmark β = 4/9, δ = 5/6 with
 //! lumped mass and rotary inertia and one linear solve per step (S2-14), the member mid nodes

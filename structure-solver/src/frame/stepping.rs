@@ -1,7 +1,7 @@
 //! One Newmark step of a frame (S2-14): the increment is solved with the kept factor of the effective
 //! matrix (or, after hinges formed or closed, with the members they changed re-condensed and the kept
 //! factor as preconditioner) and the state is brought to the end of the step in co-rotational form. As
-//! in ASI-Gauss (physics.md §5) there is one linear solve per step and the unbalanced force carries
+//! in ASI-Gauss (docs/physics.md §5) there is one linear solve per step and the unbalanced force carries
 //! into the next one; equilibrium corrections within the step are an option ([`Equilibrium::Iterate`]).
 
 use super::assembly::NODE_DOFS;

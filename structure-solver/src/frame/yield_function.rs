@@ -1,5 +1,5 @@
 //! Full-plastic interaction of the axial force and the two bending moments of a section (S2 §3,
-//! physics.md §5), in the resultants scaled by their fully plastic values, n = N/N0, my = My/My0,
+//! docs/physics.md §5), in the resultants scaled by their fully plastic values, n = N/N0, my = My/My0,
 //! mz = Mz/Mz0; torsion and shear do not enter. `f < 0` inside, `f = 0` on the surface. The flow at
 //! a hinge is normal to the chosen surface (`a = ∂f/∂σ`, [`YieldFunction::gradient`]).
 
@@ -26,7 +26,7 @@ pub enum YieldFunction {
     /// Beam-Columns, 1976: the plastic-design formulas for W shapes), biaxial
     /// `(my/νy)² + (|mz|/νz)^max(1, 5|n|) − 1` with the exponents of EN 1993-1-1 §6.2.9.1(6).
     ISection,
-    /// `n² + my² + mz² − 1` (the form S2 and physics.md §5 write): 0.866 Mp at n = 0.5 where a
+    /// `n² + my² + mz² − 1` (the form S2 and docs/physics.md §5 write): 0.866 Mp at n = 0.5 where a
     /// solid rectangle carries 0.75 Mp and an I section about 0.59 Mp.
     Quadratic,
 }

@@ -1,5 +1,5 @@
 //! `[[coupling.drag]]`: unresolved drag and buoyancy on beam members thinner than a fluid
-//! particle (S2 §4, physics.md §6).
+//! particle (S2 §4, docs/physics.md §6).
 //!
 //! At each instant: every member of the structure's geometry is cut into sub-members
 //! ([`sub_members`]); each sub-member's sample point sits one member width upstream of its
