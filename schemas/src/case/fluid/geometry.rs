@@ -4,13 +4,16 @@
 
 use crate::case::error::check;
 use crate::case::FieldError;
+use schemars::JsonSchema;
 use serde::Deserialize;
 
 /// An axis-aligned box `[min, max]` [m].
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Aabb {
+    /// Lower corner `[x, y, z]` [m].
     pub min: [f64; 3],
+    /// Upper corner `[x, y, z]` [m]; above `min` on every axis, inside the tank.
     pub max: [f64; 3],
 }
 
@@ -51,11 +54,14 @@ impl Aabb {
     }
 }
 
-/// `tank`: the inner faces of the walls; walls are `wall_layers` particle layers outside it.
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+/// `tank = { min, max }`: the inner faces of the walls; walls are `wall_layers` particle layers
+/// outside it. Extents that are not whole spacings are rounded to the nearest lattice face.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct TankConfig {
+    /// Lower corner `[x, y, z]` [m].
     pub min: [f64; 3],
+    /// Upper corner `[x, y, z]` [m]: at least one spacing above `min` on every axis.
     pub max: [f64; 3],
     /// Close the top with a wall too (default: open top).
     #[serde(default)]
@@ -74,10 +80,14 @@ impl TankConfig {
 
 /// `[[fluid.NAME.body]]`: a rigid box made of `Body` particles. In a fluid-only run it is held
 /// fixed (an obstacle); coupled scenes move it with the structure's kinematics.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BodyConfig {
+    /// The body's name, unique in the participant (`[[coupling.body]]` names it
+    /// `fluid-participant/name`).
     pub name: String,
+    /// Lower corner `[x, y, z]` [m].
     pub min: [f64; 3],
+    /// Upper corner `[x, y, z]` [m].
     pub max: [f64; 3],
 }

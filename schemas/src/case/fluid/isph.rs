@@ -2,10 +2,11 @@
 
 use crate::case::error::check;
 use crate::case::FieldError;
-use serde::Deserialize;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
 
 /// How ISPH walls act on the velocity tangential to them.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, JsonSchema, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum WallSlip {
     /// Slip rate 1.0 (S2, Table 1): walls take no part in the viscous term.
@@ -16,7 +17,7 @@ pub enum WallSlip {
 }
 
 /// Which solver the ISPH pressure Poisson equation uses.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, JsonSchema, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum PpeSolver {
     /// Jacobi-preconditioned conjugate gradient on the neighbour list, warm-started from the last
@@ -41,7 +42,7 @@ pub enum PpeSolver {
 
 /// The pressure gradient of ISPH's momentum equation (issue 12; see
 /// `fluid_solver::isph::operators::pressure_gradient` for both equations and the measurements).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, JsonSchema, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum PressureGradient {
     /// S2-8's difference form `Σ_j V (p_j − p_i) ∇W_ij` corrected by the moment matrix (Bonet &
@@ -57,7 +58,7 @@ pub enum PressureGradient {
 
 /// Particle shifting of ISPH (issue 12; `fluid_solver::isph::shifting` has the equation, the
 /// free-surface and wall treatment and the measurements).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, JsonSchema, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Shifting {
     /// Particles move with their velocity only.
@@ -84,15 +85,22 @@ pub enum Shifting {
 /// shifting = "off"          # or "lind" (particle shifting)
 /// shifting_coefficient = 0.5 # A of D = A h |u|_max Δt (Skillen et al. 2013), with "lind"
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct IsphConfig {
+    /// α_d of S2-5, the relaxation of the density towards ρ0 [–]. Range: [0, 1].
     #[serde(default = "default_alpha_d")]
     pub alpha_d: f64,
+    /// Kernel support in spacings [Δs] (S2, Table 1). Range: [1.5, wall_layers − 0.5]; [1.95,
+    /// 2.15] with `pressure_gradient = "symmetric"`.
     #[serde(default = "default_influence_radius")]
     pub influence_radius: f64,
+    /// Relative residual |r|/|b| the pressure Poisson equation must reach every step [–].
+    /// Range: (0, 1).
     #[serde(default = "default_ppe_tolerance")]
     pub ppe_tolerance: f64,
+    /// Iterations of the PPE solver per step; beyond them the run stops with the residual.
+    /// Range: ≥ 1.
     #[serde(default = "default_ppe_max_iterations")]
     pub ppe_max_iterations: u32,
     #[serde(default)]
@@ -103,6 +111,8 @@ pub struct IsphConfig {
     pub pressure_gradient: PressureGradient,
     #[serde(default)]
     pub shifting: Shifting,
+    /// A of `D = A h |u|_max Δt` (Skillen et al. 2013) [–], read with `shifting = "lind"`.
+    /// Range: (0, 6].
     #[serde(default = "default_shifting_coefficient")]
     pub shifting_coefficient: f64,
 }

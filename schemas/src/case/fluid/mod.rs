@@ -59,7 +59,8 @@ pub use time_step::{MACH, MAX_ACOUSTIC_COURANT, MAX_ADVECTIVE_COURANT, MAX_VISCO
 
 use super::error::check;
 use super::FieldError;
-use serde::Deserialize;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
 
 /// Fewest wall layers: two pressure layers (a fluid particle half a spacing off the wall reaches
 /// 2.1 Δs, i.e. wall centres 0.5 Δs and 1.5 Δs deep) plus dummy layers until the first wall
@@ -70,7 +71,7 @@ pub const MIN_WALL_LAYERS: u32 = 4;
 pub const MAX_PARTICLES: f64 = 5.0e7;
 
 /// Which fluid method steps a participant.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, JsonSchema, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum FluidMethodName {
     /// Explicit MPS (seed 000): weakly compressible, Δt limited by the sound speed.
@@ -81,7 +82,7 @@ pub enum FluidMethodName {
 }
 
 /// Where a fluid participant's step runs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, JsonSchema, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum FluidBackend {
     /// The CPU (rayon threads): every feature.
@@ -93,85 +94,94 @@ pub enum FluidBackend {
 }
 
 /// Configuration of one fluid participant.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FluidConfig {
-    /// The method: "emps" (default) or "isph".
+    /// The method that steps the particles.
     #[serde(default)]
     pub method: FluidMethodName,
-    /// Where the step runs: "cpu" (default) or "gpu".
+    /// Where the step runs.
     #[serde(default)]
     pub backend: FluidBackend,
-    /// ISPH settings (`[fluid.NAME.isph]`, only with `method = "isph"`; defaults when absent).
+    /// ISPH only: the ISPH settings; defaults when absent, refused with `method = "emps"`.
     #[serde(default)]
     pub isph: Option<IsphConfig>,
-    /// Particle spacing Δs [m].
+    /// Particle spacing Δs [m]. Range: > 0, and at most 5e7 particles in the tank and its walls.
     pub spacing: f64,
-    /// Fixed time step Δt [s].
+    /// Fixed time step Δt [s]. Range: > 0, within the method's limits: E-MPS c Δt/Δs ≤ 1, ISPH
+    /// u_max Δt/Δs ≤ 0.4, and ν Δt/Δs² ≤ 1/6 with the viscous term on.
     pub time_step: f64,
-    /// Reference density ρ0 [kg/m³].
+    /// Reference density ρ0 [kg/m³]. Range: > 0.
     #[serde(default = "default_density")]
     pub density: f64,
-    /// Kinematic viscosity ν [m²/s].
+    /// Kinematic viscosity ν [m²/s]. Range: ≥ 0.
     #[serde(default = "default_viscosity")]
     pub viscosity: f64,
-    /// Whether the viscous term ν⟨∇²u⟩ (S1-10) is computed.
+    /// Whether the viscous term ν⟨∇²u⟩ (S1-10) is computed; off when ν is far below the
+    /// numerical dissipation.
     #[serde(default = "default_true")]
     pub viscosity_term: bool,
     /// Gravity g [m/s²].
     #[serde(default = "default_gravity")]
     pub gravity: [f64; 3],
-    /// Sound speed c [m/s]; default `u_max / 0.2` (S1-16). E-MPS only.
+    /// E-MPS only: sound speed c [m/s]; default `u_max / 0.2` (S1-16). ISPH has none: it
+    /// leaves the key unused and says so. Range: > 0.
     #[serde(default)]
     pub sound_speed: Option<f64>,
-    /// Predicted largest fluid speed u_max [m/s] for S1-16; default `√(2 g H)` with H the height
-    /// of the highest water block's top above the tank floor.
+    /// Predicted largest fluid speed u_max [m/s]: E-MPS's default sound speed (S1-16) and
+    /// ISPH's advective time-step check use it. Default: √(u_in² + 2gH) for E-MPS, u_in + 2√(gH)
+    /// for ISPH (the dam-break front), with H the highest block top or inflow level above the
+    /// tank floor and u_in the inflow velocity (0 without one). Range: > 0.
     #[serde(default)]
     pub max_velocity: Option<f64>,
-    /// E-MPS only: α of Monaghan's artificial viscosity between fluid particles (issue 15:
-    /// pressure noise at wall sensors); 0 (default) is off, WCSPH codes use 0.01 … 0.1. See
-    /// `fluid-solver/src/emps/artificial_viscosity.rs`.
+    /// E-MPS on the CPU only: α of Monaghan's artificial viscosity between fluid particles [–]
+    /// (issue 15: pressure noise at wall sensors); 0 is off, WCSPH codes use 0.01 … 0.1. See
+    /// `fluid-solver/src/emps/artificial_viscosity.rs`. Range: [0, 1].
     #[serde(default)]
     pub artificial_viscosity: f64,
-    /// Wall particle layers (≥ 4): the two inner ones carry pressure, the others fill the number density.
+    /// Wall particle layers: the two inner ones carry pressure, the others fill the number
+    /// density. Range: 4 … 10.
     #[serde(default = "default_wall_layers")]
     pub wall_layers: u32,
-    /// Interval between VTU frames [s].
+    /// Interval between VTU frames [s]. Range: > 0.
     pub output_interval: f64,
     /// Also write a free-surface mesh of the water (`NAME_surface_*.vtp`, `NAME_surface.pvd`)
     /// with every VTU frame.
     #[serde(default)]
     pub surface_mesh: bool,
-    /// Interval between probe rows [s]; default: every output interval.
+    /// Interval between probe rows [s]; default: every output interval. Range: > 0.
     #[serde(default)]
     pub probe_interval: Option<f64>,
+    /// The tank: the inner faces of its walls.
     pub tank: TankConfig,
-    /// Water blocks.
+    /// Water blocks, filled on the lattice: at least one unless there is an `inflow`.
     #[serde(default)]
     pub block: Vec<Aabb>,
     /// Partition boards: present in the initial layout, removed at t = 0.
     #[serde(default)]
     pub gate: Vec<Aabb>,
-    /// Rigid bodies made of particles.
+    /// Rigid boxes made of particles: held fixed in a fluid-only run, moved by a structure
+    /// participant through `[[coupling.body]]`.
     #[serde(default)]
     pub body: Vec<BodyConfig>,
     /// Fixed solid boxes inside the tank (piers, levees) made of wall particles.
     #[serde(default)]
     pub wall: Vec<Aabb>,
+    /// Probes, one column each of the probe CSV.
     #[serde(default)]
     pub probe: Vec<ProbeConfig>,
-    /// Inflow boundary (`[fluid.NAME.inflow]`): water fed in along +x.
+    /// CPU only: an inflow boundary, water fed in along +x.
     #[serde(default)]
     pub inflow: Option<InflowConfig>,
-    /// Outflow boundary (`[fluid.NAME.outflow]`): water beyond a plane is removed.
+    /// CPU only: an outflow boundary, water beyond a plane is removed.
     #[serde(default)]
     pub outflow: Option<OutflowConfig>,
     // Run control (issue 15): particles leaving through the open top, progress lines.
     /// Largest fraction of the initial fluid particles that may leave through an open top
-    /// (removed and counted) before the run stops; default 0.01.
+    /// (removed and counted) before the run stops [–]. Range: [0, 1].
     #[serde(default = "default_max_removed_fraction")]
     pub max_removed_fraction: f64,
-    /// Wall-clock seconds between progress lines in the log; default 10.
+    /// Wall-clock time between progress lines in the log [s]. Range: > 0.
     #[serde(default = "default_progress_interval")]
     pub progress_interval: f64,
 }

@@ -3,6 +3,7 @@
 use super::{Aabb, FluidConfig};
 use crate::case::error::check;
 use crate::case::FieldError;
+use schemars::JsonSchema;
 use serde::Deserialize;
 
 /// Fewest strip layers of an inflow: the fluid at the plane must see a full r_e = 3.1 Δs of
@@ -24,21 +25,23 @@ pub const MIN_INFLOW_STRIP_LAYERS: f64 = 5.0;
 /// rise_time = 4.0       # h reaches h_max at this time [s]
 /// span = [0.0, 100.0]   # y range fed [m]; default: the tank's width
 /// ```
-#[derive(Debug, Clone, PartialEq, Deserialize, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema, serde::Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct InflowConfig {
-    /// x of the inflow plane [m].
+    /// x of the inflow plane [m]. Range: on a lattice face, from tank.min.x + `strip_length`
+    /// to one spacing before the tank's end.
     pub plane: f64,
-    /// u_in [m/s] along +x.
+    /// u_in [m/s] along +x. Range: > 0.
     pub velocity: f64,
-    /// Depth of the strip upstream of the plane [m], a whole number of spacings.
+    /// Depth of the strip upstream of the plane [m]. Range: a whole number of spacings, at
+    /// least 5.
     pub strip_length: f64,
-    /// Largest water level h_max above the tank floor [m].
+    /// Largest water level h_max above the tank floor [m]. Range: [spacing, tank height].
     pub level: f64,
-    /// Water level at t = 0 [m].
+    /// Water level at t = 0 [m]. Range: [0, level].
     #[serde(default)]
     pub initial_level: f64,
-    /// Time over which the level rises linearly to `level` [s]; 0 means at once.
+    /// Time over which the level rises linearly to `level` [s]; 0 means at once. Range: ≥ 0.
     #[serde(default)]
     pub rise_time: f64,
     /// `[y_min, y_max]` fed with water [m]; default: the tank's width.
@@ -141,10 +144,11 @@ impl InflowConfig {
 }
 
 /// `[fluid.NAME.outflow]`: fluid particles beyond the plane x = `plane` are removed.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct OutflowConfig {
-    /// x of the outflow plane [m].
+    /// x of the outflow plane [m]. Range: after the inflow plane (or the tank's start), at
+    /// least one spacing before the tank's end.
     pub plane: f64,
 }
 

@@ -3,10 +3,11 @@
 use super::FluidConfig;
 use crate::case::error::check;
 use crate::case::FieldError;
-use serde::Deserialize;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
 
 /// What a probe measures.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, JsonSchema, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum ProbeKind {
     /// Height of the water surface above the tank floor at `position = [x, y]`: the top of the
@@ -29,29 +30,33 @@ pub enum ProbeKind {
 }
 
 /// `[[fluid.NAME.probe]]`: one column of the probe CSV.
-#[derive(Debug, Clone, PartialEq, Default, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ProbeConfig {
+    /// The probe's column in the probe CSV: unique, without commas.
     pub name: String,
+    /// What the probe measures.
     pub kind: ProbeKind,
-    /// `[x, y]` for water-height, `[x, y, z]` for pressure and wall-pressure, unused for
-    /// surge-front.
+    /// `[x, y]` for water-height, `[x, y, z]` for pressure and wall-pressure, none for
+    /// surge-front [m]; inside the tank.
     #[serde(default)]
     pub position: Vec<f64>,
-    /// Axis and direction of a surge front: "x" or "+x" (default), "-x", "y", "+y", "-y", "z",
-    /// "+z", "-z".
+    /// Surge-front only: axis and direction of the front, "x" or "+x" (default), "-x", "y",
+    /// "+y", "-y", "z", "+z", "-z".
     #[serde(default)]
     pub axis: Option<String>,
     // Wall-pressure sensors (issue 15): face normal, disc diameter, filter window.
-    /// Outward normal of the face the sensor is mounted on, pointing into the water: one of
-    /// "+x", "-x", "+y", "-y", "+z", "-z" (walls and obstacles are axis-aligned boxes).
+    /// Wall-pressure only: outward normal of the face the sensor is mounted on, pointing into
+    /// the water: one of "+x", "-x", "+y", "-y", "+z", "-z" (walls and obstacles are
+    /// axis-aligned boxes). Required there.
     #[serde(default)]
     pub normal: Option<String>,
-    /// Diameter of the sensor's disc [m].
+    /// Wall-pressure only: diameter of the sensor's disc [m]. Required there. Range: ≥ spacing.
     #[serde(default)]
     pub diameter: Option<f64>,
-    /// Box filter [s]: the reading is the mean over every step of the last `window` seconds
-    /// (an experiment's sensor rate / anti-alias filter); default: the instantaneous reading.
+    /// Wall-pressure on the CPU only: box filter [s]: the reading is the mean over every step
+    /// of the last `window` seconds (an experiment's sensor rate / anti-alias filter); default:
+    /// the instantaneous reading. Range: > 0.
     #[serde(default)]
     pub window: Option<f64>,
 }
