@@ -1,4 +1,5 @@
-//! `coupler`: run a case, replay a recording, or check a case file.
+//! `coupler`: run a case, replay a recording, check a case file, or print the case-file
+//! reference.
 
 use clap::{Parser, Subcommand};
 use coupler::error::CouplerError;
@@ -14,9 +15,9 @@ use std::process::ExitCode;
 
 /// Where case keys are documented, and the exit codes: shown under every command's help.
 const AFTER_HELP: &str = "\
-Case files: every key is documented in schemas/README.md (section \"Case files\") and in the doc
-comments of schemas/src/case/{mod,fluid,structure,frame,coupling}.rs; cases/*/case.toml are
-commented examples.
+Case files: every key, with its type, unit, default, allowed values and the method that reads it,
+is in docs/guide/case-reference.md (`coupler reference` prints it, generated from the parser's
+types); cases/*/case.toml are commented examples.
 
 Exit codes: 0 success (replay: every recorded answer matches); 1 the run or replay failed (a
 participant died, hung or failed, no convergence, output could not be written, replay departed
@@ -127,6 +128,10 @@ enum Command {
         #[arg(long)]
         family: Vec<String>,
     },
+    /// Print the case-file reference as Markdown: every table and key of a case file with its
+    /// type, unit, default, allowed values and the method or backend that reads it, generated
+    /// from the types the parser uses (docs/guide/case-reference.md is this output).
+    Reference,
     /// Plot every column of a CSV file against its first column into a PNG (what was drawn
     /// goes beside it as .plot.csv), e.g. the prism sweep's force-per-width.csv.
     Plot {
@@ -213,6 +218,7 @@ fn main() -> ExitCode {
             readme,
             families: family,
         }),
+        Command::Reference => print_text(&schemas::case::key_reference::markdown()),
         Command::Plot {
             csv,
             png,
@@ -309,9 +315,14 @@ fn check(path: &std::path::Path, out: Option<&std::path::Path>, max_output: u64)
 /// Writes `lines` to standard output; a reader that closed the pipe early (`coupler check … | head`)
 /// is not an error.
 fn print_lines(lines: &[String]) -> Result<(), CouplerError> {
-    use std::io::Write;
     let mut text = lines.join("\n");
     text.push('\n');
+    print_text(&text)
+}
+
+/// Writes `text` to standard output, as [`print_lines`].
+fn print_text(text: &str) -> Result<(), CouplerError> {
+    use std::io::Write;
     match std::io::stdout().lock().write_all(text.as_bytes()) {
         Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
             Err(CouplerError::Io(format!("cannot write to standard output: {e}")))

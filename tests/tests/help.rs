@@ -32,7 +32,7 @@ fn help_describes_the_tool_the_case_argument_exit_codes_and_case_keys() {
             "{args:?}: {text}"
         );
         assert!(
-            text.contains("schemas/README.md"),
+            text.contains("docs/guide/case-reference.md") && text.contains("`coupler reference`"),
             "{args:?}: where case keys are documented: {text}"
         );
     }

@@ -3,10 +3,11 @@
 use super::drag::DragLink;
 use super::error::check;
 use super::{Case, FieldError};
-use serde::Deserialize;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
 
 /// How a window's exchange is iterated.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum Scheme {
     /// Serial explicit (staggered): one sweep per window; the first participant sees its
@@ -17,7 +18,7 @@ pub enum Scheme {
 }
 
 /// Acceleration of the implicit fixed-point iteration.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, JsonSchema, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum AccelerationKind {
     /// Plain fixed-point iteration with constant relaxation `initial_relaxation`.
@@ -29,7 +30,7 @@ pub enum AccelerationKind {
 }
 
 /// How the data of a window are first estimated from the windows before it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, JsonSchema, Serialize, Default)]
 #[serde(rename_all = "kebab-case")]
 pub enum Predictor {
     /// The last window's end values held over the window (preCICE's default).
@@ -41,7 +42,7 @@ pub enum Predictor {
 
 /// `[[coupling.spring]]`: a linear spring between two points of two participants,
 /// `f_a = k (u_b − u_a)`, `f_b = −f_a` (u: displacements of the points).
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SpringLink {
     /// `participant/point`.
@@ -55,7 +56,7 @@ pub struct SpringLink {
 /// `[[coupling.body]]`: a resolved rigid body, its particles in a fluid participant and its
 /// dynamics in a structure participant. The fluid's `body_force` goes to the structure; the
 /// structure's `body_pose` and `body_velocity` go to the fluid.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BodyLink {
     /// `fluid-participant/body`.
@@ -65,11 +66,12 @@ pub struct BodyLink {
 }
 
 /// `[coupling]`.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CouplingConfig {
     /// Coupling window Δt_c [s]; every solver lands exactly on each window end.
     pub window: f64,
+    /// How a window's exchange is iterated.
     pub scheme: Scheme,
     /// Serial order of the participants (default: fluid participants, then structure ones).
     #[serde(default)]
@@ -81,32 +83,35 @@ pub struct CouplingConfig {
     /// First estimate of a window's data: the explicit scheme's data, the implicit scheme's first iterate.
     #[serde(default)]
     pub predictor: Predictor,
-    /// The acceleration asked for; [`CouplingConfig::acceleration`] gives the one used.
+    /// Implicit only: the acceleration of the fixed-point iteration; default `"aitken"`, or
+    /// `"iqn-ils"` when the case has resolved bodies ([`CouplingConfig::acceleration`]).
     #[serde(default, rename = "acceleration")]
     pub acceleration_given: Option<AccelerationKind>,
-    /// Relaxation of the first iteration (and of every iteration with `constant`).
+    /// Implicit only: relaxation of the first iteration (and of every iteration with
+    /// `"constant"`) [–].
     #[serde(default = "default_relaxation")]
     pub initial_relaxation: f64,
-    /// Convergence: relative interface residual ‖H(x) − x‖ / ‖H(x)‖ per field.
+    /// Implicit only: convergence, the relative interface residual ‖H(x) − x‖ / ‖H(x)‖ per
+    /// field [–].
     #[serde(default = "default_tolerance")]
     pub tolerance: f64,
-    /// Iterations per window before the run stops with a report.
+    /// Implicit only: iterations per window before the run stops with a report.
     #[serde(default = "default_max_iterations")]
     pub max_iterations: u32,
-    /// IQN-ILS: windows whose secant pairs are reused.
+    /// IQN-ILS only: windows whose secant pairs are reused.
     #[serde(default = "default_reuse")]
     pub reuse_windows: u32,
-    /// Largest allowed relative action–reaction residual of the ledger; when not given,
-    /// [`CPU_BALANCE_TOLERANCE`], or [`GPU_BALANCE_TOLERANCE`] when a fluid runs on the GPU
-    /// ([`CouplingConfig::balance_tolerance`]).
+    /// Largest allowed relative action–reaction residual of the ledger [–]; default 1e-12
+    /// ([`CPU_BALANCE_TOLERANCE`]), or 1e-5 ([`GPU_BALANCE_TOLERANCE`]) when a fluid runs on
+    /// the GPU.
     #[serde(default, rename = "balance_tolerance")]
     pub balance_tolerance_given: Option<f64>,
     /// Net energy the coupling may create at the interface, as a multiple of the run's physical
-    /// energy scale, before the coupler stops the run as unstable (the coupler's `stability`
+    /// energy scale [–], before the coupler stops the run as unstable (the coupler's `stability`
     /// module; default 10; a run warns above 1).
     #[serde(default = "default_created_energy_limit")]
     pub created_energy_limit: f64,
-    /// Wall seconds a participant may take for one answer before it is taken as hung.
+    /// Wall-clock time a participant may take for one answer before it is taken as hung [s].
     #[serde(default = "default_timeout")]
     pub timeout: f64,
     /// Simulated time between checkpoints [s] (a whole number of windows; none by default): at
@@ -114,8 +119,10 @@ pub struct CouplingConfig {
     /// `OUT/checkpoint/`, and `coupler run CASE --resume OUT` continues from the last one.
     #[serde(default)]
     pub checkpoint_interval: Option<f64>,
+    /// Springs between points of two participants.
     #[serde(default)]
     pub spring: Vec<SpringLink>,
+    /// Resolved rigid bodies: particles in a fluid, dynamics in a structure.
     #[serde(default)]
     pub body: Vec<BodyLink>,
     /// `[[coupling.drag]]`: unresolved drag and buoyancy on thin frame members (S2).

@@ -18,6 +18,7 @@
 
 use super::error::check;
 use super::{Case, FieldError};
+use schemars::JsonSchema;
 use serde::Deserialize;
 
 /// Radius, in fluid particle spacings, of the kernel with which the fluid samples the flow at a
@@ -27,14 +28,14 @@ use serde::Deserialize;
 pub const KERNEL_SUPPORT_IN_SPACINGS: f64 = 2.4;
 
 /// `[[coupling.drag]]`.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DragLink {
     /// The fluid participant that is sampled and takes the reactions.
     pub fluid: String,
     /// The structure participant whose frame members take drag and buoyancy.
     pub structure: String,
-    /// Direction the flow goes before any velocity has been sampled (any length but zero);
+    /// Direction the flow goes before any velocity has been sampled [–] (any length but zero);
     /// sample points sit one member width against it. Without it they sit at the sub-member
     /// centroids until the first velocity is known.
     #[serde(default)]
@@ -47,14 +48,14 @@ pub struct DragLink {
     /// this way at fixed stiffness ("the 0.05 m prism's section constants are used").
     #[serde(default)]
     pub width: Option<f64>,
-    /// A face normal of the square section (projected onto the plane across each member); the
-    /// attack angle is measured from it. Without it the attack angle is 0.
+    /// A face normal of the square section [–] (projected onto the plane across each member);
+    /// the attack angle is measured from it. Without it the attack angle is 0.
     #[serde(default)]
     pub section_axis: Option<[f64; 3]>,
     /// Also apply drag along the member axis, with the same C_D (S2 §6, pieces carried away).
     #[serde(default)]
     pub axial_drag: bool,
-    /// C_D against the attack angle, `[[angle_deg, C_D], …]` from 0° to 45° (the square's
+    /// C_D against the attack angle, `[[angle, C_D], …]` [deg, –] from 0° to 45° (the square's
     /// symmetry folds every angle into that range); default [`square_prism_drag`].
     #[serde(default = "square_prism_drag")]
     pub drag_coefficient: Vec<[f64; 2]>,

@@ -63,39 +63,48 @@
 //! ```
 
 use super::error::check;
+use super::key_reference::one_of;
 use super::FieldError;
-use serde::Deserialize;
+use schemars::{JsonSchema, Schema, SchemaGenerator};
+use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// The six degrees of freedom of a frame node, as written in `fixed`.
 pub const DOF_NAMES: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];
 
 /// `[structure.NAME.frame]`.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FrameConfig {
     /// Newmark time step [s].
     pub time_step: f64,
     /// Gravitational acceleration [m/s²], global axes.
     pub gravity: [f64; 3],
+    /// The material of every member.
     pub material: MaterialConfig,
+    /// Cross-sections, named for the members.
     #[serde(default)]
     pub section: Vec<SectionConfig>,
+    /// Nodes, by id.
     #[serde(default)]
     pub node: Vec<NodeConfig>,
+    /// Members between two nodes.
     #[serde(default)]
     pub member: Vec<MemberConfig>,
+    /// Fixed degrees of freedom of nodes.
     #[serde(default)]
     pub support: Vec<SupportConfig>,
     /// Penalty contact between members and with walls; absent: no contact.
     #[serde(default)]
     pub contact: Option<ContactConfig>,
+    /// Rigid planes the members stay on one side of (needs `contact`).
     #[serde(default)]
     pub wall: Vec<WallConfig>,
-    /// Absent: one linear solve per step, the unbalanced force carried into the next step
-    /// (ASI-Gauss as Isobe runs it; fast, needs a short Δt when hinges form or members spin).
-    /// Present: each step is corrected until the unbalanced force falls below this fraction of
-    /// its first value (slower; keeps energy in large, fast rotations).
+    /// Equilibrium iterations [–]: absent, one linear solve per step, the unbalanced force
+    /// carried into the next step (ASI-Gauss as Isobe runs it; fast, needs a short Δt when
+    /// hinges form or members spin); present, each step is corrected until the unbalanced force
+    /// falls below this fraction of its first value (slower; keeps energy in large, fast
+    /// rotations).
     #[serde(default)]
     pub equilibrium_tolerance: Option<f64>,
     /// Rayleigh damping `C = a0 M + a1 K` (K the tangent stiffness); absent: none.
@@ -108,7 +117,7 @@ pub struct FrameConfig {
 }
 
 /// `geometry` of a frame.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, JsonSchema, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Geometry {
     /// Co-rotational (updated-Lagrangian) elements: large displacements and rotations.
@@ -122,15 +131,19 @@ pub enum Geometry {
 /// `[structure.NAME.frame.damping]`: Rayleigh damping, by its coefficients (`mass` = a0 [1/s],
 /// `stiffness` = a1 [s], either may be left out) or by two frequencies [Hz] and the damping ratios
 /// wanted at them (`frequencies`, `ratios`).
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DampingConfig {
+    /// a0, the mass-proportional coefficient [1/s] (not with `frequencies`). Range: ≥ 0.
     #[serde(default)]
     pub mass: Option<f64>,
+    /// a1, the stiffness-proportional coefficient [s] (not with `frequencies`). Range: ≥ 0.
     #[serde(default)]
     pub stiffness: Option<f64>,
+    /// Two different frequencies [Hz] at which `ratios` are wanted. Range: > 0.
     #[serde(default)]
     pub frequencies: Option<[f64; 2]>,
+    /// The damping ratios wanted at `frequencies` [–]. Range: ≥ 0, and such that a0, a1 ≥ 0.
     #[serde(default)]
     pub ratios: Option<[f64; 2]>,
 }
@@ -191,12 +204,12 @@ impl DampingConfig {
 
 /// `[structure.NAME.frame.contact]`: members and walls meet through particles along the members
 /// (S2 §3(2)) pushed apart by a penalty spring and dashpot.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ContactConfig {
     /// Penalty stiffness per particle pair [N/m].
     pub stiffness: f64,
-    /// Damping of the contact spring as a share of critical, in [0, 1].
+    /// Damping of the contact spring as a share of critical [–]. Range: [0, 1].
     #[serde(default)]
     pub damping_ratio: f64,
     /// Whether members touch each other (walls always touch members).
@@ -209,22 +222,22 @@ fn yes() -> bool {
 }
 
 /// `[[structure.NAME.frame.wall]]`: a rigid plane; members stay on the side its normal points to.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct WallConfig {
     /// A point of the plane [m].
     pub point: [f64; 3],
-    /// Normal pointing to the side where the frame is.
+    /// Normal pointing to the side where the frame is [–] (any length but zero).
     pub normal: [f64; 3],
 }
 
 /// `[structure.NAME.frame.material]`: one elastic–perfectly-plastic material for every member.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialConfig {
     /// Young's modulus E [Pa].
     pub young_modulus: f64,
-    /// Poisson's ratio ν; G = E / (2 (1 + ν)).
+    /// Poisson's ratio ν [–]; G = E / (2 (1 + ν)).
     pub poisson: f64,
     /// Density [kg/m³].
     pub density: f64,
@@ -233,20 +246,22 @@ pub struct MaterialConfig {
     /// S2-17 critical curvatures about local y and z [1/m]; absent: that term is not checked.
     #[serde(default)]
     pub fracture_curvature: Option<[f64; 2]>,
-    /// S2-17 critical axial strain; absent: not checked.
+    /// S2-17 critical axial strain [–]; absent: not checked.
     #[serde(default)]
     pub fracture_axial_strain: Option<f64>,
-    /// S2-17 critical shear strains in local y and z; absent: not checked.
+    /// S2-17 critical shear strains in local y and z [–]; absent: not checked.
     #[serde(default)]
     pub fracture_shear_strain: Option<[f64; 2]>,
 }
 
 /// `[[structure.NAME.frame.section]]`: a cross-section, by shape or by its properties.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SectionConfig {
+    /// The section's name, unique in the frame; members name it.
     pub name: String,
     /// `"rectangle"` (from `width` and `depth`) or `"general"` (every property given).
+    #[schemars(schema_with = "section_kinds")]
     pub kind: String,
     /// Extent along local y [m] (rectangle); projected width for drag (both kinds).
     #[serde(default)]
@@ -284,41 +299,60 @@ pub struct SectionConfig {
     /// along local z, `My/Mpy ≤ 1.18 (1 − |n|)`, `Mz/Mpz ≤ 1.19 (1 − n²)`, biaxial with the
     /// exponents 2 and max(1, 5|n|) of EN 1993-1-1 §6.2.9.1; `"quadratic"`: `n² + my² + mz² = 1`.
     #[serde(default)]
+    #[schemars(schema_with = "yield_functions")]
     pub yield_function: Option<String>,
+}
+
+/// The schema of `kind`: one of [`SECTION_KINDS`].
+fn section_kinds(_: &mut SchemaGenerator) -> Schema {
+    one_of(&SECTION_KINDS)
+}
+
+/// The schema of `yield_function`: one of [`YIELD_FUNCTIONS`].
+fn yield_functions(_: &mut SchemaGenerator) -> Schema {
+    one_of(&YIELD_FUNCTIONS)
+}
+
+/// The schema of `fixed`: any of [`DOF_NAMES`].
+fn dof_names(_: &mut SchemaGenerator) -> Schema {
+    schemars::json_schema!({ "type": "array", "items": one_of(&DOF_NAMES) })
 }
 
 /// The yield functions a section's `yield_function` may name.
 pub const YIELD_FUNCTIONS: [&str; 3] = ["rectangle", "i_section", "quadratic"];
 
 /// `[[structure.NAME.frame.node]]`.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct NodeConfig {
+    /// The node's id, unique in the frame; members, supports, loads and histories name it.
     pub id: u32,
     /// Position [m].
     pub position: [f64; 3],
 }
 
 /// `[[structure.NAME.frame.member]]`: one member, modelled as two ASI-Gauss elements.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MemberConfig {
     /// Ids of its end nodes.
     pub nodes: [u32; 2],
     /// Name of its section.
     pub section: String,
-    /// Direction of the member's local y axis (projected normal to the member). Default: horizontal,
-    /// global z × member axis; for a vertical member, global y.
+    /// Direction of the member's local y axis (projected normal to the member) [–]. Default:
+    /// horizontal, global z × member axis; for a vertical member, global y.
     #[serde(default)]
     pub orientation: Option<[f64; 3]>,
 }
 
 /// `[[structure.NAME.frame.support]]`: fixed degrees of freedom of one node.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SupportConfig {
+    /// The id of the node held.
     pub node: u32,
     /// Any of `"x"`, `"y"`, `"z"` (translations) and `"rx"`, `"ry"`, `"rz"` (rotations).
+    #[schemars(schema_with = "dof_names")]
     pub fixed: Vec<String>,
 }
 

@@ -10,11 +10,13 @@ pub mod drag;
 pub mod error;
 pub mod fluid;
 pub mod frame;
+pub mod key_reference;
 pub mod load_table;
 pub mod reference;
 pub mod report;
 pub mod structure;
 
+use schemars::JsonSchema;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -27,15 +29,15 @@ pub use report::ReportConfig;
 pub use structure::StructureConfig;
 
 /// `[case]`: what the run is and how long it lasts.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CaseInfo {
-    /// Short name of the case, used in output file names.
+    /// Short name of the case, used in output file names; not empty.
     pub name: String,
     /// One or two sentences on what the case is and where its reference data come from.
     #[serde(default)]
     pub description: Option<String>,
-    /// Simulated time to reach [s].
+    /// Simulated time to reach [s]. Range: > 0.
     pub end_time: f64,
     /// Executable per participant name, replacing the default solver binary
     /// (relative paths are taken from the case file's folder).
@@ -43,19 +45,26 @@ pub struct CaseInfo {
     pub executables: BTreeMap<String, PathBuf>,
 }
 
-/// The file as written; [`Case`] adds where it came from.
-#[derive(Debug, Clone, Deserialize)]
+/// A case file: `[case]`, the participants and, as needed, `[coupling]`, `[reference]` and
+/// `[report]` (the file as written; [`Case`] adds where it came from).
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct CaseFile {
+    /// What the run is and how long it lasts.
     case: CaseInfo,
+    /// The fluid participants, one table each, named by the user.
     #[serde(default)]
     fluid: BTreeMap<String, FluidConfig>,
+    /// The structure participants, one table each, named by the user.
     #[serde(default)]
     structure: BTreeMap<String, StructureConfig>,
+    /// How the participants are coupled; required with more than one participant.
     #[serde(default)]
     coupling: Option<CouplingConfig>,
+    /// What `coupler report` compares the result against.
     #[serde(default)]
     reference: Option<ReferenceConfig>,
+    /// The ladders and stability families of `coupler report`.
     #[serde(default)]
     report: Option<ReportConfig>,
 }

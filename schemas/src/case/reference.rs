@@ -25,13 +25,15 @@
 //! (else its first).
 
 use super::error::check;
+use super::key_reference::AnyValue;
 use super::report::{check_settings, Settings};
 use super::{Case, FieldError, Kind};
+use schemars::JsonSchema;
 use serde::Deserialize;
 use std::path::PathBuf;
 
 /// What the error is measured against.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum Against {
     /// A closed-form solution.
@@ -45,7 +47,7 @@ pub enum Against {
 }
 
 /// Closed-form solutions the report knows.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum Solution {
     /// One value, held over the compared rows (a static deflection, a hydrostatic pressure).
@@ -56,7 +58,7 @@ pub enum Solution {
 }
 
 /// How the differences over the compared rows become one number.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum Measure {
     /// Largest absolute difference.
@@ -69,10 +71,12 @@ pub enum Measure {
 }
 
 /// `[reference]`.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ReferenceConfig {
+    /// What the error is measured against.
     pub against: Against,
+    /// How the differences over the compared rows become one number.
     pub measure: Measure,
     /// Divide the error by the reference's largest magnitude over the compared rows.
     #[serde(default)]
@@ -82,7 +86,7 @@ pub struct ReferenceConfig {
     /// `against = "exact"`: which solution.
     #[serde(default)]
     pub solution: Option<Solution>,
-    /// `solution = "constant"`: the exact value.
+    /// `solution = "constant"`: the exact value [column's unit].
     #[serde(default)]
     pub value: Option<f64>,
     /// `solution = "two-mass-oscillator"`: the participants holding m1 and m2 (their first point).
@@ -98,28 +102,31 @@ pub struct ReferenceConfig {
     /// The compared column of `file`.
     #[serde(default)]
     pub column: Option<String>,
-    /// Rows with `t ≥ from` are compared.
+    /// Rows with `t ≥ from` are compared [s].
     #[serde(default)]
     pub from: Option<f64>,
-    /// Rows with `t ≤ until` are compared.
+    /// Rows with `t ≤ until` are compared [s].
     #[serde(default)]
     pub until: Option<f64>,
     /// `against = "experiment"`: the data file, relative to the case folder.
     #[serde(default)]
     pub data: Option<PathBuf>,
+    /// `against = "experiment"`: the time column of `data`.
     #[serde(default)]
     pub data_time: Option<String>,
+    /// `against = "experiment"`: the value column of `data`.
     #[serde(default)]
     pub data_value: Option<String>,
-    /// Model time = data time × `time_scale`.
+    /// Model time = data time × `time_scale` [–].
     #[serde(default = "one")]
     pub time_scale: f64,
-    /// Model value = data value × `value_scale`.
+    /// Model value = data value × `value_scale` [–].
     #[serde(default = "one")]
     pub value_scale: f64,
     /// `against = "finer-run"`: the settings that make the run finer; `"resolved-run"`: the
     /// settings of the resolved run.
     #[serde(default)]
+    #[schemars(with = "std::collections::BTreeMap<String, AnyValue>")]
     pub set: Settings,
     /// `against = "resolved-run"`: the resolved case file, relative to the case folder.
     #[serde(default)]

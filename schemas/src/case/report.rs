@@ -36,7 +36,9 @@
 //! `"unset"` removes the key from the case (e.g. `"fluid.tank.sound_speed" = "unset"` for an ISPH
 //! rung of an E-MPS case: ISPH refuses a sound speed).
 
+use super::key_reference::AnyValue;
 use super::{Case, FieldError};
+use schemars::JsonSchema;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 
@@ -44,16 +46,19 @@ use std::collections::BTreeMap;
 pub type Settings = BTreeMap<String, toml::Value>;
 
 /// `[report]`.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ReportConfig {
-    /// The error the summary asks the cheapest setting for (in the reference's measure).
+    /// The error the summary asks the cheapest setting for, in the reference's measure [error's
+    /// unit]: [–] with `reference.relative`, else the compared column's unit.
     pub target_error: f64,
     /// Timed runs after the warm-up, for runs under a few seconds (the minimum is reported).
     #[serde(default = "default_repeats")]
     pub repeats: u32,
+    /// The ladders of the work–precision table.
     #[serde(default)]
     pub ladder: Vec<Ladder>,
+    /// The families of stiff and extreme runs of `coupler report --stability`.
     #[serde(default)]
     pub stability: Vec<Family>,
     /// Ladders or families this case would have but the solvers cannot run yet, each with why.
@@ -69,12 +74,16 @@ pub struct ReportConfig {
 }
 
 /// `[[report.limit]]`: `|column| ≤ max_abs` in a participant's output file, and why.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Limit {
+    /// The participant whose output file is read.
     pub participant: String,
+    /// The output file, in the participant's output folder.
     pub file: String,
+    /// The bounded column of `file`.
     pub column: String,
+    /// The bound on the column's magnitude [column's unit].
     pub max_abs: f64,
     /// Why no sound run passes it (e.g. energy conservation bounds the displacement).
     pub reason: String,
@@ -85,40 +94,57 @@ fn default_repeats() -> u32 {
 }
 
 /// `[[report.ladder]]`: one method or scheme, run at a sequence of one varied parameter.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Ladder {
+    /// The ladder's line in the table and the plot.
     pub label: String,
+    /// Settings of every rung: case keys (dotted paths) and their values.
     #[serde(default)]
+    #[schemars(with = "BTreeMap<String, AnyValue>")]
     pub set: Settings,
+    /// The case keys varied together; the first one labels the rungs.
     pub vary: Vec<String>,
+    /// The rungs of the CI-sized ladder: a value per rung, or an array per rung for several
+    /// keys.
+    #[schemars(with = "Vec<AnyValue>")]
     pub values: Vec<toml::Value>,
+    /// The rungs of `--full`; default: `values`.
     #[serde(default)]
+    #[schemars(with = "Vec<AnyValue>")]
     pub full: Vec<toml::Value>,
-    /// The order of convergence the method should have in the first varied key.
+    /// The order of convergence the method should have in the first varied key [–].
     #[serde(default)]
     pub order: Option<f64>,
 }
 
 /// `[[report.stability]]`.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Family {
+    /// The family's name (`--family` picks it).
     pub family: String,
+    /// Run only with `--full`.
     #[serde(default)]
     pub full_only: bool,
     /// Settings common to every run of the family.
     #[serde(default)]
+    #[schemars(with = "BTreeMap<String, AnyValue>")]
     pub set: Settings,
+    /// The axes: every combination of their points is one run.
     pub axis: Vec<Axis>,
 }
 
 /// `[[report.stability.axis]]`: one label and one set of settings per point of the axis.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Axis {
+    /// The axis's name.
     pub name: String,
+    /// One label per point.
     pub labels: Vec<String>,
+    /// One table of settings per point: case keys (dotted paths) and their values.
+    #[schemars(with = "Vec<BTreeMap<String, AnyValue>>")]
     pub set: Vec<Settings>,
 }
 

@@ -50,7 +50,8 @@
 use super::error::check;
 use super::frame::FrameConfig;
 use super::FieldError;
-use serde::Deserialize;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeSet;
 use std::path::PathBuf;
 
@@ -58,27 +59,34 @@ use std::path::PathBuf;
 pub const GROUND: &str = "ground";
 
 /// Configuration of one structure participant.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct StructureConfig {
-    /// Largest integrator substep of the point masses and bodies [s]; each advance lands exactly on
-    /// its end time. Required with point masses or bodies; a frame takes its own `time_step`.
+    /// Point masses and bodies only: largest integrator substep [s]; each advance lands exactly
+    /// on its end time. Required with point masses or bodies; a frame takes its own `time_step`.
+    /// Range: > 0.
     #[serde(default)]
     pub max_step: Option<f64>,
-    /// Gravity acceleration [m/s²] on point masses and bodies (a frame takes `frame.gravity`;
-    /// when both are given they must agree).
+    /// Point masses and bodies only: gravity acceleration [m/s²] (a frame takes
+    /// `frame.gravity`; when both are given they must agree).
     #[serde(default)]
     pub gravity: [f64; 3],
+    /// Translating points with mass.
     #[serde(default)]
     pub point_mass: Vec<PointMassConfig>,
+    /// Linear springs between point masses, bodies and the ground.
     #[serde(default)]
     pub spring: Vec<SpringConfig>,
+    /// Rigid bodies with six degrees of freedom.
     #[serde(default)]
     pub body: Vec<BodyConfig>,
+    /// Washout supports: bodies held until the upward force exceeds a threshold.
     #[serde(default)]
     pub support: Vec<SupportConfig>,
+    /// Prescribed loads.
     #[serde(default)]
     pub load: Vec<LoadConfig>,
+    /// Which histories are written as CSV, and how often.
     #[serde(default)]
     pub history: Option<HistoryConfig>,
     /// An ASI-Gauss framed structure (`[structure.NAME.frame]`).
@@ -87,9 +95,11 @@ pub struct StructureConfig {
 }
 
 /// `[[structure.NAME.point_mass]]`: a translating point with mass.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PointMassConfig {
+    /// The point's name, unique in the participant (`[[coupling.spring]]` names it
+    /// `participant/name`).
     pub name: String,
     /// Mass [kg].
     pub mass: f64,
@@ -104,7 +114,7 @@ pub struct PointMassConfig {
 }
 
 /// `[[structure.NAME.spring]]`: a linear spring on displacements, `f_a = k (u_b − u_a)`, `f_b = −f_a`.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SpringConfig {
     /// A point mass or body name.
@@ -116,9 +126,11 @@ pub struct SpringConfig {
 }
 
 /// `[[structure.NAME.body]]`: a 6-DOF rigid body (S1-17, S1-18).
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BodyConfig {
+    /// The body's name, unique in the participant (`[[coupling.body]]` names it
+    /// `participant/name`).
     pub name: String,
     /// Mass [kg]; required with `inertia.box` / `inertia.tensor`, omitted with `inertia.particles`
     /// (then it is the particle count × `particle_mass`).
@@ -128,7 +140,7 @@ pub struct BodyConfig {
     /// `inertia.particles` (then it is the particles' centroid).
     #[serde(default)]
     pub centre: Option<[f64; 3]>,
-    /// Initial orientation, unit quaternion `[w, x, y, z]` (body → world).
+    /// Initial orientation, unit quaternion `[w, x, y, z]` (body → world) [–].
     #[serde(default = "identity_quaternion")]
     pub orientation: [f64; 4],
     /// Initial velocity of the centre [m/s].
@@ -146,7 +158,7 @@ fn identity_quaternion() -> [f64; 4] {
 
 /// `inertia = { … }`: exactly one of `box`, `tensor`, `particles` (with `particle_mass`),
 /// all in the body frame.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct InertiaConfig {
     /// Edge lengths [m] of a homogeneous box along the body axes.
@@ -166,7 +178,7 @@ pub struct InertiaConfig {
 
 /// `[[structure.NAME.support]]`: holds a body fixed until the upward force exceeds
 /// `release_force`, then releases it for good (washout, S1-22).
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SupportConfig {
     /// The body held.
@@ -176,7 +188,7 @@ pub struct SupportConfig {
 }
 
 /// How a prescribed load varies in time.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, JsonSchema, Serialize, Default)]
 #[serde(rename_all = "kebab-case")]
 pub enum LoadHistory {
     /// `value` at all times.
@@ -192,7 +204,7 @@ pub enum LoadHistory {
 }
 
 /// `[[structure.NAME.load]]`: a prescribed load on one point mass, body or frame node.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct LoadConfig {
     /// A point mass name: 3 components (force).
@@ -204,9 +216,11 @@ pub struct LoadConfig {
     /// A frame node id: 6 components (force, moment; global).
     #[serde(default)]
     pub node: Option<u32>,
+    /// How the load varies in time.
     #[serde(default)]
     pub history: LoadHistory,
-    /// The components (not with `table`).
+    /// The components [N, N m]: 3 forces for a point mass, 3 forces and 3 torques or moments
+    /// for a body or a node (not with `table`).
     #[serde(default)]
     pub value: Option<Vec<f64>>,
     /// Start time [s] of `step` and `ramp`.
@@ -254,10 +268,10 @@ impl LoadConfig {
 }
 
 /// `[structure.NAME.history]`: which quantities standalone mode writes as CSV, and how often.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct HistoryConfig {
-    /// Output interval [s].
+    /// Output interval [s]. Range: > 0.
     pub interval: f64,
     /// Point masses: displacement and velocity.
     #[serde(default)]
