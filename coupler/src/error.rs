@@ -178,7 +178,7 @@ mod tests {
     }
 
     /// A residual that keeps falling, only too slowly, asks for more iterations; one that
-    /// cycles (IQN-ILS on the light box's window 28 in the README, period 13) says why more
+    /// cycles (IQN-ILS on the light box's window 28, period 13: docs/notes/implicit-coupling-light-bodies.md) says why more
     /// iterations will not help.
     #[test]
     fn a_stalled_window_is_told_apart_from_a_slow_one() {

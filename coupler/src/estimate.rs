@@ -22,8 +22,7 @@
 //! - structure histories: one row per interval per file, at least 10 bytes per value;
 //! - `interface_energy.csv` (coupled runs): about 100 bytes per window;
 //! - checkpoints (`coupling.checkpoint_interval`): the last two are kept, each at least 86 bytes
-//!   per written fluid particle (measured: 1.9 MB for 21 919 particles, README "Checkpoint and
-//!   resume") and the coupler's manifest, about 1 kB; the structure's are small.
+//!   per written fluid particle (measured: 1.9 MB for 21 919 particles, docs/guide/checkpoint-resume.md) and the coupler's manifest, about 1 kB; the structure's are small.
 
 use crate::error::CouplerError;
 use schemas::case::{Case, FluidConfig};

@@ -309,7 +309,7 @@ impl Windows<'_> {
                 accelerator.end_window();
                 eprintln!(
                     "note: window {w}: {}'s member geometry changed (a fracture) in sweep {}; the window ends with \
-                     that sweep, not converged (residual NaN in coupling.csv)",
+                     that sweep, not converged (residual NaN in ledger.csv)",
                     self.stack.sessions[p].name,
                     k + 1
                 );

@@ -42,7 +42,7 @@ pub fn describe(orders: &[Option<f64>]) -> String {
 mod tests {
     use super::*;
 
-    /// The cantilever's ladder in the README (orders −0.28, −0.55): flagged; a converging or a
+    /// The cantilever's CI ladder (docs/validation.md) (orders −0.28, −0.55): flagged; a converging or a
     /// mixed ladder, or one whose orders are all undefined, is not.
     #[test]
     fn a_ladder_whose_error_grows_with_refinement_is_flagged() {

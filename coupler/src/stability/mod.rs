@@ -28,9 +28,9 @@
 //!
 //! The default limit, K = 10: energy goes with the square of amplitudes, so `C = 10 S` means the
 //! coupled motion holds at least 11 times the energy the physics gave it, amplitudes off by a
-//! factor √11 ≈ 3.3 — no usable result. Measured (README, coupling section): every implicit run
+//! factor √11 ≈ 3.3 — no usable result. Measured (docs/notes/coupling-instability-interface-energy.md): every implicit run
 //! stays below 1e-10; explicit runs that converge with the window reach at most 3.7 by their end
-//! (the oscillator's first-order constant predictor at window 0.01, whose error the README lists
+//! (the oscillator's first-order constant predictor at window 0.01, whose error docs/validation.md lists
 //! as 0.59), the floating box 1e-4, the drag dam break 0 (drag dissipates); unstable explicit
 //! runs pass 10 within 1 to 20 windows and keep growing.
 
@@ -58,7 +58,7 @@ const ROUNDING_MARGIN: f64 = 10.0;
 /// An instability keeps growing and is stopped two windows later than at first sight; in the
 /// first two windows only against a scale known at t = 0 (a spring's stored energy). Known limit:
 /// a body released under a load that keeps growing ×6 or more over the two windows after its
-/// release is still unmoved in the scale then and is stopped (README, light bodies).
+/// release is still unmoved in the scale then and is stopped (docs/notes/implicit-coupling-light-bodies.md).
 const HINDSIGHT: usize = 2;
 
 /// Windows over which the growth of the interface force is reported.

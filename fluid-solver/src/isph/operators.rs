@@ -273,8 +273,7 @@ pub fn laplacian(
 /// function the walls' and bodies' loads are made of; `from_non_fluid` is then Σ of that term
 /// over every fluid–solid pair, bodies included (their load is V times the same terms). It holds
 /// the hydrostatic tank only at a support of 2.0 Δs, where the lattice sums that its zero-order
-/// part `2 p_i Σ_j V ∇W_ij` acts on are restoring (README, "ISPH: the symmetric gradient as an
-/// option"); at 2.4 Δs the tank's edge columns run away (above).
+/// part `2 p_i Σ_j V ∇W_ij` acts on are restoring (docs/notes/isph-symmetric-gradient-and-shifting.md); at 2.4 Δs the tank's edge columns run away (above).
 pub fn pressure_gradient(
     k: &Wendland,
     list: &NeighbourList,

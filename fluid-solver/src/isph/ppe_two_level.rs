@@ -23,8 +23,7 @@
 //! no product with A beyond CG's own. It needs about 1.8× the iterations of the cycle below
 //! but a third of its products with A, and the solve is memory-bound on them: at S2's scale
 //! 22.9 iterations and 94 ms per solve against 12.6 and 121 ms, through the L/20 impact 31.0
-//! against 17.3 iterations and 13.9 against 18.7 ms (README section "ISPH: a two-level
-//! preconditioner for the PPE").
+//! against 17.3 iterations and 13.9 against 18.7 ms (docs/notes/isph-ppe-preconditioner.md).
 //!
 //! The multiplicative form ([`Form::Multiplicative`]) is the two-grid cycle V(1,1) (Saad 2003,
 //! Alg. 13.2 with one pre- and one post-smoothing step), applied to r from z = 0:
@@ -60,8 +59,7 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, Mat, Par, Side};
 use rayon::prelude::*;
 
-/// Neighbour-search cells per edge of an aggregate (measured, README section "ISPH: a
-/// two-level preconditioner for the PPE").
+/// Neighbour-search cells per edge of an aggregate (measured: docs/notes/isph-ppe-preconditioner.md).
 pub const AGGREGATE_CELLS: usize = 4;
 
 /// Damping ω of the multiplicative cycle's Jacobi smoother: below 1 for positive definiteness

@@ -11,7 +11,7 @@
 //! each particle's own |u_i| (A = 2); measured on the L/20 dam break with the symmetric gradient
 //! at 2.0 Δs, that form hardly smooths the far-wall probe (the water standing against the wall is
 //! slow: high-pass 422 Pa at A = 0.5, 290 at A = 2, without the wall rule below, against 323 without shifting and 215 with
-//! this form at A = 0.5; README, "ISPH: shifting with the symmetric gradient"). With this form
+//! this form at A = 0.5; docs/notes/isph-symmetric-gradient-and-shifting.md). With this form
 //! A = 2 was stopped by the detector at 0.29 s (a particle in the thin layer left on the floor
 //! driven into it and thrown out at 10 m/s); 1 and 0.5 ran to 0.6 s.
 //!

@@ -77,7 +77,7 @@ pub struct CouplingConfig {
     #[serde(default)]
     pub order: Vec<String>,
     /// Interface samples per window (≥ 1): data are exchanged at this many equally spaced
-    /// times in each window and interpolated in between (linear for 1, cubic spline above).
+    /// times in each window and interpolated in between (linear for 1, quadratic for 2, a local cubic through the four nearest for 3 or more).
     #[serde(default = "default_samples")]
     pub samples: u32,
     /// First estimate of a window's data: the explicit scheme's data, the implicit scheme's first iterate.

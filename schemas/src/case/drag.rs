@@ -1,4 +1,4 @@
-//! `[[coupling.drag]]`: the unresolved drag coupling of S2 §4 (physics.md §6) between a fluid
+//! `[[coupling.drag]]`: the unresolved drag coupling of S2 §4 (docs/physics.md §6) between a fluid
 //! participant and a structure participant's beam frame whose members are thinner than a
 //! fluid particle.
 //!

@@ -21,7 +21,7 @@ pub enum WallSlip {
 #[serde(rename_all = "kebab-case")]
 pub enum PpeSolver {
     /// Jacobi-preconditioned conjugate gradient on the neighbour list, warm-started from the last
-    /// pressure (the default until the two-level one was measured faster, see the README).
+    /// pressure (the default until the two-level one was measured faster: docs/notes/isph-ppe-preconditioner.md).
     JacobiPcg,
     /// faer's sparse Cholesky factorisation of the assembled matrix, every step.
     FaerCholesky,
@@ -35,12 +35,12 @@ pub enum PpeSolver {
     /// Conjugate gradient preconditioned by Jacobi plus the same coarse correction, added
     /// (`D⁻¹ + P A_c⁻¹ Pᵀ`), warm-started from the last pressure: more iterations than the cycle,
     /// a third of its products with the matrix each (the fastest measured, before and after a dam
-    /// break's impact: README section "ISPH: a two-level preconditioner for the PPE").
+    /// break's impact: docs/notes/isph-ppe-preconditioner.md).
     #[default]
     AdditiveTwoLevelPcg,
 }
 
-/// The pressure gradient of ISPH's momentum equation (issue 12; see
+/// The pressure gradient of ISPH's momentum equation (see
 /// `fluid_solver::isph::operators::pressure_gradient` for both equations and the measurements).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, JsonSchema, Serialize)]
 #[serde(rename_all = "kebab-case")]
@@ -52,11 +52,11 @@ pub enum PressureGradient {
     /// The uncorrected symmetric form `Σ_j V (p_i + p_j) ∇W_ij` (walls `V (2p_i + Δp_ij) ∇W_ij`),
     /// whose pair term is also the walls' load; with a body neighbour the pair term is the body's
     /// face-law share: momentum closes pair by pair. Accepted only with `influence_radius` in
-    /// [`SYMMETRIC_SUPPORT`]; measured to hold the hydrostatic tank at 2.0 (README).
+    /// [`SYMMETRIC_SUPPORT`]; measured to hold the hydrostatic tank at 2.0 (docs/notes/isph-symmetric-gradient-and-shifting.md).
     Symmetric,
 }
 
-/// Particle shifting of ISPH (issue 12; `fluid_solver::isph::shifting` has the equation, the
+/// Particle shifting of ISPH (`fluid_solver::isph::shifting` has the equation, the
 /// free-surface and wall treatment and the measurements).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, JsonSchema, Serialize)]
 #[serde(rename_all = "kebab-case")]
@@ -67,7 +67,7 @@ pub enum Shifting {
     /// Lind, Xu, Stansby & Rogers (2012): `δr = −D Σ_j V ∇W_ij` after each position update, with
     /// `D = A h |u|_max Δt` after Skillen et al. (2013) (A = `shifting_coefficient`); the water
     /// in a resolved body's support is not shifted. Smoothest with `pressure_gradient =
-    /// "symmetric"` at `influence_radius = 2.0` (README).
+    /// "symmetric"` at `influence_radius = 2.0` (docs/notes/isph-settings-at-a-glance.md).
     Lind,
 }
 
@@ -153,8 +153,7 @@ fn default_ppe_max_iterations() -> u32 {
 }
 /// A in `D = A h |u|_max Δt` (Skillen, Lind, Stansby & Rogers 2013, Comput. Methods Appl. Mech.
 /// Engrg. 265, 163–173, who used A = 2 with each particle's own |u|): measured on the L/20 dam
-/// break with the symmetric gradient at 2.0 Δs (README, "ISPH: shifting with the symmetric
-/// gradient"), A = 2 and 6 were stopped by the detector (at 0.29 and 0.06 s), 1 and 0.5 ran to
+/// break with the symmetric gradient at 2.0 Δs (docs/notes/isph-symmetric-gradient-and-shifting.md), A = 2 and 6 were stopped by the detector (at 0.29 and 0.06 s), 1 and 0.5 ran to
 /// 0.6 s with the same probe roughness; 0.5 keeps a margin of 4 from the first failure.
 fn default_shifting_coefficient() -> f64 {
     0.5

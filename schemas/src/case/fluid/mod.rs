@@ -88,7 +88,7 @@ pub enum FluidBackend {
     /// The CPU (rayon threads): every feature.
     #[default]
     Cpu,
-    /// A GPU through wgpu compute shaders (Vulkan): E-MPS of a fluid-only case; see
+    /// A GPU through wgpu compute shaders (Vulkan): E-MPS, alone or coupled; see
     /// [`FluidConfig::gpu_support`] for what it refuses.
     Gpu,
 }
@@ -135,7 +135,7 @@ pub struct FluidConfig {
     #[serde(default)]
     pub max_velocity: Option<f64>,
     /// E-MPS on the CPU only: α of Monaghan's artificial viscosity between fluid particles [–]
-    /// (issue 15: pressure noise at wall sensors); 0 is off, WCSPH codes use 0.01 … 0.1. See
+    /// (against pressure noise at wall sensors); 0 is off, WCSPH codes use 0.01 … 0.1. See
     /// `fluid-solver/src/emps/artificial_viscosity.rs`. Range: [0, 1].
     #[serde(default)]
     pub artificial_viscosity: f64,
@@ -370,7 +370,7 @@ impl FluidConfig {
 
     /// The section's E-MPS settings that ISPH does not use, one sentence each naming its key
     /// (runs print each as a `warning: ` line): a case written for E-MPS runs with ISPH when
-    /// `method = "isph"` is its only change (issue 12: one key selects the method), and says what
+    /// `method = "isph"` is its only change (one key selects the method), and says what
     /// it leaves unused. Empty for E-MPS.
     pub fn unused_by_method(&self) -> Vec<String> {
         let mut unused = Vec::new();
