@@ -120,8 +120,9 @@ fn civil_from_days(days: i64) -> (i64, u32, u32) {
     (year, month, day)
 }
 
-/// This machine in words: "N cores, CPU MODEL, M GiB" (the parts Linux's /proc tells).
-fn machine() -> String {
+/// This machine in words: "N cores, CPU MODEL, M GiB" (the parts Linux's /proc tells); what
+/// [`record`] fills in, for a test that names more (e.g. its GPU) before it.
+pub fn machine() -> String {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let mut parts = vec![format!("{cores} cores")];
     let cpuinfo = std::fs::read_to_string("/proc/cpuinfo").unwrap_or_default();
