@@ -54,10 +54,12 @@ pub fn assign<'a>(
         match claims[..] {
             [] => orphans.push(record),
             [(g, p)] => members[g].push((p, record)),
-            [(a, _), (b, _), ..] => return Err(format!(
+            [(a, _), (b, _), ..] => {
+                return Err(format!(
                 "record `{}` matches the groups `{}` and `{}`: make their patterns in groups.toml exclusive",
                 record.id, groups[a].title, groups[b].title
-            )),
+            ))
+            }
         }
     }
     let members = members
