@@ -1,7 +1,8 @@
 //! The coupler: the user's entry point. It starts the participants a case needs, runs the
 //! coupling windows (explicit, or implicit with acceleration), computes the interface laws
 //! once for both sides, keeps the action–reaction ledger, records every message, and replays
-//! recordings against one solver, and reports error against run time and stability.
+//! recordings against one solver, and reports error against run time and stability; and renders
+//! the validation page from the records the validation tests write.
 
 pub mod acceleration;
 pub mod checkpoint;
@@ -20,3 +21,4 @@ pub mod scheme;
 pub mod stability;
 pub mod stack;
 pub mod state;
+pub mod validation;

@@ -7,6 +7,7 @@ use coupler::estimate::{parse_size, Estimate};
 use coupler::replay::{replay, ReplayOptions};
 use coupler::report::{report, ReportOptions};
 use coupler::run::{default_output_folder, run, RunOptions};
+use coupler::validation::{validation, ValidationOptions};
 use schemas::case::error::check::short;
 use schemas::case::Case;
 use std::collections::BTreeMap;
@@ -103,8 +104,8 @@ enum Command {
     },
     #[command(after_help = AFTER_HELP)]
     /// Error against run time (work–precision) of each case's [report] ladders, or with
-    /// --stability its families of stiff and extreme runs; --readme puts the latest report into
-    /// the README.
+    /// --stability its families of stiff and extreme runs; --docs puts the latest report into
+    /// docs/validation.md's data (then run `coupler validation`).
     Report {
         /// Case files with [reference] and [report] sections.
         cases: Vec<PathBuf>,
@@ -120,10 +121,11 @@ enum Command {
         /// Timed runs after the warm-up (default: each case's report.repeats).
         #[arg(long)]
         repeats: Option<u32>,
-        /// Put the latest report of --out into this README's marked sections (with --full: the
-        /// sections of the full report); runs nothing.
-        #[arg(long, value_name = "README", num_args = 0..=1, default_missing_value = "README.md")]
-        readme: Option<PathBuf>,
+        /// Put the latest report of --out into this docs folder: its Markdown as
+        /// validation/report-{accuracy,stability}.md (with --full: …-full.md), its figures into
+        /// img/report/ (img/report-full/); runs nothing.
+        #[arg(long, value_name = "DOCS", num_args = 0..=1, default_missing_value = "docs")]
+        docs: Option<PathBuf>,
         /// With --stability: only the family of this name (repeatable).
         #[arg(long)]
         family: Vec<String>,
@@ -132,6 +134,17 @@ enum Command {
     /// type, unit, default, allowed values and the method or backend that reads it, generated
     /// from the types the parser uses (docs/guide/case-reference.md is this output).
     Reference,
+    /// Render docs/validation.md from the validation records (docs/validation/records/) and the
+    /// report's fragments, and the README's summary table between its marker comments; with
+    /// --collect, first merge freshly written records (a test's record replaces its id's older one).
+    Validation {
+        /// Merge the records in this folder first (the tests write them to out/validation).
+        #[arg(long, value_name = "DIR")]
+        collect: Option<PathBuf>,
+        /// The workspace root, holding docs/ and README.md.
+        #[arg(long, default_value = ".")]
+        root: PathBuf,
+    },
     /// Plot every column of a CSV file against its first column into a PNG (what was drawn
     /// goes beside it as .plot.csv), e.g. the prism sweep's force-per-width.csv.
     Plot {
@@ -207,7 +220,7 @@ fn main() -> ExitCode {
             full,
             stability,
             repeats,
-            readme,
+            docs,
             family,
         } => report(&ReportOptions {
             cases,
@@ -215,10 +228,11 @@ fn main() -> ExitCode {
             full,
             stability,
             repeats,
-            readme,
+            docs,
             families: family,
         }),
         Command::Reference => print_text(&schemas::case::key_reference::markdown()),
+        Command::Validation { collect, root } => validation(&ValidationOptions { root, collect }),
         Command::Plot {
             csv,
             png,

@@ -6,6 +6,7 @@ use coupler::laws::drag::{Drag, DragSettings};
 use coupler::laws::{Instant, Law};
 use schemas::case::drag::square_prism_drag;
 use schemas::message::{Fields, Geometry};
+use schemas::validation::{record, Record};
 use schemas::F64s;
 
 const RHO: f64 = 1000.0;
@@ -79,6 +80,30 @@ fn close(a: f64, b: f64, scale: f64) -> bool {
     (a - b).abs() <= ROUND_OFF * scale
 }
 
+/// Records the drag law's `got` against the hand evaluation `expected` (`what`, of S2's `equation`),
+/// relative to `scale` as [`close`] judges it, for the test `test` on the member `case`.
+fn record_against_hand(
+    id: &str,
+    (what, equation): (&str, &str),
+    (got, expected, scale): (f64, f64, f64),
+    case: &str,
+    test: &str,
+) {
+    record(Record {
+        id: format!("drag-law-{id}"),
+        capability: "unresolved drag law (S2-18 … S2-24)".into(),
+        reference: format!("{what} evaluated by hand: {equation}"),
+        case: case.into(),
+        resolution: "one 2 × 2 mm member cut into sub-members of d = 5 mm, hand-made fluid samples".into(),
+        measure: format!("|law − hand| / scale ({what})"),
+        value: (got - expected).abs() / scale,
+        bound: Some(ROUND_OFF),
+        bound_source: "round-off: a few dozen additions of doubles".into(),
+        source: format!("coupler/tests/drag_law.rs::{test}"),
+        ..Default::default()
+    });
+}
+
 #[test]
 fn a_member_across_a_uniform_stream_takes_half_cd_rho_v2_d_l_and_buoyancy() {
     let length = 0.1;
@@ -89,6 +114,30 @@ fn a_member_across_a_uniform_stream_takes_half_cd_rho_v2_d_l_and_buoyancy() {
     let (to_fluid, _, fs, ff) = apply(&law, &structure, &fluid);
     let drag = 0.5 * 2.1 * RHO * v * v * WIDTH * length;
     let buoyancy = RHO * G * AREA * length;
+    let test = "a_member_across_a_uniform_stream_takes_half_cd_rho_v2_d_l_and_buoyancy";
+    let case = "0.1 m member across a uniform 1.7 m/s stream, fully wet";
+    record_against_hand(
+        "cross-stream",
+        ("drag across the member", "½ C_D ρ v² D l, C_D = 2.1 face-on"),
+        (fs[0], drag, drag),
+        case,
+        test,
+    );
+    record_against_hand(
+        "buoyancy",
+        ("buoyancy", "ρ g A l"),
+        (fs[2], buoyancy, drag),
+        case,
+        test,
+    );
+    let reaction = (0..3).map(|c| (fs[c] + ff[c]).abs()).fold(0.0, f64::max);
+    record_against_hand(
+        "reaction",
+        ("the fluid's reaction", "−f, Newton's third law"),
+        (reaction, 0.0, drag),
+        case,
+        test,
+    );
     assert!(
         close(fs[0], drag, drag),
         "drag {} vs ½ C_D ρ v² D l = {drag}",
@@ -136,6 +185,16 @@ fn a_member_along_the_flow_takes_no_normal_drag_and_axial_drag_when_asked() {
     let (law, structure) = member([0.0, 0.0, 0.0], [length, 0.0, 0.0], settings(true, None));
     let (_, _, fs, _) = apply(&law, &structure, &fluid);
     let axial = 0.5 * 2.1 * RHO * v * v * WIDTH * length;
+    record_against_hand(
+        "axial",
+        (
+            "axial drag",
+            "½ C_D ρ v² D l along the axis (S2 §6: the same C_D as across)",
+        ),
+        (fs[0], axial, axial),
+        "0.05 m member along a uniform 2 m/s stream, axial_drag = true",
+        "a_member_along_the_flow_takes_no_normal_drag_and_axial_drag_when_asked",
+    );
     assert!(close(fs[0], axial, axial), "axial drag {} vs {axial}", fs[0]);
 }
 
@@ -151,6 +210,16 @@ fn a_member_above_the_water_takes_nothing_and_a_half_submerged_one_takes_s2_20s_
     // S2-20: l = d (λ − 0.5) / 0.4; λ = 0.7 gives half of each piece.
     let (_, _, fs, _) = apply(&law, &structure, &uniform_flow(&law, [v, 0.0, 0.0], 0.7));
     let full = 0.5 * 2.1 * RHO * v * v * WIDTH * length;
+    record_against_hand(
+        "half-submerged",
+        (
+            "the wet share of the drag",
+            "S2-20: l = d (λ − 0.5) / 0.4, half of each piece at λ = 0.7",
+        ),
+        (fs[0], 0.5 * full, full),
+        "0.04 m member across a uniform 1 m/s stream, λ_min = 0.7 at every sample",
+        "a_member_above_the_water_takes_nothing_and_a_half_submerged_one_takes_s2_20s_share",
+    );
     assert!(close(fs[0], 0.5 * full, full), "{} vs half of {full}", fs[0]);
     assert!(close(fs[2], 0.5 * RHO * G * AREA * length, full));
 }
@@ -170,6 +239,16 @@ fn node_shares_follow_s2_22_and_s2_23() {
     let (_, to_structure, fs, _) = apply(&law, &structure, &fluid);
     let f = &to_structure.node_force;
     let xi: f64 = 2.0 / 3.0;
+    record_against_hand(
+        "node-shares",
+        (
+            "node 1's share of the force",
+            "S2-22: ½ (1 − ξ) at ξ = 2/3 for the only wet piece",
+        ),
+        (f[0], 0.5 * (1.0 - xi) * fs[0], fs[0]),
+        "15 mm member, only its top 5 mm piece wet",
+        "node_shares_follow_s2_22_and_s2_23",
+    );
     assert!(
         close(f[0], 0.5 * (1.0 - xi) * fs[0], fs[0]),
         "S2-22: {} vs {}",
@@ -229,6 +308,13 @@ fn a_member_carried_with_the_flow_takes_drag_on_the_relative_velocity() {
     structure.node_velocity = F64s(vec![0.5, 0.0, 0.0, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 0.0, 0.0]);
     let (_, _, fs, _) = apply(&law, &structure, &uniform_flow(&law, [2.0, 0.0, 0.0], 1.0));
     let expected = 0.5 * 2.1 * RHO * 1.5 * 1.5 * WIDTH * 0.01;
+    record_against_hand(
+        "relative-velocity",
+        ("drag on the relative velocity", "½ C_D ρ |v − v_member|² D l"),
+        (fs[0], expected, expected),
+        "10 mm member moving at 0.5 m/s in a 2 m/s stream",
+        "a_member_carried_with_the_flow_takes_drag_on_the_relative_velocity",
+    );
     assert!(close(fs[0], expected, expected), "{} vs {expected}", fs[0]);
 }
 
@@ -246,6 +332,16 @@ fn the_attack_angle_picks_the_table_row() {
         let (_, _, fs, _) = apply(&law, &structure, &uniform_flow(&law, [1.0, 0.0, 0.0], 1.0));
         let folded = deg.min(90.0 - deg).to_radians();
         let expected = 0.5 * cd * RHO * WIDTH * (folded.cos() + folded.sin()) * 0.005;
+        record_against_hand(
+            &format!("attack-angle-{deg}"),
+            (
+                "drag at an attack angle",
+                "C_D from the square-prism table on S2-18's projected width D = side (cos α + sin α)",
+            ),
+            (fs[0], expected, expected),
+            &format!("5 mm member, section face normal at {deg}° to a 1 m/s stream"),
+            "the_attack_angle_picks_the_table_row",
+        );
         assert!(
             close(fs[0], expected, expected),
             "{deg}°: {} vs {expected}",

@@ -5,7 +5,8 @@
 mod common;
 mod front_common;
 
-use front_common::FrontErrors;
+use front_common::{FrontErrors, FrontRecord};
+use std::time::Instant;
 
 /// Runs the case at spacing `ds` (slab `depth` deep) with time step `dt` until the front reaches
 /// the far wall, and compares the front with the experiments.
@@ -23,11 +24,27 @@ fn front_errors(ds: f64, depth: f64, dt: f64) -> FrontErrors {
 fn surge_front_follows_the_experiments() {
     // CI size: Δs = L/10 = 0.0146 m, a slab 4 particles deep: 10 × 4 × 20 = 800 fluid particles.
     // c = √(2 g 2L)/0.2 = 12.0 m/s, Δt = 6e-4 s (c Δt/Δs = 0.49).
+    let started = Instant::now();
     let e = front_errors(0.0146, 0.0584, 6.0e-4);
     // Bounds: the RMS measured at this resolution: 0.22 against Koshizuka & Oka (the simulated
     // front runs ahead of theirs, as in most particle simulations of this experiment) and
     // 0.022 against Martin & Moyce (shift −0.20), plus about 50 %. The data are read off
     // figures (±0.05 in Z); a column 10 particles wide resolves the toe to Δs/L = 0.1.
+    front_common::record(
+        &e,
+        &FrontRecord {
+            method: "emps",
+            scale: "l10",
+            capability: "E-MPS dam-break front",
+            resolution: "E-MPS, Δs = L/10 = 0.0146 m, slab 4 particles deep (800 fluid), Δt = 6e-4 s",
+            source: "fluid-solver/tests/dam_break.rs::surge_front_follows_the_experiments",
+            bounds: [BOUND_KO, BOUND_MM],
+            bound_source: "the RMS measured at this resolution (0.22, 0.022) plus about 50 %; the data are \
+                           read off figures (±0.05 in Z)",
+            run_time_s: started.elapsed().as_secs_f64(),
+            machine: String::new(),
+        },
+    );
     assert!(
         e.koshizuka_oka < BOUND_KO,
         "RMS against Koshizuka & Oka {} (bound {BOUND_KO})",
@@ -50,8 +67,23 @@ fn surge_front_follows_the_experiments() {
 #[test]
 #[ignore]
 fn surge_front_at_the_case_resolution() {
+    let started = Instant::now();
     let e = front_errors(0.0073, 0.073, 3.0e-4);
     // Measured 0.27 and 0.013 (shift −0.24): bounds with a margin of about 50 %.
+    front_common::record(
+        &e,
+        &FrontRecord {
+            method: "emps",
+            scale: "l20",
+            capability: "E-MPS dam-break front",
+            resolution: "E-MPS, Δs = L/20 = 0.0073 m, slab 10 particles deep (8 000 fluid), Δt = 3e-4 s",
+            source: "fluid-solver/tests/dam_break.rs::surge_front_at_the_case_resolution",
+            bounds: [0.41, 0.03],
+            bound_source: "the RMS measured at this resolution (0.27, 0.013) with a margin of about 50 %",
+            run_time_s: started.elapsed().as_secs_f64(),
+            machine: String::new(),
+        },
+    );
     assert!(
         e.koshizuka_oka < 0.41,
         "RMS against Koshizuka & Oka {}",

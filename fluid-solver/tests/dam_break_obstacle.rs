@@ -10,7 +10,9 @@
 
 use schemas::case::fluid::{FluidMethodName, IsphConfig, PressureGradient, Shifting};
 use schemas::case::Case;
+use schemas::validation::{record, Record};
 use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 #[test]
 fn the_ci_twin_runs_to_its_end_with_sensors_and_gauges() {
@@ -43,7 +45,7 @@ fn the_ci_twin_with_the_symmetric_isph_gradient_presses_the_box_face() {
         shifting: Shifting::Lind,
         ..IsphConfig::default()
     };
-    let (header, rows, out) = twin_table(FluidMethodName::Isph, Some(settings));
+    let (header, rows, out, _) = twin_table(FluidMethodName::Isph, Some(settings));
     let _ = std::fs::remove_dir_all(&out);
     assert_the_face_is_pressed("ISPH symmetric + shifting", &header, &rows);
 }
@@ -64,11 +66,11 @@ fn assert_the_face_is_pressed(label: &str, header: &[String], rows: &[Vec<f64>])
 }
 
 /// Runs the CI twin with `method` (and ISPH `settings`, or the default) to its end; returns the
-/// probe table and the output folder.
+/// probe table, the output folder and the run's wall time [s].
 fn twin_table(
     method: FluidMethodName,
     settings: Option<IsphConfig>,
-) -> (Vec<String>, Vec<Vec<f64>>, PathBuf) {
+) -> (Vec<String>, Vec<Vec<f64>>, PathBuf, f64) {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../cases/dam-break-obstacle/case-ci.toml");
     let mut case = Case::load(&path).unwrap_or_else(|e| panic!("{e}"));
     for (name, cfg) in case.fluid.iter_mut() {
@@ -84,17 +86,19 @@ fn twin_table(
         "dam-break-obstacle-ci-{method:?}-{form:?}-{}",
         std::process::id()
     ));
+    let started = Instant::now();
     let summary = fluid_solver::run::run_case(&case, &out, false).unwrap_or_else(|e| panic!("{e}"));
+    let run_time_s = started.elapsed().as_secs_f64();
     println!("{summary}");
     assert!((summary.time - case.info.end_time).abs() < 1e-9);
     let (header, rows) = table(&out.join("tank_probes.csv"));
-    (header, rows, out)
+    (header, rows, out, run_time_s)
 }
 
 /// Runs the CI twin with `method` and checks what both methods must give (module doc); returns
 /// the probe table.
 fn run_twin(method: FluidMethodName) -> (Vec<String>, Vec<Vec<f64>>) {
-    let (header, rows, out) = twin_table(method, None);
+    let (header, rows, out, run_time_s) = twin_table(method, None);
     let col = |name: &str| column(&header, name);
     let (t, front, p1, h4) = (col("time"), col("front"), col("P1"), col("H4"));
     let (ds, g, h0): (f64, f64, f64) = (0.04, 9.8, 0.55);
@@ -148,7 +152,7 @@ fn run_twin(method: FluidMethodName) -> (Vec<String>, Vec<Vec<f64>>) {
         "P1-raw: step-to-step RMS change {rms:.0} Pa over {} steps after arrival, raw peak {raw_peak:.0} Pa (5 ms filter: {peak:.0} Pa)",
         after.len()
     );
-    against_the_experiment(&rows, &col, ds);
+    against_the_experiment(&rows, &col, ds, twin_record(method, run_time_s));
     let _ = std::fs::remove_dir_all(&out);
     (header, rows)
 }
@@ -209,7 +213,39 @@ fn filtered(rows: &[Vec<f64>], t: usize, c: usize, window: f64) -> Vec<Vec<f64>>
         .collect()
 }
 
-fn against_the_experiment(rows: &[Vec<f64>], col: &dyn Fn(&str) -> usize, ds: f64) {
+/// What the records of `against_the_experiment` share for `method`: the scene, the run (of
+/// `run_time_s`) and its test; and the method's id tag and name.
+fn twin_record(method: FluidMethodName, run_time_s: f64) -> (Record, &'static str, &'static str) {
+    let (tag, name, test) = match method {
+        FluidMethodName::Isph => (
+            "isph",
+            "ISPH",
+            "the_ci_twin_runs_with_isph_and_the_box_face_is_pressed_where_the_water_runs_up",
+        ),
+        _ => (
+            "emps",
+            "E-MPS",
+            "the_ci_twin_runs_to_its_end_with_sensors_and_gauges",
+        ),
+    };
+    let row = Record {
+        reference: "MARIN experiment (Kleefsman et al. 2005, SPHERIC test 2), cases/dam-break-obstacle/experiment.csv"
+            .into(),
+        case: "cases/dam-break-obstacle/case-ci.toml: dam break against a box, 0 … 0.8 s".into(),
+        resolution: format!("{name}, Δs = 0.04 m"),
+        source: format!("fluid-solver/tests/dam_break_obstacle.rs::{test}"),
+        run_time_s,
+        ..Default::default()
+    };
+    (row, tag, name)
+}
+
+fn against_the_experiment(
+    rows: &[Vec<f64>],
+    col: &dyn Fn(&str) -> usize,
+    ds: f64,
+    (row, tag, name): (Record, &str, &str),
+) {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../cases/dam-break-obstacle/experiment.csv");
     let (header, exp) = table(&path);
     let ecol = |name: &str| column(&header, name);
@@ -223,6 +259,17 @@ fn against_the_experiment(rows: &[Vec<f64>], col: &dyn Fn(&str) -> usize, ds: f6
         let measured = first_above(&exp, et, ecol(gauge), 0.02).unwrap_or(f64::NAN);
         let computed = first_above(rows, t, col(gauge), 0.02).unwrap_or(f64::NAN);
         println!("{gauge} wets at {computed:.3} s, in the experiment at {measured:.3} s");
+        record(Record {
+            id: format!("{tag}-marin-ci-{}-wetting", gauge.to_lowercase()),
+            capability: format!("{name} dam-break front against a box: gauge {gauge} wets"),
+            measure: format!("|time {gauge} first reads > 2 cm − the experiment's|"),
+            value: (computed - measured).abs(),
+            bound: Some(tolerance),
+            bound_source: "two spacings of travel at the experiment's mean front speed to H2 (2.7 m/s)"
+                .into(),
+            unit: "s".into(),
+            ..row.clone()
+        });
         assert!(
             (computed - measured).abs() <= tolerance,
             "{gauge} wets at {computed:.3} s, the experiment at {measured:.3} s (tolerance {tolerance:.3} s)"
@@ -245,6 +292,26 @@ fn against_the_experiment(rows: &[Vec<f64>], col: &dyn Fn(&str) -> usize, ds: f6
         "P1, mean over 0.6–0.8 s: {computed:.0} Pa, experiment {measured:.0} Pa ({:+.1} %); 5 ms peak {peak:.0} Pa, experiment {peak_exp:.0} Pa (not bounded: E-MPS impact peaks run high)",
         100.0 * (computed / measured - 1.0)
     );
+    record(Record {
+        id: format!("{tag}-marin-ci-p1-slow-load"),
+        capability: format!("{name} pressure on a box after the impact: sensor P1"),
+        measure: "mean of the 5 ms-filtered P1 over 0.6 … 0.8 s / the experiment's, filtered alike − 1"
+            .into(),
+        value: 100.0 * (computed / measured - 1.0),
+        bound: Some(20.0),
+        bound_source: "twice the change between Δs = 0.04 and 0.02 m on the full case (+1.6 %, +12 %)".into(),
+        unit: "%".into(),
+        ..row.clone()
+    });
+    record(Record {
+        id: format!("{tag}-marin-ci-p1-peak"),
+        capability: format!("{name} impact pressure on a box: sensor P1's peak"),
+        measure: "largest 5 ms-filtered P1 before 0.8 s / the experiment's, filtered alike".into(),
+        value: peak / peak_exp,
+        bound: None,
+        bound_source: "E-MPS impact peaks run high (cases/dam-break-obstacle/README.md)".into(),
+        ..row
+    });
     assert!(
         (computed / measured - 1.0).abs() <= 0.2,
         "P1's mean over 0.6–0.8 s is {computed:.0} Pa, the experiment's {measured:.0} Pa (tolerance 20 %)"

@@ -10,7 +10,43 @@ mod gpu_common;
 use bodies_common::tank_with_body;
 use fluid_solver::FluidSolver;
 use schemas::case::fluid::{Aabb, FluidConfig};
+use schemas::validation::{record, Record};
 use std::time::Instant;
+
+/// Records the worst load differences of the test `test` on the box `scene`.
+fn record_loads(test: &str, tag: &str, scene: &str, (force, moment): (f64, f64)) {
+    let machine = gpu_common::device()
+        .map(|d| format!("{}; {}", d.description(), schemas::validation::machine()))
+        .unwrap_or_default();
+    for (what, measure, value) in [
+        (
+            "force",
+            "largest |F_gpu − F_cpu| per component and step / ρgV",
+            force,
+        ),
+        (
+            "moment",
+            "largest |M_gpu − M_cpu| per component and step / (ρgV · 0.06 m)",
+            moment,
+        ),
+    ] {
+        record(Record {
+            id: format!("gpu-body-load-vs-cpu-{what}-{tag}"),
+            capability: "E-MPS loads on a resolved body on the GPU (f32)".into(),
+            reference: "the CPU's f64 loads, each step handed the same pose and velocity".into(),
+            case: format!("a 12 cm box 0.16 m under water 0.3 m deep, {scene}, 10 steps"),
+            resolution: "E-MPS, Δs = 0.02 m, Δt = 8e-4 s".into(),
+            measure: measure.into(),
+            value,
+            bound: Some(LOAD_BOUND),
+            bound_source: "f32 rounding through the equation of state and the pair sums, margin about 14 (gpu_bodies.rs)"
+                .into(),
+            source: format!("fluid-solver/tests/gpu_bodies.rs::{test}"),
+            machine: machine.clone(),
+            ..Default::default()
+        });
+    }
+}
 
 /// The CPU buoyancy test's scene: Δs = 0.02 m, a 0.28 × 0.28 m tank with water 0.3 m deep, a
 /// 12 × 12 × 12 cm box centred 0.16 m below the surface; Δt = 8e-4 s.
@@ -139,6 +175,12 @@ fn gpu_body_loads_match_cpu_on_a_fixed_box_in_a_settling_tank() {
     let Some((force, moment)) = worst_difference(&cfg, buoyancy, 10, &pose, &[0.0; 6], 0.0) else {
         return;
     };
+    record_loads(
+        "gpu_body_loads_match_cpu_on_a_fixed_box_in_a_settling_tank",
+        "fixed-box",
+        "held fixed in the settling tank",
+        (force, moment),
+    );
     assert!(
         force < LOAD_BOUND,
         "force differs by {force:e} of ρgV (bound {LOAD_BOUND:e})"
@@ -158,6 +200,12 @@ fn gpu_body_loads_match_cpu_on_a_moving_turned_box_with_viscosity() {
     let Some((force, moment)) = worst_difference(&cfg, buoyancy, 10, &pose, &velocity, cfg.time_step) else {
         return;
     };
+    record_loads(
+        "gpu_body_loads_match_cpu_on_a_moving_turned_box_with_viscosity",
+        "moving-turned-box",
+        "turned by 5°, moving and spinning, viscous",
+        (force, moment),
+    );
     assert!(
         force < LOAD_BOUND,
         "force differs by {force:e} of ρgV (bound {LOAD_BOUND:e})"
@@ -242,9 +290,10 @@ fn settled_mean_load(
 #[test]
 #[ignore]
 fn gpu_and_cpu_rho_g_v_ensembles_agree() {
-    if gpu_common::device().is_none() {
+    let Some(gpu_name) = gpu_common::device().map(|d| d.description()) else {
         return;
-    }
+    };
+    let started = Instant::now();
     let (cfg, buoyancy) = scene();
     let starts: Vec<Option<usize>> = std::iter::once(None)
         .chain((1..8).map(|k| Some(97 * k)))
@@ -277,6 +326,22 @@ fn gpu_and_cpu_rho_g_v_ensembles_agree() {
         100.0 * (gpu.0 - cpu.0),
         100.0 * standard_error
     );
+    record(Record {
+        id: "gpu-body-submerged-box-load-ensemble-vs-cpu".into(),
+        capability: "E-MPS settled load on a held box on the GPU (f32)".into(),
+        reference: "the CPU's ensemble from the same 8 starts".into(),
+        case: "a 12 cm cube held 0.16 m under still water, 0.3 s mean after 1 s; 8 starts (one fluid particle moved by 1e-7 m)"
+            .into(),
+        resolution: "E-MPS, Δs = 0.02 m, Δt = 8e-4 s".into(),
+        measure: "|GPU mean − CPU mean| / the standard error of their difference (loads / ρgV)".into(),
+        value: (gpu.0 - cpu.0).abs() / standard_error,
+        bound: Some(3.0),
+        bound_source: "3 standard errors".into(),
+        source: "fluid-solver/tests/gpu_bodies.rs::gpu_and_cpu_rho_g_v_ensembles_agree".into(),
+        run_time_s: started.elapsed().as_secs_f64(),
+        machine: format!("{gpu_name}; {}", schemas::validation::machine()),
+        ..Default::default()
+    });
     assert!(
         (gpu.0 - cpu.0).abs() <= 3.0 * standard_error,
         "the GPU's mean differs from the CPU's by more than 3 standard errors"

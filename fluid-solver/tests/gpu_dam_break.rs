@@ -8,6 +8,7 @@ mod gpu_common;
 use fluid_solver::probes;
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{FluidConfig, ProbeConfig, ProbeKind};
+use schemas::validation::{record, Record};
 use std::collections::HashMap;
 use std::time::Instant;
 
@@ -35,11 +36,15 @@ struct Comparison {
     /// Impulse of the walls on the fluid, CPU and GPU [N s].
     impulse_cpu: [f64; 3],
     impulse_gpu: [f64; 3],
+    /// The GPU in words, and the wall time of both runs [s].
+    device: String,
+    run_time_s: f64,
 }
 
 /// Runs `cfg` for `steps` steps on the CPU and on the GPU.
 fn compare(cfg: &FluidConfig, steps: usize) -> Option<Comparison> {
     let dev = gpu_common::device()?;
+    let device = dev.description();
     let cfg = cfg.clone();
     let mut cpu = FluidSolver::new(&cfg);
     let mut gpu = FluidSolver::new(&cfg);
@@ -86,6 +91,8 @@ fn compare(cfg: &FluidConfig, steps: usize) -> Option<Comparison> {
         front_gpu: fg,
         impulse_cpu: ic,
         impulse_gpu: ig,
+        device,
+        run_time_s: t_cpu + t_gpu,
     })
 }
 
@@ -114,11 +121,60 @@ const FRONT_BOUND: f64 = 0.01;
 /// component leaves a margin of about 10.
 const IMPULSE_BOUND: f64 = 1.0e-3;
 
-fn check(cfg: &FluidConfig, steps: usize) {
+/// Runs [`compare`] for the test `test` (its scene in words: `scene`, id tag `tag`) and checks it.
+fn check(cfg: &FluidConfig, steps: usize, (test, tag, scene): (&str, &str, &str)) {
     let Some(c) = compare(cfg, steps) else {
         return;
     };
     let (worst, fc, fg) = (c.worst, c.front_cpu, c.front_gpu);
+    let scale = c.impulse_cpu.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let impulse = (0..3).fold(0.0f64, |m, a| m.max((c.impulse_gpu[a] - c.impulse_cpu[a]).abs()));
+    let row = Record {
+        capability: "E-MPS step on the GPU (f32)".into(),
+        reference: "the CPU's f64 step from the same start".into(),
+        case: format!("cases/dam-break-tank (seed's tank), {scene}, {steps} steps of 5e-4 s"),
+        resolution: "E-MPS, Δs = 0.02 m".into(),
+        source: format!("fluid-solver/tests/gpu_dam_break.rs::{test}"),
+        run_time_s: c.run_time_s,
+        machine: format!("{}; {}", c.device, schemas::validation::machine()),
+        ..Default::default()
+    };
+    for (what, measure, value, bound, bound_source, unit) in [
+        (
+            "positions",
+            "largest |r_gpu − r_cpu| over the fluid particles",
+            worst,
+            POSITION_BOUND,
+            "f32 rounding carried through the equation of state over the steps (gpu_dam_break.rs)",
+            "m",
+        ),
+        (
+            "front",
+            "|front_gpu − front_cpu| / front_cpu",
+            (fg - fc).abs() / fc,
+            FRONT_BOUND,
+            "the issue's bound on the surge front",
+            "",
+        ),
+        (
+            "wall-impulse",
+            "largest |impulse_gpu − impulse_cpu| of the walls / the largest component",
+            impulse / scale,
+            IMPULSE_BOUND,
+            "f32 rounding of the pair sums, with a margin of about 10 (gpu_dam_break.rs)",
+            "",
+        ),
+    ] {
+        record(Record {
+            id: format!("gpu-dam-break-vs-cpu-{what}-{tag}"),
+            measure: measure.into(),
+            value,
+            bound: Some(bound),
+            bound_source: bound_source.into(),
+            unit: unit.into(),
+            ..row.clone()
+        });
+    }
     assert!(
         worst < POSITION_BOUND,
         "a fluid particle is {worst:.3e} m from its CPU position (bound {POSITION_BOUND:e} m)"
@@ -142,7 +198,15 @@ fn check(cfg: &FluidConfig, steps: usize) {
 /// particles, 9 595 in all (about 20 s on lavapipe on this shared 2-core machine).
 #[test]
 fn gpu_step_matches_cpu_step_on_the_dam_break_slab() {
-    check(&tank(0.06, 0.34), 200);
+    check(
+        &tank(0.06, 0.34),
+        200,
+        (
+            "gpu_step_matches_cpu_step_on_the_dam_break_slab",
+            "slab",
+            "a slab 0.06 m deep (675 fluid, 9 595 particles)",
+        ),
+    );
 }
 
 /// The viscous term on (S1-4 on the GPU, with the walls' no-slip force): the same slab with a
@@ -153,7 +217,15 @@ fn gpu_viscous_step_matches_cpu_step() {
     cfg.viscosity_term = true;
     cfg.viscosity = 0.05;
     cfg.validate("fluid.tank").unwrap_or_else(|e| panic!("{e:?}"));
-    check(&cfg, 30);
+    check(
+        &cfg,
+        30,
+        (
+            "gpu_viscous_step_matches_cpu_step",
+            "viscous-slab",
+            "a slab 0.06 m deep, viscous (ν = 0.05 m²/s)",
+        ),
+    );
 }
 
 /// The seed's tank at its full 0.45 m depth and 0.6 m height: 3 375 fluid particles, about
@@ -161,5 +233,13 @@ fn gpu_viscous_step_matches_cpu_step() {
 #[test]
 #[ignore]
 fn gpu_step_matches_cpu_step_on_the_full_dam_break_tank() {
-    check(&tank(0.45, 0.6), 200);
+    check(
+        &tank(0.45, 0.6),
+        200,
+        (
+            "gpu_step_matches_cpu_step_on_the_full_dam_break_tank",
+            "full-tank",
+            "the full tank (3 375 fluid, about 40 000 particles)",
+        ),
+    );
 }

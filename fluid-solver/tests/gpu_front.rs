@@ -6,14 +6,16 @@ mod common;
 mod front_common;
 mod gpu_common;
 
+use front_common::FrontRecord;
 use schemas::case::fluid::FluidBackend;
+use std::time::Instant;
 
 #[test]
 #[ignore]
 fn surge_front_follows_the_experiments_on_the_gpu() {
-    if gpu_common::device().is_none() {
+    let Some(gpu) = gpu_common::device().map(|d| d.description()) else {
         return;
-    }
+    };
     let (_, mut cfg) = common::load_case("dam-break-koshizuka");
     cfg.spacing = 0.0146;
     cfg.tank.max = [0.584, 0.0584, 0.438];
@@ -21,8 +23,24 @@ fn surge_front_follows_the_experiments_on_the_gpu() {
     cfg.time_step = 6.0e-4;
     cfg.backend = FluidBackend::Gpu;
     cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
+    let started = Instant::now();
     let e = front_common::front_errors(&cfg, 0.005, 8);
     // dam_break.rs's bounds: RMS of Z 0.33 against Koshizuka & Oka, 0.05 against Martin & Moyce.
+    front_common::record(
+        &e,
+        &FrontRecord {
+            method: "gpu",
+            scale: "l10",
+            capability: "E-MPS dam-break front on the GPU (f32)",
+            resolution:
+                "E-MPS on the GPU, Δs = L/10 = 0.0146 m, slab 4 particles deep (800 fluid), Δt = 6e-4 s",
+            source: "fluid-solver/tests/gpu_front.rs::surge_front_follows_the_experiments_on_the_gpu",
+            bounds: [0.33, 0.05],
+            bound_source: "the CPU test's (dam_break.rs)",
+            run_time_s: started.elapsed().as_secs_f64(),
+            machine: format!("{gpu}; {}", schemas::validation::machine()),
+        },
+    );
     assert!(
         e.koshizuka_oka < 0.33,
         "RMS against Koshizuka & Oka {}",

@@ -4,7 +4,9 @@
 
 use fluid_solver::open_boundary::ParticleBalance;
 use fluid_solver::{FluidSolver, Kind};
+use schemas::case::fluid::FluidMethodName;
 use schemas::case::{Case, FluidConfig};
+use schemas::validation::{record, Record};
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
@@ -166,6 +168,7 @@ fn isph_channel() -> FluidConfig {
 /// Runs `cfg` (the channel) to `end` and checks the inflow rate over [1, end] s against
 /// u_in × area.
 fn inflow_rate_of(cfg: &FluidConfig, end: f64) -> FluidSolver {
+    let started = std::time::Instant::now();
     let mut s = FluidSolver::new(cfg);
     // The level is at its maximum from 0.4 s, and the water just inside the plane stops slowing
     // down by 0.9 s (it decelerates while the flow downstream builds up); measure over
@@ -199,8 +202,34 @@ fn inflow_rate_of(cfg: &FluidConfig, end: f64) -> FluidSolver {
         "u_in A = {INFLOW_RATE:.5} m³/s; particles through the plane {counted:.5} m³/s; velocity flux inside the plane {carried:.5} m³/s"
     );
     // Tolerance 2 %: the requirement for the inflow rate.
+    let run_time_s = started.elapsed().as_secs_f64();
+    let (method, name, test) = match cfg.method {
+        FluidMethodName::Isph => ("isph", "ISPH", "inflow_rate_matches_u_in_times_area_with_isph"),
+        _ => ("emps", "E-MPS", "inflow_rate_matches_u_in_times_area"),
+    };
     for (what, q) in [("counted", counted), ("carried", carried)] {
         let err = (q - INFLOW_RATE).abs() / INFLOW_RATE;
+        record(Record {
+            id: format!("open-boundary-{method}-inflow-{what}"),
+            capability: format!("{name} inflow plane"),
+            reference: "u_in × level × width (the inflow's prescribed rate)".into(),
+            case: "a dry channel 3.0 × 0.5 × 0.6 m fed at u_in = 1 m/s up to 0.3 m, outflow behind x = 2.5 m"
+                .into(),
+            resolution: format!("{name}, Δs = 0.05 m"),
+            measure: match what {
+                "counted" => {
+                    format!("|rate of particles entering through the plane / (u_in A) − 1| over [1, {end}] s")
+                }
+                _ => format!("|velocity flux just inside the plane / (u_in A) − 1| over [1, {end}] s"),
+            },
+            value: 100.0 * err,
+            bound: Some(2.0),
+            bound_source: "the issue's requirement for the inflow rate".into(),
+            unit: "%".into(),
+            source: format!("fluid-solver/tests/inflow_outflow.rs::{test}"),
+            run_time_s,
+            ..Default::default()
+        });
         assert!(
             err < 0.02,
             "{what} inflow rate {q} vs u_in A = {INFLOW_RATE}: {:.2} %",

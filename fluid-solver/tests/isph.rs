@@ -13,6 +13,8 @@ use fluid_solver::neighbour_search::CellGrid;
 use fluid_solver::particles::Particles;
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{FluidConfig, FluidMethodName, IsphConfig, PpeSolver, PressureGradient, Shifting};
+use schemas::validation::{record, Record};
+use std::time::Instant;
 
 /// The hydrostatic tank at CI size with ISPH: Δs = 0.02 m, water H = 0.3 m in a 0.2 × 0.2 m
 /// tank (1500 fluid particles), Δt = 2e-3 s (u Δt/Δs = 0.34, u = 2√(gH)).
@@ -75,10 +77,76 @@ fn isph_shifting_holds_the_tank() {
     tank_holds_at_0_2_s(&isph_tank_shifting());
 }
 
+/// The hydrostatic tank's two validation records (pressure, stillness) for the ISPH settings of
+/// `cfg` at time `t` of the 0.2 s test or (`long`) of the 1 s one, with their values and the
+/// run's wall time.
+fn record_tank(cfg: &FluidConfig, long: bool, t: f64, pressure: f64, fastest: f64, run_time_s: f64) {
+    let settings = cfg.isph.unwrap_or_default();
+    let (method, name, test) = match (settings.pressure_gradient, settings.shifting) {
+        (PressureGradient::CorrectedDifference, _) => (
+            "isph",
+            "ISPH (S2-8 gradient)",
+            [
+                "isph_pressure_is_rho_g_h_and_the_water_stays_still",
+                "isph_tank_stays_still_for_one_second",
+            ],
+        ),
+        (_, Shifting::Lind) => (
+            "isph-shifting",
+            "ISPH (symmetric gradient + shifting)",
+            [
+                "isph_shifting_holds_the_tank",
+                "isph_shifting_tank_stays_still_for_one_second",
+            ],
+        ),
+        _ => (
+            "isph-symmetric",
+            "ISPH (symmetric gradient)",
+            [
+                "isph_symmetric_gradient_holds_the_tank",
+                "isph_symmetric_gradient_tank_stays_still_for_one_second",
+            ],
+        ),
+    };
+    let (tag, test) = match long {
+        true => ("1s", test[1]),
+        false => ("0-2s", test[0]),
+    };
+    let row = Record {
+        case: format!("the hydrostatic tank: water 0.3 m deep in a 0.2 × 0.2 m tank, at t = {t} s"),
+        resolution: format!("{name}, Δs = 0.02 m (1 500 fluid), Δt = 2e-3 s"),
+        source: format!("fluid-solver/tests/isph.rs::{test}"),
+        run_time_s,
+        ..Default::default()
+    };
+    record(Record {
+        id: format!("{method}-hydrostatic-pressure-{tag}"),
+        capability: format!("{name} hydrostatic tank: pressure"),
+        reference: "ρ g h (closed form), depth from p = 0 half a spacing above the surface particles".into(),
+        measure: "worst |p / ρgh − 1| over fluid particles ≥ 3 Δs deep".into(),
+        value: 100.0 * pressure,
+        bound: Some(1.0),
+        bound_source: "issue 12's bound".into(),
+        unit: "%".into(),
+        ..row.clone()
+    });
+    record(Record {
+        id: format!("{method}-hydrostatic-still-water-{tag}"),
+        capability: format!("{name} hydrostatic tank: still water"),
+        reference: "water at rest (velocity 0)".into(),
+        measure: "fastest fluid particle / √(gH), H = 0.3 m".into(),
+        value: fastest / (cfg.gravity_magnitude() * 0.3).sqrt(),
+        bound: Some(1e-3),
+        bound_source: "issue 12's bound".into(),
+        ..row
+    });
+}
+
 fn tank_holds_at_0_2_s(cfg: &FluidConfig) {
     let cfg = cfg.clone();
     let (ds, h) = (cfg.spacing, 0.3);
     let rho_g = cfg.density * cfg.gravity_magnitude();
+    let started = Instant::now();
     let mut solver = FluidSolver::new(&cfg);
     let fluid = solver.particles().count(Kind::Fluid);
     // The projection has no acoustic transient to wait for: 0.1 s (50 steps), then the floor force
@@ -117,6 +185,7 @@ fn tank_holds_at_0_2_s(cfg: &FluidConfig) {
         tops.len(),
         100.0 * worst
     );
+    record_tank(&cfg, false, 0.2, worst, fastest, started.elapsed().as_secs_f64());
     assert_eq!(tops.len(), 100, "the top layer (10 × 10) is the free surface");
     // Bounds of issue 12: 1 % of ρ g h, 1e-3 √(gH); the floor carries the weight within 1 %.
     assert!(
@@ -157,6 +226,7 @@ fn isph_shifting_tank_stays_still_for_one_second() {
 fn tank_stays_still_for_one_second(cfg: &FluidConfig) {
     let cfg = cfg.clone();
     let rho_g = cfg.density * cfg.gravity_magnitude();
+    let started = Instant::now();
     let mut solver = FluidSolver::new(&cfg);
     for t in [0.25, 0.5, 0.75, 1.0] {
         solver.advance_to(t).unwrap_or_else(|e| panic!("{e}"));
@@ -183,6 +253,7 @@ fn tank_stays_still_for_one_second(cfg: &FluidConfig) {
             "t = {t:.2} s: worst interior pressure error {:.3} %, fastest {fastest:.2e} m/s",
             100.0 * worst
         );
+        record_tank(&cfg, true, t, worst, fastest, started.elapsed().as_secs_f64());
         assert!(
             worst < 0.01,
             "t = {t}: pressure differs from rho g h by {:.3} %",

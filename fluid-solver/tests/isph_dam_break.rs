@@ -6,13 +6,25 @@ mod common;
 mod front_common;
 mod isph_slab;
 
+use front_common::FrontRecord;
+use std::time::Instant;
+
 #[test]
 fn isph_surge_front_follows_the_experiments() {
     // CI size as the E-MPS test: Δs = L/10 = 0.0146 m, a slab 4 particles deep (800 fluid
     // particles); Δt = 1.6e-3 s (u Δt/Δs = 0.37 with the front speed u = 2√(g·2L), Ritter),
     // 2.7× E-MPS's 6e-4 s.
     let cfg = isph_slab::isph_slab();
+    let started = Instant::now();
     let e = front_common::front_errors(&cfg, 0.006, 4);
+    record_fronts(
+        &e,
+        "isph",
+        "ISPH dam-break front",
+        "ISPH (S2-8 gradient, support 2.4 Δs)",
+        "isph_surge_front_follows_the_experiments",
+        started,
+    );
     assert_within_the_e_mps_bounds(&e, true);
 }
 
@@ -22,7 +34,16 @@ fn isph_symmetric_gradient_surge_front_follows_the_experiments() {
     let mut cfg = isph_slab::isph_slab();
     cfg.isph = Some(symmetric());
     cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
+    let started = Instant::now();
     let e = front_common::front_errors(&cfg, 0.006, 4);
+    record_fronts(
+        &e,
+        "isph-symmetric",
+        "ISPH dam-break front, symmetric gradient",
+        "ISPH, symmetric gradient at 2.0 Δs",
+        "isph_symmetric_gradient_surge_front_follows_the_experiments",
+        started,
+    );
     assert_within_the_e_mps_bounds(&e, true);
 }
 
@@ -33,7 +54,16 @@ fn isph_shifting_surge_front_follows_the_experiments() {
     let mut cfg = isph_slab::isph_slab();
     cfg.isph = Some(shifting());
     cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
+    let started = Instant::now();
     let e = front_common::front_errors(&cfg, 0.006, 4);
+    record_fronts(
+        &e,
+        "isph-shifting",
+        "ISPH dam-break front, symmetric gradient + shifting",
+        "ISPH, symmetric gradient at 2.0 Δs with Lind shifting (A = 0.5)",
+        "isph_shifting_surge_front_follows_the_experiments",
+        started,
+    );
     assert_within_the_e_mps_bounds(&e, true);
 }
 
@@ -87,7 +117,16 @@ fn isph_dam_break_released_by_a_gate_follows_the_experiments() {
     let gated = fluid_solver::FluidSolver::new(&cfg);
     let gates = gated.particles().count(fluid_solver::Kind::Gate);
     assert_eq!(gates, 2 * 4 * 30, "the gate: 2 layers × 4 × 30 sites");
+    let started = Instant::now();
     let e = front_common::front_errors(&cfg, 0.006, 4);
+    record_fronts(
+        &e,
+        "isph-gate",
+        "ISPH dam-break front, column released by a gate",
+        "ISPH (S2-8 gradient), a gate 2 Δs thick removed at t = 0",
+        "isph_dam_break_released_by_a_gate_follows_the_experiments",
+        started,
+    );
     assert_within_the_e_mps_bounds(&e, false);
 }
 
@@ -103,6 +142,7 @@ fn isph_dam_break_released_by_a_gate_follows_the_experiments() {
 #[test]
 #[ignore]
 fn isph_dam_break_gains_no_energy_through_the_impact() {
+    let started = Instant::now();
     let (mut solver, g) = koshizuka_isph(Some(0.0146), 4e-4);
     let e0 = mechanical_energy(&solver, g);
     let (last, gained) = energy_gained_until(&mut solver, g, 0.3);
@@ -110,6 +150,22 @@ fn isph_dam_break_gains_no_energy_through_the_impact() {
         "energy {e0:.1} → {last:.1} J/kg over {} steps, gained {gained:.2} in the steps it grew",
         solver.steps()
     );
+    schemas::validation::record(schemas::validation::Record {
+        id: "isph-energy-through-the-impact-l10".into(),
+        capability: "ISPH energy through a dam break's impact".into(),
+        reference: "energy conservation: still walls, conservative gravity (the energy may only fall)".into(),
+        case: "cases/dam-break-koshizuka (the case's tank, 5 particles wide), 0 … 0.3 s".into(),
+        resolution: "ISPH (S2-8 gradient), Δs = L/10 = 0.0146 m (1 000 fluid), Δt = 4e-4 s".into(),
+        measure: "energy Σ ½|u|² + g z gained over the steps in which it grew / initial energy".into(),
+        value: 100.0 * gained / e0,
+        bound: Some(1.0),
+        bound_source: "the test's: 1 % of the initial energy (the detector's own allowance is 30 %)".into(),
+        unit: "%".into(),
+        source: "fluid-solver/tests/isph_dam_break.rs::isph_dam_break_gains_no_energy_through_the_impact"
+            .into(),
+        run_time_s: started.elapsed().as_secs_f64(),
+        ..Default::default()
+    });
     assert!(
         gained < 0.01 * e0,
         "the fluid gained {gained:.2} J/kg of {e0:.1} (bound 1 %)"
@@ -189,6 +245,7 @@ fn assert_gains_no_energy_before_the_impact(
     dt: f64,
     settings: schemas::case::fluid::IsphConfig,
 ) {
+    let started = Instant::now();
     let (mut solver, g) = koshizuka_isph_with(spacing, dt, settings);
     let e0 = mechanical_energy(&solver, g);
     solver.advance_to(0.1).unwrap_or_else(|e| panic!("{e}"));
@@ -197,6 +254,42 @@ fn assert_gains_no_energy_before_the_impact(
     println!(
         "{label}: energy {e0:.1} at t = 0, {e1:.1} at 0.10 s, {last:.1} J/kg at 0.16 s; gained {gained:.2} in the steps it grew"
     );
+    let (test, method, gradient) = match label {
+        "S2-8" => (
+            "isph_dam_break_gains_no_energy_before_the_impact",
+            "isph",
+            "S2-8 gradient",
+        ),
+        "symmetric" => (
+            "isph_symmetric_gradient_dam_break_gains_no_energy_before_the_impact",
+            "isph-symmetric",
+            "symmetric gradient at 2.0 Δs",
+        ),
+        _ => (
+            "isph_shifting_dam_break_gains_no_energy_before_the_impact",
+            "isph-shifting",
+            "symmetric gradient at 2.0 Δs with Lind shifting",
+        ),
+    };
+    let (scale, ds, suffix) = match spacing {
+        Some(_) => ("l10", "L/10 = 0.0146 m (1 000 fluid)", ""),
+        None => ("l20", "L/20 = 0.0073 m (8 000 fluid)", "_at_l_20"),
+    };
+    schemas::validation::record(schemas::validation::Record {
+        id: format!("{method}-energy-before-the-impact-{scale}"),
+        capability: "ISPH energy in a dam break before the impact".into(),
+        reference: "energy conservation: still walls, conservative gravity (the energy may only fall)".into(),
+        case: "cases/dam-break-koshizuka (the case's tank), 0.10 … 0.16 s".into(),
+        resolution: format!("ISPH, {gradient}, Δs = {ds}, Δt = {dt} s"),
+        measure: "energy Σ ½|u|² + g z gained over the steps in which it grew / initial energy".into(),
+        value: 100.0 * gained / e0,
+        bound: Some(1.0),
+        bound_source: "the test's: 1 % of the initial energy".into(),
+        unit: "%".into(),
+        source: format!("fluid-solver/tests/isph_dam_break.rs::{test}{suffix}"),
+        run_time_s: started.elapsed().as_secs_f64(),
+        ..Default::default()
+    });
     assert!(
         gained < 0.01 * e0,
         "the fluid gained {gained:.2} J/kg of {e0:.1} (bound 1 %)"
@@ -246,6 +339,34 @@ fn energy_gained_until(solver: &mut fluid_solver::FluidSolver, g: f64, t_end: f6
         last = e;
     }
     (last, gained)
+}
+
+/// Records a CI front run of this file (the slab at Δs = L/10, Δt = 1.6e-3 s) under the E-MPS
+/// test's bounds.
+fn record_fronts(
+    e: &front_common::FrontErrors,
+    method: &str,
+    capability: &str,
+    settings: &str,
+    test: &str,
+    started: Instant,
+) {
+    front_common::record(
+        e,
+        &FrontRecord {
+            method,
+            scale: "l10",
+            capability,
+            resolution: &format!(
+                "{settings}, Δs = L/10 = 0.0146 m, slab 4 particles deep (800 fluid), Δt = 1.6e-3 s"
+            ),
+            source: &format!("fluid-solver/tests/isph_dam_break.rs::{test}"),
+            bounds: [0.33, 0.05],
+            bound_source: "the E-MPS test's at this resolution (dam_break.rs)",
+            run_time_s: started.elapsed().as_secs_f64(),
+            machine: String::new(),
+        },
+    );
 }
 
 /// The bounds of the E-MPS front test at this resolution (`dam_break.rs`: 0.33 against

@@ -33,6 +33,8 @@ use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{
     Aabb, FluidConfig, FluidMethodName, IsphConfig, PressureGradient, Shifting, TankConfig,
 };
+use schemas::validation::{record, Record};
+use std::time::Instant;
 
 fn isph(cfg: FluidConfig) -> FluidConfig {
     isph_with(cfg, IsphConfig::default())
@@ -126,9 +128,12 @@ struct Budget {
     scale: f64,
     walls: [f64; 3],
     body_reaction: [f64; 3],
+    /// Wall time of the run [s].
+    run_time_s: f64,
 }
 
 fn run(solver: &mut FluidSolver, t_end: f64) -> Budget {
+    let started = Instant::now();
     let mass = solver.particles().count(Kind::Fluid) as f64 * solver.particle_mass();
     let g = solver.physics().gravity;
     let start = solver.fluid_momentum();
@@ -155,7 +160,49 @@ fn run(solver: &mut FluidSolver, t_end: f64) -> Budget {
         scale,
         walls,
         body_reaction,
+        run_time_s: started.elapsed().as_secs_f64(),
     }
+}
+
+/// The validation record of a budget `b` under `bound` (a fraction of gravity's impulse); the
+/// caller names it and its scene.
+fn budget_record(b: &Budget, bound: f64, bound_source: &str) -> Record {
+    Record {
+        reference: "Newton's second law: the fluid's momentum changes only by gravity's impulse and the \
+                    impulse booked for the walls and bodies"
+            .into(),
+        measure: "largest |Δp − gravity impulse − booked impulse| over the axes / gravity's impulse".into(),
+        value: b.gap.iter().fold(0.0, |m: f64, g| m.max(g.abs())) / b.scale,
+        bound: Some(bound),
+        bound_source: bound_source.into(),
+        run_time_s: b.run_time_s,
+        ..Default::default()
+    }
+}
+
+/// Records the budgets of the two scenes in motion (the drop in the closed box, the drop on a
+/// held box) for the ISPH setting `method` (an id tag) named `name`, asserted by `test`.
+fn record_in_motion(floor: &Budget, body: &Budget, method: &str, name: &str, test: &str) {
+    let source = format!("fluid-solver/tests/isph_momentum.rs::{test}");
+    let bound_source = "round-off, as E-MPS's budget (conservation.rs)";
+    record(Record {
+        id: format!("{method}-momentum-closed-box-drop"),
+        capability: format!("{name} momentum budget"),
+        case: "a 12 cm block of water dropped 10 cm onto the floor of a closed box, 0 … 0.4 s".into(),
+        resolution: format!("{name}, Δs = 0.02 m"),
+        source: source.clone(),
+        ..budget_record(floor, 1e-9, bound_source)
+    });
+    record(Record {
+        id: format!("body-{method}-momentum-drop-on-a-box"),
+        capability: format!("{name} momentum shared with a held body"),
+        case:
+            "an 8 cm cube of water thrown down at 1.5 m/s onto a 16 × 16 × 8 cm held box, viscous, 0 … 0.09 s"
+                .into(),
+        resolution: format!("{name}, Δs = 0.02 m, Δt = 2e-3 s"),
+        source,
+        ..budget_record(body, 1e-9, bound_source)
+    });
 }
 
 /// At rest the budget is the walls' load against the weight: within 1e-3 of gravity's impulse
@@ -164,6 +211,14 @@ fn run(solver: &mut FluidSolver, t_end: f64) -> Budget {
 fn isph_walls_carry_the_weight_of_water_at_rest() {
     let mut solver = FluidSolver::new(&tank_at_rest());
     let b = run(&mut solver, 0.2);
+    record(Record {
+        id: "isph-momentum-tank-at-rest".into(),
+        capability: "ISPH momentum budget at rest".into(),
+        case: "the hydrostatic tank at rest, 0 … 0.2 s".into(),
+        resolution: "ISPH (S2-8 gradient), Δs = 0.02 m".into(),
+        source: "fluid-solver/tests/isph_momentum.rs::isph_walls_carry_the_weight_of_water_at_rest".into(),
+        ..budget_record(&b, 1e-3, "a tenth of issue 12's 1 % bound on ρgh")
+    });
     for (a, gap) in b.gap.iter().enumerate() {
         assert!(
             gap.abs() < 1e-3 * b.scale,
@@ -263,6 +318,13 @@ fn isph_momentum_budget_closes_in_motion() {
     let mut solver = FluidSolver::new(&drop_on_the_floor(IsphConfig::default()));
     let floor = run(&mut solver, 0.4);
     let body = run(&mut drop_on_a_box(IsphConfig::default()), 0.09);
+    record_in_motion(
+        &floor,
+        &body,
+        "isph",
+        "ISPH (S2-8 gradient)",
+        "isph_momentum_budget_closes_in_motion",
+    );
     for b in [floor, body] {
         assert_budget_closes(&b);
     }
@@ -277,6 +339,13 @@ fn isph_momentum_budget_closes_in_motion() {
 fn isph_symmetric_gradient_momentum_closes_in_motion() {
     let floor = run(&mut FluidSolver::new(&drop_on_the_floor(symmetric())), 0.4);
     let body = run(&mut drop_on_a_box(symmetric()), 0.09);
+    record_in_motion(
+        &floor,
+        &body,
+        "isph-symmetric",
+        "ISPH (symmetric gradient)",
+        "isph_symmetric_gradient_momentum_closes_in_motion",
+    );
     assert!(
         body.body_reaction[2] > 0.5 * 0.512 * 1.5,
         "the box was hardly hit: {:?} N s",
@@ -294,6 +363,13 @@ fn isph_symmetric_gradient_momentum_closes_in_motion() {
 fn isph_shifting_momentum_closes_in_motion() {
     let floor = run(&mut FluidSolver::new(&drop_on_the_floor(shifting())), 0.4);
     let body = run(&mut drop_on_a_box(shifting()), 0.09);
+    record_in_motion(
+        &floor,
+        &body,
+        "isph-shifting",
+        "ISPH (symmetric gradient + shifting)",
+        "isph_shifting_momentum_closes_in_motion",
+    );
     for b in [floor, body] {
         println!("budget gap {:?} N s of {} N s", b.gap, b.scale);
         assert_budget_closes(&b);

@@ -8,6 +8,7 @@ use fluid_solver::probes::{self, ProbeSet};
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{ProbeConfig, ProbeKind};
 use schemas::case::FluidConfig;
+use schemas::validation::{record, Record};
 
 fn sensor(name: &str, position: [f64; 3], normal: &str, diameter: f64, window: Option<f64>) -> ProbeConfig {
     ProbeConfig {
@@ -59,6 +60,7 @@ fn a_wall_sensor_on_a_hydrostatic_tank_reads_rho_g_h() {
         sensor("y1-mid", [0.1, 0.2, 0.16], "-y", 0.08, Some(0.5)),
     ];
     cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
+    let started = std::time::Instant::now();
     let mut solver = FluidSolver::new(&cfg);
     let mut set = ProbeSet::new(&cfg.probe, &solver).unwrap_or_else(|e| panic!("{e}"));
     solver.advance_to(1.5).unwrap_or_else(|e| panic!("{e}"));
@@ -99,6 +101,56 @@ fn a_wall_sensor_on_a_hydrostatic_tank_reads_rho_g_h() {
             100.0 * err
         );
         errors.push(err);
+    }
+    let run_time_s = started.elapsed().as_secs_f64();
+    let sensor_record =
+        |id: &str, place: &str, measure: &str, value: f64, bound: f64, bound_source: &str| Record {
+            id: format!("emps-wall-sensor-{id}"),
+            capability: "E-MPS wall-pressure sensor (an 8 cm disc, 0.5 s window)".into(),
+            reference: "the weight of the water above the sensor's height per unit area (particles counted)"
+                .into(),
+            case: format!("the hydrostatic tank settled 1.5 s (water 0.3 m deep, 0.2 × 0.2 m), {place}"),
+            resolution: "E-MPS, Δs = 0.02 m, Δt = 8e-4 s".into(),
+            measure: measure.into(),
+            value: 100.0 * value,
+            bound: Some(bound),
+            bound_source: bound_source.into(),
+            unit: "%".into(),
+            source: "fluid-solver/tests/probes.rs::a_wall_sensor_on_a_hydrostatic_tank_reads_rho_g_h".into(),
+            run_time_s,
+            ..Default::default()
+        };
+    record(sensor_record(
+        "floor",
+        "sensor on the floor",
+        "reading / weight above − 1",
+        errors[0],
+        1.0,
+        "issue 15: the floor carries the whole weight",
+    ));
+    for (pair, id, place) in [
+        (1, "x-walls", "x walls at z = 0.08 m"),
+        (3, "y-walls", "y walls at z = 0.16 m"),
+    ] {
+        record(sensor_record(
+            &format!("{id}-pair"),
+            &format!("a pair of sensors on the {place}"),
+            "the pair's mean of reading / weight above − 1",
+            0.5 * (errors[pair] + errors[pair + 1]),
+            2.0,
+            "the settled column's static stress differs wall by wall (probes.rs)",
+        ));
+        let worst = errors[pair..pair + 2]
+            .iter()
+            .fold(0.0f64, |m, e| if e.abs() > m.abs() { *e } else { m });
+        record(sensor_record(
+            &format!("{id}-single"),
+            &format!("single sensors on the {place}"),
+            "the larger |reading / weight above − 1| of the pair",
+            worst,
+            3.0,
+            "the point probe's bound in hydrostatic.rs",
+        ));
     }
     assert!(
         errors[0].abs() < 0.01,

@@ -9,11 +9,26 @@ use fluid_solver::unresolved::kernel::Wendland;
 use fluid_solver::unresolved::sampling::{sample, smallest_eigenvalue};
 use fluid_solver::unresolved::spreading::spread;
 use fluid_solver::Kind;
+use schemas::validation::{record, Record};
 
 const DS: f64 = 0.01;
 /// Water depth [spacings] and half-width [spacings].
 const DEPTH: i32 = 8;
 const HALF: i32 = 8;
+
+/// What the records of this file's test `test` on the hand-made pool share; `place` says where
+/// in the pool it looks.
+fn pool_record(id: &str, test: &str, place: &str) -> Record {
+    Record {
+        id: format!("drag-fluid-side-{id}"),
+        capability: "Unresolved drag, the fluid's side: sampling and spreading (S2-19 … S2-24)".into(),
+        case: format!("a particle pool 16 × 16 × 8 Δs on a wall floor, {place}"),
+        resolution: format!("Δs = {DS} m, Wendland kernel of support 2.4 Δs"),
+        bound_source: "round-off, or the test's derivation (unresolved_fluid_side.rs)".into(),
+        source: format!("fluid-solver/tests/unresolved_fluid_side.rs::{test}"),
+        ..Default::default()
+    }
+}
 
 /// Where the spreading tests put a reaction: at the surface, at the floor, at a side and the
 /// surface, and inside the pool.
@@ -74,7 +89,24 @@ fn a_uniform_field_is_sampled_exactly_at_the_surface_and_the_wall() {
     let u = [0.7, -0.3, 0.2];
     let (p, grid) = pool(|_| u);
     let points = column();
-    for (s, x) in sample(&p, &grid, DS, &points).iter().zip(points.chunks_exact(3)) {
+    let samples = sample(&p, &grid, DS, &points);
+    let worst = samples
+        .iter()
+        .flat_map(|s| s.velocity.iter().zip(&u).map(|(a, b)| (a - b).abs()))
+        .fold(0.0, f64::max);
+    record(Record {
+        reference: "the uniform velocity sampled".into(),
+        measure: "largest |sampled − exact| velocity component (Shepard weights sum to one)".into(),
+        value: worst,
+        bound: Some(1e-14),
+        unit: "m/s".into(),
+        ..pool_record(
+            "uniform-field",
+            "a_uniform_field_is_sampled_exactly_at_the_surface_and_the_wall",
+            "points from the floor to over the surface",
+        )
+    });
+    for (s, x) in samples.iter().zip(points.chunks_exact(3)) {
         // Shepard weights sum to one: the error is the rounding of ~60 terms.
         let exact = s.velocity.iter().zip(&u).all(|(a, b)| (a - b).abs() <= 1e-14);
         assert!(exact, "at {x:?}: {:?}", s.velocity);
@@ -124,6 +156,18 @@ fn a_linear_field_stays_within_the_centroid_shift_bound_near_the_surface_and_the
         );
     }
     eprintln!("linear field: worst error {worst:.3e} m/s, bound {bound:.3e} (d = {d:.4e} m), full support {inside:.3e}");
+    record(Record {
+        reference: "the linear velocity u = G z, G = 2 /s".into(),
+        measure: "largest |sampled − exact| (a full, symmetric support has its centroid on the point)".into(),
+        value: inside,
+        bound: Some(1e-12),
+        unit: "m/s".into(),
+        ..pool_record(
+            "linear-field-full-support",
+            "a_linear_field_stays_within_the_centroid_shift_bound_near_the_surface_and_the_wall",
+            "points whose support is full of water",
+        )
+    });
     assert!(
         inside <= 1e-12,
         "a full, symmetric support has its centroid on the point: {inside:.3e}"
@@ -140,6 +184,23 @@ fn lambda_min_is_one_inside_one_half_on_the_surface_and_zero_in_the_air() {
     );
     // The lattice sums of a Wendland kernel of support 2.4 Δs differ from the integrals by a
     // few per cent (measured: see the printout); S2-20's thresholds 0.5 and 0.9 sit well apart.
+    for (id, place, value) in [
+        ("inside", "inside the water", inside - 1.0),
+        ("surface", "on the surface", surface - 0.5),
+    ] {
+        record(Record {
+            reference: "the moment matrix's integral: λ_min = 1 in a full support, 1/2 on a flat surface"
+                .into(),
+            measure: "λ_min − its integral value".into(),
+            value,
+            bound: Some(0.05),
+            ..pool_record(
+                &format!("lambda-min-{id}"),
+                "lambda_min_is_one_inside_one_half_on_the_surface_and_zero_in_the_air",
+                place,
+            )
+        });
+    }
     assert!((inside - 1.0).abs() < 0.05, "inside: {inside}");
     assert!((surface - 0.5).abs() < 0.05, "surface: {surface}");
     assert!(
@@ -153,6 +214,7 @@ fn lambda_min_is_one_inside_one_half_on_the_surface_and_zero_in_the_air() {
 fn a_spread_reaction_sums_to_the_reaction_near_a_wall_and_the_surface() {
     let (p, grid) = pool(|_| [0.0; 3]);
     let f = [3.0, -1.5, 40.0];
+    let mut worst: f64 = 0.0;
     for (what, x) in reaction_places() {
         let reactions = [x[0], x[1], x[2], f[0], f[1], f[2]];
         let s = spread(&p, &grid, DS, &reactions, &[], &[]);
@@ -163,6 +225,19 @@ fn a_spread_reaction_sums_to_the_reaction_near_a_wall_and_the_surface() {
             }
             (0..3).for_each(|c| sum[c] += fi[c]);
         }
+        worst = (0..3).fold(worst, |w, c| w.max((sum[c] - f[c]).abs()));
+        record(Record {
+            reference: "the point reaction spread (its shares must sum to it)".into(),
+            measure: "largest |Σ shares − reaction| over components and places".into(),
+            value: worst,
+            bound: Some(1e-13 * 40.0),
+            unit: "N".into(),
+            ..pool_record(
+                "spread-sum",
+                "a_spread_reaction_sums_to_the_reaction_near_a_wall_and_the_surface",
+                "a reaction of 40 N at the surface, the floor, a side and inside",
+            )
+        });
         for c in 0..3 {
             // shares normalised to one: round-off of ~100 terms
             assert!(
@@ -210,6 +285,7 @@ fn a_reaction_with_no_water_near_its_centroid_goes_to_its_sample_point_or_is_rep
 
 #[test]
 fn the_closed_form_smallest_eigenvalue_matches_a_symmetric_eigensolver() {
+    let mut worst: f64 = 0.0;
     for m in [
         [1.0, 0.0, 0.0, 1.0, 0.0, 1.0],
         [0.5, 0.0, 0.0, 1.0, 0.0, 1.0],
@@ -220,6 +296,21 @@ fn the_closed_form_smallest_eigenvalue_matches_a_symmetric_eigensolver() {
         let full = nalgebra::Matrix3::new(m[0], m[1], m[2], m[1], m[3], m[4], m[2], m[4], m[5]);
         let reference = nalgebra::SymmetricEigen::new(full).eigenvalues.min();
         let got = smallest_eigenvalue(&m);
+        worst = worst.max((got - reference).abs());
+        record(Record {
+            id: "drag-fluid-side-lambda-min-closed-form".into(),
+            capability: "Unresolved drag, the fluid's side: λ_min of the moment matrix in closed form".into(),
+            reference: "nalgebra's symmetric eigensolver".into(),
+            case: "five symmetric 3 × 3 matrices (identity, diagonal, full, singular, zero)".into(),
+            resolution: "closed form (trigonometric)".into(),
+            measure: "largest |closed form − eigensolver| of the smallest eigenvalue".into(),
+            value: worst,
+            bound: Some(1e-12),
+            bound_source: "round-off".into(),
+            source: "fluid-solver/tests/unresolved_fluid_side.rs::the_closed_form_smallest_eigenvalue_matches_a_symmetric_eigensolver"
+                .into(),
+            ..Default::default()
+        });
         assert!((got - reference).abs() <= 1e-12, "{m:?}: {got} vs {reference}");
     }
 }

@@ -7,6 +7,7 @@ mod closed_box;
 mod common;
 
 use fluid_solver::{FluidSolver, Kind};
+use schemas::validation::{record, Record};
 
 #[test]
 fn point_reactions_change_the_fluid_momentum_by_their_impulse() {
@@ -24,6 +25,7 @@ fn a_wide_members_reactions_change_the_fluid_momentum_by_their_impulse() {
 fn momentum_budget_closes(widths: &[f64]) {
     let cfg = closed_box::closed_box([0.0, 0.0, 0.0], [0.2, 0.2, 0.12]);
     cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
+    let started = std::time::Instant::now();
     let mut solver = FluidSolver::new(&cfg);
     let mass = solver.particles().count(Kind::Fluid) as f64 * solver.particle_mass();
     // Three sub-members: at the surface, on the floor, inside (point, force −f).
@@ -48,6 +50,37 @@ fn momentum_budget_closes(widths: &[f64]) {
         "momentum {p1:?}, reactions {:?} (given {given:?}), walls {:?}",
         totals.reaction_impulse, totals.wall_impulse
     );
+    let worst = (0..3)
+        .map(|c| {
+            (p1[c] - mass * cfg.gravity[c] * t - totals.wall_impulse[c] - totals.reaction_impulse[c]).abs()
+        })
+        .fold(0.0, f64::max);
+    let (tag, members, test) = match widths.is_empty() {
+        true => (
+            "points",
+            "three point reactions",
+            "point_reactions_change_the_fluid_momentum_by_their_impulse",
+        ),
+        false => (
+            "wide-members",
+            "three reactions of members 0.06 m wide (spread over their footprints)",
+            "a_wide_members_reactions_change_the_fluid_momentum_by_their_impulse",
+        ),
+    };
+    record(Record {
+        id: format!("drag-fluid-momentum-{tag}"),
+        capability: "Unresolved drag, the fluid's side: momentum of the reactions".into(),
+        reference: "Newton's second law: Δp = M g t + wall impulse + reaction impulse".into(),
+        case: format!("water 0.12 m deep in a closed box 0.2 × 0.2 m with {members}, 100 steps"),
+        resolution: "E-MPS, Δs = 0.02 m".into(),
+        measure: "largest |momentum residual| over the axes / (M g t)".into(),
+        value: worst / scale,
+        bound: Some(1e-9),
+        bound_source: "round-off, as conservation.rs's budget without reactions".into(),
+        source: format!("fluid-solver/tests/unresolved_momentum.rs::{test}"),
+        run_time_s: started.elapsed().as_secs_f64(),
+        ..Default::default()
+    });
     assert_eq!(totals.unapplied_impulse, [0.0; 3], "every reaction found water");
     for c in 0..3 {
         // Σ f_k = F per step (normalised shares): round-off of 100 steps of ~50 terms.

@@ -2,7 +2,7 @@
 //! interface messages ([`message`]) with their interpolation in a window ([`waveform`]),
 //! recordings ([`recording`]), the iceoryx2 link ([`link`]), the participant loop
 //! ([`participant`]), checkpoints for resuming a run ([`checkpoint`]) and the stop signals both sides heed ([`signals`]); and the output files every solver writes: ParaView's time series ([`pvd`]), each
-//! file written whole or not at all ([`atomic_file`]).
+//! file written whole or not at all ([`atomic_file`]); and the record a validation test writes ([`validation`]).
 
 pub mod atomic_file;
 pub mod case;
@@ -14,6 +14,7 @@ pub mod participant;
 pub mod pvd;
 pub mod recording;
 pub mod signals;
+pub mod validation;
 pub mod waveform;
 
 pub use f64s::F64s;

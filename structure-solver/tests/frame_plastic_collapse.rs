@@ -5,6 +5,8 @@
 mod frame_common;
 
 use frame_common::{beam, steel, support, ALL};
+use schemas::validation::{record, Record};
+use std::time::Instant;
 use structure_solver::frame::Frame;
 
 /// L = 2 m, 0.1 × 0.1 m steel (σy = 235 MPa): Mp = σy b h²/4.
@@ -35,6 +37,7 @@ fn fixed_fixed_beam_collapses_at_eight_mp_over_l_with_three_hinges() {
     let mut other_hinge = None;
     let deflection_at = |frame: &Frame| z0 - frame.node_positions()[3 * centre + 2];
     let (mut w_095, mut w_100, mut w_110) = (0.0, 0.0, 0.0);
+    let started = Instant::now();
     for n in 1..=steps {
         let p = 1.2 * pc * n as f64 / steps as f64;
         let mut loads = vec![0.0; 6 * frame.node_count()];
@@ -62,6 +65,7 @@ fn fixed_fixed_beam_collapses_at_eight_mp_over_l_with_three_hinges() {
             w_110 = w;
         }
     }
+    let run_time_s = started.elapsed().as_secs_f64();
     println!(
         "collapse load 8Mp/L = {pc:.1} N; first hinge load / Pc at (end, centre, end): {:?}",
         first_hinge.map(|p| p.map(|p| p / pc))
@@ -73,6 +77,24 @@ fn fixed_fixed_beam_collapses_at_eight_mp_over_l_with_three_hinges() {
         frame.factorization_count()
     );
     for (where_, p) in ["end 1", "centre", "end 2"].iter().zip(first_hinge) {
+        record(Record {
+            id: format!("asi-gauss-plastic-collapse-hinge-{}", where_.replace(' ', "-")),
+            capability: "ASI-Gauss plastic collapse load".into(),
+            reference: "plastic limit analysis: collapse at 8 Mp/L with hinges at both ends and the centre \
+                        (Neal, The Plastic Methods of Structural Analysis, ch. 2)"
+                .into(),
+            case: "fixed–fixed steel beam 2 m, 0.1 × 0.1 m, σy = 235 MPa, centre load ramped to 1.2 × 8 Mp/L"
+                .into(),
+            resolution: "4 members, Δt = 3.8e-4 s ≈ T1/20, one solve per step".into(),
+            measure: format!("|load at which the hinge at {where_} forms / (8 Mp/L) − 1|"),
+            value: p.map_or(f64::NAN, |p| (p / pc - 1.0).abs()),
+            bound: Some(0.01),
+            bound_source: "the brief".into(),
+            source: "structure-solver/tests/frame_plastic_collapse.rs::fixed_fixed_beam_collapses_at_eight_mp_over_l_with_three_hinges"
+                .into(),
+            run_time_s,
+            ..Default::default()
+        });
         let p = p.unwrap_or_else(|| panic!("no hinge formed at {where_}"));
         assert!(
             (p / pc - 1.0).abs() < 0.01,

@@ -3,6 +3,8 @@
 mod frame_common;
 
 use frame_common::{beam, steel, support, ALL};
+use schemas::validation::{record, Record};
+use std::time::Instant;
 use structure_solver::frame::Frame;
 
 /// Tip deflection (z) and rotation (about y) of a one-member cantilever under a tip load P in z.
@@ -37,9 +39,35 @@ fn one_member_cantilever_matches_timoshenko_closed_form() {
             ((closed_form - exact) / exact).abs() < 1e-9,
             "{name}: reference numbers"
         );
+        let started = Instant::now();
         let (w, theta) = cantilever_tip(l, b, h, 1e4, 1);
+        let run_time_s = started.elapsed().as_secs_f64();
         let err = (w - closed_form) / closed_form;
         println!("{name}: tip {w:.10e} m, closed form {closed_form:.10e}, rel err {err:.2e}");
+        let slug = name.to_lowercase().replace('_', "-");
+        let one_member = |quantity: &str, value: f64, reference: &str| Record {
+            id: format!("asi-gauss-cantilever-tip-{quantity}-{slug}"),
+            capability: format!("ASI-Gauss cantilever tip {quantity}"),
+            reference: reference.into(),
+            case: format!("{name}: steel cantilever {l} m, {b} × {h} m, tip load 10 kN"),
+            resolution: "one member (two ASI-Gauss elements), linear static".into(),
+            measure: format!("relative error of the tip {quantity}"),
+            value,
+            bound: Some(1e-10),
+            bound_source: "the brief: ASI-Gauss with s = ±(2/√3 − 1) is exact for one member, so only \
+                           round-off remains"
+                .into(),
+            source:
+                "structure-solver/tests/frame_static.rs::one_member_cantilever_matches_timoshenko_closed_form"
+                    .into(),
+            run_time_s,
+            ..Default::default()
+        };
+        record(one_member(
+            "deflection",
+            err.abs(),
+            "Timoshenko closed form PL³/3EI + PL/κGA (a_cantilever_static.csv)",
+        ));
         assert!(
             err.abs() < 1e-10,
             "{name}: tip deflection {w} vs {closed_form} (rel {err:e})"
@@ -51,6 +79,11 @@ fn one_member_cantilever_matches_timoshenko_closed_form() {
             "{name}: reference rotation"
         );
         let err = (-theta - rotation_closed_form) / rotation_closed_form;
+        record(one_member(
+            "rotation",
+            err.abs(),
+            "closed form PL²/2EI (a_cantilever_static.csv)",
+        ));
         assert!(
             err.abs() < 1e-10,
             "{name}: tip rotation {theta} (rel err {err:e})"
@@ -67,8 +100,25 @@ fn one_member_cantilever_matches_timoshenko_closed_form() {
 #[test]
 fn multi_member_cantilever_is_exact() {
     for members in [2, 4, 8] {
+        let started = Instant::now();
         let (w, _) = cantilever_tip(3.0, 0.1, 0.15, 1e4, members);
+        let run_time_s = started.elapsed().as_secs_f64();
         let err = (w - 1.60312e-2) / 1.60312e-2;
+        record(Record {
+            id: format!("asi-gauss-cantilever-tip-deflection-{members}-members"),
+            capability: "ASI-Gauss cantilever tip deflection".into(),
+            reference: "Timoshenko closed form PL³/3EI + PL/κGA = 1.60312e-2 m (a_cantilever_static.csv)"
+                .into(),
+            case: "B_slender: steel cantilever 3 m, 0.1 × 0.15 m, tip load 10 kN".into(),
+            resolution: format!("{members} members, linear static"),
+            measure: "relative error of the tip deflection".into(),
+            value: err.abs(),
+            bound: Some(1e-9),
+            bound_source: "f_asigauss_linear_check.csv: ratio 1.000000 for 2, 4 and 8 members".into(),
+            source: "structure-solver/tests/frame_static.rs::multi_member_cantilever_is_exact".into(),
+            run_time_s,
+            ..Default::default()
+        });
         assert!(err.abs() < 1e-9, "{members} members: rel err {err:e}");
     }
 }

@@ -2,7 +2,9 @@
 //! moves freely for good.
 
 use schemas::case::Case;
+use schemas::validation::{record, Record};
 use std::path::Path;
+use std::time::Instant;
 use structure_solver::{ExternalLoads, Structure};
 
 /// A 1 kg body under gravity, held by a support with threshold `release_force`, and an upward
@@ -45,6 +47,7 @@ fn releases_in_the_step_where_the_upward_force_first_exceeds_the_threshold() {
     // t = 0.11 s is the first free one (exact, by the definition of the check; no tolerance but
     // round-off on the time, 1e-12 s).
     let (mut s, loads) = held_body(105.0);
+    let started = Instant::now();
     for k in 1..=11 {
         s.advance(0.01 * f64::from(k), &loads).expect("stable");
         assert!(s.is_held(0), "released too early, before t = {}", s.time());
@@ -56,9 +59,28 @@ fn releases_in_the_step_where_the_upward_force_first_exceeds_the_threshold() {
         !s.is_held(0),
         "not released in the substep starting at t = 0.11 s"
     );
+    let run_time_s = started.elapsed().as_secs_f64();
     let releases = s.releases();
     assert_eq!(releases.len(), 1);
     assert_eq!(releases[0].0, "deck");
+    record(Record {
+        id: "washout-support-release-time".into(),
+        capability: "washout support (S1-22)".into(),
+        reference: "S1-22: released in the substep where the upward force first exceeds F_d, t = 0.11 s \
+                    for F = 1000 t N and F_d = 105 N"
+            .into(),
+        case: "1 kg body held by a support with F_d = 105 N under an upward ramp 1000 t N".into(),
+        resolution: "max_step = 0.01 s".into(),
+        measure: "|release time − 0.11 s|".into(),
+        value: (releases[0].1 - 0.11).abs(),
+        bound: Some(1e-12),
+        bound_source: "exact by the definition of the check: round-off on the time only".into(),
+        unit: "s".into(),
+        source: "structure-solver/tests/washout_support.rs::releases_in_the_step_where_the_upward_force_first_exceeds_the_threshold"
+            .into(),
+        run_time_s,
+        ..Default::default()
+    });
     assert!(
         (releases[0].1 - 0.11).abs() < 1e-12,
         "released at {} s",

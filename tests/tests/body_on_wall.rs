@@ -6,7 +6,9 @@
 //! floor particle, so at rest the box's weight M g = 64 k δ: δ = (M / 64) g / (m ω²) =
 //! (ρ_b/ρ0) · 4 · g/ω² (4 particle layers) = 0.19 mm, about 1 % of Δs.
 
+use schemas::validation::{record, Record};
 use stack_tests::{coupler_run, csv_rows, out_dir, stderr};
+use std::time::Instant;
 
 const CASE: &str = r#"
 [case]
@@ -71,7 +73,9 @@ fn a_heavy_box_dropped_on_the_floor_rests_on_it_at_the_contact_springs_deflectio
     let case = dir.join("case.toml");
     std::fs::write(&case, CASE).unwrap_or_else(|e| panic!("{e}"));
     let out = dir.join("out");
+    let started = Instant::now();
     let run = coupler_run(&case, &out);
+    let run_time_s = started.elapsed().as_secs_f64();
     let err = stderr(&run);
     assert!(run.status.success(), "{err}");
 
@@ -97,6 +101,21 @@ fn a_heavy_box_dropped_on_the_floor_rests_on_it_at_the_contact_springs_deflectio
     );
     // The linear springs' equilibrium is exact once the bounce has died out: 1 % covers what is
     // left of it after 0.4 s (about 14 periods of the box on its 64 springs, damping ratio 0.29).
+    record(Record {
+        id: "body-on-wall-rest-depth".into(),
+        capability: "body–wall contact of a resolved body".into(),
+        reference: "static equilibrium of the contact springs: δ = (ρ_b/ρ0) · 4 · g/ω² = 0.19 mm".into(),
+        case: "box of 3 000 kg/m³ dropped 2 Δs onto a dry tank's floor, 0.4 s".into(),
+        resolution: "E-MPS walls, Δs = 0.02 m, Δt = 8e-4 s, explicit coupling".into(),
+        measure: "|rest depth / spring equilibrium − 1| at the end".into(),
+        value: (sunk / expected - 1.0).abs(),
+        bound: Some(0.01),
+        bound_source: "what is left of the bounce after 0.4 s (about 14 periods, damping ratio 0.29)".into(),
+        source: "tests/tests/body_on_wall.rs::a_heavy_box_dropped_on_the_floor_rests_on_it_at_the_contact_springs_deflection"
+            .into(),
+        run_time_s,
+        ..Default::default()
+    });
     assert!(
         (sunk / expected - 1.0).abs() < 0.01,
         "sunk {sunk} m vs {expected} m"

@@ -9,8 +9,10 @@
 //! - F_d = 1000 MN as in the case file (Table II's value), above any force the bore reaches
 //!   here: never released.
 
+use schemas::validation::{record, Record};
 use stack_tests::{case_from, coupler_run, csv_rows, out_dir, stderr};
 use std::path::Path;
+use std::time::Instant;
 
 /// The case's coupling window [s] and particle spacing [m].
 const WINDOW: f64 = 2.4e-2;
@@ -54,7 +56,9 @@ fn run(test: &str, release_force: &str) -> std::path::PathBuf {
 #[test]
 fn the_deck_is_released_in_the_window_its_uplift_first_exceeds_f_d_and_carried_off_on_its_piers() {
     let f_d = 1.0e8;
+    let started = Instant::now();
     let out = run("bridge-washout-released", "1.0e8");
+    let run_time_s = started.elapsed().as_secs_f64();
     let windows = uplift(&out);
     let (first, peak) = windows
         .iter()
@@ -67,6 +71,25 @@ fn the_deck_is_released_in_the_window_its_uplift_first_exceeds_f_d_and_carried_o
         "uplift first above F_d = 100 MN in the window ending at t = {first:.3} s ({:.0} MN); released at t = {released_at:.4} s",
         peak / 1e6
     );
+    record(Record {
+        id: "bridge-washout-small-release-window".into(),
+        capability: "washout of a bridge deck (S1-22) through the coupled stack".into(),
+        reference: "S1-22: the bearings let go when the upward force first exceeds F_d (here 100 MN)".into(),
+        case: "cases/bridge-washout-small with release_force = 1.0e8 N".into(),
+        resolution: "E-MPS, Δs = 4 m, window = Δt = 2.4e-2 s, explicit coupling".into(),
+        measure: "end of the window where the uplift first exceeds F_d − release time".into(),
+        value: first - released_at,
+        bound: Some(WINDOW),
+        bound_source: "the release must fall in that window: [0, one window)".into(),
+        unit: "s".into(),
+        source: "tests/tests/bridge_washout.rs::the_deck_is_released_in_the_window_its_uplift_first_exceeds_f_d_and_carried_off_on_its_piers"
+            .into(),
+        run_time_s,
+        note: Some(format!(
+            "uplift first above F_d in the window ending at t = {first:.3} s, released at {released_at:.4} s"
+        )),
+        ..Default::default()
+    });
     assert!(
         released_at > first - WINDOW && released_at <= first + 1e-9,
         "released at t = {released_at}, but the uplift first exceeds F_d in the window ending at {first}"

@@ -6,8 +6,10 @@
 //! under which a run that finds no adapter fails instead of skipping).
 
 use schemas::case::coupling::GPU_BALANCE_TOLERANCE;
+use schemas::validation::{record, Record};
 use stack_tests::{coupler_run, csv_rows, out_dir, pool_level, replaced, stderr, FLOATING_POOL_CASE};
 use std::path::PathBuf;
+use std::time::Instant;
 
 /// The floating box case with the GPU fluid, ending at `end_time`, frames every
 /// `output_interval` s.
@@ -69,6 +71,7 @@ fn run(
 /// water on the box (a reaction that merely negated the loads would give 0).
 #[test]
 fn the_floating_box_runs_with_the_gpu_fluid_through_the_stack() {
+    let started = Instant::now();
     let Some((gpu, ledger, _)) = run("gpu-floating", "gpu", "0.024", "0.012") else {
         return;
     };
@@ -117,6 +120,25 @@ fn the_floating_box_runs_with_the_gpu_fluid_through_the_stack() {
         gpu.iter().flatten().all(|v| v.is_finite()),
         "the box's state is not finite"
     );
+    record(Record {
+        id: "gpu-floating-box-vs-cpu".into(),
+        capability: "E-MPS on the GPU (f32) with a resolved body, coupled".into(),
+        reference: "the same run with the f64 CPU fluid".into(),
+        case: "16 × 16 × 8 cm box of 400 kg/m³ in still water 0.2 m deep (floating_at_rest.rs), 0.024 s"
+            .into(),
+        resolution: "E-MPS, Δs = 0.02 m, Δt = 8e-4 s, 30 windows of one fluid step, explicit coupling".into(),
+        measure: "largest |box centre z on the GPU − on the CPU| over the history".into(),
+        value: worst,
+        bound: Some(1e-5),
+        bound_source: "loads within the f32 bound 1e-3 of ρgV move the 0.82 kg box by at most \
+                       1e-3 · 20 N / 0.82 kg · (0.024 s)²/2 = 7e-6 m"
+            .into(),
+        unit: "m".into(),
+        source: "tests/tests/gpu_floating.rs::the_floating_box_runs_with_the_gpu_fluid_through_the_stack"
+            .into(),
+        run_time_s: started.elapsed().as_secs_f64(),
+        ..Default::default()
+    });
     assert!(
         worst < 1e-5,
         "the box's height on the GPU differs from the CPU's by {worst} m (bound 1e-5 m)"
@@ -136,6 +158,7 @@ fn the_floating_box_runs_with_the_gpu_fluid_through_the_stack() {
 #[test]
 #[ignore]
 fn the_gpu_fluid_floats_the_box_at_its_draft() {
+    let started = Instant::now();
     let Some((rows, ledger, out)) = run("gpu-floating-draft", "gpu", "2.0", "0.5") else {
         return;
     };
@@ -159,6 +182,22 @@ fn the_gpu_fluid_floats_the_box_at_its_draft() {
         1e3 * expected,
         100.0 * (draft / expected - 1.0)
     );
+    record(Record {
+        id: "floating-box-draft-gpu".into(),
+        capability: "resolved floating body at rest (E-MPS on the GPU, coupled)".into(),
+        reference: "hydrostatic draft: body density / water density × height = 32.0 mm (Archimedes)".into(),
+        case: "16 × 16 × 8 cm box of 400 kg/m³ in still water 0.2 m deep, 2 s".into(),
+        resolution:
+            "E-MPS on the GPU (f32), Δs = 0.02 m, Δt = 8e-4 s, explicit coupling, one fluid step per window"
+                .into(),
+        measure: "|draft / hydrostatic − 1| at the end, from the free surface where P = 0".into(),
+        value: (draft / expected - 1.0).abs(),
+        bound: Some(0.05),
+        bound_source: "the CPU test's bound (the issue's 5 %)".into(),
+        source: "tests/tests/gpu_floating.rs::the_gpu_fluid_floats_the_box_at_its_draft".into(),
+        run_time_s: started.elapsed().as_secs_f64(),
+        ..Default::default()
+    });
     assert!(
         (draft / expected - 1.0).abs() < 0.05,
         "draft {draft} m vs {expected} m (bound 5 %)"

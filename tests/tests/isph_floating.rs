@@ -7,7 +7,9 @@
 //! (With the water level falling as the box rises, 0.0256/0.1344 of its rise, the equilibrium
 //! is z = 0.2067 m.)
 
+use schemas::validation::{record, Record};
 use stack_tests::{advances, coupler_run, csv_rows, out_dir, replaced, stderr, FLOATING_POOL_CASE};
+use std::time::Instant;
 
 /// The case of `floating_at_rest.rs` with the ISPH fluid: Δs = 0.02 m, a 0.4 × 0.4 m tank with
 /// water 0.2 m deep; a 16 × 16 × 8 cm box of 400 kg/m³ with its bottom 4 cm under the surface;
@@ -71,10 +73,20 @@ fn run_text(test: &str, text: &str) -> (Vec<Vec<f64>>, f64, f64) {
 /// 24 Nov 2026; the draft's equilibrium is 0.2067 m).
 #[test]
 fn the_floating_box_runs_with_isph_through_the_stack() {
+    let started = Instant::now();
     let (rows, z_lo, z_hi) = run_case("isph-floating", "0.3");
     assert!(
         rows.iter().flatten().all(|v| v.is_finite()),
         "the box's state is not finite"
+    );
+    record_band(
+        (
+            "isph-floating-box-heave-0p3s",
+            "the_floating_box_runs_with_isph_through_the_stack",
+        ),
+        "ISPH (S2-8's gradient), 0.3 s",
+        (z_lo, z_hi),
+        started.elapsed().as_secs_f64(),
     );
     assert_rises_within_the_band(z_lo, z_hi);
 }
@@ -87,7 +99,17 @@ fn the_floating_box_runs_with_isph_through_the_stack() {
 #[test]
 #[ignore]
 fn the_isph_floating_box_rises_towards_its_draft() {
+    let started = Instant::now();
     let (_, z_lo, z_hi) = run_case("isph-floating-rise", "1.0");
+    record_band(
+        (
+            "isph-floating-box-heave-1s",
+            "the_isph_floating_box_rises_towards_its_draft",
+        ),
+        "ISPH (S2-8's gradient), 1 s",
+        (z_lo, z_hi),
+        started.elapsed().as_secs_f64(),
+    );
     assert_rises_within_the_band(z_lo, z_hi);
 }
 
@@ -96,10 +118,20 @@ fn the_isph_floating_box_rises_towards_its_draft() {
 /// (about 15 s in release; measured 0.2000 … 0.2092 m).
 #[test]
 fn the_floating_box_runs_with_the_symmetric_isph_gradient_through_the_stack() {
+    let started = Instant::now();
     let (rows, z_lo, z_hi) = run_text("isph-floating-symmetric-ci", &symmetric_case("0.3"));
     assert!(
         rows.iter().flatten().all(|v| v.is_finite()),
         "the box's state is not finite"
+    );
+    record_band(
+        (
+            "isph-symmetric-floating-box-heave-0p3s",
+            "the_floating_box_runs_with_the_symmetric_isph_gradient_through_the_stack",
+        ),
+        "ISPH, symmetric gradient on 2.0 Δs, 0.3 s",
+        (z_lo, z_hi),
+        started.elapsed().as_secs_f64(),
     );
     assert_rises_within_the_band(z_lo, z_hi);
 }
@@ -110,10 +142,21 @@ fn the_floating_box_runs_with_the_symmetric_isph_gradient_through_the_stack() {
 #[test]
 #[ignore]
 fn the_isph_floating_box_with_the_symmetric_gradient_rises_towards_its_draft() {
+    let started = Instant::now();
     let (rows, z_lo, z_hi) = run_text("isph-floating-symmetric", &symmetric_case("1.0"));
+    let run_time_s = started.elapsed().as_secs_f64();
     let late: Vec<f64> = rows.iter().filter(|r| r[0] >= 0.5).map(|r| r[3]).collect();
     let mean = late.iter().sum::<f64>() / late.len() as f64;
     println!("mean centre z over 0.5 … 1 s: {mean:.4} m (equilibrium 0.2067 m)");
+    record_band(
+        (
+            "isph-symmetric-floating-box-heave-1s",
+            "the_isph_floating_box_with_the_symmetric_gradient_rises_towards_its_draft",
+        ),
+        "ISPH, symmetric gradient on 2.0 Δs, 1 s",
+        (z_lo, z_hi),
+        run_time_s,
+    );
     assert_rises_within_the_band(z_lo, z_hi);
 }
 
@@ -129,10 +172,21 @@ fn the_isph_floating_box_with_shifting_rises_towards_its_draft() {
             "pressure_gradient = \"symmetric\"\nshifting = \"lind\"\n",
         )],
     );
+    let started = Instant::now();
     let (rows, z_lo, z_hi) = run_text("isph-floating-shifting", &text);
+    let run_time_s = started.elapsed().as_secs_f64();
     let late: Vec<f64> = rows.iter().filter(|r| r[0] >= 0.5).map(|r| r[3]).collect();
     let mean = late.iter().sum::<f64>() / late.len() as f64;
     println!("mean centre z over 0.5 … 1 s: {mean:.4} m (equilibrium 0.2067 m)");
+    record_band(
+        (
+            "isph-shifting-floating-box-heave-1s",
+            "the_isph_floating_box_with_shifting_rises_towards_its_draft",
+        ),
+        "ISPH, symmetric gradient on 2.0 Δs and Lind's shifting, 1 s",
+        (z_lo, z_hi),
+        run_time_s,
+    );
     assert_rises_within_the_band(z_lo, z_hi);
 }
 
@@ -189,6 +243,39 @@ fn the_isph_floating_box_converges_under_implicit_coupling() {
     assert!(implicit.len() > 4 && implicit.len() == explicit.len());
     assert!(z_end > 0.2, "the box did not rise: {z_end}");
     assert!(gap < 1e-3, "implicit and explicit differ by {gap} m");
+}
+
+/// The centre height about which the box heaves freely, from its draft 0.4 × 8 cm [m].
+const EQUILIBRIUM_Z: f64 = 0.208;
+/// Half the band of the module doc, 0.192 … 0.224 m [m].
+const HALF_BAND: f64 = 0.016;
+
+/// Records the heave of the run `(id, test)` with `method`: the centre's largest distance from
+/// `EQUILIBRIUM_Z` over heights `z_lo` … `z_hi`, against the band [`assert_rises_within_the_band`] asserts.
+fn record_band((id, test): (&str, &str), method: &str, (z_lo, z_hi): (f64, f64), run_time_s: f64) {
+    record(Record {
+        id: id.into(),
+        capability: "resolved floating body (ISPH, coupled)".into(),
+        reference:
+            "hydrostatic equilibrium: centre z = 0.208 m from the draft 0.4 × 8 cm (0.2067 m with the \
+                    water level's fall), and a free heave about it from a start 8 mm low"
+                .into(),
+        case: "16 × 16 × 8 cm box of 400 kg/m³ in still water 0.2 m deep, placed 8 mm below its draft".into(),
+        resolution: format!(
+            "{method}, Δs = 0.02 m, Δt = 2e-3 s, explicit coupling, one fluid step per window"
+        ),
+        measure: "largest |centre z − 0.208 m| over the run".into(),
+        value: (EQUILIBRIUM_Z - z_lo).max(z_hi - EQUILIBRIUM_Z),
+        bound: Some(HALF_BAND),
+        bound_source: "the band 0.192 … 0.224 m a free heave from 8 mm below the draft allows".into(),
+        unit: "m".into(),
+        source: format!("tests/tests/isph_floating.rs::{test}"),
+        run_time_s,
+        note: Some(format!(
+            "centre {z_lo:.4} … {z_hi:.4} m; also asserted: it rises above 0.202 m"
+        )),
+        ..Default::default()
+    });
 }
 
 /// The box rose towards its draft and its heave stayed in the band of the module doc.

@@ -1,6 +1,6 @@
 //! `coupler report` on the oscillator, through the real binaries: one row per rung, the observed
-//! orders of its schemes, the plot's data, an interrupted report, and stability runs classified
-//! as stable, stopped or failed silently.
+//! orders of its schemes, the plot's data and `--docs` putting them into a docs folder, an
+//! interrupted report, and stability runs classified as stable, stopped or failed silently.
 //!
 //! Expected orders (the coupler's accuracy table in README.md and `tests/tests/oscillator.rs`;
 //! preCICE 3.4's tutorial gives 1 for serial explicit and 2 for implicit linear): explicit with
@@ -130,6 +130,29 @@ fn oscillator_report_reproduces_the_orders_with_one_row_per_rung() {
     }
     assert_eq!(lines.len(), 6, "one line per method: {lines:?}");
     assert!(lines.values().all(|&n| n == 3), "{lines:?}");
+    // `--docs` puts that report into a docs folder: its Markdown as docs/validation.md's
+    // fragment, its plot beside the page's figures, linked from the fragment.
+    let docs = out.join("docs");
+    let put = Command::new(binary("coupler"))
+        .args([
+            "report",
+            "--docs",
+            docs.to_str().unwrap_or_default(),
+            "--out",
+            out.to_str().unwrap_or_default(),
+        ])
+        .output()
+        .unwrap_or_else(|e| panic!("cannot start the coupler: {e}"));
+    assert!(put.status.success(), "{}", stderr(&put));
+    let fragment = std::fs::read_to_string(docs.join("validation/report-accuracy.md")).unwrap_or_default();
+    assert!(
+        fragment.contains("](img/report/oscillator-work-precision.png)"),
+        "{fragment}"
+    );
+    assert_eq!(
+        png_size(&docs.join("img/report/oscillator-work-precision.png")),
+        (1000, 700)
+    );
 }
 
 #[test]

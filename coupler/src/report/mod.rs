@@ -7,20 +7,21 @@
 //! - `--stability`: the cases' families of stiff and extreme runs, each stable, stopped (with
 //!   the diagnostic), refused by the case check, or failed silently (`stability.csv`,
 //!   `stability.md`, maps as PNG).
-//! - `--readme`: puts the latest report into the README between its marker comments.
+//! - `--docs`: puts the latest report into docs/validation.md's fragments (`docs/validation/report-*.md`)
+//!   and its figures into docs/img/; `coupler validation` then renders the page.
 //!
 //! Rows are written as each run finishes; Ctrl-C stops the running run, keeps the finished rows
 //! and names the missing ones in the Markdown.
 
 pub mod accuracy;
 pub mod case_copy;
+pub mod docs;
 pub mod error_measure;
 pub mod line_plot;
 pub mod measure;
 pub mod order;
 pub mod plot;
 pub mod progress;
-pub mod readme;
 pub mod stability;
 pub mod summary;
 pub mod table;
@@ -43,8 +44,8 @@ pub struct ReportOptions {
     pub stability: bool,
     /// Timed runs after the warm-up, instead of each case's `report.repeats`.
     pub repeats: Option<u32>,
-    /// Put the latest report into this README instead of running anything.
-    pub readme: Option<PathBuf>,
+    /// Put the latest report into this docs folder's validation fragments instead of running anything.
+    pub docs: Option<PathBuf>,
     /// Only the stability families of these names (all when empty).
     pub families: Vec<String>,
 }
@@ -59,24 +60,22 @@ pub fn folder(opts: &ReportOptions) -> PathBuf {
 /// Runs the report; `Interrupted` after Ctrl-C (the finished rows are kept).
 pub fn report(opts: &ReportOptions) -> Result<(), CouplerError> {
     let out = folder(opts);
-    if let Some(readme_path) = &opts.readme {
-        let figures = if opts.full {
-            "docs/report/full"
-        } else {
-            "docs/report"
-        };
-        let done = readme::update(readme_path, &out, figures, opts.full).map_err(CouplerError::Io)?;
+    if let Some(docs_dir) = &opts.docs {
+        let root = docs_dir.parent().unwrap_or(std::path::Path::new("."));
+        let layout = crate::validation::layout::Layout::new(root);
+        let done = docs::update(&layout, &out, opts.full).map_err(CouplerError::Io)?;
         eprintln!(
-            "{}: updated from {} ({})",
-            readme_path.display(),
+            "{}: {} from {}; now run `coupler validation` to render {}",
+            layout.data().display(),
+            done.join(", "),
             out.display(),
-            done.join(", ")
+            layout.page().display()
         );
         return Ok(());
     }
     if opts.cases.is_empty() {
         return Err(CouplerError::Usage(
-            "name at least one case: coupler report CASE… (or --readme)".into(),
+            "name at least one case: coupler report CASE… (or --docs)".into(),
         ));
     }
     let cases = opts

@@ -7,6 +7,8 @@ use super::common;
 use fluid_solver::probes;
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{FluidBackend, ProbeConfig, ProbeKind};
+use schemas::validation::{record, Record};
+use std::time::Instant;
 
 fn pressure_probe(x: f64, y: f64, z: f64) -> ProbeConfig {
     ProbeConfig {
@@ -30,6 +32,7 @@ pub fn settled_pressure_is_rho_g_h_and_walls_hold(backend: FluidBackend) {
     let ds = cfg.spacing;
     let rho_g = cfg.density * cfg.gravity_magnitude();
     cfg.backend = backend;
+    let started = Instant::now();
     let mut solver = FluidSolver::with_backend(&cfg).unwrap_or_else(|e| panic!("{e}"));
     let fluid = solver.particles().count(Kind::Fluid);
     let tank = solver.tank();
@@ -82,6 +85,18 @@ pub fn settled_pressure_is_rho_g_h_and_walls_hold(backend: FluidBackend) {
     let wall_force = (solver.totals().wall_impulse[2] - impulse_before) / 0.5;
     let weight = fluid as f64 * solver.particle_mass() * cfg.gravity_magnitude();
     println!("floor force {wall_force:.3} N, weight {weight:.3} N");
+    let row = Row::of(backend);
+    record(Record {
+        id: format!("{}-hydrostatic-floor-force", row.method),
+        capability: format!("{} hydrostatic tank: floor force", row.capability),
+        reference: "the water's weight (closed form)".into(),
+        measure: "|wall force / weight − 1|, vertical, time average over 1.5 … 2 s".into(),
+        value: 100.0 * (wall_force / weight - 1.0).abs(),
+        bound: Some(1.0),
+        bound_source: "the test's: static equilibrium to 1 %".into(),
+        run_time_s: started.elapsed().as_secs_f64(),
+        ..row.record()
+    });
     assert!(
         (wall_force / weight - 1.0).abs() < 0.01,
         "walls carry {wall_force} N of a {weight} N weight (bound 1 %)"
@@ -121,9 +136,66 @@ pub fn settled_pressure_is_rho_g_h_and_walls_hold(backend: FluidBackend) {
         }
     }
     println!("worst interior error {:.2} %", 100.0 * worst);
+    record(Record {
+        id: format!("{}-hydrostatic-pressure", row.method),
+        capability: format!("{} hydrostatic tank: pressure", row.capability),
+        reference: "ρ g h (closed form), depth from the pressure's own free surface".into(),
+        measure: "worst |P / ρgh − 1| over interior heights (≥ r_e below the top), time average over \
+                  1.5 … 2 s of a 5 × 5 grid of point probes"
+            .into(),
+        value: 100.0 * worst,
+        bound: Some(3.0),
+        bound_source: "issue 3's bound".into(),
+        run_time_s: started.elapsed().as_secs_f64(),
+        ..row.record()
+    });
     assert!(
         worst < 0.03,
         "interior pressure differs from rho g h by {:.2} % (bound 3 %)",
         100.0 * worst
     );
+}
+
+/// What the CPU and the GPU test's records say alike, by backend.
+struct Row {
+    method: &'static str,
+    capability: &'static str,
+    resolution: &'static str,
+    source: &'static str,
+    machine: String,
+}
+
+impl Row {
+    fn of(backend: FluidBackend) -> Row {
+        match backend {
+            FluidBackend::Cpu => Row {
+                method: "emps",
+                capability: "E-MPS",
+                resolution: "E-MPS, Δs = 0.02 m (1 500 fluid), Δt = 8e-4 s",
+                source: "fluid-solver/tests/hydrostatic.rs::settled_pressure_is_rho_g_h_and_walls_hold",
+                machine: String::new(),
+            },
+            FluidBackend::Gpu => Row {
+                method: "gpu",
+                capability: "E-MPS on the GPU (f32)",
+                resolution: "E-MPS on the GPU, Δs = 0.02 m (1 500 fluid), Δt = 8e-4 s",
+                source: "fluid-solver/tests/gpu_hydrostatic.rs::settled_pressure_is_rho_g_h_and_walls_hold_on_the_gpu",
+                machine: fluid_solver::gpu::GpuDevice::open()
+                    .map(|d| format!("{}; {}", d.description(), schemas::validation::machine()))
+                    .unwrap_or_default(),
+            },
+        }
+    }
+
+    /// The fields every row of this test shares.
+    fn record(&self) -> Record {
+        Record {
+            case: "cases/hydrostatic-tank: water 0.3 m deep in a 0.2 × 0.2 m tank, settled 1.5 s".into(),
+            resolution: self.resolution.into(),
+            unit: "%".into(),
+            source: self.source.into(),
+            machine: self.machine.clone(),
+            ..Default::default()
+        }
+    }
 }

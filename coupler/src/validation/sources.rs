@@ -1,0 +1,54 @@
+//! Every row whose source names a test must point at a test that exists.
+
+use super::cells::test_source;
+use schemas::validation::Record;
+use std::path::Path;
+
+/// The records whose source names a test `file::name` where `root/file` is missing or holds no
+/// `fn name`, each with why.
+pub fn missing_tests(root: &Path, records: &[Record]) -> Vec<String> {
+    records
+        .iter()
+        .filter_map(|r| {
+            let (file, name) = test_source(&r.source)?;
+            let text = match std::fs::read_to_string(root.join(file)) {
+                Ok(text) => text,
+                Err(e) => return Some(format!("{}: {file}: {e}", r.id)),
+            };
+            let defines = text.match_indices(&format!("fn {name}")).any(|(i, m)| {
+                let after = text[i + m.len()..].chars().next();
+                after.is_some_and(|c| c == '(' || c == '<' || c.is_whitespace())
+            });
+            (!defines).then(|| format!("{}: {file} has no `fn {name}`", r.id))
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_renamed_test_is_found_missing() {
+        let dir = std::env::temp_dir().join(format!("validation-sources-{}", std::process::id()));
+        std::fs::create_dir_all(dir.join("x/tests")).unwrap_or_else(|e| panic!("{e}"));
+        std::fs::write(dir.join("x/tests/a.rs"), "#[test]\nfn front_follows() {}\n")
+            .unwrap_or_else(|e| panic!("{e}"));
+        let record = |id: &str, source: &str| Record {
+            id: id.into(),
+            source: source.into(),
+            ..Default::default()
+        };
+        let records = [
+            record("ok", "x/tests/a.rs::front_follows"),
+            record("prefix", "x/tests/a.rs::front"),
+            record("gone", "x/tests/b.rs::front_follows"),
+            record("one-off", "fluid-solver run cases/x/case.toml"),
+        ];
+        let missing = missing_tests(&dir, &records);
+        assert_eq!(missing.len(), 2, "{missing:?}");
+        assert!(missing[0].starts_with("prefix: x/tests/a.rs has no `fn front`"));
+        assert!(missing[1].starts_with("gone: x/tests/b.rs"));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
