@@ -167,7 +167,7 @@ fn algorithmic_dissipation_matches_newmark_damping() {
     );
     record(Record {
         id: "asi-gauss-newmark-algorithmic-damping".into(),
-        reference: "Newmark's damping ratio, leading term (γ − ½)Ω/2 = Ω/6 with Ω = ωΔt (physics.md §5)"
+        reference: "Newmark's damping ratio, leading term (γ − ½)Ω/2 = Ω/6 with Ω = ωΔt (docs/physics.md §5)"
             .into(),
         measure: "|ζ from the algorithmic dissipation over periods 2–5 / (Ω/6) − 1|".into(),
         value: (zeta / expected - 1.0).abs(),
