@@ -4,8 +4,10 @@
 
 mod common;
 mod front_common;
+mod front_record;
 
-use front_common::{FrontErrors, FrontRecord};
+use front_common::FrontErrors;
+use front_record::FrontRecord;
 use std::time::Instant;
 
 /// Runs the case at spacing `ds` (slab `depth` deep) with time step `dt` until the front reaches
@@ -30,7 +32,7 @@ fn surge_front_follows_the_experiments() {
     // front runs ahead of theirs, as in most particle simulations of this experiment) and
     // 0.022 against Martin & Moyce (shift −0.20), plus about 50 %. The data are read off
     // figures (±0.05 in Z); a column 10 particles wide resolves the toe to Δs/L = 0.1.
-    front_common::record(
+    front_record::record(
         &e,
         &FrontRecord {
             method: "emps",
@@ -70,7 +72,7 @@ fn surge_front_at_the_case_resolution() {
     let started = Instant::now();
     let e = front_errors(0.0073, 0.073, 3.0e-4);
     // Measured 0.27 and 0.013 (shift −0.24): bounds with a margin of about 50 %.
-    front_common::record(
+    front_record::record(
         &e,
         &FrontRecord {
             method: "emps",

@@ -4,9 +4,10 @@
 
 mod common;
 mod front_common;
+mod front_record;
 mod gpu_common;
 
-use front_common::FrontRecord;
+use front_record::FrontRecord;
 use schemas::case::fluid::FluidBackend;
 use std::time::Instant;
 
@@ -26,7 +27,7 @@ fn surge_front_follows_the_experiments_on_the_gpu() {
     let started = Instant::now();
     let e = front_common::front_errors(&cfg, 0.005, 8);
     // dam_break.rs's bounds: RMS of Z 0.33 against Koshizuka & Oka, 0.05 against Martin & Moyce.
-    front_common::record(
+    front_record::record(
         &e,
         &FrontRecord {
             method: "gpu",

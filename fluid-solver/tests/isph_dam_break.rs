@@ -4,9 +4,10 @@
 
 mod common;
 mod front_common;
+mod front_record;
 mod isph_slab;
 
-use front_common::FrontRecord;
+use front_record::FrontRecord;
 use std::time::Instant;
 
 #[test]
@@ -351,7 +352,7 @@ fn record_fronts(
     test: &str,
     started: Instant,
 ) {
-    front_common::record(
+    front_record::record(
         e,
         &FrontRecord {
             method,
