@@ -31,7 +31,7 @@ pub enum CouplerError {
     /// The coupling created energy at the interface beyond the detector's threshold
     /// ([`crate::stability`]).
     Unstable { window: u64, time: f64, message: String },
-    /// Ctrl-C or SIGTERM.
+    /// Ctrl-C, SIGTERM or SIGHUP (named in the message).
     Interrupted { window: Option<u64> },
     /// Output could not be written.
     Io(String),
@@ -134,7 +134,10 @@ impl fmt::Display for CouplerError {
                 )
             }
             CouplerError::Interrupted { window } => {
-                write!(f, "interrupted{}; participants stopped", at(window))
+                let by = schemas::signals::received()
+                    .map(|s| format!(" by {s}"))
+                    .unwrap_or_default();
+                write!(f, "interrupted{}{by}; participants stopped", at(window))
             }
             CouplerError::Io(m) | CouplerError::Replay(m) => write!(f, "{m}"),
         }

@@ -30,14 +30,41 @@ pub fn executable_for(
         let dir = here.parent().map(Path::to_path_buf).unwrap_or_default();
         (dir.join(kind.binary_name()), "the coupler's folder".to_string())
     };
-    if path.is_file() {
-        Ok(path)
-    } else {
-        Err(CouplerError::Usage(format!(
+    if !path.is_file() {
+        return Err(CouplerError::Usage(format!(
             "participant `{name}`: no executable at {} (from {source}); build the workspace with \
              `cargo build --release`, or name one with --exe {name}=PATH",
             path.display()
-        )))
+        )));
+    }
+    runnable(&path).map_err(|why| {
+        CouplerError::Usage(format!(
+            "participant `{name}`: {} (from {source}) cannot be started: {why}",
+            path.display()
+        ))
+    })?;
+    Ok(path)
+}
+
+/// Whether the kernel can start `path`: it has an execute permission bit and is a program
+/// (an ELF binary) or a script (`#!` and its interpreter). Checked before anything starts, so
+/// `check` refuses what `exec` would refuse with "Permission denied" or "Exec format error".
+fn runnable(path: &Path) -> Result<(), String> {
+    use std::io::Read;
+    use std::os::unix::fs::PermissionsExt;
+    let meta = std::fs::metadata(path).map_err(|e| format!("cannot read it: {e}"))?;
+    if meta.permissions().mode() & 0o111 == 0 {
+        return Err("it is not executable (no execute permission: `chmod +x` it, if it is a program)".into());
+    }
+    let mut head = [0u8; 4];
+    let read = File::open(path)
+        .and_then(|mut f| f.read(&mut head))
+        .map_err(|e| format!("cannot read it: {e}"))?;
+    let head = &head[..read];
+    if head.starts_with(b"\x7fELF") || head.starts_with(b"#!") {
+        Ok(())
+    } else {
+        Err("it is neither a program (ELF) nor a script starting with `#!`".into())
     }
 }
 

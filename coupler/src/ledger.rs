@@ -99,7 +99,7 @@ impl Ledger {
         let ok = balance <= self.tolerance;
         if !ok {
             self.violations += 1;
-            eprintln!(
+            crate::say!(
                 "ledger: window {window} (t = {time:.6} s): action and reaction differ by {balance:.3e} (relative), \
                  above coupling.balance_tolerance {:.1e}",
                 self.tolerance

@@ -21,4 +21,5 @@ pub mod scheme;
 pub mod stability;
 pub mod stack;
 pub mod state;
+pub mod terminal;
 pub mod validation;

@@ -23,7 +23,7 @@ types); cases/*/case.toml are commented examples.
 Exit codes: 0 success (replay: every recorded answer matches); 1 the run or replay failed (a
 participant died, hung or failed, no convergence, output could not be written, replay departed
 or compared less than the recording); 2 bad input, nothing was started (case file, command line,
-output folder in use or not empty, estimated output too large); 130 interrupted (Ctrl-C, SIGTERM).";
+output folder in use or not empty, estimated output too large); 130 interrupted (Ctrl-C, SIGTERM, SIGHUP).";
 
 /// Runs tsunami–structure simulations as cooperating processes: a particle fluid solver and a
 /// structure solver started by this coupler, which exchanges their interface data window by
@@ -245,7 +245,7 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e}");
+            coupler::say!("error: {e}");
             ExitCode::from(e.exit_code() as u8)
         }
     }
@@ -323,7 +323,9 @@ fn check(path: &std::path::Path, out: Option<&std::path::Path>, max_output: u64)
     lines.push(format!("  estimate: {}", estimate.describe()));
     lines.extend(case.fluid_warnings().iter().map(|u| format!("  warning: {u}")));
     print_lines(&lines)?;
-    estimate.check(&default_output_folder(&case, out), max_output)
+    let out = default_output_folder(&case, out);
+    coupler::out_folder::check_place(&out)?;
+    estimate.check(&out, max_output)
 }
 
 /// Writes `lines` to standard output; a reader that closed the pipe early (`coupler check … | head`)

@@ -12,6 +12,41 @@ use std::io::{Read, Seek, Write};
 use std::os::unix::io::AsRawFd;
 use std::path::{Path, PathBuf};
 
+/// Refuses an output folder that cannot be one, before anything runs: a path through a file
+/// (`--out results.csv`, `--out results.csv/run`), or a place on a file system that holds no
+/// files (`/proc`, `/sys`), where the free-space check would read 0 B and call the run too large.
+pub fn check_place(dir: &Path) -> Result<(), CouplerError> {
+    let Some(existing) = dir.ancestors().find(|p| !p.as_os_str().is_empty() && p.exists()) else {
+        return Ok(());
+    };
+    if !existing.is_dir() {
+        return Err(CouplerError::Usage(format!(
+            "the output folder {} cannot be made: {} is a file, not a folder; choose another --out",
+            dir.display(),
+            existing.display()
+        )));
+    }
+    let holds_files = std::ffi::CString::new(existing.as_os_str().as_encoded_bytes())
+        .ok()
+        .and_then(|c_path| {
+            let mut stat: libc::statvfs = unsafe { std::mem::zeroed() };
+            // SAFETY: a NUL-terminated path and a statvfs struct owned here.
+            let rc = unsafe { libc::statvfs(c_path.as_ptr(), &mut stat) };
+            (rc == 0).then_some(stat.f_blocks > 0)
+        })
+        .unwrap_or(true);
+    if holds_files {
+        Ok(())
+    } else {
+        Err(CouplerError::Usage(format!(
+            "the output folder {} cannot be made: {} is on a file system that holds no files (such as /proc); \
+             choose another --out",
+            dir.display(),
+            existing.display()
+        )))
+    }
+}
+
 /// The lock file's name inside the output folder.
 pub const LOCK_FILE: &str = ".coupler.lock";
 

@@ -68,7 +68,7 @@ impl Progress {
     /// Ends the bar's line.
     pub fn finish(&self) {
         if self.drawn {
-            eprintln!();
+            crate::say!();
         }
     }
 }

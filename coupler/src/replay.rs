@@ -72,7 +72,7 @@ pub fn replay(opts: &ReplayOptions) -> Result<ReplayReport, CouplerError> {
         )));
     }
     if recording.version == 1 {
-        eprintln!(
+        crate::say!(
             "note: a version-1 recording: its frames carry no checksums, so damage to it cannot be told from a \
              departure of the solver"
         );
@@ -80,9 +80,9 @@ pub fn replay(opts: &ReplayOptions) -> Result<ReplayReport, CouplerError> {
     match &recording.end {
         RecordingEnd::Whole => {}
         RecordingEnd::Cut { .. } => {
-            eprintln!("note: {}; replaying the complete frames before it", recording.end)
+            crate::say!("note: {}; replaying the complete frames before it", recording.end)
         }
-        RecordingEnd::Corrupt { .. } => eprintln!(
+        RecordingEnd::Corrupt { .. } => crate::say!(
             "error: {}: {}; replaying the frames before it, but the replay cannot pass",
             opts.recording.display(),
             recording.end
@@ -112,7 +112,7 @@ pub fn replay(opts: &ReplayOptions) -> Result<ReplayReport, CouplerError> {
     let case = replay_case(&recording, opts.case.as_deref(), &out)?;
     let out = output_folder(&case, Some(&out))?;
     if case.hash != recording.header.case_hash {
-        eprintln!(
+        crate::say!(
             "note: replaying against a case that differs from the recorded one ({})",
             case.path.display()
         );
@@ -179,7 +179,7 @@ pub fn replay(opts: &ReplayOptions) -> Result<ReplayReport, CouplerError> {
             report.messages
         )));
     }
-    println!(
+    crate::show!(
         "PASS: all {} recorded answers of `{name}` match the recording",
         report.messages
     );
@@ -247,7 +247,7 @@ fn replay_case(recording: &Recording, case: Option<&Path>, out: &Path) -> Result
     let copy = out.join("case.toml");
     std::fs::write(&copy, &recording.header.case_text)
         .map_err(|e| CouplerError::Io(format!("cannot write {}: {e}", copy.display())))?;
-    eprintln!(
+    crate::say!(
         "note: {} changed since the recording; replaying the recorded text from {} (relative paths in it are \
          taken from there)",
         recorded.display(),
@@ -293,7 +293,7 @@ fn drive(
                 let actual = match stack.recv(0, sent_window) {
                     Ok(a) => a,
                     Err(e) if matches!(recorded, FromParticipant::Failed { .. }) => {
-                        eprintln!("the solver failed where the recorded one failed too: {e}");
+                        crate::say!("the solver failed where the recorded one failed too: {e}");
                         report.messages += 1;
                         return Ok(report);
                     }
@@ -357,33 +357,38 @@ fn compare(report: &mut ReplayReport, window: u64, recorded: &[Fields], actual: 
 }
 
 fn print_report(report: &ReplayReport, tolerance: f64, ending: Option<&str>) {
-    println!(
+    crate::show!(
         "compared {} of the recording's {} answers; tolerance {tolerance:.1e} (relative to the recorded field's \
          largest value)",
         report.messages, report.recorded
     );
-    println!(
+    crate::show!(
         "{:<22} {:>16} {:>16} {:>16}",
-        "field", "largest abs", "largest rel", "first window over"
+        "field",
+        "largest abs",
+        "largest rel",
+        "first window over"
     );
     for (name, d) in &report.fields {
         let first = d
             .first_departure
             .map(|w| w.to_string())
             .unwrap_or_else(|| "-".into());
-        println!(
+        crate::show!(
             "{name:<22} {:>16.3e} {:>16.3e} {first:>16}",
-            d.largest_absolute, d.largest_relative
+            d.largest_absolute,
+            d.largest_relative
         );
     }
     if let Some(ending) = ending {
-        println!("the recording ends early: {ending}");
+        crate::show!("the recording ends early: {ending}");
     }
     match &report.departure {
-        Some((w, field)) => println!("DEPARTS in window {w} ({field})"),
-        None if report.messages < report.recorded => println!(
+        Some((w, field)) => crate::show!("DEPARTS in window {w} ({field})"),
+        None if report.messages < report.recorded => crate::show!(
             "FAIL: only {} of the {} recorded answers were compared",
-            report.messages, report.recorded
+            report.messages,
+            report.recorded
         ),
         None => {}
     }

@@ -95,14 +95,15 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
         Some(dir) => dir.clone(),
         None => default_output_folder(&case, opts.out.as_deref()),
     };
+    crate::out_folder::check_place(&out)?;
     let estimate = Estimate::of(&case);
     estimate.check(&out, opts.max_output)?;
-    eprintln!("estimate: {}", estimate.describe());
+    crate::say!("estimate: {}", estimate.describe());
     // A solver that runs alone writes to this terminal and warns itself; coupled solvers write
     // to their logs, so the coupler prints their warnings here, once.
     if case.coupling.is_some() {
         for warning in case.fluid_warnings() {
-            eprintln!("warning: {warning}");
+            crate::say!("warning: {warning}");
         }
     }
     let folder = match &opts.resume {
@@ -142,7 +143,7 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
                 .extend(["--resume".to_string(), file.display().to_string()]);
         }
         checkpoint::cut_back(&out, m)?;
-        eprintln!(
+        crate::say!(
             "resuming from the checkpoint of window {} (t = {} s) in {}",
             m.window,
             m.time,
@@ -276,7 +277,7 @@ fn resume_point(case: &Case, out: &Path) -> Result<Manifest, CouplerError> {
 
 fn report(s: &Summary, wall: f64, out: &Path) {
     let written = folder_size(out);
-    eprintln!(
+    crate::say!(
         "done: {} windows, {} solver sweeps (at most {} in a window), {wall:.2} s wall; action–reaction balance \
          worst {:.1e}{}",
         s.windows,
@@ -285,7 +286,7 @@ fn report(s: &Summary, wall: f64, out: &Path) {
         s.worst_balance,
         if s.balance_violations > 0 { format!(", {} windows above tolerance", s.balance_violations) } else { String::new() }
     );
-    eprintln!(
+    crate::say!(
         "output: {}, {} (recording.rec, ledger.csv, interface_energy.csv, one log and folder per participant)",
         out.display(),
         bytes_text(written as f64)
@@ -309,7 +310,7 @@ pub fn folder_size(dir: &Path) -> u64 {
 
 /// A case with one participant and no coupling: the solver runs alone (`SOLVER run CASE --out DIR`).
 fn standalone(case: &Case, name: &str, kind: Kind, exe: &Path, out: &Path) -> Result<(), CouplerError> {
-    eprintln!("{name}: {} solver alone ({})", kind.binary_name(), exe.display());
+    crate::say!("{name}: {} solver alone ({})", kind.binary_name(), exe.display());
     let status = Command::new(exe)
         .arg("run")
         .arg(&case.path)
@@ -322,7 +323,7 @@ fn standalone(case: &Case, name: &str, kind: Kind, exe: &Path, out: &Path) -> Re
             message: format!("cannot start {}: {e}", exe.display()),
         })?;
     if status.success() {
-        eprintln!(
+        crate::say!(
             "output: {}, {}",
             out.display(),
             bytes_text(folder_size(out) as f64)

@@ -307,7 +307,7 @@ impl Windows<'_> {
             if let Some(p) = changed {
                 // a topology change ends the window with the sweep that made it
                 accelerator.end_window();
-                eprintln!(
+                crate::say!(
                     "note: window {w}: {}'s member geometry changed (a fracture) in sweep {}; the window ends with \
                      that sweep, not converged (residual NaN in ledger.csv)",
                     self.stack.sessions[p].name,

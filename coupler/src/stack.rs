@@ -78,7 +78,7 @@ impl Stack {
             let pid = stack
                 .children
                 .spawn(&l.name, &l.exe, &l.args, &log, resumed.is_some())?;
-            eprintln!("started {} ({}, pid {pid})", l.name, l.exe.display());
+            crate::say!("started {} ({}, pid {pid})", l.name, l.exe.display());
             let link =
                 Link::open(run_id, &l.name, Side::Coupler).map_err(|e| link_error(&l.name, None, e))?;
             stack.sessions.push(Session {
@@ -353,7 +353,7 @@ impl Stack {
         }
         for s in &self.sessions {
             for warning in crate::launch::log_warnings(&s.log) {
-                eprintln!("warning from {}: {warning}", s.name);
+                crate::say!("warning from {}: {warning}", s.name);
             }
         }
         Ok(())

@@ -1,10 +1,10 @@
 //! Every abnormal ending leaves every output whole: the CI-sized floating box (fluid, structure,
 //! coupler) is stopped mid-run by SIGKILL, SIGTERM and SIGINT sent to each of its three
-//! processes — SIGINT to the coupler as a terminal's Ctrl-C does, to its whole process group —
-//! and then every file is parsed: each CSV (ledger, histories, probes) holds whole rows only and
-//! ends with a line end, each PVD lists only complete frame files, the recording reads back. The
-//! participants run in process groups of their own, so Ctrl-C reaches only the coupler, which
-//! stops them.
+//! processes, and by SIGHUP (a closed terminal) sent to the coupler — SIGINT to the coupler as
+//! a terminal's Ctrl-C does, to its whole process group — and then every file is parsed: each
+//! CSV (ledger, histories, probes) holds whole rows only and ends with a line end, each PVD
+//! lists only complete frame files, the recording reads back. The participants run in process
+//! groups of their own, so Ctrl-C reaches only the coupler, which stops them.
 
 use schemas::recording::{Recording, RecordingEnd};
 use stack_tests::{binary, case_from, out_dir};
@@ -42,6 +42,7 @@ fn signal_name(sig: i32) -> &'static str {
     match sig {
         libc::SIGKILL => "SIGKILL",
         libc::SIGTERM => "SIGTERM",
+        libc::SIGHUP => "SIGHUP",
         _ => "SIGINT",
     }
 }
@@ -139,6 +140,10 @@ fn stop_mid_run(target: &str, sig: i32) {
         "coupler" => {
             assert_eq!(status.code(), Some(130), "{what}: {text}");
             assert!(text.contains("interrupted in window"), "{what}: {text}");
+            assert!(
+                text.contains(&format!("by {}", signal_name(sig))),
+                "{what}: the stop names the signal: {text}"
+            );
         }
         name => {
             assert_eq!(status.code(), Some(1), "{what}: {text}");
@@ -260,8 +265,8 @@ fn sigkill_sigterm_and_sigint_to_the_structure_leave_every_output_whole() {
 }
 
 #[test]
-fn sigkill_sigterm_and_ctrl_c_to_the_coupler_stop_the_participants_and_leave_every_output_whole() {
-    for sig in [libc::SIGKILL, libc::SIGTERM, libc::SIGINT] {
+fn sigkill_sigterm_ctrl_c_and_sighup_to_the_coupler_stop_the_participants_and_leave_every_output_whole() {
+    for sig in [libc::SIGKILL, libc::SIGTERM, libc::SIGINT, libc::SIGHUP] {
         stop_mid_run("coupler", sig);
     }
 }

@@ -42,6 +42,12 @@ const BAD: &[(&str, &str, &str, &[&str])] = &[
         &["coupling.order[1]", "`mass-middle` is not a participant"],
     ),
     (
+        "participant-twice-in-order",
+        "order = [\"mass-left\", \"mass-right\"]",
+        "order = [\"mass-left\", \"mass-left\"]",
+        &["coupling.order[1]", "`mass-left` is listed twice"],
+    ),
+    (
         "unknown-point",
         "a = \"mass-left/m1\"",
         "a = \"mass-left/m9\"",
@@ -391,5 +397,87 @@ fn a_missing_executable_is_refused_by_check_as_by_run() {
     refused_by_check_and_run(
         &case,
         &["participant `mass-left`: no executable at", "no-such-solver"],
+    );
+}
+
+#[test]
+fn an_executable_that_cannot_run_is_refused_by_check_as_by_run() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = out_dir("unrunnable-executable");
+    std::fs::create_dir_all(&dir).unwrap_or_default();
+    let text = dir.join("notes.txt");
+    std::fs::write(&text, "not a program\n").unwrap_or_default();
+    std::fs::set_permissions(&text, std::fs::Permissions::from_mode(0o755)).unwrap_or_default();
+    let plain = dir.join("solver-without-x");
+    std::fs::write(&plain, "#!/bin/sh\nexit 0\n").unwrap_or_default();
+    std::fs::set_permissions(&plain, std::fs::Permissions::from_mode(0o644)).unwrap_or_default();
+    for (file, why) in [
+        ("notes.txt", "neither a program (ELF) nor a script"),
+        ("solver-without-x", "no execute permission"),
+    ] {
+        let case = stack_tests::oscillator_case(
+            &dir.join(file.replace('.', "-")),
+            &[(
+                "end_time",
+                &format!(
+                    "1.0\nexecutables = {{ mass-left = \"{}\" }}",
+                    dir.join(file).display()
+                ),
+            )],
+        );
+        refused_by_check_and_run(
+            &case,
+            &["participant `mass-left`", file, "cannot be started", why],
+        );
+    }
+}
+
+#[test]
+fn an_output_folder_through_a_file_or_on_proc_is_refused_as_such() {
+    let dir = out_dir("bad-out-place");
+    std::fs::create_dir_all(&dir).unwrap_or_default();
+    let case = stack_tests::oscillator_case(&dir, &[]);
+    let file = dir.join("results.csv");
+    std::fs::write(&file, "t\n").unwrap_or_default();
+    for (out, fragments) in [
+        (file.clone(), vec!["cannot be made", "is a file, not a folder"]),
+        (
+            file.join("run"),
+            vec!["cannot be made", "is a file, not a folder"],
+        ),
+        (
+            std::path::PathBuf::from("/proc/nope"),
+            vec!["cannot be made", "holds no files"],
+        ),
+    ] {
+        for command in ["check", "run"] {
+            let run = coupler(&[
+                command,
+                case.to_str().unwrap_or_default(),
+                "--out",
+                out.to_str().unwrap_or_default(),
+            ]);
+            let err = stderr(&run);
+            assert_eq!(
+                run.status.code(),
+                Some(2),
+                "{command} --out {}: {err}",
+                out.display()
+            );
+            for f in &fragments {
+                assert!(
+                    err.contains(f),
+                    "{command} --out {}: `{f}` in {err}",
+                    out.display()
+                );
+            }
+            assert!(!err.contains("too large"), "{err}");
+            assert!(!err.contains("started"), "nothing may start: {err}");
+        }
+    }
+    assert_eq!(
+        std::fs::read_to_string(&file).unwrap_or_default(),
+        "t\n",
+        "the file is left alone"
     );
 }

@@ -331,6 +331,21 @@ fn a_resolved_run_reference_compares_the_integral_against_another_case_file() {
         .unwrap_or_else(|e| panic!("cannot start the coupler: {e}"));
     assert!(!check.status.success(), "a resolved run needs its case file");
     assert!(stderr(&check).contains("reference.case"), "{}", stderr(&check));
+    std::fs::write(&case, reference("case = \"missing.toml\"\n"))
+        .unwrap_or_else(|e| panic!("cannot write the case: {e}"));
+    let check = Command::new(binary("coupler"))
+        .args(["check", case.to_str().unwrap_or_default()])
+        .output()
+        .unwrap_or_else(|e| panic!("cannot start the coupler: {e}"));
+    let err = stderr(&check);
+    assert_eq!(check.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("reference.case")
+            && err.contains("missing.toml")
+            && err.contains("cannot read the case file"),
+        "a missing resolved case is named: {err}"
+    );
+    assert!(!err.contains("``"), "no empty key in the message: {err}");
     std::fs::write(&case, reference("case = \"resolved.toml\"\n"))
         .unwrap_or_else(|e| panic!("cannot write the case: {e}"));
     let out = dir.join("report");

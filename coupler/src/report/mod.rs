@@ -64,7 +64,7 @@ pub fn report(opts: &ReportOptions) -> Result<(), CouplerError> {
         let root = docs_dir.parent().unwrap_or(std::path::Path::new("."));
         let layout = crate::validation::layout::Layout::new(root);
         let done = docs::update(&layout, &out, opts.full).map_err(CouplerError::Io)?;
-        eprintln!(
+        crate::say!(
             "{}: {} from {}; now run `coupler validation` to render {}",
             layout.data().display(),
             done.join(", "),
@@ -98,10 +98,10 @@ pub fn report(opts: &ReportOptions) -> Result<(), CouplerError> {
         run_accuracy(&cases, opts, &out, &stamp)?
     };
     if missing.is_empty() {
-        eprintln!("report: {}", out.display());
+        crate::say!("report: {}", out.display());
         Ok(())
     } else {
-        eprintln!(
+        crate::say!(
             "report interrupted: the finished rows are in {}; missing: {}",
             out.display(),
             missing.join("; ")

@@ -44,7 +44,7 @@ impl Bar {
         if self.terminal {
             self.bar.println(line);
         } else {
-            eprintln!("{line}");
+            crate::say!("{line}");
         }
     }
 

@@ -254,7 +254,7 @@ impl Detector {
     pub fn finish(&self) {
         let net = self.account.nets.last().copied().unwrap_or(0.0);
         if net > ROUNDING_MARGIN * self.account.rounding && net > WARN * self.account.scale {
-            eprintln!(
+            crate::say!(
                 "warning: coupling: over the run the coupling created {net:.3e} J at the interface, {:.3} times the \
                  run's physical energy scale {:.3e} J: the coupled motion holds energy the physics did not give it. \
                  Shorten coupling.window or use coupling.scheme = \"implicit\" (interface_energy.csv has every window)",

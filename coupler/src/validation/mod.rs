@@ -34,7 +34,7 @@ pub fn validation(opts: &ValidationOptions) -> Result<(), CouplerError> {
     let io = CouplerError::Io;
     if let Some(fresh) = &opts.collect {
         let done = records::collect(fresh, &layout.records()).map_err(io)?;
-        eprintln!(
+        crate::say!(
             "{}: {} added, {} replaced{}",
             layout.records().display(),
             done.added.len(),
@@ -52,9 +52,9 @@ pub fn validation(opts: &ValidationOptions) -> Result<(), CouplerError> {
     schemas::atomic_file::write(&layout.page(), &rendered.page)
         .map_err(|e| CouplerError::Io(format!("cannot write {}: {e}", layout.page().display())))?;
     let rows: usize = rendered.groups.iter().map(|(_, r)| r.len()).sum::<usize>() + rendered.orphans.len();
-    eprintln!("{}: {rows} rows", layout.page().display());
+    crate::say!("{}: {rows} rows", layout.page().display());
     if !rendered.orphans.is_empty() {
-        eprintln!(
+        crate::say!(
             "warning: no group of {} names {}: they are shown under \"Other\"",
             layout.groups().display(),
             rendered.orphans.join(", ")
@@ -62,7 +62,7 @@ pub fn validation(opts: &ValidationOptions) -> Result<(), CouplerError> {
     }
     let all = records::load(&layout.records()).map_err(io)?;
     for missing in sources::missing_tests(&layout.root, &all) {
-        eprintln!("warning: the row's test is missing: {missing}");
+        crate::say!("warning: the row's test is missing: {missing}");
     }
     update_readme(
         &layout.readme(),
@@ -75,13 +75,13 @@ fn update_readme(readme: &Path, table: &str) -> Result<(), CouplerError> {
     let text = std::fs::read_to_string(readme)
         .map_err(|e| CouplerError::Io(format!("cannot read {}: {e}", readme.display())))?;
     match summary::replace_between(&text, summary::MARKERS, table) {
-        Some(new) if new == text => eprintln!("{}: summary unchanged", readme.display()),
+        Some(new) if new == text => crate::say!("{}: summary unchanged", readme.display()),
         Some(new) => {
             schemas::atomic_file::write(readme, new)
                 .map_err(|e| CouplerError::Io(format!("cannot write {}: {e}", readme.display())))?;
-            eprintln!("{}: summary updated", readme.display());
+            crate::say!("{}: summary updated", readme.display());
         }
-        None => eprintln!(
+        None => crate::say!(
             "{} has no `{}` … `{}` markers: its summary was left alone (add them where the table goes)",
             readme.display(),
             summary::MARKERS.0,

@@ -265,6 +265,17 @@ impl CouplingConfig {
                 ));
             }
         }
+        for (i, name) in self.order.iter().enumerate() {
+            if let Some(first) = self.order[..i].iter().position(|n| n == name) {
+                return Err(FieldError::new(
+                    format!("coupling.order[{i}]"),
+                    format!(
+                        "`{name}` is listed twice (also at coupling.order[{first}]); list every participant once: {}",
+                        super::list(&names)
+                    ),
+                ));
+            }
+        }
         if !self.order.is_empty() && self.order.len() != names.len() {
             return Err(FieldError::new(
                 "coupling.order",

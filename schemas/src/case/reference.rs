@@ -265,12 +265,7 @@ impl ReferenceConfig {
             )
         })?;
         let path = case.resolve(file);
-        Case::load(&path).map_err(|e| {
-            FieldError::new(
-                "reference.case",
-                format!("{}: `{}`: {}", path.display(), e.key, e.message),
-            )
-        })
+        Case::load(&path).map_err(|e| FieldError::new("reference.case", e.to_string()))
     }
 
     fn against_name(&self) -> &'static str {

@@ -180,7 +180,7 @@ impl Drag {
             return;
         };
         if widest > support {
-            eprintln!(
+            crate::say!(
                 "warning: coupling.drag: a member {widest} m wide is {:.1} times the radius {support:.4} m of the \
                  kernel that spreads its reaction on the fluid (S2-24: {} particle spacings). The fluid spreads \
                  it over the water in the member's footprint, so the drag does not throw out the particles \
