@@ -39,7 +39,7 @@ pub fn executable_for(
     }
     runnable(&path).map_err(|why| {
         CouplerError::Usage(format!(
-            "participant `{name}`: {} (from {source}) cannot be started: {why}",
+            "participant `{name}`: {} (from {source}) is not a program the system can run: {why}",
             path.display()
         ))
     })?;

@@ -415,8 +415,10 @@ fn an_executable_that_cannot_run_is_refused_by_check_as_by_run() {
         ("notes.txt", "neither a program (ELF) nor a script"),
         ("solver-without-x", "no execute permission"),
     ] {
+        let case_dir = dir.join(format!("case-{}", file.replace('.', "-")));
+        std::fs::create_dir_all(&case_dir).unwrap_or_default();
         let case = stack_tests::oscillator_case(
-            &dir.join(file.replace('.', "-")),
+            &case_dir,
             &[(
                 "end_time",
                 &format!(
@@ -427,7 +429,12 @@ fn an_executable_that_cannot_run_is_refused_by_check_as_by_run() {
         );
         refused_by_check_and_run(
             &case,
-            &["participant `mass-left`", file, "cannot be started", why],
+            &[
+                "participant `mass-left`",
+                file,
+                "is not a program the system can run",
+                why,
+            ],
         );
     }
 }
