@@ -135,28 +135,3 @@ fn demote(body: &str) -> String {
         .collect::<Vec<_>>()
         .join("\n")
 }
-
-/// The anchor GitHub gives a heading: lower case, punctuation dropped, spaces as dashes.
-pub fn anchor(title: &str) -> String {
-    title
-        .to_lowercase()
-        .chars()
-        .filter_map(|c| match c {
-            ' ' => Some('-'),
-            c if c.is_alphanumeric() || c == '-' || c == '_' => Some(c),
-            _ => None,
-        })
-        .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn anchors_are_githubs() {
-        assert_eq!(anchor("E-MPS fluid"), "e-mps-fluid");
-        assert_eq!(anchor("Structure: rigid bodies"), "structure-rigid-bodies");
-        assert_eq!(anchor("Frames (ASI-Gauss)"), "frames-asi-gauss");
-    }
-}

@@ -3,7 +3,7 @@
 
 use super::cells;
 use super::groups::Group;
-use super::page::anchor;
+use schemas::markdown_anchor::github_anchor as anchor;
 use schemas::validation::Record;
 
 pub const MARKERS: (&str, &str) = (

@@ -204,18 +204,9 @@ pub fn heading(t: &Table) -> String {
     }
 }
 
-/// The heading's anchor, as GitHub makes it: lowercase, letters, digits, `-` and `_` kept,
-/// spaces to `-`, the rest dropped.
+/// The heading's anchor, as GitHub makes it.
 fn anchor(t: &Table) -> String {
-    heading(t)
-        .to_lowercase()
-        .chars()
-        .filter_map(|c| match c {
-            ' ' => Some('-'),
-            c if c.is_alphanumeric() || c == '-' || c == '_' => Some(c),
-            _ => None,
-        })
-        .collect()
+    crate::markdown_anchor::github_anchor(&heading(t))
 }
 
 /// Text for a table cell: one line, `|` escaped.
