@@ -91,7 +91,7 @@ inertia = { tensor = [[1, 0, 0], [0, 2, 0], [0, 0, 3]] }
         bound_source: "the issue: period within 0.1 %".into(),
         ..flip(
             "period",
-            "intermediate-axis flip period 41.509 s (the issue; an independent RK4 solution of Euler's \
+            "intermediate-axis flip period 41.509 s (an independent RK4 solution of Euler's \
              equations gives 41.5092 s)",
             "relative error of the flip period",
             (period - 41.509).abs() / 41.509,
