@@ -6,7 +6,7 @@ use coupler::laws::drag::{Drag, DragSettings};
 use coupler::laws::{Instant, Law};
 use schemas::case::drag::square_prism_drag;
 use schemas::message::{Fields, Geometry};
-use schemas::validation::{record, Record};
+use schemas::validation::{largest_abs, record, Record};
 use schemas::F64s;
 
 const RHO: f64 = 1000.0;
@@ -130,7 +130,7 @@ fn a_member_across_a_uniform_stream_takes_half_cd_rho_v2_d_l_and_buoyancy() {
         case,
         test,
     );
-    let reaction = (0..3).map(|c| (fs[c] + ff[c]).abs()).fold(0.0, f64::max);
+    let reaction = largest_abs((0..3).map(|c| fs[c] + ff[c]));
     record_against_hand(
         "reaction",
         ("the fluid's reaction", "−f, Newton's third law"),

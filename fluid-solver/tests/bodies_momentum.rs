@@ -9,7 +9,7 @@ mod bodies_common;
 use bodies_common::tank_with_body;
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::Aabb;
-use schemas::validation::{record, Record};
+use schemas::validation::{largest_abs, record, Record};
 use std::time::Instant;
 
 #[test]
@@ -98,7 +98,7 @@ fn the_loads_carry_all_the_momentum_the_fluid_gives_the_body() {
                 .into(),
         resolution: "E-MPS, Δs = 0.02 m, Δt = 8e-4 s".into(),
         measure: "largest |momentum residual| over the axes / (m · 1.5 m/s + gravity's impulse)".into(),
-        value: residual.iter().fold(0.0, |m: f64, r| m.max(r.abs())) / scale,
+        value: largest_abs(residual.iter().copied()) / scale,
         bound: Some(1e-9),
         bound_source: "round-off: the loads are the fluid's pair terms with the body".into(),
         source:

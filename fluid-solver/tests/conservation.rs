@@ -6,7 +6,7 @@ mod common;
 
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{Aabb, FluidConfig};
-use schemas::validation::{record, Record};
+use schemas::validation::{largest_abs, record, Record};
 use std::time::Instant;
 
 /// A closed box 0.2 × 0.2 × 0.3 m with a water block held 0.1 m above the floor.
@@ -41,9 +41,7 @@ fn momentum_changes_only_by_gravity_and_wall_forces() {
     );
     // … and the balance closes to round-off: fluid–fluid pressure (S1-3, (P_i + P_j) r_ij is
     // antisymmetric), viscous (S1-4) and collision forces cancel in pairs.
-    let worst = (0..3)
-        .map(|a| (p1[a] - p0[a] - gravity[a] - wall[a]).abs())
-        .fold(0.0, f64::max);
+    let worst = largest_abs((0..3).map(|a| p1[a] - p0[a] - gravity[a] - wall[a]));
     record(Record {
         id: "emps-momentum-closed-box-drop".into(),
         capability: "E-MPS momentum budget".into(),

@@ -8,7 +8,7 @@ mod gpu_common;
 use fluid_solver::probes;
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{FluidConfig, ProbeConfig, ProbeKind};
-use schemas::validation::{record, Record};
+use schemas::validation::{largest_abs, record, Record};
 use std::collections::HashMap;
 use std::time::Instant;
 
@@ -127,8 +127,8 @@ fn check(cfg: &FluidConfig, steps: usize, (test, tag, scene): (&str, &str, &str)
         return;
     };
     let (worst, fc, fg) = (c.worst, c.front_cpu, c.front_gpu);
-    let scale = c.impulse_cpu.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let impulse = (0..3).fold(0.0f64, |m, a| m.max((c.impulse_gpu[a] - c.impulse_cpu[a]).abs()));
+    let scale = largest_abs(c.impulse_cpu);
+    let impulse = largest_abs((0..3).map(|a| c.impulse_gpu[a] - c.impulse_cpu[a]));
     let row = Record {
         capability: "E-MPS step on the GPU (f32)".into(),
         reference: "the CPU's f64 step from the same start".into(),
@@ -183,7 +183,6 @@ fn check(cfg: &FluidConfig, steps: usize, (test, tag, scene): (&str, &str, &str)
         (fg - fc).abs() < FRONT_BOUND * fc,
         "surge front on the GPU {fg} m, on the CPU {fc} m (bound 1 %)"
     );
-    let scale = c.impulse_cpu.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     for a in 0..3 {
         assert!(
             (c.impulse_gpu[a] - c.impulse_cpu[a]).abs() < IMPULSE_BOUND * scale,

@@ -33,7 +33,7 @@ use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{
     Aabb, FluidConfig, FluidMethodName, IsphConfig, PressureGradient, Shifting, TankConfig,
 };
-use schemas::validation::{record, Record};
+use schemas::validation::{largest_abs, record, Record};
 use std::time::Instant;
 
 fn isph(cfg: FluidConfig) -> FluidConfig {
@@ -172,7 +172,7 @@ fn budget_record(b: &Budget, bound: f64, bound_source: &str) -> Record {
                     impulse booked for the walls and bodies"
             .into(),
         measure: "largest |Δp − gravity impulse − booked impulse| over the axes / gravity's impulse".into(),
-        value: b.gap.iter().fold(0.0, |m: f64, g| m.max(g.abs())) / b.scale,
+        value: largest_abs(b.gap) / b.scale,
         bound: Some(bound),
         bound_source: bound_source.into(),
         run_time_s: b.run_time_s,

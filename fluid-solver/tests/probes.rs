@@ -142,7 +142,9 @@ fn a_wall_sensor_on_a_hydrostatic_tank_reads_rho_g_h() {
         ));
         let worst = errors[pair..pair + 2]
             .iter()
-            .fold(0.0f64, |m, e| if e.abs() > m.abs() { *e } else { m });
+            .copied()
+            .max_by(|a, b| a.abs().total_cmp(&b.abs()))
+            .unwrap_or(0.0);
         record(sensor_record(
             &format!("{id}-single"),
             &format!("single sensors on the {place}"),

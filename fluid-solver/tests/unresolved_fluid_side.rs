@@ -9,7 +9,7 @@ use fluid_solver::unresolved::kernel::Wendland;
 use fluid_solver::unresolved::sampling::{sample, smallest_eigenvalue};
 use fluid_solver::unresolved::spreading::spread;
 use fluid_solver::Kind;
-use schemas::validation::{record, Record};
+use schemas::validation::{largest_abs, record, Record};
 
 const DS: f64 = 0.01;
 /// Water depth [spacings] and half-width [spacings].
@@ -90,10 +90,11 @@ fn a_uniform_field_is_sampled_exactly_at_the_surface_and_the_wall() {
     let (p, grid) = pool(|_| u);
     let points = column();
     let samples = sample(&p, &grid, DS, &points);
-    let worst = samples
-        .iter()
-        .flat_map(|s| s.velocity.iter().zip(&u).map(|(a, b)| (a - b).abs()))
-        .fold(0.0, f64::max);
+    let worst = largest_abs(
+        samples
+            .iter()
+            .flat_map(|s| s.velocity.iter().zip(&u).map(|(a, b)| a - b)),
+    );
     record(Record {
         reference: "the uniform velocity sampled".into(),
         measure: "largest |sampled − exact| velocity component (Shepard weights sum to one)".into(),
@@ -225,7 +226,7 @@ fn a_spread_reaction_sums_to_the_reaction_near_a_wall_and_the_surface() {
             }
             (0..3).for_each(|c| sum[c] += fi[c]);
         }
-        worst = (0..3).fold(worst, |w, c| w.max((sum[c] - f[c]).abs()));
+        worst = largest_abs((0..3).map(|c| sum[c] - f[c]).chain([worst]));
         record(Record {
             reference: "the point reaction spread (its shares must sum to it)".into(),
             measure: "largest |Σ shares − reaction| over components and places".into(),
@@ -296,7 +297,7 @@ fn the_closed_form_smallest_eigenvalue_matches_a_symmetric_eigensolver() {
         let full = nalgebra::Matrix3::new(m[0], m[1], m[2], m[1], m[3], m[4], m[2], m[4], m[5]);
         let reference = nalgebra::SymmetricEigen::new(full).eigenvalues.min();
         let got = smallest_eigenvalue(&m);
-        worst = worst.max((got - reference).abs());
+        worst = largest_abs([worst, got - reference]);
         record(Record {
             id: "drag-fluid-side-lambda-min-closed-form".into(),
             capability: "Unresolved drag, the fluid's side: λ_min of the moment matrix in closed form".into(),

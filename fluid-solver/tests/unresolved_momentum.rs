@@ -7,7 +7,7 @@ mod closed_box;
 mod common;
 
 use fluid_solver::{FluidSolver, Kind};
-use schemas::validation::{record, Record};
+use schemas::validation::{largest_abs, record, Record};
 
 #[test]
 fn point_reactions_change_the_fluid_momentum_by_their_impulse() {
@@ -50,11 +50,10 @@ fn momentum_budget_closes(widths: &[f64]) {
         "momentum {p1:?}, reactions {:?} (given {given:?}), walls {:?}",
         totals.reaction_impulse, totals.wall_impulse
     );
-    let worst = (0..3)
-        .map(|c| {
-            (p1[c] - mass * cfg.gravity[c] * t - totals.wall_impulse[c] - totals.reaction_impulse[c]).abs()
-        })
-        .fold(0.0, f64::max);
+    let worst =
+        largest_abs((0..3).map(|c| {
+            p1[c] - mass * cfg.gravity[c] * t - totals.wall_impulse[c] - totals.reaction_impulse[c]
+        }));
     let (tag, members, test) = match widths.is_empty() {
         true => (
             "points",

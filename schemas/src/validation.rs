@@ -146,6 +146,19 @@ fn proc_field<'a>(text: &'a str, key: &str) -> Option<&'a str> {
         .map(|(_, v)| v.trim())
 }
 
+/// The largest |value| of `values`, NaN if any of them is NaN (0 for none): the error a record
+/// reports over axes or samples. `fold(0.0, f64::max)` would skip a NaN and report the others'
+/// largest, so a blown-up run could read as a small error.
+pub fn largest_abs(values: impl IntoIterator<Item = f64>) -> f64 {
+    values.into_iter().map(f64::abs).fold(0.0, |m, v| {
+        if v.is_nan() || m.is_nan() {
+            f64::NAN
+        } else {
+            m.max(v)
+        }
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -214,5 +227,13 @@ mod tests {
             utc_date(UNIX_EPOCH + std::time::Duration::from_secs(1_767_225_600)),
             "2026-01-01"
         );
+    }
+
+    #[test]
+    fn largest_abs_keeps_a_nan() {
+        assert_eq!(largest_abs([1.0, -3.0, 2.0]), 3.0);
+        assert_eq!(largest_abs([]), 0.0);
+        assert!(largest_abs([1.0, f64::NAN, 2.0]).is_nan());
+        assert!(largest_abs([f64::NAN, 5.0]).is_nan());
     }
 }

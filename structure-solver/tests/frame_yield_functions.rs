@@ -6,7 +6,7 @@ mod frame_common;
 
 use frame_common::{rectangle, steel};
 use schemas::case::frame::SectionConfig;
-use schemas::validation::{record, Record};
+use schemas::validation::{largest_abs, record, Record};
 use std::time::Instant;
 use structure_solver::frame::section::Section;
 
@@ -41,10 +41,7 @@ fn moment_capacity(s: &Section, n: f64) -> f64 {
 fn the_default_gives_the_exact_rectangle_capacity_under_axial_load() {
     let started = Instant::now();
     let capacities = [0.0, 0.25, 0.5, 0.9].map(|n| (n, moment_capacity(&section(None), n)));
-    let worst = capacities
-        .iter()
-        .map(|(n, default)| (default - (1.0 - n * n)).abs())
-        .fold(0.0, f64::max);
+    let worst = largest_abs(capacities.iter().map(|(n, default)| default - (1.0 - n * n)));
     record(Record {
         id: "asi-gauss-rectangle-capacity-under-axial-load".into(),
         capability: "ASI-Gauss yield function of a solid rectangle".into(),

@@ -5,7 +5,7 @@ use schemas::case::Case;
 use schemas::f64s::F64s;
 use schemas::message::{Fields, Waveform};
 use schemas::participant::Participant;
-use schemas::validation::{record, Record};
+use schemas::validation::{largest_abs, record, Record};
 use std::f64::consts::PI;
 use std::path::Path;
 use std::time::Instant;
@@ -78,11 +78,12 @@ fn constant_force_windows_follow_the_exact_step_response() {
         windows.push((inputs, out));
     }
     let run_time_s = started.elapsed().as_secs_f64();
-    let worst = windows
-        .iter()
-        .flat_map(|(inputs, out)| inputs.times.iter().zip(out))
-        .map(|(t, o)| (o.point_displacement[0] - f / k * (1.0 - (w * t).cos())).abs())
-        .fold(0.0, f64::max);
+    let worst = largest_abs(
+        windows
+            .iter()
+            .flat_map(|(inputs, out)| inputs.times.iter().zip(out))
+            .map(|(t, o)| o.point_displacement[0] - f / k * (1.0 - (w * t).cos())),
+    );
     record(Record {
         id: "structure-participant-step-response".into(),
         capability: "point masses and springs (RK4) through the participant adapter".into(),

@@ -2,7 +2,7 @@
 //! constant force.
 
 use schemas::case::Case;
-use schemas::validation::{record, Record};
+use schemas::validation::{largest_abs, record, Record};
 use std::path::Path;
 use std::time::Instant;
 use structure_solver::{ExternalLoads, Structure};
@@ -146,12 +146,10 @@ inertia = { box = [1, 2, 3] }
     let run_time_s = started.elapsed().as_secs_f64();
     let b = &s.bodies()[0];
     let (x0, v0, g) = ([1.0, 2.0, 3.0], [0.5, 0.0, 1.0], [0.0, 0.0, -9.8]);
-    let worst_position = (0..3)
-        .map(|k| {
-            let exact = x0[k] + v0[k] * t + 0.5 * (force[k] / 2.0 + g[k]) * t * t;
-            (b.centre()[k] - exact).abs() / (1.0 + exact.abs())
-        })
-        .fold(0.0, f64::max);
+    let worst_position = largest_abs((0..3).map(|k| {
+        let exact = x0[k] + v0[k] * t + 0.5 * (force[k] / 2.0 + g[k]) * t * t;
+        (b.centre()[k] - exact) / (1.0 + exact.abs())
+    }));
     record(Record {
         id: "rigid-body-constant-force-parabola".into(),
         capability: "rigid-body translation (kick–drift–kick)".into(),

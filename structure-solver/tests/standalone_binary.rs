@@ -1,7 +1,7 @@
 //! The built `structure-solver` binary end to end: `run CASE --out DIR` on the verification
 //! cases, and a bad case.
 
-use schemas::validation::{record, Record};
+use schemas::validation::{largest_abs, record, Record};
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -69,16 +69,10 @@ fn two_mass_case_writes_the_exact_history() {
         Some(1.0),
         "the last row is at end_time exactly"
     );
-    let worst = m1
-        .iter()
-        .zip(&m2)
-        .map(|(a, b)| {
-            let (slow, fast) = ((2.0 * PI * a[0]).cos(), (6.0 * PI * a[0]).cos());
-            (a[1] - 0.5 * (slow + fast))
-                .abs()
-                .max((b[1] - 0.5 * (slow - fast)).abs())
-        })
-        .fold(0.0, f64::max);
+    let worst = largest_abs(m1.iter().zip(&m2).flat_map(|(a, b)| {
+        let (slow, fast) = ((2.0 * PI * a[0]).cos(), (6.0 * PI * a[0]).cos());
+        [a[1] - 0.5 * (slow + fast), b[1] - 0.5 * (slow - fast)]
+    }));
     record(Record {
         id: "structure-two-mass-case-history".into(),
         capability: "point masses and springs (RK4), standalone binary".into(),
@@ -327,11 +321,12 @@ fn plastic_collapse_case_gives_eight_mp_over_l_and_three_hinges() {
             run_time_s,
         )
     };
-    let elastic_worst = curve
-        .iter()
-        .filter(|(ratio, _)| (0.2..=0.99).contains(ratio))
-        .map(|(_, compliance)| (compliance - 1.0).abs())
-        .fold(0.0, f64::max);
+    let elastic_worst = largest_abs(
+        curve
+            .iter()
+            .filter(|(ratio, _)| (0.2..=0.99).contains(ratio))
+            .map(|(_, compliance)| compliance - 1.0),
+    );
     record(Record {
         bound_source: "the ramp over ~100 first-mode periods leaves an overshoot ≪ 1 %".into(),
         ..collapse(
@@ -519,9 +514,9 @@ fn section_forces_follow_the_fixed_fixed_moment_diagram() {
             0.25 + 0.5 * (node - 5) as f64
         };
         let expected_moment = p * (4.0 * x.min(length - x) - length) / 8.0;
-        worst_n = worst_n.max((r[5] / membrane - 1.0).abs());
-        worst_v = worst_v.max((r[7].abs() - p / 2.0).abs() / (p / 2.0));
-        worst_m = worst_m.max((r[9].abs() - expected_moment.abs()).abs() / (p * length / 8.0));
+        worst_n = largest_abs([worst_n, r[5] / membrane - 1.0]);
+        worst_v = largest_abs([worst_v, (r[7].abs() - p / 2.0) / (p / 2.0)]);
+        worst_m = largest_abs([worst_m, (r[9].abs() - expected_moment.abs()) / (p * length / 8.0)]);
     }
     let fixed_fixed =
         |id: &str, reference: &str, measure: &str, value: f64, bound: f64, bound_source: &str| Record {
@@ -665,19 +660,13 @@ fn hinge_events_of_the_plastic_collapse() {
         "hinge-time",
         "plastic limit analysis: the three hinges form at Pc = 8 Mp/L, t = 0.76 / 1.2 = 0.633 s",
         "largest |formation time / 0.633 s − 1| of the first hinges",
-        first
-            .iter()
-            .map(|r| (r[0] / (0.76 / 1.2) - 1.0).abs())
-            .fold(0.0, f64::max),
+        largest_abs(first.iter().map(|r| r[0] / (0.76 / 1.2) - 1.0)),
     ));
     record(hinges(
         "hinge-moment",
         "fully plastic moment Mp = σy b h²/4 = 58.75 kN m",
         "largest ||My| / Mp − 1| of the first hinges",
-        first
-            .iter()
-            .map(|r| (r[9].abs() / mp - 1.0).abs())
-            .fold(0.0, f64::max),
+        largest_abs(first.iter().map(|r| r[9].abs() / mp - 1.0)),
     ));
     for r in first {
         assert!((r[0] / (0.76 / 1.2) - 1.0).abs() < 0.02, "formed at t = {}", r[0]);

@@ -9,7 +9,7 @@
 //! - (explicit, constant predictor: the reaction is constant over each one-step window) have
 //!   the fluid take exactly the impulse the coupler gave, Σ_w F_w Δt_w, to 1e-9 relative.
 
-use schemas::validation::{record, Record};
+use schemas::validation::{largest_abs, record, Record};
 use stack_tests::{
     breakable_drag_column_case, coupler_run, csv_rows, out_dir, stderr, DRAG_COLUMN_CASE as CASE,
 };
@@ -93,8 +93,8 @@ fn run_case(scheme: &str, fluid: Fluid) {
     );
     let ledger = csv_rows(&out.join("ledger.csv"));
     // window,time,iterations,residual,water_fx,water_fy,water_fz,water_work,column_fx,…,balance,status
-    // (balance is column 15: column 16, the status word, reads as NaN, which f64::max skips)
-    let worst = ledger.iter().map(|r| r[15]).fold(0.0, f64::max);
+    // (balance is column 15; a NaN balance fails the bound below)
+    let worst = largest_abs(ledger.iter().map(|r| r[15]));
     let peak = ledger.iter().map(|r| r[8]).fold(0.0, f64::max);
     let window = 5.0e-4;
     let given: Vec<f64> = (0..3)
@@ -153,9 +153,7 @@ fn run_case(scheme: &str, fluid: Fluid) {
     );
     let scale = MASS * 9.8 * 0.2;
     if fluid == Fluid::Emps {
-        let worst_residual = (0..3)
-            .map(|c| (change[c] - gravity[c] - walls[c] - reactions[c]).abs())
-            .fold(0.0, f64::max);
+        let worst_residual = largest_abs((0..3).map(|c| change[c] - gravity[c] - walls[c] - reactions[c]));
         record(drag_column(
             "momentum-budget",
             "conservation of momentum: the fluid's change = gravity + walls + drag reactions",
@@ -189,9 +187,7 @@ fn run_case(scheme: &str, fluid: Fluid) {
         })
         .collect();
     let bound = if scheme == "explicit" { 1e-9 } else { 1e-3 };
-    let worst_impulse = (0..3)
-        .map(|c| (reactions[c] + unapplied[c] - taken_from[c]).abs())
-        .fold(0.0, f64::max);
+    let worst_impulse = largest_abs((0..3).map(|c| reactions[c] + unapplied[c] - taken_from[c]));
     record(drag_column(
         "impulse",
         "the impulse the coupler gave, Σ_w F_w Δt_w (explicit: the window's own value; implicit: the last \
@@ -308,7 +304,7 @@ fn a_column_fractures_under_implicit_coupling_and_the_run_goes_on() {
     let fractures: Vec<&str> = events.lines().filter(|l| l.contains(",fracture,")).collect();
     let ledger = csv_rows(&out.join("ledger.csv"));
     // window,time,iterations,residual,water_fx,…,column_fx (8),…,balance (15),status
-    let worst = ledger.iter().map(|r| r[15]).fold(0.0, f64::max);
+    let worst = largest_abs(ledger.iter().map(|r| r[15]));
     let open: Vec<&Vec<f64>> = ledger.iter().filter(|r| r[3].is_nan()).collect();
     let after = open.first().map_or(f64::INFINITY, |r| r[1]);
     let later: Vec<&Vec<f64>> = ledger.iter().filter(|r| r[1] > after).collect();

@@ -2,7 +2,7 @@
 //! scenes at particle size 0.02 m instead of 0.005 m (the time steps scaled alike, as
 //! `cases/prism-dam-break/sweep.py --spacing 0.02` does), run through the real processes.
 
-use schemas::validation::{record, Record};
+use schemas::validation::{largest_abs, record, Record};
 use stack_tests::{coupler_run, csv_rows, out_dir, stderr, workspace};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -78,7 +78,7 @@ fn the_unresolved_prism_takes_the_impulse_of_the_resolved_one_within_the_coarse_
         "no wide-member warning:\n{log}"
     );
     let balance = column(&header, "balance");
-    let worst = rows.iter().map(|r| r[balance]).fold(0.0, f64::max);
+    let worst = largest_abs(rows.iter().map(|r| r[balance]));
     assert!(worst <= 1e-12, "ledger balance {worst:e}");
     let width = 0.05;
     let j = impulse_x(&rows, column(&header, "prism_fx")) / width;
@@ -154,7 +154,7 @@ fn the_washout_prism_fractures_and_the_coupled_run_goes_on() {
     let out = dir.join("out");
     let (rows, header, _) = run(&case, &out);
     let balance = column(&header, "balance");
-    let worst = rows.iter().map(|r| r[balance]).fold(0.0, f64::max);
+    let worst = largest_abs(rows.iter().map(|r| r[balance]));
     assert!(worst <= 1e-12, "ledger balance {worst:e}");
     let events = std::fs::read_to_string(out.join("prism").join("hinge-events.csv")).unwrap_or_default();
     let fractures: Vec<&str> = events.lines().filter(|l| l.contains(",fracture,")).collect();
