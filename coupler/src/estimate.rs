@@ -200,17 +200,8 @@ fn written_particles(f: &FluidConfig) -> f64 {
 /// Free bytes for an unprivileged user on the file system that holds `dir` (or its nearest
 /// existing parent).
 fn free_space(dir: &Path) -> Option<u64> {
-    let existing = dir.ancestors().find(|p| p.exists()).unwrap_or(Path::new("."));
-    let existing = if existing.as_os_str().is_empty() {
-        Path::new(".")
-    } else {
-        existing
-    };
-    let c_path = std::ffi::CString::new(existing.as_os_str().as_encoded_bytes()).ok()?;
-    let mut stat: libc::statvfs = unsafe { std::mem::zeroed() };
-    // SAFETY: a NUL-terminated path and a statvfs struct owned here.
-    let rc = unsafe { libc::statvfs(c_path.as_ptr(), &mut stat) };
-    (rc == 0).then(|| stat.f_bavail as u64 * stat.f_frsize as u64)
+    let fs = crate::out_folder::file_system(crate::out_folder::nearest_existing(dir))?;
+    Some(fs.f_bavail * fs.f_frsize)
 }
 
 /// "668 MB", "3.1 TB", "1.0e+21 B": SI units up to petabytes, then powers of ten.

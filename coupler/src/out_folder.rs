@@ -16,9 +16,7 @@ use std::path::{Path, PathBuf};
 /// (`--out results.csv`, `--out results.csv/run`), or a place on a file system that holds no
 /// files (`/proc`, `/sys`), where the free-space check would read 0 B and call the run too large.
 pub fn check_place(dir: &Path) -> Result<(), CouplerError> {
-    let Some(existing) = dir.ancestors().find(|p| !p.as_os_str().is_empty() && p.exists()) else {
-        return Ok(());
-    };
+    let existing = nearest_existing(dir);
     if !existing.is_dir() {
         return Err(CouplerError::Usage(format!(
             "the output folder {} cannot be made: {} is a file, not a folder; choose another --out",
@@ -26,16 +24,7 @@ pub fn check_place(dir: &Path) -> Result<(), CouplerError> {
             existing.display()
         )));
     }
-    let holds_files = std::ffi::CString::new(existing.as_os_str().as_encoded_bytes())
-        .ok()
-        .and_then(|c_path| {
-            let mut stat: libc::statvfs = unsafe { std::mem::zeroed() };
-            // SAFETY: a NUL-terminated path and a statvfs struct owned here.
-            let rc = unsafe { libc::statvfs(c_path.as_ptr(), &mut stat) };
-            (rc == 0).then_some(stat.f_blocks > 0)
-        })
-        .unwrap_or(true);
-    if holds_files {
+    if file_system(existing).is_none_or(|fs| fs.f_blocks > 0) {
         Ok(())
     } else {
         Err(CouplerError::Usage(format!(
@@ -45,6 +34,23 @@ pub fn check_place(dir: &Path) -> Result<(), CouplerError> {
             existing.display()
         )))
     }
+}
+
+/// The nearest path at or above `dir` that exists (the working folder when no part of a relative
+/// `dir` does): where the output folder would be made.
+pub fn nearest_existing(dir: &Path) -> &Path {
+    dir.ancestors()
+        .find(|p| !p.as_os_str().is_empty() && p.exists())
+        .unwrap_or(Path::new("."))
+}
+
+/// statvfs(3) of the file system that holds `path`; None when it cannot be read.
+pub fn file_system(path: &Path) -> Option<libc::statvfs> {
+    let c_path = std::ffi::CString::new(path.as_os_str().as_encoded_bytes()).ok()?;
+    let mut stat: libc::statvfs = unsafe { std::mem::zeroed() };
+    // SAFETY: a NUL-terminated path and a statvfs struct owned here.
+    let rc = unsafe { libc::statvfs(c_path.as_ptr(), &mut stat) };
+    (rc == 0).then_some(stat)
 }
 
 /// The lock file's name inside the output folder.
