@@ -9,7 +9,7 @@ pub mod case;
 pub mod checkpoint;
 pub mod f64s;
 pub mod link;
-pub mod markdown_anchor;
+pub mod markdown;
 pub mod message;
 pub mod participant;
 pub mod pvd;

@@ -1,5 +1,6 @@
 //! How a record's fields read in a Markdown table cell.
 
+use schemas::markdown::table_cell;
 use schemas::validation::Record;
 
 /// Significant digits shown for values and bounds.
@@ -45,14 +46,14 @@ pub fn error(r: &Record) -> String {
         quantity(r.value, &r.unit)
     };
     match &r.note {
-        Some(note) => format!("{value} ({})", text(note)),
+        Some(note) => format!("{value} ({})", table_cell(note)),
         None => value,
     }
 }
 
 /// The bound cell: the bound and where it comes from, or that the value is reported only.
 pub fn bound(r: &Record) -> String {
-    let source = text(&r.bound_source);
+    let source = table_cell(&r.bound_source);
     match (r.bound, source.is_empty()) {
         (Some(b), true) => quantity(b, &r.unit),
         (Some(b), false) => format!("{} ({source})", quantity(b, &r.unit)),
@@ -86,22 +87,17 @@ pub fn test_source(source: &str) -> Option<(&str, &str)> {
 
 /// The source cell: the CI test (linked from docs/) or the one-off run, with date and machine.
 pub fn source(r: &Record) -> String {
-    let when = format!("{}, {}", text(&r.date), text(&r.machine));
+    let when = format!("{}, {}", table_cell(&r.date), table_cell(&r.machine));
     match test_source(&r.source) {
         Some((file, name)) => {
             let short = file.rsplit('/').next().unwrap_or(file);
             format!("CI test [`{short}::{name}`](../{file}) (run {when})")
         }
-        None => format!("one-off run, {when}: `{}`", text(&r.source).replace('`', "'")),
+        None => format!(
+            "one-off run, {when}: `{}`",
+            table_cell(&r.source).replace('`', "'")
+        ),
     }
-}
-
-/// Free text made safe for one table cell: no line breaks, `|` escaped.
-pub fn text(s: &str) -> String {
-    s.split_whitespace()
-        .collect::<Vec<_>>()
-        .join(" ")
-        .replace('|', "\\|")
 }
 
 #[cfg(test)]

@@ -5,6 +5,7 @@ use super::groups::{self, Group};
 use super::layout::{Layout, FRAGMENTS};
 use super::records;
 use super::summary;
+use schemas::markdown::table_cell;
 use schemas::validation::Record;
 use std::fmt::Write as _;
 
@@ -87,11 +88,11 @@ fn table(page: &mut String, rows: &[&Record]) {
         let _ = writeln!(
             page,
             "| {} | {} | {} | {} | {} | {} | {} | {} | {} |",
-            cells::text(&r.capability),
-            cells::text(&r.reference),
-            cells::text(&r.case),
-            cells::text(&r.resolution),
-            cells::text(&r.measure),
+            table_cell(&r.capability),
+            table_cell(&r.reference),
+            table_cell(&r.case),
+            table_cell(&r.resolution),
+            table_cell(&r.measure),
             cells::error(r),
             cells::bound(r),
             cells::run_time(r.run_time_s),

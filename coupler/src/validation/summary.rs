@@ -3,7 +3,7 @@
 
 use super::cells;
 use super::groups::Group;
-use schemas::markdown_anchor::github_anchor as anchor;
+use schemas::markdown::{github_anchor as anchor, table_cell};
 use schemas::validation::Record;
 
 pub const MARKERS: (&str, &str) = (
@@ -32,12 +32,12 @@ fn headline(group: &Group, rows: &[Record]) -> String {
     match rows.iter().find(|r| r.id == group.headline) {
         Some(r) => format!(
             "{}, against {} | {} | {}",
-            cells::text(&r.capability),
-            cells::text(&r.reference),
+            table_cell(&r.capability),
+            table_cell(&r.reference),
             cells::error(r),
             r.bound.map_or("–".into(), |b| cells::quantity(b, &r.unit))
         ),
-        None => format!("(no record `{}` yet) | | ", cells::text(&group.headline)),
+        None => format!("(no record `{}` yet) | | ", table_cell(&group.headline)),
     }
 }
 

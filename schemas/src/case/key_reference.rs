@@ -10,6 +10,7 @@
 //!   reads the key (`E-MPS only: `); the keys of a table opened by such a key inherit it;
 //! - a sentence `Range: …` gives the values the checks accept.
 
+use crate::markdown::table_cell;
 use schemars::{JsonSchema, Schema, SchemaGenerator};
 use serde_json::{Map, Value};
 use std::borrow::Cow;
@@ -168,12 +169,12 @@ pub fn markdown() -> String {
                 md,
                 "| `{}` | {} | {} | {} | {} | {} | {} |",
                 k.name,
-                cell(&kind),
-                cell(&k.unit),
-                cell(k.default.as_deref().unwrap_or("*required*")),
-                cell(&k.allowed),
-                cell(&k.used_by),
-                cell(&plain_links(&k.description)),
+                table_cell(&kind),
+                table_cell(&k.unit),
+                table_cell(k.default.as_deref().unwrap_or("*required*")),
+                table_cell(&k.allowed),
+                table_cell(&k.used_by),
+                table_cell(&plain_links(&k.description)),
             );
         }
         for k in t
@@ -206,12 +207,7 @@ pub fn heading(t: &Table) -> String {
 
 /// The heading's anchor, as GitHub makes it.
 fn anchor(t: &Table) -> String {
-    crate::markdown_anchor::github_anchor(&heading(t))
-}
-
-/// Text for a table cell: one line, `|` escaped.
-fn cell(s: &str) -> String {
-    one_line(s).replace('|', "\\|")
+    crate::markdown::github_anchor(&heading(t))
 }
 
 fn one_line(s: &str) -> String {

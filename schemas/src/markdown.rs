@@ -1,6 +1,5 @@
-//! The anchor GitHub gives a Markdown heading (lowercase; spaces become `-`; punctuation but
-//! `-` and `_` dropped), so the generated pages (case-file reference, validation) can link to
-//! their own sections.
+//! Markdown for the generated pages (the case-file reference, the validation page): the anchor
+//! GitHub gives a heading, so a page can link to its own sections, and the text of a table cell.
 
 /// The anchor of the heading `title`: "Structure: rigid bodies" → "structure-rigid-bodies".
 pub fn github_anchor(title: &str) -> String {
@@ -15,9 +14,23 @@ pub fn github_anchor(title: &str) -> String {
         .collect()
 }
 
+/// `s` as a table cell: on one line (runs of white space, line ends included, become one
+/// space) with `|` escaped.
+pub fn table_cell(s: &str) -> String {
+    s.split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+        .replace('|', "\\|")
+}
+
 #[cfg(test)]
 mod tests {
-    use super::github_anchor;
+    use super::{github_anchor, table_cell};
+
+    #[test]
+    fn a_cell_is_one_line_with_its_bars_escaped() {
+        assert_eq!(table_cell("a |b|\n  c"), "a \\|b\\| c");
+    }
 
     #[test]
     fn anchors_are_githubs() {
