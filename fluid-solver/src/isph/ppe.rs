@@ -204,8 +204,8 @@ impl PpeSystem {
                     unknowns: n,
                 });
             }
-            let d_ad = self.apply_and_dot(span, &d, &mut ad);
-            let alpha = rz / d_ad;
+            self.apply_with(span, &d, &mut ad);
+            let alpha = rz / dot(&d, &ad);
             let (rz_new, r2_new) = update_chunks(x, &mut r, &d, &ad, &inv_d, alpha);
             let beta = rz_new / rz;
             rz = rz_new;
@@ -235,76 +235,23 @@ impl PpeSystem {
         self.preconditioned_cg(span, x, tol, max_iterations, |r, z| self.block_sgs(r, z))
     }
 
-    /// Preconditioned conjugate gradient (Saad 2003, Alg. 9.1) from the warm start `x`, with
-    /// `precondition(r, z)` setting `z = M⁻¹ r` and returning `r·z`; `span` is the chunk length
-    /// of [`PpeSystem::apply_with`]. Per iteration: `Ad` and `d·Ad`; the updates of x and r
-    /// with `r·r` summed per fixed chunk; the preconditioner; the new direction `d = z + βd`.
+    /// [`pcg`] on this matrix: `span` is the chunk length of [`PpeSystem::apply_with`].
     pub(super) fn preconditioned_cg(
         &self,
         span: usize,
         x: &mut [f64],
         tol: f64,
         max_iterations: u32,
-        mut precondition: impl FnMut(&[f64], &mut [f64]) -> f64,
+        precondition: impl FnMut(&[f64], &mut [f64]) -> f64,
     ) -> Result<PpeReport, PpeFailure> {
-        let n = self.len();
-        let b2 = dot(&self.rhs, &self.rhs);
-        if b2 == 0.0 {
-            x.iter_mut().for_each(|v| *v = 0.0);
-            return Ok(PpeReport {
-                iterations: 0,
-                residual: 0.0,
-                unknowns: n,
-            });
-        }
-        let target2 = tol * tol * b2;
-        let mut r = vec![0.0; n];
-        self.apply_with(span, x, &mut r);
-        r.par_iter_mut().zip(&self.rhs).for_each(|(r, b)| *r = b - *r);
-        let mut z = vec![0.0; n];
-        let mut rz = precondition(&r, &mut z);
-        let mut d = z.clone();
-        let mut ad = vec![0.0; n];
-        let mut r2 = dot(&r, &r);
-        let mut k = 0;
-        while r2 > target2 {
-            if k == max_iterations || !r2.is_finite() {
-                return Err(PpeFailure {
-                    iterations: k,
-                    residual: (r2 / b2).sqrt(),
-                    unknowns: n,
-                });
-            }
-            let alpha = rz / self.apply_and_dot(span, &d, &mut ad);
-            let parts: Vec<f64> = x
-                .par_chunks_mut(CHUNK)
-                .zip(r.par_chunks_mut(CHUNK))
-                .zip(d.par_chunks(CHUNK).zip(ad.par_chunks(CHUNK)))
-                .map(|((x, r), (d, ad))| {
-                    for (x, d) in x.iter_mut().zip(d) {
-                        *x += alpha * d;
-                    }
-                    for (r, a) in r.iter_mut().zip(ad) {
-                        *r -= alpha * a;
-                    }
-                    r.iter().map(|r| r * r).sum::<f64>()
-                })
-                .collect();
-            r2 = parts.iter().sum();
-            let rz_new = precondition(&r, &mut z);
-            let beta = rz_new / rz;
-            rz = rz_new;
-            d.par_iter_mut()
-                .zip(&z)
-                .with_min_len(CHUNK)
-                .for_each(|(d, z)| *d = z + beta * *d);
-            k += 1;
-        }
-        Ok(PpeReport {
-            iterations: k,
-            residual: (r2 / b2).sqrt(),
-            unknowns: n,
-        })
+        pcg(
+            &self.rhs,
+            x,
+            tol,
+            max_iterations,
+            |d, ad| self.apply_with(span, d, ad),
+            precondition,
+        )
     }
 
     /// `z = M⁻¹ r` for the block symmetric Gauss–Seidel M of [`PpeSystem::sgs_pcg`] (a forward
@@ -350,12 +297,6 @@ impl PpeSystem {
         parts.iter().sum()
     }
 
-    /// `out = A x` and `x·out` (the sum as [`dot`]'s).
-    fn apply_and_dot(&self, span: usize, x: &[f64], out: &mut [f64]) -> f64 {
-        self.apply_with(span, x, out);
-        dot(x, out)
-    }
-
     /// faer's sparse Cholesky of A (AMD ordering), factorised afresh every step.
     fn faer_cholesky(&self, x: &mut [f64], tol: f64) -> Result<PpeReport, PpeFailure> {
         use faer::linalg::solvers::Solve;
@@ -396,6 +337,80 @@ impl PpeSystem {
             Err(fail(residual))
         }
     }
+}
+
+/// Preconditioned conjugate gradient (Saad 2003, Alg. 9.1) on `A x = rhs` from the warm start
+/// `x`, with `apply(d, out)` setting `out = A d` and `precondition(r, z)` setting `z = M⁻¹ r` and
+/// returning `r·z`. Per iteration: `Ad` and `d·Ad`; the updates of x and r with `r·r` summed per
+/// fixed chunk; the preconditioner; the new direction `d = z + βd`. Stops at
+/// `|rhs − A x| ≤ tol |rhs|`, or fails after `max_iterations` with the residual.
+pub(super) fn pcg(
+    rhs: &[f64],
+    x: &mut [f64],
+    tol: f64,
+    max_iterations: u32,
+    mut apply: impl FnMut(&[f64], &mut [f64]),
+    mut precondition: impl FnMut(&[f64], &mut [f64]) -> f64,
+) -> Result<PpeReport, PpeFailure> {
+    let n = rhs.len();
+    let b2 = dot(rhs, rhs);
+    if b2 == 0.0 {
+        x.iter_mut().for_each(|v| *v = 0.0);
+        return Ok(PpeReport {
+            iterations: 0,
+            residual: 0.0,
+            unknowns: n,
+        });
+    }
+    let target2 = tol * tol * b2;
+    let mut r = vec![0.0; n];
+    apply(x, &mut r);
+    r.par_iter_mut().zip(rhs).for_each(|(r, b)| *r = b - *r);
+    let mut z = vec![0.0; n];
+    let mut rz = precondition(&r, &mut z);
+    let mut d = z.clone();
+    let mut ad = vec![0.0; n];
+    let mut r2 = dot(&r, &r);
+    let mut k = 0;
+    while r2 > target2 {
+        if k == max_iterations || !r2.is_finite() {
+            return Err(PpeFailure {
+                iterations: k,
+                residual: (r2 / b2).sqrt(),
+                unknowns: n,
+            });
+        }
+        apply(&d, &mut ad);
+        let alpha = rz / dot(&d, &ad);
+        let parts: Vec<f64> = x
+            .par_chunks_mut(CHUNK)
+            .zip(r.par_chunks_mut(CHUNK))
+            .zip(d.par_chunks(CHUNK).zip(ad.par_chunks(CHUNK)))
+            .map(|((x, r), (d, ad))| {
+                for (x, d) in x.iter_mut().zip(d) {
+                    *x += alpha * d;
+                }
+                for (r, a) in r.iter_mut().zip(ad) {
+                    *r -= alpha * a;
+                }
+                r.iter().map(|r| r * r).sum::<f64>()
+            })
+            .collect();
+        r2 = parts.iter().sum();
+        let rz_new = precondition(&r, &mut z);
+        let beta = rz_new / rz;
+        rz = rz_new;
+        d.par_iter_mut()
+            .zip(&z)
+            .with_min_len(CHUNK)
+            .for_each(|(d, z)| *d = z + beta * *d);
+        k += 1;
+    }
+    Ok(PpeReport {
+        iterations: k,
+        residual: (r2 / b2).sqrt(),
+        unknowns: n,
+    })
 }
 
 /// `Σ a_i b_i`, summed in fixed chunks (reproducible).
