@@ -23,7 +23,7 @@
 //! themselves).
 //!
 //! `cargo bench -p fluid-solver --bench isph_vs_emps -- [spacing] [end time] [ppe solver]
-//! [--s2] [--only=isph|emps] [--probe-log=PREFIX] [--alpha-d=α] [--gradient=symmetric]
+//! [--s2] [--only=isph|emps] [--probe-log=PREFIX] [--alpha-d=α] [--gradient=symmetric|conservative]
 //! [--radius=r_e/Δs] [--shifting=lind] [--shifting-coefficient=A] [--isph-courant=C]`; defaults Δs = L/20 = 0.0073 m (8 000 fluid particles), 0.5 s (past
 //! the impact on the far wall at about 0.3 s), "additive-two-level-pcg" (or "two-level-pcg", "jacobi-pcg", "sgs-pcg", "faer-cholesky"), S2's α_d = 5e-3, ISPH's
 //! pressure gradient "corrected-difference" (`--gradient=symmetric`: the case key
@@ -215,6 +215,7 @@ fn main() {
     let alpha_d = number(&all, "--alpha-d", IsphConfig::default().alpha_d);
     let pressure_gradient = match flag(&all, "--gradient") {
         Some("symmetric") => PressureGradient::Symmetric,
+        Some("conservative") => PressureGradient::Conservative,
         _ => PressureGradient::CorrectedDifference,
     };
     let influence_radius = number(&all, "--radius", IsphConfig::default().influence_radius);

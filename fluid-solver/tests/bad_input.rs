@@ -132,7 +132,7 @@ fn other_bad_keys_name_what_is_allowed() {
         unused[0].contains("`sound_speed` = 12.1") && unused[1].contains("`artificial_viscosity` = 0.05")
     );
     assert!(parse(&damped("0.05")).map(|c| c.fluid["water"].unused_by_method().is_empty()) == Ok(true));
-    // ISPH's pressure gradient: one of two names.
+    // ISPH's pressure gradient: one of three names.
     let isph = |form: &str| {
         GOOD.replace("time_step = 8.0e-4", "time_step = 8.0e-4\nmethod = \"isph\"")
             + &format!("\n[fluid.water.isph]\npressure_gradient = \"{form}\"\n")
@@ -159,6 +159,16 @@ fn other_bad_keys_name_what_is_allowed() {
             && warnings[0].contains("corrected-difference"),
         "{warnings:?}"
     );
+    // The exact projection moves the fluid by the same gradient: the same warning, naming it;
+    // outside 1.95 … 2.15 Δs it is refused as the symmetric gradient is.
+    let conservative = parse(&(isph("conservative") + "influence_radius = 2.0\n" + body))
+        .unwrap_or_else(|e| panic!("{e}"))
+        .fluid["water"]
+        .warnings();
+    assert!(
+        conservative.len() == 1 && conservative[0].contains("\"conservative\" with a `body`"),
+        "{conservative:?}"
+    );
     for solid in [obstacle, body] {
         let default = parse(&(isph("corrected-difference") + solid)).unwrap_or_else(|e| panic!("{e}"));
         assert!(default.fluid["water"].warnings().is_empty());
@@ -174,7 +184,17 @@ fn other_bad_keys_name_what_is_allowed() {
     );
     let e = error_of(&isph("conservative"));
     assert!(
-        e.contains("pressure_gradient") && e.contains("corrected-difference") && e.contains("symmetric"),
+        e.contains("`fluid.water.isph.influence_radius`")
+            && e.contains("\"conservative\"")
+            && e.contains("got 2.4"),
+        "{e}"
+    );
+    let e = error_of(&isph("antisymmetric"));
+    assert!(
+        e.contains("pressure_gradient")
+            && e.contains("corrected-difference")
+            && e.contains("symmetric")
+            && e.contains("conservative"),
         "{e}"
     );
     // ISPH's particle shifting: one of two names, a coefficient in (0, 6].

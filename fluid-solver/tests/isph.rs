@@ -42,6 +42,17 @@ fn isph_tank_symmetric() -> FluidConfig {
     cfg
 }
 
+/// [`isph_tank_symmetric`] with `pressure_gradient = "conservative"` (its exact projection).
+fn isph_tank_conservative() -> FluidConfig {
+    let mut cfg = isph_tank_symmetric();
+    cfg.isph = cfg.isph.map(|s| IsphConfig {
+        pressure_gradient: PressureGradient::Conservative,
+        ..s
+    });
+    cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
+    cfg
+}
+
 /// [`isph_tank_symmetric`] with `shifting = "lind"` (the default coefficient).
 fn isph_tank_shifting() -> FluidConfig {
     let mut cfg = isph_tank_symmetric();
@@ -71,6 +82,13 @@ fn isph_symmetric_gradient_holds_the_tank() {
     tank_holds_at_0_2_s(&isph_tank_symmetric());
 }
 
+/// The same with the exact projection of `pressure_gradient = "conservative"` at 2.0 Δs (same
+/// bounds; < 1 s).
+#[test]
+fn isph_conservative_projection_holds_the_tank() {
+    tank_holds_at_0_2_s(&isph_tank_conservative());
+}
+
 /// The same with particle shifting on the symmetric gradient at 2.0 Δs (same bounds; < 1 s).
 #[test]
 fn isph_shifting_holds_the_tank() {
@@ -89,6 +107,14 @@ fn record_tank(cfg: &FluidConfig, long: bool, t: f64, pressure: f64, fastest: f6
             [
                 "isph_pressure_is_rho_g_h_and_the_water_stays_still",
                 "isph_tank_stays_still_for_one_second",
+            ],
+        ),
+        (PressureGradient::Conservative, _) => (
+            "isph-conservative",
+            "ISPH (exact projection)",
+            [
+                "isph_conservative_projection_holds_the_tank",
+                "isph_conservative_projection_tank_stays_still_for_one_second",
             ],
         ),
         (_, Shifting::Lind) => (
@@ -214,6 +240,15 @@ fn isph_tank_stays_still_for_one_second() {
 #[ignore]
 fn isph_symmetric_gradient_tank_stays_still_for_one_second() {
     tank_stays_still_for_one_second(&isph_tank_symmetric());
+}
+
+/// The same with the exact projection at 2.0 Δs (about 5 s in release). At 2.4 Δs (refused by
+/// the case check) its edge columns ran away as the symmetric gradient's: 4.97 % of ρgh and
+/// 0.16 m/s at 0.5 s (28 Nov 2026): the projection does not see a sliding column.
+#[test]
+#[ignore]
+fn isph_conservative_projection_tank_stays_still_for_one_second() {
+    tank_stays_still_for_one_second(&isph_tank_conservative());
 }
 
 /// The same with particle shifting on the symmetric gradient at 2.0 Δs (about 5 s in release).

@@ -7,15 +7,19 @@
 //! - [`free_surface`]: Marrone's λ_min thresholds and geometric scan (S2-10 … S2-13);
 //! - [`walls`]: particle walls with Adami's pressure extrapolation;
 //! - [`ppe`]: the pressure Poisson equation (S2-5) and its solvers;
+//! - [`exact_projection`]: the PPE built from the symmetric gradient (`"conservative"`);
 //! - [`ppe_two_level`]: its CG with a two-level (aggregation) preconditioner;
+//! - [`pair_gradients`]: the pairs' kernel gradients the exact projection's operator reads;
 //! - [`pair_laws`]: the fluid–body pair forces;
 //! - [`shifting`]: particle shifting (Lind et al. 2012), a case option;
 //! - [`step`]: one time step, S2-3 … S2-5, as a list of named stages.
 
+pub mod exact_projection;
 pub mod free_surface;
 pub mod kernel;
 pub mod neighbour_list;
 pub mod operators;
+pub mod pair_gradients;
 pub mod pair_laws;
 pub mod ppe;
 pub mod ppe_two_level;

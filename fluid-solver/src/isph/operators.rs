@@ -274,6 +274,8 @@ pub fn laplacian(
 /// over every fluid–solid pair, bodies included (their load is V times the same terms). It holds
 /// the hydrostatic tank only at a support of 2.0 Δs, where the lattice sums that its zero-order
 /// part `2 p_i Σ_j V ∇W_ij` acts on are restoring (docs/notes/isph-symmetric-gradient-and-shifting.md); at 2.4 Δs the tank's edge columns run away (above).
+/// [`PressureGradient::Conservative`] moves the fluid by the same symmetric form; only its PPE
+/// differs ([`super::exact_projection`]).
 pub fn pressure_gradient(
     k: &Wendland,
     list: &NeighbourList,
@@ -283,7 +285,7 @@ pub fn pressure_gradient(
     faces: &BodyFaces,
     out: &mut VectorField,
 ) -> PassTotals {
-    if form == PressureGradient::Symmetric {
+    if form.is_symmetric() {
         return symmetric_gradient(k, list, p, walls, faces, out);
     }
     out.resize(p.len());

@@ -81,6 +81,11 @@ pub fn face_share(k: &Wendland, faces: &BodyFaces, j: usize, q: f64) -> [f64; 3]
 pub struct BodyFaces {
     pub force: Vec<[f64; 3]>,
     pub weight: Vec<f64>,
+    /// `E_j = Σ_faces e Δs²` and `H_j = Σ_faces ρ (g·e) (Δs/2) e Δs²`: the force without the
+    /// faces' clamp at 0 is `−p_j E_j − H_j`, linear in the fluid's pressures
+    /// ([`super::exact_projection`]).
+    pub area: Vec<[f64; 3]>,
+    pub hydro: Vec<[f64; 3]>,
 }
 
 impl BodyFaces {
@@ -120,12 +125,14 @@ pub fn body_faces(
     let (g, rho) = (walls.gravity, walls.density);
     out.force.resize(p.len(), [0.0; 3]);
     out.weight.resize(p.len(), 0.0);
-    (&mut out.force, &mut out.weight)
+    out.area.resize(p.len(), [0.0; 3]);
+    out.hydro.resize(p.len(), [0.0; 3]);
+    (&mut out.force, &mut out.weight, &mut out.area, &mut out.hydro)
         .into_par_iter()
         .enumerate()
         .with_min_len(4096)
-        .for_each(|(j, (force, weight))| {
-            (*force, *weight) = ([0.0; 3], 0.0);
+        .for_each(|(j, (force, weight, area, hydro))| {
+            (*force, *weight, *area, *hydro) = ([0.0; 3], 0.0, [0.0; 3], [0.0; 3]);
             if p.kind[j] != body || takes_part[j] == 0 {
                 return;
             }
@@ -148,7 +155,7 @@ pub fn body_faces(
                 return;
             }
             let pj = num / den;
-            let mut f = [0.0; 3];
+            let (mut f, mut e_sum, mut h_sum) = ([0.0; 3], [0.0; 3], [0.0; 3]);
             for u in &covered {
                 let dot = |v: &[f64; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
                 if covered.iter().any(|v| dot(v) < -0.9) {
@@ -156,10 +163,15 @@ pub fn body_faces(
                 }
                 // Exposed face e = −u, its centre Δs/2 from the particle.
                 let e = u.map(|v| -v);
-                let face = (pj + rho * (g[0] * e[0] + g[1] * e[1] + g[2] * e[2]) * 0.5 * ds).max(0.0);
-                (0..3).for_each(|a| f[a] -= face * e[a] * ds * ds);
+                let head = rho * (g[0] * e[0] + g[1] * e[1] + g[2] * e[2]) * 0.5 * ds;
+                let face = (pj + head).max(0.0);
+                for a in 0..3 {
+                    f[a] -= face * e[a] * ds * ds;
+                    e_sum[a] += e[a] * ds * ds;
+                    h_sum[a] += head * e[a] * ds * ds;
+                }
             }
-            (*force, *weight) = (f, den);
+            (*force, *weight, *area, *hydro) = (f, den, e_sum, h_sum);
         });
 }
 

@@ -49,7 +49,7 @@
 //! the thread count. A coarse matrix that is not numerically positive definite (water with no
 //! free-surface neighbour anywhere, where A is singular too) is solved by Jacobi-PCG instead.
 
-use super::ppe::{dot, PpeFailure, PpeReport, PpeSystem, CHUNK};
+use super::ppe::{dot, pcg, PpeFailure, PpeReport, PpeSystem, CHUNK};
 use crate::neighbours::neighbour_search::CellGrid;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::cholesky::{
@@ -114,6 +114,37 @@ pub fn solve(
         Form::Additive => cycle.additive(a, r, z),
         Form::Multiplicative => cycle.multiplicative(a, r, z),
     })
+}
+
+/// Solves `B x = a.rhs` for another operator B (`apply(d, out)` sets `out = B d`) by CG
+/// preconditioned by the two-level method of `form` built on the matrix A of `a` (for a B
+/// spectrally close to A: [`super::exact_projection`]); Jacobi on A's diagonal if A's coarse
+/// matrix is not positive definite.
+pub fn solve_operator(
+    a: &PpeSystem,
+    form: Form,
+    x: &mut [f64],
+    tol: f64,
+    max_iterations: u32,
+    apply: impl FnMut(&[f64], &mut [f64]),
+) -> Result<PpeReport, PpeFailure> {
+    assert_eq!(a.aggregate.len(), a.len(), "two-level PCG without aggregates");
+    match Cycle::new(a, form) {
+        Some(mut cycle) => pcg(&a.rhs, x, tol, max_iterations, apply, |r, z| match form {
+            Form::Additive => cycle.additive(a, r, z),
+            Form::Multiplicative => cycle.multiplicative(a, r, z),
+        }),
+        None => {
+            let inv_d: Vec<f64> = a.diag.par_iter().map(|d| 1.0 / d).collect();
+            pcg(&a.rhs, x, tol, max_iterations, apply, |r, z| {
+                z.par_iter_mut()
+                    .zip(r)
+                    .zip(&inv_d)
+                    .for_each(|((z, r), d)| *z = r * d);
+                dot(r, z)
+            })
+        }
+    }
 }
 
 /// The two-grid cycle of one system: aggregates, the factorised coarse matrix and scratch.

@@ -9,6 +9,8 @@
 //!    the free surface
 //!    (half a spacing beyond the surface particles, [`free_surface::surface_pressure`]) and
 //!    the walls' Neumann differences ([`super::walls`]), assembled and solved ([`super::ppe`]);
+//!    with `pressure_gradient = "conservative"` the equation is instead built from the gradient
+//!    of stage 6 ([`super::exact_projection`], S2-9's assembled equation blended in);
 //!    a negative solution is written as 0 (no tension, [`IsphStep::solve_ppe`] says why).
 //!    S2-5 has Δt² (Δt_case = Δt): the projection then sets `∇·v^{n+1} = −α_d(1 − ρ̂/ρ0)/Δt`,
 //!    a relaxation by the fraction α_d per step, whatever the step's length. The steps that land
@@ -31,10 +33,12 @@
 //!    (E-MPS 3.4 %; `isph_vs_emps`, column `kicked/step`). Without its fluid–fluid part that run
 //!    stops at 0.33 s (energy growth).
 
+use super::exact_projection;
 use super::free_surface::{self, SURFACE};
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
 use super::operators::{self, DivergenceSum};
+use super::pair_gradients::PairGradients;
 use super::pair_laws;
 use super::ppe::{PpeFailure, PpeReport, PpeSystem, NOT_AN_UNKNOWN};
 use super::ppe_two_level;
@@ -108,6 +112,10 @@ pub struct IsphStep {
     faces: pair_laws::BodyFaces,
     /// The Dirichlet pressure of each surface particle ([`free_surface::surface_pressure`]).
     dirichlet: Vec<f64>,
+    /// The exact projection's `(ρ/Δt) v* − c` ([`exact_projection::blend_right_hand_side`]).
+    known_gradient: VectorField,
+    /// The exact projection's kernel gradients of the step's pairs.
+    pair_gradients: PairGradients,
     times: StageTimes,
 }
 
@@ -139,6 +147,8 @@ impl IsphStep {
             row_blocks: Vec::new(),
             solution: Vec::new(),
             dirichlet: Vec::new(),
+            known_gradient: VectorField::default(),
+            pair_gradients: PairGradients::default(),
             faces: pair_laws::BodyFaces::default(),
             times: StageTimes::default(),
         }
@@ -524,6 +534,26 @@ impl IsphStep {
             d.copy_from_slice(&b.diag);
             r.copy_from_slice(&b.rhs);
         });
+        if self.settings.pressure_gradient == PressureGradient::Conservative {
+            // The faces' geometry and Adami's weights, for the bodies' part of the operator.
+            self.update_body_faces(p, dt);
+            self.pair_gradients.build(&k, &self.list, p);
+            let walls = self
+                .walls
+                .pair(&self.physics, self.kernel.spacing, &self.list, p, dt);
+            exact_projection::blend_right_hand_side(
+                &k,
+                &self.list,
+                &walls,
+                &self.dirichlet,
+                &self.ratio,
+                (self.settings.alpha_d, self.time_step),
+                dt,
+                (&self.pair_gradients, &self.faces),
+                &mut self.ppe,
+                &mut self.known_gradient,
+            );
+        }
     }
 
     /// The unknowns' aggregates by cells, for the two-level solver only.
@@ -556,12 +586,26 @@ impl IsphStep {
         self.solution
             .extend(ppe.particle.iter().map(|&i| p.pressure[i as usize]));
         let s = &self.settings;
-        let report = ppe.solve(
-            s.ppe_solver,
-            &mut self.solution,
-            s.ppe_tolerance,
-            s.ppe_max_iterations,
-        )?;
+        let report = if s.pressure_gradient == PressureGradient::Conservative {
+            exact_projection::solve(
+                &self.kernel,
+                &self.list,
+                p,
+                (&self.pair_gradients, &self.faces),
+                ppe,
+                s.ppe_solver,
+                &mut self.solution,
+                s.ppe_tolerance,
+                s.ppe_max_iterations,
+            )
+        } else {
+            ppe.solve(
+                s.ppe_solver,
+                &mut self.solution,
+                s.ppe_tolerance,
+                s.ppe_max_iterations,
+            )
+        }?;
         let (row_of, x, dirichlet) = (&ppe.row_of, &self.solution, &self.dirichlet);
         (&mut p.pressure, &p.kind)
             .into_par_iter()

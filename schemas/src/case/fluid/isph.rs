@@ -54,6 +54,20 @@ pub enum PressureGradient {
     /// face-law share: momentum closes pair by pair. Accepted only with `influence_radius` in
     /// [`SYMMETRIC_SUPPORT`]; measured to hold the hydrostatic tank at 2.0 (docs/notes/isph-symmetric-gradient-and-shifting.md).
     Symmetric,
+    /// The symmetric form of `"symmetric"` with the pressure Poisson equation built from it: the
+    /// PPE's divergence is the adjoint of the gradient (`D = −Gᵀ`) and its matrix is `GᵀG`, so
+    /// the projection removes the divergence it measures and the pressure force is
+    /// antisymmetric pair by pair; the lattice's checkerboard, which `G` does not see, is held by
+    /// a small share of S2-9's Laplacian (`fluid_solver::isph::exact_projection`). Accepted with
+    /// `influence_radius` in [`SYMMETRIC_SUPPORT`], as `"symmetric"`.
+    Conservative,
+}
+
+impl PressureGradient {
+    /// Whether the fluid's gradient is the symmetric form (`"symmetric"` and `"conservative"`).
+    pub fn is_symmetric(self) -> bool {
+        matches!(self, PressureGradient::Symmetric | PressureGradient::Conservative)
+    }
 }
 
 /// Particle shifting of ISPH (`fluid_solver::isph::shifting` has the equation, the
@@ -81,7 +95,7 @@ pub enum Shifting {
 /// ppe_max_iterations = 1000 # beyond this the run stops with the residual
 /// ppe_solver = "additive-two-level-pcg" # or "two-level-pcg", "jacobi-pcg", "faer-cholesky", "sgs-pcg"
 /// wall_slip = "free-slip"   # or "no-slip"
-/// pressure_gradient = "corrected-difference" # or "symmetric" (with influence_radius = 2.0)
+/// pressure_gradient = "corrected-difference" # or "symmetric", "conservative" (with influence_radius = 2.0)
 /// shifting = "off"          # or "lind" (particle shifting)
 /// shifting_coefficient = 0.5 # A of D = A h |u|_max Δt (Skillen et al. 2013), with "lind"
 /// ```
@@ -92,7 +106,7 @@ pub struct IsphConfig {
     #[serde(default = "default_alpha_d")]
     pub alpha_d: f64,
     /// Kernel support in spacings [Δs] (S2, Table 1). Range: [1.5, wall_layers − 0.5]; [1.95,
-    /// 2.15] with `pressure_gradient = "symmetric"`.
+    /// 2.15] with `pressure_gradient = "symmetric"` or `"conservative"`.
     #[serde(default = "default_influence_radius")]
     pub influence_radius: f64,
     /// Relative residual |r|/|b| the pressure Poisson equation must reach every step [–].
@@ -185,13 +199,13 @@ impl IsphConfig {
             ));
         }
         let (lo, hi) = SYMMETRIC_SUPPORT;
-        if self.pressure_gradient == PressureGradient::Symmetric
+        if self.pressure_gradient.is_symmetric()
             && !(self.influence_radius >= lo && self.influence_radius <= hi)
         {
             return Err(FieldError::new(
                 k("influence_radius"),
                 format!(
-                    "must be in [{lo}, {hi}] spacings with pressure_gradient = \"symmetric\" (outside it a sliding column or plane of particles is not pushed back and a tank at rest comes apart: at S2's 2.4 the 1 s tank's edge columns rose at 0.12 m/s), got {}; set influence_radius = 2.0 or use pressure_gradient = \"corrected-difference\"",
+                    "must be in [{lo}, {hi}] spacings with pressure_gradient = \"symmetric\" or \"conservative\" (outside it a sliding column or plane of particles is not pushed back and a tank at rest comes apart: at S2's 2.4 the 1 s tank's edge columns rose at 0.12 m/s), got {}; set influence_radius = 2.0 or use pressure_gradient = \"corrected-difference\"",
                     self.influence_radius
                 ),
             ));
