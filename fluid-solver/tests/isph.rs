@@ -488,9 +488,15 @@ fn a_restored_checkpoint_continues_bit_identically_with_either_method() {
 ///   direction and no gap of a particle's size lies next to it;
 /// - the others (a one-particle gap, a dent) may go either way; they are counted.
 ///
-/// Measured: 103 surface particles, 449 interior, 248 either way; 0 interior marked (asserted).
-/// The detector misses 9 of the 103 (asserted at most 9), all within 1.5 Δs of a solid. The
-/// count moves with any change of the flow, these are marginal cases: 6 of 104 (4 at a solid)
+/// Asserted: no interior particle marked, and no surface particle missed away from the solids
+/// (farther than 1.5 Δs from every wall particle), both by the geometric definition above.
+/// Within 1.5 Δs of a solid the detector's own rule differs from that definition by design (wall
+/// particles up to about 1 Δs above the water count as wet, below), so misses there are counted
+/// and printed, not bounded.
+///
+/// Measured: 103 surface particles, 449 interior, 248 either way; 0 interior marked; 0 missed
+/// away from solids, 9 of the 61 within 1.5 Δs of a solid. The contact count moves with any
+/// change of the flow, these are marginal cases: 6 of 104 (4 at a solid)
 /// before the divergence was corrected as the gradient in Marrone's band
 /// (`isph::operators::DivergenceSum`), 2 of 102 before the walls stopped pushing surface
 /// particles before contact. With
@@ -553,10 +559,6 @@ fn free_surface_of_a_dam_break_snapshot() {
         interior += usize::from(enclosed);
         either += usize::from(!open && !enclosed);
         missed += usize::from(open && !marked && !at_contact);
-        let mut at_contact = false;
-        grid.for_each_near_point(&p, x, 1.5 * ds, |j, _| {
-            at_contact |= p.kind[j] != Kind::Fluid.code()
-        });
         if open && at_contact {
             contact_surface += 1;
             contact_missed += usize::from(!marked);
@@ -569,11 +571,7 @@ fn free_surface_of_a_dam_break_snapshot() {
     );
     assert!(surface > 100 && interior > 100, "the snapshot has both");
     assert_eq!(wrong, 0, "no interior particle marked");
-    assert!(
-        missed + contact_missed <= 9,
-        "{} surface particles missed (measured 9)",
-        missed + contact_missed
-    );
+    assert_eq!(missed, 0, "no surface particle missed away from the solids");
 }
 
 /// A step that lands on an output, probe or coupling-window time can be as short as 1e-9 Δt.

@@ -20,7 +20,7 @@ fn isph_submerged_fixed_box_feels_rho_g_v() {
 /// symmetric pair law gave 6.2 N for 9.0 N on the floating box held so).
 #[test]
 fn isph_box_load_does_not_depend_on_the_fluid_body_gap() {
-    submerged_box_load(0.005, IsphConfig::default());
+    load_does_not_depend_on_the_gap(IsphConfig::default());
 }
 
 /// The symmetric gradient at a support of 2.0 Δs (`pressure_gradient = "symmetric"`): the
@@ -37,7 +37,7 @@ fn isph_symmetric_gradient_box_at_its_site_feels_rho_g_v() {
 /// spacing from the body.)
 #[test]
 fn isph_symmetric_gradient_box_load_does_not_depend_on_the_fluid_body_gap() {
-    submerged_box_load(0.005, symmetric());
+    load_does_not_depend_on_the_gap(symmetric());
 }
 
 /// The exact projection of `pressure_gradient = "conservative"` at 2.0 Δs: the bodies' face law
@@ -52,7 +52,7 @@ fn isph_conservative_projection_box_at_its_site_feels_rho_g_v() {
 /// The same box 5 mm above its site: measured +4.81 % (28 Nov 2026).
 #[test]
 fn isph_conservative_projection_box_load_does_not_depend_on_the_fluid_body_gap() {
-    submerged_box_load(0.005, conservative());
+    load_does_not_depend_on_the_gap(conservative());
 }
 
 fn conservative() -> IsphConfig {
@@ -74,7 +74,7 @@ fn isph_shifting_box_at_its_site_feels_rho_g_v() {
 /// shifted).
 #[test]
 fn isph_shifting_box_load_does_not_depend_on_the_fluid_body_gap() {
-    submerged_box_load(0.005, shifted());
+    load_does_not_depend_on_the_gap(shifted());
 }
 
 fn shifted() -> IsphConfig {
@@ -92,8 +92,95 @@ fn symmetric() -> IsphConfig {
     }
 }
 
-/// Runs the scene with the box's centre `offset` above its lattice site and checks the load.
-fn submerged_box_load(offset: f64, settings: IsphConfig) {
+/// The box 5 mm (Δs/4) above its lattice site and at it: each load within 5 % of ρgV
+/// ([`submerged_box_load`]), and the two within 5 % of ρgV of each other, the same bound
+/// (issue 5's), since the gap must not change the load at all (each alone within 5 % would let
+/// them differ by 10 %).
+fn load_does_not_depend_on_the_gap(settings: IsphConfig) {
+    let started = Instant::now();
+    let (at_site, buoyancy) = submerged_box_load(0.0, settings);
+    let (off_site, _) = submerged_box_load(0.005, settings);
+    let difference = (off_site - at_site) / buoyancy;
+    println!(
+        "load 5 mm off the site − at it: {:+.2} % of ρgV",
+        100.0 * difference
+    );
+    let (method, test) = labels(settings);
+    record(Record {
+        id: format!("body-{method}-submerged-box-gap-dependence"),
+        capability: "ISPH load on a held, submerged box: the fluid–body gap".into(),
+        reference: "the same load at any gap (Archimedes: ρgV wherever the box sits)".into(),
+        case: "a 12 cm cube held 0.16 m under still water 0.3 m deep, 5 mm (Δs/4) above its lattice site against at it".into(),
+        resolution: "Δs = 0.02 m (box 6 particles across), Δt = 2e-3 s".into(),
+        measure: "(vertical load off the site − at it), averaged over 0.05 … 0.2 s / ρgV".into(),
+        value: 100.0 * difference,
+        bound: Some(5.0),
+        bound_source: "issue 5's bound on the load, as for E-MPS".into(),
+        unit: "%".into(),
+        source: format!("fluid-solver/tests/isph_bodies.rs::{}", test[1]),
+        run_time_s: started.elapsed().as_secs_f64(),
+        ..Default::default()
+    });
+    assert!(
+        difference.abs() < 0.05,
+        "the load moved by {:+.2} % of ρgV with the gap (bound 5 %)",
+        100.0 * difference
+    );
+}
+
+/// The record id's method tag and the (at the site, off it) tests' names of `settings`.
+fn labels(settings: IsphConfig) -> (&'static str, [&'static str; 2]) {
+    match (settings.pressure_gradient, settings.shifting) {
+        (PressureGradient::CorrectedDifference, _) => (
+            "isph",
+            [
+                "isph_submerged_fixed_box_feels_rho_g_v",
+                "isph_box_load_does_not_depend_on_the_fluid_body_gap",
+            ],
+        ),
+        (PressureGradient::Conservative, _) => (
+            "isph-conservative",
+            [
+                "isph_conservative_projection_box_at_its_site_feels_rho_g_v",
+                "isph_conservative_projection_box_load_does_not_depend_on_the_fluid_body_gap",
+            ],
+        ),
+        (_, Shifting::Lind) => (
+            "isph-shifting",
+            [
+                "isph_shifting_box_at_its_site_feels_rho_g_v",
+                "isph_shifting_box_load_does_not_depend_on_the_fluid_body_gap",
+            ],
+        ),
+        _ => (
+            "isph-symmetric",
+            [
+                "isph_symmetric_gradient_box_at_its_site_feels_rho_g_v",
+                "isph_symmetric_gradient_box_load_does_not_depend_on_the_fluid_body_gap",
+            ],
+        ),
+    }
+}
+
+/// The setting's name and description in the records.
+fn names(settings: IsphConfig) -> (&'static str, &'static str) {
+    match (settings.pressure_gradient, settings.shifting) {
+        (PressureGradient::CorrectedDifference, _) => ("ISPH", "S2-8 gradient, support 2.4 Δs"),
+        (PressureGradient::Conservative, _) => (
+            "ISPH (exact projection)",
+            "symmetric gradient with its exact projection at 2.0 Δs",
+        ),
+        (_, Shifting::Lind) => (
+            "ISPH (symmetric gradient + shifting)",
+            "symmetric gradient at 2.0 Δs with Lind shifting",
+        ),
+        _ => ("ISPH (symmetric gradient)", "symmetric gradient at 2.0 Δs"),
+    }
+}
+
+/// Runs the scene with the box's centre `offset` above its lattice site and checks the load;
+/// returns the mean vertical load and ρgV [N].
+fn submerged_box_load(offset: f64, settings: IsphConfig) -> (f64, f64) {
     // The E-MPS test's scene: Δs = 0.02 m, a 12 cm box centred 0.16 m below the surface, 4
     // particles of water around it; ISPH with Δt = 2e-3 s.
     let body = Aabb {
@@ -143,44 +230,8 @@ fn submerged_box_load(offset: f64, settings: IsphConfig) {
         "box {offset} m above its site, ISPH ({:?}, support {} Δs, shifting {:?}) mean load over {steps} steps: F = [{:.4}, {:.4}, {:.4}] N; ρgV = {buoyancy:.4} N; error {:+.2} %; worst |load + reaction| {worst_balance:.2e}; fastest fluid particle {fastest:.2e} m/s",
         settings.pressure_gradient, settings.influence_radius, settings.shifting, mean[0], mean[1], mean[2], 100.0 * error
     );
-    let (method, name, settings_text, test) = match (settings.pressure_gradient, settings.shifting) {
-        (PressureGradient::CorrectedDifference, _) => (
-            "isph",
-            "ISPH",
-            "S2-8 gradient, support 2.4 Δs",
-            [
-                "isph_submerged_fixed_box_feels_rho_g_v",
-                "isph_box_load_does_not_depend_on_the_fluid_body_gap",
-            ],
-        ),
-        (PressureGradient::Conservative, _) => (
-            "isph-conservative",
-            "ISPH (exact projection)",
-            "symmetric gradient with its exact projection at 2.0 Δs",
-            [
-                "isph_conservative_projection_box_at_its_site_feels_rho_g_v",
-                "isph_conservative_projection_box_load_does_not_depend_on_the_fluid_body_gap",
-            ],
-        ),
-        (_, Shifting::Lind) => (
-            "isph-shifting",
-            "ISPH (symmetric gradient + shifting)",
-            "symmetric gradient at 2.0 Δs with Lind shifting",
-            [
-                "isph_shifting_box_at_its_site_feels_rho_g_v",
-                "isph_shifting_box_load_does_not_depend_on_the_fluid_body_gap",
-            ],
-        ),
-        _ => (
-            "isph-symmetric",
-            "ISPH (symmetric gradient)",
-            "symmetric gradient at 2.0 Δs",
-            [
-                "isph_symmetric_gradient_box_at_its_site_feels_rho_g_v",
-                "isph_symmetric_gradient_box_load_does_not_depend_on_the_fluid_body_gap",
-            ],
-        ),
-    };
+    let (method, test) = labels(settings);
+    let (name, settings_text) = names(settings);
     let (place, test) = match offset == 0.0 {
         true => ("at-its-site", test[0]),
         false => ("off-its-site", test[1]),
@@ -231,4 +282,5 @@ fn submerged_box_load(offset: f64, settings: IsphConfig) {
             "a fluid particle moves at {fastest:.3e} m/s beside the held box (bound {still:.3e})"
         );
     }
+    (mean[2], buoyancy)
 }

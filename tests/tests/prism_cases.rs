@@ -58,11 +58,13 @@ fn impulse_x(rows: &[Vec<f64>], fx: usize) -> f64 {
 /// S2 §5(1): the 0.05 m prism, unresolved (drag law) against resolved (body particles), to
 /// 0.3 s (the surge reaches the prism at about 0.15 s). The ledger balances to round-off (the
 /// ledger's own 1e-12), and the X impulse per unit width of the unresolved prism lies within
-/// [0.4, 1.6] of the resolved one. Why so loose: at Δs = 0.02 m the resolved prism is 2.5
-/// particles wide and the unresolved sample points sit 2.5 particles upstream, so neither is
-/// converged; measured 0.62 here with the reaction spread over the prism's footprint (0.63
-/// with S2-24's point spreading; the case's README has the finer runs). A factor off by more
-/// (a lost width factor, drag on the wrong side, no submersion) leaves the bound.
+/// [0.5, 1.0] of the resolved one. The band: above, 1, since a quasi-steady drag law has none of
+/// the resolved prism's impact spike (185–275 N/m against 77–101) and takes less than its
+/// impulse at every resolution run (cases/prism-dam-break/README.md: 0.62 at Δs = 0.02 m, 0.80
+/// at 0.01 m, 0.72 at 5 mm); below, 0.5, a fifth under the smallest of those. Neither side is
+/// converged at 0.02 m (the resolved prism 2.5 particles wide, the sample points 2.5 particles
+/// upstream); measured 0.62 here. A factor of 2 either way in the law (a lost width factor, C_D
+/// doubled or halved) leaves the band, as do drag on the wrong side and no submersion.
 #[test]
 fn the_unresolved_prism_takes_the_impulse_of_the_resolved_one_within_the_coarse_bound() {
     let dir = out_dir("prism-dam-break-ci");
@@ -100,17 +102,21 @@ fn the_unresolved_prism_takes_the_impulse_of_the_resolved_one_within_the_coarse_
         measure: "X impulse per unit width, unresolved / resolved".into(),
         value: j / j_ref,
         bound: None,
-        bound_source: "at Δs = 0.02 m neither side is converged (the prism 2.5 particles wide, the sample \
-                       points 2.5 particles upstream); a factor off by more (a lost width factor, drag on \
-                       the wrong side, no submersion) leaves [0.4, 1.6]"
+        bound_source: "the ratios measured at Δs = 0.02, 0.01 and 0.005 m (0.62, 0.80, 0.72, \
+                       cases/prism-dam-break/README.md), all below 1 (a quasi-steady law has no impact \
+                       spike): asserted within [0.5, 1.0], which a factor of 2 in the law leaves"
             .into(),
         source: "tests/tests/prism_cases.rs::the_unresolved_prism_takes_the_impulse_of_the_resolved_one_within_the_coarse_bound"
             .into(),
         run_time_s,
-        note: Some("asserted within 0.4 … 1.6; S2 Fig. 4's close agreement is not reproduced at this size".into()),
+        note: Some("asserted within 0.5 … 1.0; S2 Fig. 4's close agreement is not reproduced at this size".into()),
         ..Default::default()
     });
-    assert!((0.4..=1.6).contains(&(j / j_ref)), "ratio {}", j / j_ref);
+    assert!(
+        (0.5..=1.0).contains(&(j / j_ref)),
+        "ratio {} (band [0.5, 1.0])",
+        j / j_ref
+    );
 }
 
 /// The frame's node positions in each of its VTU snapshots `prism/frame-*.vtu` under `out`, in

@@ -102,10 +102,10 @@ pub fn settled_pressure_is_rho_g_h_and_walls_hold(backend: FluidBackend) {
         "walls carry {wall_force} N of a {weight} N weight (bound 1 %)"
     );
 
-    // The free surface is where S1-14 sets P = 0: S = mean(z + P/ρg) over the interior points
+    // Depths are taken from the water's level, the highest particle + Δs/2 (time average), not
+    // from the pressures. The pressure's own zero, S = mean(z + P/ρg) over the interior points
     // (deeper than r_e = 3.1 Δs below the highest particle, where the number density of S1-15
-    // has its full support). S must agree with the highest particle (+ Δs/2) within one
-    // spacing; depths are taken from S.
+    // has its full support), must agree with that level within one spacing.
     let mean_p: Vec<f64> = sum_p.iter().map(|s| s / samples as f64).collect();
     let top = top / samples as f64;
     let interior: Vec<(f64, f64)> = heights
@@ -124,7 +124,7 @@ pub fn settled_pressure_is_rho_g_h_and_walls_hold(backend: FluidBackend) {
     println!("z [m]   depth [m]  P [Pa]     rho g h [Pa]  error");
     let mut worst: f64 = 0.0;
     for (&z, &p) in heights.iter().zip(&mean_p) {
-        let depth = surface - z;
+        let depth = top - z;
         let exact = rho_g * depth;
         let err = (p - exact) / exact;
         println!(
@@ -139,7 +139,7 @@ pub fn settled_pressure_is_rho_g_h_and_walls_hold(backend: FluidBackend) {
     record(Record {
         id: format!("{}-hydrostatic-pressure", row.method),
         capability: format!("{} hydrostatic tank: pressure", row.capability),
-        reference: "ρ g h (closed form), depth from the pressure's own free surface".into(),
+        reference: "ρ g h (closed form), depth from the water's level (highest particle + Δs/2)".into(),
         measure: "worst |P / ρgh − 1| over interior heights (≥ r_e below the top), time average over \
                   1.5 … 2 s of a 5 × 5 grid of point probes"
             .into(),
