@@ -64,6 +64,7 @@ use fluid_solver::particles::Particles;
 use fluid_solver::vector_field::VectorField;
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{Aabb, FluidConfig, FluidMethodName, IsphConfig, PressureGradient};
+use schemas::validation::largest_abs;
 use std::collections::HashMap;
 
 /// RMS over the PPE rows of each term of the identity [1/s].
@@ -755,20 +756,16 @@ fn exact_projection_divergence_is_the_gradients_transpose() {
         &mut gtgx,
     );
     let eps = exact_projection::CHECKERBOARD_SHARE;
-    let worst = rows
-        .iter()
-        .enumerate()
-        .map(|(r, &i)| {
-            let i = i as usize;
-            let laplacian: f64 = list
-                .pairs(i)
-                .filter(|&(j, _)| fluid(j))
-                .map(|(j, q)| f64::from((-2.0 * k.volume * k.dw_over_r_at(q)) as f32) * (full[i] - full[j]))
-                .sum();
-            let expected = (1.0 - eps) * gtgx[r] + eps * laplacian;
-            (product[r] - expected).abs() / (gtgx[r].abs() + laplacian.abs() + 1e-300)
-        })
-        .fold(0.0f64, f64::max);
+    let worst = largest_abs(rows.iter().enumerate().map(|(r, &i)| {
+        let i = i as usize;
+        let laplacian: f64 = list
+            .pairs(i)
+            .filter(|&(j, _)| fluid(j))
+            .map(|(j, q)| f64::from((-2.0 * k.volume * k.dw_over_r_at(q)) as f32) * (full[i] - full[j]))
+            .sum();
+        let expected = (1.0 - eps) * gtgx[r] + eps * laplacian;
+        (product[r] - expected) / (gtgx[r].abs() + laplacian.abs() + 1e-300)
+    }));
     assert!(
         worst <= 1e-12,
         "the one-pass product differs by {worst:e} (relative)"

@@ -41,7 +41,7 @@ use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
 use super::pair_gradients::PairGradients;
 use super::pair_laws::BodyFaces;
-use super::ppe::{dot, pcg, PpeFailure, PpeReport, PpeSystem, NOT_AN_UNKNOWN};
+use super::ppe::{jacobi, pcg, PpeFailure, PpeReport, PpeSystem, NOT_AN_UNKNOWN};
 use super::ppe_two_level::{self, Form};
 use super::walls::NeumannPair;
 use crate::neighbours::vector_field::VectorField;
@@ -459,16 +459,6 @@ pub fn solve(
         PpeSolver::AdditiveTwoLevelPcg => {
             ppe_two_level::solve_operator(ppe, Form::Additive, x, tol, max_iterations, apply)
         }
-        _ => {
-            let inv_d: Vec<f64> = ppe.diag.par_iter().map(|d| 1.0 / d).collect();
-            pcg(&ppe.rhs, x, tol, max_iterations, apply, |r, z| {
-                z.par_iter_mut()
-                    .zip(r)
-                    .zip(&inv_d)
-                    .with_min_len(4096)
-                    .for_each(|((z, r), d)| *z = r * d);
-                dot(r, z)
-            })
-        }
+        _ => pcg(&ppe.rhs, x, tol, max_iterations, apply, jacobi(&ppe.diag)),
     }
 }

@@ -413,6 +413,20 @@ pub(super) fn pcg(
     })
 }
 
+/// The Jacobi preconditioner of a matrix with diagonal `diag` for [`pcg`]: `z = D⁻¹ r`, returns
+/// `r·z` (summed as [`dot`]).
+pub(super) fn jacobi(diag: &[f64]) -> impl FnMut(&[f64], &mut [f64]) -> f64 {
+    let inv_d: Vec<f64> = diag.par_iter().map(|d| 1.0 / d).collect();
+    move |r, z| {
+        z.par_iter_mut()
+            .zip(r)
+            .zip(&inv_d)
+            .with_min_len(CHUNK)
+            .for_each(|((z, r), d)| *z = r * d);
+        dot(r, z)
+    }
+}
+
 /// `Σ a_i b_i`, summed in fixed chunks (reproducible).
 pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
     let parts: Vec<f64> = a

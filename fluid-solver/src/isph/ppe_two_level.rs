@@ -49,7 +49,7 @@
 //! the thread count. A coarse matrix that is not numerically positive definite (water with no
 //! free-surface neighbour anywhere, where A is singular too) is solved by Jacobi-PCG instead.
 
-use super::ppe::{dot, pcg, PpeFailure, PpeReport, PpeSystem, CHUNK};
+use super::ppe::{dot, jacobi, pcg, PpeFailure, PpeReport, PpeSystem, CHUNK};
 use crate::neighbours::neighbour_search::CellGrid;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::cholesky::{
@@ -134,16 +134,7 @@ pub fn solve_operator(
             Form::Additive => cycle.additive(a, r, z),
             Form::Multiplicative => cycle.multiplicative(a, r, z),
         }),
-        None => {
-            let inv_d: Vec<f64> = a.diag.par_iter().map(|d| 1.0 / d).collect();
-            pcg(&a.rhs, x, tol, max_iterations, apply, |r, z| {
-                z.par_iter_mut()
-                    .zip(r)
-                    .zip(&inv_d)
-                    .for_each(|((z, r), d)| *z = r * d);
-                dot(r, z)
-            })
-        }
+        None => pcg(&a.rhs, x, tol, max_iterations, apply, jacobi(&a.diag)),
     }
 }
 
