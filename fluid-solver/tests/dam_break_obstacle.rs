@@ -36,8 +36,10 @@ fn the_ci_twin_runs_with_isph_and_the_box_face_is_pressed_where_the_water_runs_u
 /// walls' own normals P4 read −2.4 / −2.2 kPa over 0.45–0.6 / 0.6–0.8 s (−169 % of the
 /// experiment's mean over 0.6–0.8 s); with the faces' normals +1.2 / +2.4 kPa, and P1 … P4
 /// +4.9 / −7.5 / −23.3 / −22.9 % of the experiment's means over 0.6–0.8 s. Only the face is checked: H3 wets 32 ms late with this option (the E-MPS
-/// test's tolerance is 30 ms; README, session 18).
+/// test's tolerance is 30 ms; README, session 18). A non-default setting: run with `--ignored`
+/// (35 s of CI's 2 cores; the default ISPH's twin above checks the same face).
 #[test]
+#[ignore = "non-default ISPH setting (35 s on 2 cores); run with --ignored"]
 fn the_ci_twin_with_the_symmetric_isph_gradient_presses_the_box_face() {
     let settings = IsphConfig {
         influence_radius: 2.0,
