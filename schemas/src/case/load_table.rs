@@ -90,6 +90,11 @@ impl LoadTable {
         })
     }
 
+    /// The rows' times, strictly increasing (at least one).
+    pub fn times(&self) -> &[f64] {
+        &self.times
+    }
+
     /// Adds the interpolated components at time `t` to `out` (length `components`).
     pub fn add_at(&self, t: f64, out: &mut [f64]) {
         let n = self.components;

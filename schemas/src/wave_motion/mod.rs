@@ -1,0 +1,191 @@
+//! The motions of a piston wave maker: a vertical paddle across the tank that moves along +x
+//! (into the tank) by X(t) from its rest position, as pure functions of time.
+//!
+//! - [`goring`]: Goring's (1978) motion for a solitary wave, [`solitary_wave`]: that wave;
+//! - [`regular`]: regular waves by linear wave-maker theory (Biesel's transfer function);
+//! - [`stroke_table`]: a stroke read from a CSV table;
+//! - [`ramp`]: the raised-cosine start of the regular and table motions.
+//!
+//! [`PistonMotion`] holds one of them; the solver moves the paddle's wall particles by
+//! [`PistonMotion::stroke`] at [`PistonMotion::velocity`], and [`PistonMotion::range`] says how
+//! far the paddle travels, to refuse one that would leave the tank.
+
+pub mod goring;
+pub mod ramp;
+pub mod regular;
+pub mod solitary_wave;
+pub mod stroke_table;
+
+pub use goring::GoringSolitary;
+pub use ramp::Ramp;
+pub use regular::RegularWaves;
+pub use solitary_wave::SolitaryWave;
+pub use stroke_table::StrokeTable;
+
+/// A piston paddle's motion: X(t) (m) from the rest position, +x into the tank, and X'(t) (m/s).
+/// Every motion stands still at X(0) before t = 0.
+#[derive(Debug, Clone, PartialEq)]
+pub enum PistonMotion {
+    /// One solitary wave (Goring 1978).
+    Solitary(GoringSolitary),
+    /// Regular waves by linear theory, ramped in.
+    Regular(RegularWaves),
+    /// A stroke from a CSV table, ramped in.
+    Table(StrokeTable),
+}
+
+impl PistonMotion {
+    /// X(t), m.
+    pub fn stroke(&self, t: f64) -> f64 {
+        match self {
+            Self::Solitary(m) => m.stroke(t),
+            Self::Regular(m) => m.stroke(t),
+            Self::Table(m) => m.stroke(t),
+        }
+    }
+
+    /// X'(t), m/s.
+    pub fn velocity(&self, t: f64) -> f64 {
+        match self {
+            Self::Solitary(m) => m.velocity(t),
+            Self::Regular(m) => m.velocity(t),
+            Self::Table(m) => m.velocity(t),
+        }
+    }
+
+    /// (min, max) of X over [0, t_end], m.
+    pub fn range(&self, t_end: f64) -> (f64, f64) {
+        match self {
+            Self::Solitary(m) => m.range(t_end),
+            Self::Regular(m) => m.range(t_end),
+            Self::Table(m) => m.range(t_end),
+        }
+    }
+
+    /// The time from which the paddle stands still, s; `None` for regular waves, which never stop.
+    /// For the solitary motion, the time at which it is as slow as at the start
+    /// ([`GoringSolitary::duration`]).
+    pub fn duration(&self) -> Option<f64> {
+        match self {
+            Self::Solitary(m) => Some(m.duration()),
+            Self::Regular(_) => None,
+            Self::Table(m) => Some(m.duration()),
+        }
+    }
+}
+
+/// (min, max) of a motion `x` with velocity `v` over [0, t_end]: the largest and smallest of x at
+/// 0, t_end, the `breaks` between them (kinks, where v jumps) and every zero of v between the
+/// breaks. Each piece between breaks is sampled every `step` (at most 10⁷ samples a piece);
+/// a sign change of v between samples is bisected to rounding. Only a pair of zeros closer than
+/// `step` goes unseen, a wiggle of x smaller than |x''| step² / 8.
+fn extremes(
+    x: impl Fn(f64) -> f64,
+    v: impl Fn(f64) -> f64,
+    breaks: &[f64],
+    t_end: f64,
+    step: f64,
+) -> (f64, f64) {
+    let t_end = t_end.max(0.0);
+    let mut knots: Vec<f64> = std::iter::once(0.0)
+        .chain(breaks.iter().copied().filter(|&b| b > 0.0 && b < t_end))
+        .chain(std::iter::once(t_end))
+        .collect();
+    knots.sort_by(f64::total_cmp);
+    knots.dedup();
+    let (mut lo, mut hi) = (x(0.0), x(0.0));
+    let mut visit = |t: f64| {
+        let value = x(t);
+        lo = lo.min(value);
+        hi = hi.max(value);
+    };
+    for piece in knots.windows(2) {
+        let (a, b) = (piece[0], piece[1]);
+        visit(b);
+        let n = if step > 0.0 {
+            ((b - a) / step).ceil().clamp(1.0, 1e7) as usize
+        } else {
+            1
+        };
+        // v at the piece's own side of a break: just inside its ends.
+        let inset = 1e-9 * (b - a);
+        let at = |i: usize| (a + (b - a) * i as f64 / n as f64).clamp(a + inset, b - inset);
+        let mut s0 = at(0);
+        let mut v0 = v(s0);
+        for i in 1..=n {
+            let s1 = at(i);
+            let v1 = v(s1);
+            if v0 == 0.0 {
+                visit(s0);
+            } else if v0 * v1 < 0.0 {
+                let (mut l, mut r) = (s0, s1);
+                for _ in 0..200 {
+                    let m = 0.5 * (l + r);
+                    if m <= l || m >= r {
+                        break;
+                    }
+                    if v(m) * v0 > 0.0 {
+                        l = m;
+                    } else {
+                        r = m;
+                    }
+                }
+                visit(0.5 * (l + r));
+            }
+            (s0, v0) = (s1, v1);
+        }
+        if v0 == 0.0 {
+            visit(s0);
+        }
+    }
+    (lo, hi)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const G: f64 = 9.81;
+
+    #[test]
+    fn the_enum_dispatches_to_each_motion() {
+        let solitary = GoringSolitary::new(0.1, 0.5, G).expect("valid");
+        let regular = RegularWaves::new(0.05, 1.0, 0.5, G, Ramp::new(2.0).expect("valid")).expect("valid");
+        let table = StrokeTable::parse("0,0\n1,0.1\n", Ramp::NONE, "k", std::path::Path::new("f.csv"))
+            .expect("valid");
+        let t = 1.7;
+        let m = PistonMotion::Solitary(solitary);
+        assert_eq!(
+            (m.stroke(t), m.velocity(t)),
+            (solitary.stroke(t), solitary.velocity(t))
+        );
+        assert_eq!(m.range(t), solitary.range(t));
+        assert_eq!(m.duration(), Some(solitary.duration()));
+        let m = PistonMotion::Regular(regular);
+        assert_eq!(
+            (m.stroke(t), m.velocity(t)),
+            (regular.stroke(t), regular.velocity(t))
+        );
+        assert_eq!(m.duration(), None);
+        let m = PistonMotion::Table(table.clone());
+        assert_eq!(
+            (m.stroke(0.5), m.velocity(0.5)),
+            (table.stroke(0.5), table.velocity(0.5))
+        );
+        assert_eq!(m.range(3.0), (0.0, 0.1));
+        assert_eq!(m.duration(), Some(1.0));
+    }
+
+    #[test]
+    fn extremes_finds_interior_turning_points_and_respects_breaks() {
+        // x = sin t on [0, 10]: extremes ±1 at π/2 and 3π/2 (and 5π/2).
+        let (lo, hi) = extremes(f64::sin, f64::cos, &[], 10.0, 0.1);
+        assert!((lo + 1.0).abs() < 1e-15 && (hi - 1.0).abs() < 1e-15, "{lo} {hi}");
+        // A tent with a kink at 1 (v jumps from +1 to −1): the maximum is the break itself.
+        let tent = |t: f64| 1.0 - (t - 1.0).abs();
+        let slope = |t: f64| if t < 1.0 { 1.0 } else { -1.0 };
+        assert_eq!(extremes(tent, slope, &[1.0], 1.5, 0.01), (0.0, 1.0));
+        // t_end ≤ 0: the range of the point 0.
+        assert_eq!(extremes(f64::cos, |t| -t.sin(), &[], -1.0, 0.1), (1.0, 1.0));
+    }
+}

@@ -1,0 +1,218 @@
+//! [`SolitaryWave`]: the first-order (Boussinesq) solitary wave of height H on still water of
+//! depth d, travelling along +x:
+//!
+//! - η(x, t) = H sech²(k (x − c t − x₀)), with k = √(3H / (4d³)) and c = √(g (d + H)) — the
+//!   profile and celerity Goring (1978, Caltech report KH-R-38, §2) generates with a piston;
+//!   Synolakis (1987, J. Fluid Mech. 185) writes the same k as γ/d with γ = √(3H / (4d));
+//! - the depth-averaged velocity u = c η / (d + η), from mass conservation in the frame of the
+//!   wave (∂η/∂t + ∂(u (d + η))/∂x = 0 with η and u functions of x − c t; Goring 1978, §2).
+//!
+//! It is the wave a [`super::goring::GoringSolitary`] paddle makes, and the reference the tests of a
+//! generated wave compare against. x is measured from the paddle's rest position, into the tank.
+
+/// The Boussinesq solitary wave of height H on depth d under gravity g, crest at x₀ when t = 0.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolitaryWave {
+    height: f64,
+    depth: f64,
+    gravity: f64,
+    crest_x0: f64,
+    wavenumber: f64,
+    celerity: f64,
+}
+
+impl SolitaryWave {
+    /// The wave of `height` H (m) on `depth` d (m) under `gravity` g (m/s²), crest at x = 0 at
+    /// t = 0; refuses values that are not finite and > 0.
+    pub fn new(height: f64, depth: f64, gravity: f64) -> Result<Self, String> {
+        for (name, v) in [
+            ("wave height H", height),
+            ("depth d", depth),
+            ("gravity g", gravity),
+        ] {
+            if !v.is_finite() || v <= 0.0 {
+                return Err(format!(
+                    "the solitary wave's {name} must be finite and > 0, got {v}"
+                ));
+            }
+        }
+        Ok(Self {
+            height,
+            depth,
+            gravity,
+            crest_x0: 0.0,
+            wavenumber: (3.0 * height / (4.0 * depth.powi(3))).sqrt(),
+            celerity: (gravity * (depth + height)).sqrt(),
+        })
+    }
+
+    /// The same wave with its crest at x = `x0` when t = 0.
+    pub fn with_crest_at(self, x0: f64) -> Self {
+        Self { crest_x0: x0, ..self }
+    }
+
+    /// H, m.
+    pub fn height(&self) -> f64 {
+        self.height
+    }
+
+    /// d, m.
+    pub fn depth(&self) -> f64 {
+        self.depth
+    }
+
+    /// g, m/s².
+    pub fn gravity(&self) -> f64 {
+        self.gravity
+    }
+
+    /// x₀: the crest's position at t = 0, m.
+    pub fn crest_x0(&self) -> f64 {
+        self.crest_x0
+    }
+
+    /// k = √(3H / (4d³)), 1/m (Goring 1978, §2; γ/d in Synolakis 1987).
+    pub fn wavenumber(&self) -> f64 {
+        self.wavenumber
+    }
+
+    /// c = √(g (d + H)), m/s (the celerity of Goring 1978, §2).
+    pub fn celerity(&self) -> f64 {
+        self.celerity
+    }
+
+    /// The phase θ = k (x − c t − x₀) at (x, t).
+    pub fn phase(&self, x: f64, t: f64) -> f64 {
+        self.wavenumber * (x - self.celerity * t - self.crest_x0)
+    }
+
+    /// η(x, t) = H sech²(k (x − c t − x₀)), m.
+    pub fn elevation(&self, x: f64, t: f64) -> f64 {
+        self.height * sech_squared(self.phase(x, t))
+    }
+
+    /// u(x, t) = c η / (d + η), m/s: the depth-averaged horizontal velocity under the wave.
+    pub fn depth_averaged_velocity(&self, x: f64, t: f64) -> f64 {
+        self.velocity_under(self.elevation(x, t))
+    }
+
+    /// u = c η / (d + η) for a given elevation η (m), m/s.
+    pub fn velocity_under(&self, eta: f64) -> f64 {
+        self.celerity * eta / (self.depth + eta)
+    }
+
+    /// u at the crest, c H / (d + H), m/s: the largest depth-averaged velocity.
+    pub fn crest_velocity(&self) -> f64 {
+        self.velocity_under(self.height)
+    }
+
+    /// ∫ η dx = 2H / k, m² per metre of crest (∫ sech² = 2): the water the wave carries.
+    pub fn volume_per_width(&self) -> f64 {
+        2.0 * self.height / self.wavenumber
+    }
+
+    /// The length over which η ≥ `fraction` · H, (2 / k) arcosh(1 / √fraction), m: an effective
+    /// wavelength. Goring's (1978) duration uses the phases |θ| ≤ 3.8 ([`GORING_PHASE`]), where
+    /// η = sech²(3.8) H ≈ 0.002 H. `fraction` must lie in (0, 1].
+    pub fn width_above(&self, fraction: f64) -> f64 {
+        2.0 * (1.0 / fraction.sqrt()).acosh() / self.wavenumber
+    }
+
+    /// The time the part of the wave with η ≥ `fraction` · H takes to pass a fixed point, s.
+    pub fn passage_time(&self, fraction: f64) -> f64 {
+        self.width_above(fraction) / self.celerity
+    }
+}
+
+/// The phase |θ| = 3.8 at which Goring (1978) cuts the wave for the duration of the paddle's
+/// motion, T = 2 (3.8 + H/d) / (k c) ([`super::goring::GoringSolitary::goring_duration`]).
+pub const GORING_PHASE: f64 = 3.8;
+
+/// sech² θ = 1 / cosh² θ, 0 once cosh θ overflows (|θ| > 710).
+pub fn sech_squared(theta: f64) -> f64 {
+    let c = theta.cosh();
+    1.0 / (c * c)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const G: f64 = 9.81;
+
+    #[test]
+    fn wavenumber_and_celerity_follow_goring_and_synolakis() {
+        let w = SolitaryWave::new(0.1, 0.5, G).expect("valid");
+        let k = (3.0 * 0.1 / (4.0 * 0.125f64)).sqrt();
+        assert!((w.wavenumber() - k).abs() < 1e-15);
+        // Synolakis (1987): γ = √(3H / (4d)), k = γ / d.
+        let gamma = (3.0 * 0.1 / (4.0 * 0.5f64)).sqrt();
+        assert!((w.wavenumber() - gamma / 0.5).abs() < 1e-14);
+        assert!((w.celerity() - (G * 0.6f64).sqrt()).abs() < 1e-15);
+    }
+
+    #[test]
+    fn the_crest_travels_at_c_and_the_profile_is_symmetric() {
+        let w = SolitaryWave::new(0.05, 0.4, G)
+            .expect("valid")
+            .with_crest_at(-2.0);
+        let t = 1.3;
+        let crest = -2.0 + w.celerity() * t;
+        assert_eq!(w.elevation(crest, t), w.height());
+        for dx in [0.01, 0.3, 1.0, 4.0] {
+            let (a, b) = (w.elevation(crest - dx, t), w.elevation(crest + dx, t));
+            assert!((a - b).abs() <= 1e-15 * w.height(), "dx = {dx}");
+            assert!(a < w.height());
+        }
+        assert_eq!(
+            w.elevation(1e6, 0.0),
+            0.0,
+            "sech² underflows to 0 far from the crest"
+        );
+        assert!((w.depth_averaged_velocity(crest, t) - w.crest_velocity()).abs() < 1e-15);
+    }
+
+    #[test]
+    fn the_velocity_satisfies_mass_conservation() {
+        // ∂η/∂t + ∂q/∂x = 0 with q = u (d + η) = c η (Goring 1978, §2), by central differences
+        // (truncation ~ h² |η'''| c: below 1e-9 H/s at h = 1e-5 m here).
+        let w = SolitaryWave::new(0.2, 0.5, G).expect("valid");
+        let h = 1e-5;
+        for i in -40..40 {
+            let x = i as f64 * 0.05;
+            let t = 0.0;
+            let deta_dt = (w.elevation(x, t + h / w.celerity()) - w.elevation(x, t - h / w.celerity()))
+                / (2.0 * h / w.celerity());
+            let q = |x: f64| w.depth_averaged_velocity(x, t) * (w.depth() + w.elevation(x, t));
+            let dq_dx = (q(x + h) - q(x - h)) / (2.0 * h);
+            assert!((deta_dt + dq_dx).abs() < 1e-8, "x = {x}: {deta_dt} + {dq_dx}");
+        }
+    }
+
+    #[test]
+    fn volume_and_width_are_the_integrals_of_the_profile() {
+        let w = SolitaryWave::new(0.1, 0.5, G).expect("valid");
+        // Midpoint rule over ±40/k (sech² < 1e-34 there): error far below 1e-10 relative.
+        let (half, n) = (40.0 / w.wavenumber(), 200_000);
+        let dx = 2.0 * half / n as f64;
+        let sum: f64 = (0..n)
+            .map(|i| w.elevation(-half + (i as f64 + 0.5) * dx, 0.0) * dx)
+            .sum();
+        assert!((sum / w.volume_per_width() - 1.0).abs() < 1e-10, "{sum}");
+        // η equals fraction · H at the width's ends.
+        let b = w.width_above(0.002);
+        assert!((w.elevation(b / 2.0, 0.0) / w.height() - 0.002).abs() < 1e-15);
+        assert!((w.passage_time(0.002) - b / w.celerity()).abs() < 1e-15);
+        // Goring's cut: sech²(3.8) ≈ 0.002.
+        assert!((sech_squared(GORING_PHASE) - 0.002).abs() < 1e-5);
+    }
+
+    #[test]
+    fn refuses_non_positive_or_non_finite_values() {
+        assert!(SolitaryWave::new(0.0, 1.0, G).is_err());
+        assert!(SolitaryWave::new(0.1, -1.0, G).is_err());
+        assert!(SolitaryWave::new(0.1, 1.0, f64::NAN).is_err());
+        let e = SolitaryWave::new(f64::INFINITY, 1.0, G).unwrap_err();
+        assert!(e.contains("wave height H"), "{e}");
+    }
+}
