@@ -3,8 +3,10 @@
 
 use crate::bodies::pair_law::{Exchange, PairLaw};
 use crate::bodies::RigidBodies;
+use crate::boundaries::damping;
 use crate::boundaries::escape::OpenTop;
 use crate::boundaries::open_boundary::OpenBoundaries;
+use crate::boundaries::paddle::Paddle;
 use crate::emps::kernel::Kernel;
 use crate::emps::step::EmpsStep;
 use crate::isph::neighbour_list;
@@ -20,7 +22,7 @@ use crate::stage_timer::StageTimes;
 use crate::state::{BodyExchange, FluidState, PointReactions, RunState};
 use crate::unresolved;
 use crate::unresolved::spreading::{Share, Spread};
-use schemas::case::fluid::{Aabb, FluidConfig, FluidMethodName};
+use schemas::case::fluid::{Aabb, DampingConfig, FluidConfig, FluidMethodName};
 use std::sync::Mutex;
 
 /// Landing on a time: a remainder below this fraction of Δt is rounding, not a step; a step up to
@@ -74,6 +76,10 @@ pub struct FluidSolver {
     pub(crate) bodies: RigidBodies,
     /// Where fluid may leave (removed and counted), and the most that may leave.
     pub(crate) open_top: OpenTop,
+    /// The wave maker's paddle, placed before every step.
+    paddle: Option<Paddle>,
+    /// Zones whose fluid velocity is relaxed after every step.
+    damping: Vec<DampingConfig>,
     max_removed_fraction: f64,
     /// What the lattice moved (see [`crate::particles::lattice`]).
     layout_notes: Vec<String>,
@@ -146,11 +152,21 @@ impl FluidSolver {
             &body_boxes,
             cfg.spacing,
             cfg.gravity,
-        );
+        )
+        .with_solid_sites(std::sync::Arc::new(layout.solid_sites));
         let mut particles = layout.particles;
         let open_boundaries = OpenBoundaries::new(cfg, &mut particles);
         if open_boundaries.has_inflow() {
             monitor.set_driven(); // the inflow feeds energy in
+        }
+        let paddle = layout.paddle.as_ref().map(|pp| {
+            let motion = cfg.wave_maker.as_ref().and_then(|w| w.built.clone()).expect(
+                "the wave maker's motion is built when the case is loaded (FluidConfig::build_wave_maker)",
+            );
+            Paddle::new(motion, pp.first, pp.rest_x.clone())
+        });
+        if paddle.is_some() {
+            monitor.set_driven(); // the paddle does work on the water
         }
         let mut grid = grid;
         let (mut method, mut method_state) = match cfg.method {
@@ -200,6 +216,8 @@ impl FluidSolver {
             tank: layout.tank,
             bodies,
             open_top,
+            paddle,
+            damping: cfg.damping.clone(),
             max_removed_fraction: cfg.max_removed_fraction,
             layout_notes: layout.notes,
             warnings: cfg.warnings(),
@@ -418,8 +436,11 @@ impl FluidSolver {
             self.monitor.start(&st.particles);
             self.started = true;
         }
+        if let Some(paddle) = &self.paddle {
+            paddle.place(&mut st.particles, st.time, dt);
+        }
         let balance = st.open_boundaries.balance();
-        let open = st.open_boundaries.is_active();
+        let open = st.open_boundaries.is_active() || self.paddle.is_some();
         st.open_boundaries.apply(&mut st.particles, st.time, dt);
         let escaped = self.remove_escaped()?;
         // particles added or removed: the cell list no longer matches their order
@@ -496,6 +517,7 @@ impl FluidSolver {
                 add_to(&mut exchange.reaction, &reaction);
             },
         )?;
+        damping::relax(&self.damping, &mut st.particles, dt);
         st.steps += 1;
         st.time += dt;
         for a in 0..3 {

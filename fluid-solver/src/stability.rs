@@ -12,10 +12,12 @@ use crate::bodies::rotate;
 use crate::boundaries::escape::OpenTop;
 use crate::particles::kind::{Kind, FLUID};
 use crate::particles::layout::Domain;
+use crate::particles::solid_sites::SolidSites;
 use crate::particles::Particles;
 use rayon::prelude::*;
 use schemas::case::fluid::Aabb;
 use std::fmt;
+use std::sync::Arc;
 
 /// Largest displacement per step, in spacings, before the step is taken as unstable.
 pub const MAX_STEP_DISPLACEMENT: f64 = 0.5;
@@ -61,6 +63,8 @@ pub struct StabilityMonitor {
     /// is checked through `tank`; fixed walls through their boxes shrunk by half a spacing.
     tank: Aabb,
     solids: Vec<Aabb>,
+    /// The mesh solids' and terrains' sites ([`SolidSites::deep_inside`]).
+    solid_sites: Arc<SolidSites>,
     /// Each body's half extents less half a spacing, about its centre (checked at the pose given
     /// to [`StabilityMonitor::check`]).
     bodies: Vec<[f64; 3]>,
@@ -106,6 +110,7 @@ impl StabilityMonitor {
             open_top,
             tank,
             solids,
+            solid_sites: Arc::new(SolidSites::default()),
             bodies,
             spacing,
             gravity,
@@ -307,10 +312,21 @@ impl StabilityMonitor {
                 self.tank.min, self.tank.max
             ));
         }
+        if self.solid_sites.deep_inside(r) {
+            return Some(format!(
+                "inside a solid from a mesh or a terrain: r = {r:?} is more than half a spacing inside its sites"
+            ));
+        }
         self.solids
             .iter()
             .find(|b| b.contains_point(r))
             .map(|b| format!("inside a wall block {:?} … {:?}: r = {r:?}", b.min, b.max))
+    }
+
+    /// Checks fluid against the mesh solids' and terrains' sites too.
+    pub fn with_solid_sites(mut self, sites: Arc<SolidSites>) -> Self {
+        self.solid_sites = sites;
+        self
     }
 
     /// Whether `r` lies inside a body at its present pose; the message says which and where.

@@ -1,5 +1,5 @@
 //! Geometry of any extent on the particle lattice: the case's tank, water blocks, gates, wall
-//! boxes and bodies are moved to the nearest lattice faces `tank.min + k Δs`, and every face
+//! boxes, bodies and the wave maker's paddle are moved to the nearest lattice faces `tank.min + k Δs`, and every face
 //! that moved is reported with how far.
 //!
 //! A particle stands for the cube of side Δs around its site `tank.min + (k + ½) Δs`, so a box
@@ -52,6 +52,12 @@ pub fn snap(cfg: &FluidConfig) -> (FluidConfig, Vec<String>) {
         let s = snap_box(&raw);
         note_moves(&format!("body `{}`", b.name), &raw, &s, ds, &mut notes);
         (b.min, b.max) = (s.min, s.max);
+    }
+    if let Some(w) = &mut out.wave_maker {
+        let raw = w.paddle();
+        let s = snap_box(&raw);
+        note_moves("wave_maker's paddle", &raw, &s, ds, &mut notes);
+        (w.min, w.max) = (s.min, s.max);
     }
     (out, notes)
 }

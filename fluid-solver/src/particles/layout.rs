@@ -5,10 +5,12 @@
 //! nearest sites. Sites outside the tank within `wall_layers` layers are walls: the two layers
 //! next to the tank are [`Kind::Wall`] (they carry pressure), the outer ones [`Kind::Dummy`].
 //! Sites inside the tank whose centre is inside a gate, a body, a solid wall box or a water block
-//! get that kind. Boxes and the tank are first moved onto the lattice ([`crate::particles::lattice`]); the
+//! get that kind; so do the skins of mesh solids and terrains ([`SolidSites`]), and the wave
+//! maker's paddle, whose particles come last. Boxes and the tank are first moved onto the lattice ([`crate::particles::lattice`]); the
 //! layout keeps that config and the messages saying what moved.
 
 use crate::particles::kind::Kind;
+use crate::particles::solid_sites::SolidSites;
 use crate::particles::Particles;
 use schemas::case::fluid::{Aabb, FluidConfig};
 
@@ -39,6 +41,15 @@ pub struct BodyParticles {
     pub ids: Vec<u32>,
 }
 
+/// The wave maker's paddle in the layout: its particles are pushed last.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PaddleParticles {
+    /// Id of the first paddle particle; the paddle's ids follow it without gaps.
+    pub first: u32,
+    /// Each paddle particle's x at rest, in id order.
+    pub rest_x: Vec<f64>,
+}
+
 /// The initial state built from a case section.
 #[derive(Debug, Clone)]
 pub struct Layout {
@@ -48,6 +59,10 @@ pub struct Layout {
     pub grid_box: Domain,
     pub tank: Aabb,
     pub bodies: Vec<BodyParticles>,
+    /// The wave maker's paddle, when the case has one.
+    pub paddle: Option<PaddleParticles>,
+    /// The sites of the mesh solids and terrains.
+    pub solid_sites: SolidSites,
     /// The case's section with the tank and every box on the lattice (what was built).
     pub config: FluidConfig,
     /// One message per box that was moved onto the lattice.
@@ -72,6 +87,10 @@ pub fn build(cfg: &FluidConfig) -> Layout {
             ids: Vec::new(),
         })
         .collect();
+    let paddle_box = cfg.wave_maker.as_ref().map(|w| w.paddle());
+    let in_paddle = |p: [f64; 3]| paddle_box.is_some_and(|b| b.contains_point(p));
+    let mut paddle_sites = Vec::new();
+    let solids = SolidSites::build(cfg, n);
     let boxes_of_bodies: Vec<Aabb> = cfg
         .body
         .iter()
@@ -96,6 +115,8 @@ pub fn build(cfg: &FluidConfig) -> Layout {
                         Kind::Dummy
                     };
                     particles.push(p, kind);
+                } else if in_paddle(p) {
+                    paddle_sites.push(p);
                 } else if cfg.gate.iter().any(|g| g.contains_point(p)) {
                     particles.push(p, Kind::Gate);
                 } else if let Some(b) = boxes_of_bodies.iter().position(|b| b.contains_point(p)) {
@@ -105,11 +126,22 @@ pub fn build(cfg: &FluidConfig) -> Layout {
                     // Only sites within r_e,grad of water get a pressure (see `operators`), so
                     // the inside of a solid box costs no more than dummies.
                     particles.push(p, Kind::Wall);
+                } else if solids.holds(idx) {
+                    particles.push(p, Kind::Wall);
+                } else if solids.buries(idx) {
+                    // deeper inside a mesh solid or a terrain than its skin: no particle
                 } else if cfg.block.iter().any(|b| b.contains_point(p)) {
                     particles.push(p, Kind::Fluid);
                 }
             }
         }
+    }
+    let paddle = paddle_box.map(|_| PaddleParticles {
+        first: particles.len() as u32,
+        rest_x: paddle_sites.iter().map(|p| p[0]).collect(),
+    });
+    for p in paddle_sites {
+        particles.push(p, Kind::Wall);
     }
     particles.shrink_to_fit();
     let l = layers as f64 * ds;
@@ -128,6 +160,8 @@ pub fn build(cfg: &FluidConfig) -> Layout {
         grid_box: above(GRID_HEADROOM),
         tank,
         bodies,
+        paddle,
+        solid_sites: solids,
         notes,
         config,
     }

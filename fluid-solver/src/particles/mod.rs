@@ -4,11 +4,13 @@
 //! - [`storage`]: structure-of-arrays storage ([`Particles`]), re-exported here;
 //! - [`kind`]: fluid / wall / dummy / body / gate / inflow, and what each kind takes part in;
 //! - [`lattice`]: the case's boxes moved onto the lattice's faces;
-//! - [`layout`]: the initial particle layout of a case.
+//! - [`layout`]: the initial particle layout of a case;
+//! - [`solid_sites`]: the lattice sites of mesh solids and terrains, and their skin.
 
 pub mod kind;
 pub mod lattice;
 pub mod layout;
+pub mod solid_sites;
 pub mod storage;
 
 pub use storage::{Particles, STATE_BYTES_PER_PARTICLE};

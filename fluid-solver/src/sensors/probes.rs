@@ -1,5 +1,5 @@
 //! Probes declared in the case, sampled into one CSV: water height at a gauge, pressure at a
-//! point, surge-front position, and wall-pressure sensors ([`crate::sensors::wall_sensor`]); the CSV's
+//! point, surge-front position, run-up on the solids, and wall-pressure sensors ([`crate::sensors::wall_sensor`]); the CSV's
 //! last column counts the fluid particles removed so far (open top and outflow).
 //!
 //! Droplets are left out of heights and fronts: a fluid particle counts only if its number
@@ -15,7 +15,7 @@ use crate::particles::Particles;
 use crate::sensors::wall_sensor::Disc;
 use crate::solver::FluidSolver;
 use schemas::case::fluid::{Aabb, ProbeConfig, ProbeKind};
-use std::collections::VecDeque;
+use std::collections::{HashMap, VecDeque};
 use std::fs;
 use std::io::{self, BufWriter, Write};
 use std::path::Path;
@@ -64,7 +64,36 @@ pub fn sample(probe: &ProbeConfig, p: &Particles, kernel: &Kernel, tank: &Aabb) 
                 .fold(0.0, f64::max)
         }
         ProbeKind::WallPressure => f64::NAN,
+        ProbeKind::RunUp => run_up(p, kernel, tank, in_water),
     }
+}
+
+/// The run-up gauge: the highest water particle with a solid within r_e,grad, plus Δs/2, above
+/// the tank floor (0 when no water touches a solid). The solids are binned in cells of r_e,grad,
+/// so each water particle looks at the 27 cells around it.
+fn run_up(p: &Particles, kernel: &Kernel, tank: &Aabb, in_water: impl Fn(usize) -> bool) -> f64 {
+    let reach = kernel.re_grad;
+    let cell = |i: usize| [p.x[i], p.y[i], p.z[i]].map(|v| (v / reach).floor() as i64);
+    let mut solids: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
+    for i in (0..p.len()).filter(|&i| matches!(p.kind_of(i), Kind::Wall | Kind::Body)) {
+        solids.entry(cell(i)).or_default().push(i);
+    }
+    let touches = |i: usize| {
+        let c = cell(i);
+        (0..27).any(|n| {
+            let at = [c[0] + n % 3 - 1, c[1] + (n / 3) % 3 - 1, c[2] + n / 9 - 1];
+            solids.get(&at).is_some_and(|js| {
+                js.iter().any(|&j| {
+                    (p.x[j] - p.x[i]).powi(2) + (p.y[j] - p.y[i]).powi(2) + (p.z[j] - p.z[i]).powi(2)
+                        <= reach * reach
+                })
+            })
+        })
+    };
+    (0..p.len())
+        .filter(|&i| in_water(i) && touches(i))
+        .map(|i| p.z[i] + 0.5 * kernel.spacing - tank.min[2])
+        .fold(0.0, f64::max)
 }
 
 /// The water-height gauge: the top of the connected column on the bed (see the module doc).

@@ -136,7 +136,7 @@ impl Case {
                 None => e.message().trim().to_string(),
             },
         })?;
-        let case = Case {
+        let mut case = Case {
             path: path.to_path_buf(),
             hash: fnv1a(text.as_bytes()),
             text,
@@ -148,6 +148,7 @@ impl Case {
             report: file.report,
         };
         case.validate().map_err(|e| CaseError::at(path, e))?;
+        case.load_geometry().map_err(|e| CaseError::at(path, e))?;
         Ok(case)
     }
 
@@ -275,6 +276,19 @@ impl Case {
 }
 
 impl Case {
+    /// Reads the meshes and height grids of the fluid sections and builds their wave makers'
+    /// motions (reading their tables), relative to the case's folder.
+    fn load_geometry(&mut self) -> Result<(), FieldError> {
+        let dir = self.dir();
+        let end = self.info.end_time;
+        for (name, cfg) in &mut self.fluid {
+            let key = format!("fluid.{name}");
+            cfg.load_files(&dir, &key)?;
+            cfg.build_wave_maker(&dir, &key, end)?;
+        }
+        Ok(())
+    }
+
     /// Reads and checks every file the case names (load tables), so that a bad one is refused
     /// before anything starts, with its line and what is wrong.
     fn check_files(&self) -> Result<(), FieldError> {

@@ -28,6 +28,15 @@ impl FluidConfig {
         if self.inflow.is_some() || self.outflow.is_some() {
             return refuse("inflow or outflow boundaries");
         }
+        if self.wave_maker.is_some() {
+            return refuse("a wave maker ([wave_maker]: a paddle moving by a prescribed stroke)");
+        }
+        if !self.damping.is_empty() {
+            return refuse("damping zones ([[damping]])");
+        }
+        if !self.solid.is_empty() || !self.terrain.is_empty() {
+            return refuse("solids from meshes or terrains ([[solid]], [[terrain]])");
+        }
         if let Some(p) = self.probe.iter().find(|p| p.window.is_some()) {
             return refuse(&format!(
                 "filtered probes (probe `{}` has a window; probes are read from a copy at each probe row, not every step)",

@@ -40,13 +40,21 @@
 //! Open channels add fixed solid boxes (`[[fluid.NAME.wall]]`, `min`/`max`: piers, levees) and
 //! inflow / outflow boundaries (`[fluid.NAME.inflow]`, `[fluid.NAME.outflow]`: see
 //! [`InflowConfig`], [`OutflowConfig`]); with an inflow, u_max = √(u_in² + 2gH) in S1-16.
+//!
+//! Real scenes add solids from closed triangle meshes (`[[fluid.NAME.solid]]`, STL or OBJ),
+//! terrains from height grids or planes (`[[fluid.NAME.terrain]]`; see [`SolidConfig`],
+//! [`TerrainConfig`]), a piston wave maker (`[fluid.NAME.wave_maker]`) and zones that absorb
+//! waves (`[[fluid.NAME.damping]]`; see [`WaveMakerConfig`], [`DampingConfig`]). Their files are
+//! read when the case is loaded ([`FluidConfig::load_files`], [`FluidConfig::build_wave_maker`]).
 
 mod geometry;
 mod gpu;
 mod isph;
 mod open_boundary;
 mod probes;
+mod solids;
 mod time_step;
+mod wave_maker;
 
 pub use geometry::{Aabb, BodyConfig, TankConfig};
 pub use gpu::GPU_MAX_ROUNDING;
@@ -55,7 +63,9 @@ pub use isph::{
 };
 pub use open_boundary::{InflowConfig, OutflowConfig, MIN_INFLOW_STRIP_LAYERS};
 pub use probes::{signed_axis, ProbeConfig, ProbeKind};
+pub use solids::{Loaded, PlaneConfig, SolidConfig, TerrainConfig, MAX_MESH_TO_TANK};
 pub use time_step::{MACH, MAX_ACOUSTIC_COURANT, MAX_ADVECTIVE_COURANT, MAX_VISCOUS_NUMBER};
+pub use wave_maker::{DampingConfig, PaddleMotion, WaveMakerConfig};
 
 use super::error::check;
 use super::FieldError;
@@ -167,6 +177,18 @@ pub struct FluidConfig {
     /// Fixed solid boxes inside the tank (piers, levees) made of wall particles.
     #[serde(default)]
     pub wall: Vec<Aabb>,
+    /// Fixed solids from closed triangle meshes (STL, OBJ), made of wall particles.
+    #[serde(default)]
+    pub solid: Vec<SolidConfig>,
+    /// Sea beds and beaches: the ground below a height grid or a plane, made of wall particles.
+    #[serde(default)]
+    pub terrain: Vec<TerrainConfig>,
+    /// CPU only: a piston wave maker.
+    #[serde(default)]
+    pub wave_maker: Option<WaveMakerConfig>,
+    /// Zones that absorb waves (the fluid's velocity relaxed towards rest).
+    #[serde(default)]
+    pub damping: Vec<DampingConfig>,
     /// Probes, one column each of the probe CSV.
     #[serde(default)]
     pub probe: Vec<ProbeConfig>,
@@ -346,6 +368,8 @@ impl FluidConfig {
                 }
             }
         }
+        self.validate_solids(key)?;
+        self.validate_waves(key, &named)?;
         self.validate_probes(key)?;
         self.validate_open_boundaries(key, &named)?;
         if self.backend == FluidBackend::Gpu {

@@ -27,6 +27,11 @@ pub enum ProbeKind {
     /// normal force of the fluid on the wall particles behind the disc per unit area, optionally
     /// box-filtered over the last `window` seconds.
     WallPressure,
+    /// Run-up: the elevation above the tank floor of the highest water particle on a solid (a
+    /// wall, terrain, solid or body particle within r_e,grad = 2.1 Δs), plus Δs/2 as the
+    /// water-height gauge adds; spray (number density below half of n0) is left out. No
+    /// position. The column's maximum minus the still-water level is the run-up R.
+    RunUp,
 }
 
 /// `[[fluid.NAME.probe]]`: one column of the probe CSV.
@@ -38,7 +43,7 @@ pub struct ProbeConfig {
     /// What the probe measures.
     pub kind: ProbeKind,
     /// `[x, y]` for water-height, `[x, y, z]` for pressure and wall-pressure, none for
-    /// surge-front [m]; inside the tank.
+    /// surge-front and run-up [m]; inside the tank.
     #[serde(default)]
     pub position: Vec<f64>,
     /// Surge-front only: axis and direction of the front, "x" or "+x" (default), "-x", "y",
@@ -110,6 +115,7 @@ impl FluidConfig {
                 ProbeKind::Pressure => (3, "pressure"),
                 ProbeKind::SurgeFront => (0, "surge-front"),
                 ProbeKind::WallPressure => (3, "wall-pressure"),
+                ProbeKind::RunUp => (0, "run-up"),
             };
             Self::validate_sensor_keys(p, &pk, self.spacing)?;
             if p.position.len() != want {

@@ -1,0 +1,88 @@
+//! The lattice sites of a case's mesh solids (`[[solid]]`) and terrains (`[[terrain]]`) inside
+//! the tank: a site whose centre is inside a closed mesh ([`sites_inside_mesh`]) or not above a
+//! terrain's surface is solid; of those, the skin `wall_layers` sites deep (Chebyshev lattice
+//! distance to a site that is not solid, [`SiteSet::within_layers_of_outside`]) become wall
+//! particles, as the tank's walls are `wall_layers` deep, and the sites deeper inside get none.
+//! The tank's walls surround the lattice, so its bounds count as solid: a terrain's cut faces at
+//! the tank's sides are no surface.
+
+use schemas::case::fluid::FluidConfig;
+use schemas::geometry::{sites_below_surface, sites_inside_mesh, Lattice, SiteSet};
+
+/// The solid sites of the tank's lattice and their skin.
+#[derive(Debug, Clone, Default)]
+pub struct SolidSites {
+    sets: Option<(SiteSet, SiteSet)>,
+}
+
+impl SolidSites {
+    /// The solid sites of `cfg` (on the lattice, with its files loaded) over the tank's `n`
+    /// sites per axis.
+    pub fn build(cfg: &FluidConfig, n: [i64; 3]) -> SolidSites {
+        if cfg.solid.is_empty() && cfg.terrain.is_empty() {
+            return SolidSites { sets: None };
+        }
+        let lattice = Lattice {
+            origin: cfg.tank.min,
+            spacing: cfg.spacing,
+            n: n.map(|v| v.max(0) as usize),
+        };
+        let mut solid = SiteSet::empty(&lattice);
+        for s in &cfg.solid {
+            let mesh = s
+                .placed
+                .get()
+                .expect("a solid's mesh is read when the case is loaded (FluidConfig::load_files)");
+            for [i, j, k] in sites_inside_mesh(mesh, &lattice).iter() {
+                solid.insert(i, j, k);
+            }
+        }
+        for t in &cfg.terrain {
+            for [i, j, k] in sites_below_surface(|x, y| t.height_at(x, y), &lattice).iter() {
+                solid.insert(i, j, k);
+            }
+        }
+        let skin = solid.within_layers_of_outside(cfg.wall_layers as usize, false);
+        SolidSites {
+            sets: Some((solid, skin)),
+        }
+    }
+
+    /// Whether site `idx` (tank lattice indices) is in a solid's skin: a wall particle.
+    pub fn holds(&self, idx: [i64; 3]) -> bool {
+        self.sets.as_ref().is_some_and(|(_, skin)| at(skin, idx))
+    }
+
+    /// Whether site `idx` is solid but deeper than the skin: no particle.
+    pub fn buries(&self, idx: [i64; 3]) -> bool {
+        self.sets
+            .as_ref()
+            .is_some_and(|(solid, skin)| at(solid, idx) && !at(skin, idx))
+    }
+}
+
+impl SolidSites {
+    /// Whether `r` lies more than about half a spacing inside a solid: the site whose cube holds
+    /// it and that site's six face neighbours are all solid (the stability monitor's "through a
+    /// wall", as a wall box's is its box less half a spacing).
+    pub fn deep_inside(&self, r: [f64; 3]) -> bool {
+        let Some((solid, _)) = &self.sets else {
+            return false;
+        };
+        let l = solid.lattice();
+        let idx: [i64; 3] = std::array::from_fn(|a| ((r[a] - l.origin[a]) / l.spacing).floor() as i64);
+        at(solid, idx)
+            && (0..3).all(|a| {
+                [-1, 1].iter().all(|d| {
+                    let mut n = idx;
+                    n[a] += d;
+                    // beyond the lattice is the tank's wall: solid too
+                    n[a] < 0 || n[a] >= l.n[a] as i64 || at(solid, n)
+                })
+            })
+    }
+}
+
+fn at(set: &SiteSet, idx: [i64; 3]) -> bool {
+    idx.iter().all(|&v| v >= 0) && set.contains(idx[0] as usize, idx[1] as usize, idx[2] as usize)
+}

@@ -1,0 +1,243 @@
+//! Real scenes' keys (issue 37): solids from meshes, terrains from height grids and planes, the
+//! wave maker and damping zones. Good files load and are placed; bad ones are refused when the
+//! case is loaded, with the key, the file and what is wrong: a mesh that is not closed, one with
+//! a flipped or a degenerate triangle, an inverted one, one far larger than the tank (drawn in
+//! millimetres), a grid with a missing value, a grid outside the tank, a paddle too thin or one
+//! that would leave the tank, and the GPU path refusing each feature by name.
+
+use schemas::case::Case;
+use schemas::geometry::{write_ascii_grid, write_binary_stl, HeightGrid, TriangleMesh};
+use std::path::{Path, PathBuf};
+
+/// A fresh folder for one test's files.
+fn folder(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("scene-files-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
+    dir
+}
+
+/// A 1 × 0.2 × 0.3 m flume at Δs = 0.02 m with water 0.1 m deep, and `extra` appended to its
+/// fluid section.
+fn flume(extra: &str) -> String {
+    format!(
+        r#"[case]
+name = "scene"
+end_time = 1.0
+
+[fluid.flume]
+spacing = 0.02
+time_step = 1.0e-3
+sound_speed = 10.0
+output_interval = 0.1
+tank = {{ min = [0.0, 0.0, 0.0], max = [1.0, 0.2, 0.3] }}
+
+[[fluid.flume.block]]
+min = [0.1, 0.0, 0.0]
+max = [1.0, 0.2, 0.1]
+{extra}"#
+    )
+}
+
+fn parse(dir: &Path, text: String) -> Result<Case, String> {
+    Case::parse(&dir.join("case.toml"), text).map_err(|e| e.to_string())
+}
+
+fn refused(dir: &Path, text: String, fragments: &[&str]) {
+    let err = match parse(dir, text) {
+        Ok(_) => panic!("the case was accepted; expected an error with {fragments:?}"),
+        Err(e) => e,
+    };
+    for f in fragments {
+        assert!(err.contains(f), "the error does not say `{f}`:\n{err}");
+    }
+    println!("refused: {err}");
+}
+
+const PIER: &str = "\n[[fluid.flume.solid]]\nmesh = \"pier.stl\"\n";
+
+#[test]
+fn a_closed_mesh_is_read_and_placed_by_scale_rotation_and_translation() {
+    let dir = folder("placed");
+    // a 10 × 20 × 40 mm box drawn in millimetres at the origin
+    let mesh = TriangleMesh::cuboid([0.0; 3], [10.0, 20.0, 40.0]);
+    write_binary_stl(&dir.join("pier.stl"), &mesh).unwrap_or_else(|e| panic!("{e}"));
+    let text = flume("\n[[fluid.flume.solid]]\nmesh = \"pier.stl\"\nscale = 0.001\nrotate = [0.0, 0.0, 90.0]\ntranslate = [0.5, 0.05, 0.0]\n");
+    let case = parse(&dir, text).unwrap_or_else(|e| panic!("{e}"));
+    let placed = case.fluid["flume"].solid[0]
+        .placed
+        .get()
+        .unwrap_or_else(|| panic!("not loaded"));
+    let (lo, hi) = placed.aabb();
+    // rotated by 90° about z: x spans −20 … 0 mm, y 0 … 10 mm, then moved
+    let want = ([0.48, 0.05, 0.0], [0.5, 0.06, 0.04]);
+    for a in 0..3 {
+        assert!(
+            (lo[a] - want.0[a]).abs() < 1e-12 && (hi[a] - want.1[a]).abs() < 1e-12,
+            "{lo:?} … {hi:?}"
+        );
+    }
+    assert!((placed.signed_volume() - 8e-6).abs() < 1e-18);
+}
+
+#[test]
+fn meshes_that_are_no_solid_are_refused_naming_the_file_and_the_fault() {
+    let dir = folder("bad-meshes");
+    let cube = TriangleMesh::cuboid([0.4, 0.05, 0.0], [0.5, 0.15, 0.2]);
+    let mut open = cube.clone();
+    open.triangles.pop();
+    write_binary_stl(&dir.join("pier.stl"), &open).unwrap_or_else(|e| panic!("{e}"));
+    refused(
+        &dir,
+        flume(PIER),
+        &["fluid.flume.solid[0].mesh", "pier.stl", "open"],
+    );
+
+    let mut flipped = cube.clone();
+    flipped.triangles[3].swap(0, 1);
+    write_binary_stl(&dir.join("pier.stl"), &flipped).unwrap_or_else(|e| panic!("{e}"));
+    refused(&dir, flume(PIER), &["pier.stl", "flipped"]);
+
+    let mut inverted = cube.clone();
+    inverted.triangles.iter_mut().for_each(|t| t.swap(0, 1));
+    write_binary_stl(&dir.join("pier.stl"), &inverted).unwrap_or_else(|e| panic!("{e}"));
+    refused(&dir, flume(PIER), &["pier.stl", "inverted"]);
+
+    let mut degenerate = cube.clone();
+    let v = degenerate.triangles[0];
+    degenerate.triangles.push([v[0], v[0], v[1]]);
+    write_binary_stl(&dir.join("pier.stl"), &degenerate).unwrap_or_else(|e| panic!("{e}"));
+    refused(&dir, flume(PIER), &["pier.stl", "degenerate"]);
+
+    // the same pier drawn in millimetres and placed without a scale
+    let mm = TriangleMesh::cuboid([400.0, 50.0, 0.0], [500.0, 150.0, 200.0]);
+    write_binary_stl(&dir.join("pier.stl"), &mm).unwrap_or_else(|e| panic!("{e}"));
+    refused(&dir, flume(PIER), &["pier.stl", "millimetres", "scale = 0.001"]);
+
+    refused(
+        &dir,
+        flume("\n[[fluid.flume.solid]]\nmesh = \"missing.stl\"\n"),
+        &["fluid.flume.solid[0].mesh", "missing.stl"],
+    );
+    std::fs::write(dir.join("pier.ply"), "ply\n").unwrap_or_else(|e| panic!("{e}"));
+    refused(
+        &dir,
+        flume("\n[[fluid.flume.solid]]\nmesh = \"pier.ply\"\n"),
+        &["pier.ply", "stl", "obj"],
+    );
+}
+
+#[test]
+fn grids_with_missing_values_or_off_the_tank_and_bad_planes_are_refused() {
+    let dir = folder("bad-grids");
+    let grid = HeightGrid::from_fn(11, 5, [0.0, 0.0], [0.1, 0.05], |x, _| 0.05 * x)
+        .unwrap_or_else(|e| panic!("{e}"));
+    write_ascii_grid(&dir.join("bed.asc"), &grid).unwrap_or_else(|e| panic!("{e}"));
+    let bed = "\n[[fluid.flume.terrain]]\ngrid = \"bed.asc\"\n";
+    parse(&dir, flume(bed)).unwrap_or_else(|e| panic!("a good grid was refused: {e}"));
+
+    // one value of the file replaced by the NODATA value
+    let text = std::fs::read_to_string(dir.join("bed.asc")).unwrap_or_else(|e| panic!("{e}"));
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    lines.insert(6, "NODATA_value -9999".into());
+    lines.retain(|l| !l.is_empty());
+    let data = lines
+        .iter()
+        .position(|l| l.starts_with(|c: char| c.is_ascii_digit() || c == '-'))
+        .unwrap_or(7);
+    let mut row: Vec<String> = lines[data].split_whitespace().map(str::to_string).collect();
+    row[3] = "-9999".into();
+    lines[data] = row.join(" ");
+    std::fs::write(dir.join("hole.asc"), lines.join("\n") + "\n").unwrap_or_else(|e| panic!("{e}"));
+    refused(
+        &dir,
+        flume("\n[[fluid.flume.terrain]]\ngrid = \"hole.asc\"\n"),
+        &["fluid.flume.terrain[0].grid", "hole.asc"],
+    );
+
+    refused(
+        &dir,
+        flume("\n[[fluid.flume.terrain]]\ngrid = \"bed.asc\"\ntranslate = [100.0, 0.0, 0.0]\n"),
+        &["fluid.flume.terrain[0].grid", "outside the tank"],
+    );
+    refused(
+        &dir,
+        flume("\n[[fluid.flume.terrain]]\nplane = { point = [0.5, 0.0, 0.0], normal = [1.0, 0.0, -2.0] }\n"),
+        &["fluid.flume.terrain[0].plane.normal", "point up"],
+    );
+    refused(
+        &dir,
+        flume("\n[[fluid.flume.terrain]]\n"),
+        &["fluid.flume.terrain[0]", "exactly one of `grid`"],
+    );
+}
+
+#[test]
+fn a_wave_maker_too_thin_or_leaving_the_tank_is_refused_and_the_gpu_path_names_what_it_lacks() {
+    let dir = folder("wave-maker");
+    let paddle = |min_x: f64, max_x: f64, extra: &str| {
+        format!(
+            "\n[fluid.flume.wave_maker]\nmin = [{min_x}, 0.0, 0.0]\nmax = [{max_x}, 0.2, 0.3]\nmotion = \"solitary\"\nwave_height = 0.02\ndepth = 0.1\n{extra}"
+        )
+    };
+    let good = flume(&paddle(0.0, 0.08, ""));
+    let case = parse(&dir, good.clone()).unwrap_or_else(|e| panic!("{e}"));
+    let built = case.fluid["flume"]
+        .wave_maker
+        .as_ref()
+        .and_then(|w| w.built.clone());
+    let stroke = built.map(|m| m.range(10.0).1).unwrap_or(0.0);
+    // Goring's stroke √(16 H d / 3) less 0.05 % (the cut at |θ| = 3.8)
+    assert!(
+        (stroke / (16.0 * 0.02 * 0.1 / 3.0f64).sqrt() - 1.0).abs() < 1e-3,
+        "{stroke}"
+    );
+
+    refused(
+        &dir,
+        flume(&paddle(0.0, 0.06, "")),
+        &["fluid.flume.wave_maker.max", "wall_layers"],
+    );
+    // a paddle whose stroke within the run's 1 s (0.06 m) would carry it past the tank's end
+    let near_end = flume(&paddle(0.0, 0.08, ""))
+        .replace("max = [1.0, 0.2, 0.3] }", "max = [0.12, 0.2, 0.3] }")
+        .replace("max = [1.0, 0.2, 0.1]", "max = [0.12, 0.2, 0.1]");
+    refused(
+        &dir,
+        near_end,
+        &["fluid.flume.wave_maker.motion", "would leave the tank"],
+    );
+    refused(
+        &dir,
+        flume(&paddle(0.0, 0.08, "")).replace("wave_height = 0.02", "wave_height = 0.07"),
+        &["fluid.flume.wave_maker.wave_height", "0.6"],
+    );
+    refused(
+        &dir,
+        flume(&paddle(0.0, 0.08, "")).replace("motion = \"solitary\"", "motion = \"table\""),
+        &["fluid.flume.wave_maker.table", "required"],
+    );
+    std::fs::write(dir.join("stroke.csv"), "t, x\n0, 0\n1, oops\n").unwrap_or_else(|e| panic!("{e}"));
+    refused(
+        &dir,
+        flume(&paddle(0.0, 0.08, "table = \"stroke.csv\"\n"))
+            .replace("motion = \"solitary\"", "motion = \"table\""),
+        &["fluid.flume.wave_maker.table", "stroke.csv", "line 3"],
+    );
+
+    let gpu = good.replace("spacing = 0.02", "backend = \"gpu\"\nspacing = 0.02");
+    refused(&dir, gpu, &["fluid.flume.backend", "wave maker"]);
+    let damped =
+        flume("\n[[fluid.flume.damping]]\nmin = [0.8, 0.0, 0.0]\nmax = [1.0, 0.2, 0.3]\nrate = 5.0\n");
+    parse(&dir, damped.clone()).unwrap_or_else(|e| panic!("{e}"));
+    refused(
+        &dir,
+        damped.replace("spacing = 0.02", "backend = \"gpu\"\nspacing = 0.02"),
+        &["damping zones"],
+    );
+    refused(
+        &dir,
+        damped.replace("rate = 5.0", "rate = 5.0\naxis = \"z\""),
+        &["fluid.flume.damping[0].axis"],
+    );
+}
