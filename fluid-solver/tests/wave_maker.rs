@@ -13,10 +13,15 @@ use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{FluidMethodName, ProbeConfig, ProbeKind};
 use schemas::case::Case;
 
-/// The solitary case at Δs = 0.0125 m (d/8) in a 0.6 m flume four particles wide.
+/// The solitary case at Δs = 0.0125 m (d/8) in a 0.6 m flume four particles wide, with its own
+/// ISPH settings or with E-MPS (c = 7 m/s, 5 √(g d)).
 fn short_flume(method: FluidMethodName) -> schemas::case::FluidConfig {
     let (_, mut cfg) = common::load_case("solitary-wave-flat");
-    cfg.method = method;
+    if method == FluidMethodName::Emps {
+        cfg.method = method;
+        cfg.isph = None;
+        cfg.sound_speed = Some(7.0);
+    }
     cfg.spacing = 0.0125;
     cfg.time_step = if method == FluidMethodName::Isph {
         2.0e-3
@@ -161,60 +166,47 @@ fn gauge(name: &str, x: f64) -> ProbeConfig {
     ProbeConfig {
         name: name.into(),
         kind: ProbeKind::WaterHeight,
-        position: vec![x, 0.025],
+        position: vec![x, 0.0125],
         ..Default::default()
     }
 }
 
-/// The generated wave against the first-order solitary wave (H = 0.02 m, d = 0.1 m): its height
-/// at 5 and 10 depths from the paddle within 10 % of H, and its speed between them within 2 %
-/// of √(g(d + H)) (the bound), crest times by the η²-weighted mean time of each passage.
-/// Fails today with both methods at d/8 and d/16 (`docs/notes/solitary-waves.md`): E-MPS's wave
-/// is a low, long ramp; ISPH's grows to 1.5–2 H.
+/// The generated wave against the first-order solitary wave (H = 0.02 m, d = 0.1 m) with the
+/// case's settings at its resolution (d/16) in a flume cut to 1.85 m: its height at 5 and 10
+/// depths from the paddle within 10 % of H, and its speed between them within 2 % of
+/// √(g(d + H)) (the bound), crest times by the η²-weighted mean time of each passage.
+/// Fails today (`docs/notes/solitary-waves.md`: 1.07 H and 0.81 H, 1.029 m/s against 1.084).
 #[test]
-#[ignore = "fails today: the generated wave's height (docs/notes/solitary-waves.md)"]
+#[ignore = "fails today: the wave loses a fifth of its height by 10 depths (docs/notes/solitary-waves.md)"]
 fn the_solitary_wave_keeps_its_height_and_speed_over_ten_depths() {
-    for method in [FluidMethodName::Isph, FluidMethodName::Emps] {
-        let (_, mut cfg) = common::load_case("solitary-wave-flat");
-        cfg.method = method;
-        cfg.spacing = 0.00625;
-        cfg.time_step = if method == FluidMethodName::Isph {
-            1.25e-3
-        } else {
-            4.5e-4
-        };
-        cfg.tank.max = [1.85, 0.025, 0.16];
-        cfg.block[0].max = [1.85, 0.025, 0.1];
-        if let Some(w) = cfg.wave_maker.as_mut() {
-            w.max[1] = 0.025;
-        }
-        cfg.probe = vec![gauge("g5", 0.55), gauge("g10", 1.05)];
-        cfg.probe.iter_mut().for_each(|p| p.position[1] = 0.0125);
-        cfg.validate("fluid.flume").unwrap_or_else(|e| panic!("{e:?}"));
-        let mut solver = FluidSolver::new(&cfg);
-        let mut set = ProbeSet::new(&cfg.probe, &solver).unwrap_or_else(|e| panic!("{e}"));
-        let level = set.row(&solver);
-        let (mut t_mean, mut weight, mut height) = ([0.0; 2], [0.0; 2], [0.0f64; 2]);
-        let mut t = 0.0;
-        while t < 2.6 {
-            t += 0.005;
-            solver.advance_to(t).unwrap_or_else(|e| panic!("{e}"));
-            let row = set.row(&solver);
-            for g in 0..2 {
-                let eta = row[g] - level[g];
-                height[g] = height[g].max(eta);
-                if eta > 0.002 {
-                    t_mean[g] += eta * eta * t;
-                    weight[g] += eta * eta;
-                }
+    let (_, mut cfg) = common::load_case("solitary-wave-flat");
+    cfg.tank.max[0] = 1.85;
+    cfg.block[0].max[0] = 1.85;
+    cfg.probe = vec![gauge("g5", 0.55), gauge("g10", 1.05)];
+    cfg.validate("fluid.flume").unwrap_or_else(|e| panic!("{e:?}"));
+    let mut solver = FluidSolver::new(&cfg);
+    let mut set = ProbeSet::new(&cfg.probe, &solver).unwrap_or_else(|e| panic!("{e}"));
+    let level = set.row(&solver);
+    let (mut t_mean, mut weight, mut height) = ([0.0; 2], [0.0; 2], [0.0f64; 2]);
+    let mut t = 0.0;
+    while t < 2.6 {
+        t += 0.005;
+        solver.advance_to(t).unwrap_or_else(|e| panic!("{e}"));
+        let row = set.row(&solver);
+        for g in 0..2 {
+            let eta = row[g] - level[g];
+            height[g] = height[g].max(eta);
+            if eta > 0.002 {
+                t_mean[g] += eta * eta * t;
+                weight[g] += eta * eta;
             }
         }
-        let c = (9.8f64 * 0.12).sqrt();
-        let speed = 0.5 / (t_mean[1] / weight[1] - t_mean[0] / weight[0]);
-        println!("{method:?}: heights {height:?} m (H = 0.02), speed {speed:.3} m/s (c = {c:.3})");
-        for h in height {
-            assert!((h / 0.02 - 1.0).abs() <= 0.1, "{method:?}: height {h}");
-        }
-        assert!((speed / c - 1.0).abs() <= 0.02, "{method:?}: speed {speed}");
     }
+    let c = (9.8f64 * 0.12).sqrt();
+    let speed = 0.5 / (t_mean[1] / weight[1] - t_mean[0] / weight[0]);
+    println!("heights {height:?} m (H = 0.02), speed {speed:.3} m/s (c = {c:.3})");
+    for h in height {
+        assert!((h / 0.02 - 1.0).abs() <= 0.1, "height {h}");
+    }
+    assert!((speed / c - 1.0).abs() <= 0.02, "speed {speed}");
 }
