@@ -11,6 +11,7 @@ use fluid_solver::vector_field::VectorField;
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::{Case, FluidConfig};
 use schemas::geometry::{write_binary_stl, TriangleMesh};
+use schemas::validation::{record, Record};
 use std::path::PathBuf;
 
 fn folder(name: &str) -> PathBuf {
@@ -140,6 +141,7 @@ fn a_sphere_is_built_as_its_skin_inside_its_surface() {
 
 #[test]
 fn a_plane_beach_gives_isph_wall_normals_along_the_plane_normal_and_water_fills_above_it() {
+    let started = std::time::Instant::now();
     let dir = folder("beach");
     // a 1:2 beach rising towards +x from x = 0.2 m, with water up to 0.2 m over the tank
     let beach = "\n[[fluid.tank.terrain]]\nplane = { point = [0.2, 0.0, 0.0], normal = [-1.0, 0.0, 2.0] }\n";
@@ -217,6 +219,23 @@ fn a_plane_beach_gives_isph_wall_normals_along_the_plane_normal_and_water_fills_
     // over the solid around them) lean towards the riser's and the tread's (measured: 58.7° and
     // 75.0° of elevation against the plane's 63.4°, 4.7° and 11.6° off). The mean over the slope
     // is what the water feels over a spacing or two: within 5°; each site within 15°.
+    record(Record {
+        id: "scene-terrain-slope-normals".into(),
+        capability: "ISPH wall normals on a terrain plane ([[terrain]] plane, 1:2)".into(),
+        reference: "the plane's normal".into(),
+        case: "1:2 beach in a 0.6 × 0.4 × 0.4 m tank".into(),
+        resolution: "ISPH, Δs = 0.02 m".into(),
+        measure: "angle between the slope's mean wall normal and the plane's".into(),
+        value: angle(sum),
+        bound: Some(5.0),
+        bound_source: "a staircase's steps repeat within the kernel's support; each site within 15°".into(),
+        unit: "deg".into(),
+        source: "fluid-solver/tests/scene_walls.rs::a_plane_beach_gives_isph_wall_normals_along_the_plane_normal_and_water_fills_above_it".into(),
+        run_time_s: started.elapsed().as_secs_f64(),
+        date: String::new(),
+        machine: String::new(),
+        note: None,
+    });
     assert!(angle(sum) < 5.0, "mean {}°", angle(sum));
     assert!(worst < 15.0, "worst {worst}°");
 }

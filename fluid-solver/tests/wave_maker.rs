@@ -12,6 +12,7 @@ use fluid_solver::probes::{self, ProbeSet};
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{FluidMethodName, ProbeConfig, ProbeKind};
 use schemas::case::Case;
+use schemas::validation::{record, Record};
 
 /// The solitary case at Δs = 0.0125 m (d/8) in a 0.6 m flume four particles wide, with its own
 /// ISPH settings or with E-MPS (c = 7 m/s, 5 √(g d)).
@@ -114,6 +115,7 @@ fn the_run_up_gauge_reads_the_still_water_line_on_a_beach() {
 }
 
 fn run_up_on_a_beach(method: &str) {
+    let started = std::time::Instant::now();
     let dir = std::env::temp_dir().join(format!("wave-maker-beach-{method}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
     let text = r#"[case]
@@ -158,6 +160,24 @@ kind = "run-up"
     println!(
         "{method}: run-up gauge: {at_start:.4} m at the start, {later:.4} m at 0.2 s (water line 0.2 m)"
     );
+    record(Record {
+        id: format!("scene-run-up-still-water-{method}"),
+        capability: "run-up gauge on a beach ([[terrain]] plane, kind = \"run-up\")".into(),
+        reference: "the still-water line, 0.2 m above the floor".into(),
+        case: "still water 0.2 m deep over a 1:2 beach, 0.2 s".into(),
+        resolution: format!("{}, Δs = 0.02 m", method.to_uppercase()),
+        measure: "|reading − 0.2 m| after 0.2 s".into(),
+        value: (later - 0.2).abs(),
+        bound: Some(cfg.spacing),
+        bound_source: "a gauge reads particle positions: one spacing".into(),
+        unit: "m".into(),
+        source: "fluid-solver/tests/wave_maker.rs::the_run_up_gauge_reads_the_still_water_line_on_a_beach"
+            .into(),
+        run_time_s: started.elapsed().as_secs_f64(),
+        date: String::new(),
+        machine: String::new(),
+        note: None,
+    });
     assert!((at_start - 0.2).abs() < 1e-9, "{at_start}");
     assert!((later - 0.2).abs() <= cfg.spacing, "{later}");
 }
