@@ -321,7 +321,7 @@ fn check(path: &std::path::Path, out: Option<&std::path::Path>, max_output: u64)
     }
     let estimate = Estimate::of(&case);
     lines.push(format!("  estimate: {}", estimate.describe()));
-    lines.extend(case.fluid_warnings().iter().map(|u| format!("  warning: {u}")));
+    lines.extend(case.warnings().iter().map(|u| format!("  warning: {u}")));
     print_lines(&lines)?;
     let out = default_output_folder(&case, out);
     coupler::out_folder::check_place(&out)?;

@@ -99,12 +99,15 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
     let estimate = Estimate::of(&case);
     estimate.check(&out, opts.max_output)?;
     crate::say!("estimate: {}", estimate.describe());
-    // A solver that runs alone writes to this terminal and warns itself; coupled solvers write
-    // to their logs, so the coupler prints their warnings here, once.
-    if case.coupling.is_some() {
-        for warning in case.fluid_warnings() {
-            crate::say!("warning: {warning}");
-        }
+    // A fluid solver that runs alone writes to this terminal and warns itself; coupled solvers
+    // write to their logs, so the coupler prints their warnings here, once; the frames' and the
+    // drag's it prints always.
+    let warnings = match case.coupling {
+        Some(_) => case.warnings(),
+        None => case.frame_and_drag_warnings(),
+    };
+    for warning in warnings {
+        crate::say!("warning: {warning}");
     }
     let folder = match &opts.resume {
         Some(_) => OutputFolder::hold(&out)?,

@@ -180,6 +180,39 @@ impl Case {
             .collect()
     }
 
+    /// Everything a run tells the user before it starts, as `section: …` for a `warning: ` line:
+    /// the fluid sections' ([`Case::fluid_warnings`]), frames that nothing holds, and drag
+    /// settings that change the result ([`drag::DragLink::warnings`]).
+    pub fn warnings(&self) -> Vec<String> {
+        let mut warnings = self.fluid_warnings();
+        warnings.extend(self.frame_and_drag_warnings());
+        warnings
+    }
+
+    /// The warnings of [`Case::warnings`] that no fluid solver prints itself: frames that nothing
+    /// holds and drag settings that change the result.
+    pub fn frame_and_drag_warnings(&self) -> Vec<String> {
+        let mut warnings = Vec::new();
+        for (name, s) in &self.structure {
+            if let Some(frame) = &s.frame {
+                if frame.support.is_empty() && frame.wall.is_empty() {
+                    warnings.push(format!(
+                        "structure.{name}.frame: no [[support]] and no contact [[wall]] holds the frame: it falls freely under gravity and drifts under its loads; add a support if it stands on something"
+                    ));
+                }
+            }
+        }
+        let links = self.coupling.iter().flat_map(|c| c.drag.iter());
+        for (i, link) in links.enumerate() {
+            warnings.extend(
+                link.warnings(self)
+                    .into_iter()
+                    .map(|w| format!("coupling.drag[{i}]: {w}")),
+            );
+        }
+        warnings
+    }
+
     /// Participant names with their kind: fluid participants first, then structure ones.
     pub fn participants(&self) -> Vec<(String, Kind)> {
         let fluid = self.fluid.keys().map(|n| (n.clone(), Kind::Fluid));
