@@ -47,8 +47,9 @@ pub struct CouplerState {
 /// A complete checkpoint: written after every participant's file.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Manifest {
-    /// Hash of the case text the run was started with.
-    pub case_hash: u64,
+    /// What the run was started with: the case's settings and each file it names, hashed
+    /// ([`schemas::case::Case::input_hashes`]).
+    pub inputs: Vec<(String, u64)>,
     /// The last window done (from 0), and its end time.
     pub window: u64,
     pub time: f64,

@@ -222,7 +222,7 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
             checkpoints: coupling.checkpoint_windows().map(|every| CheckpointPlan {
                 every,
                 out: out.clone(),
-                case_hash: case.hash,
+                inputs: case.input_hashes(),
             }),
         };
         match &resumed {
@@ -252,14 +252,25 @@ fn resume_point(case: &Case, out: &Path) -> Result<Manifest, CouplerError> {
         )));
     }
     let m = checkpoint::latest(out)?;
-    if m.case_hash != case.hash {
+    let now = case.input_hashes();
+    if m.inputs != now {
+        let changed: Vec<&str> = m
+            .inputs
+            .iter()
+            .filter(|was| !now.contains(was))
+            .map(|(what, _)| what.as_str())
+            .chain(
+                now.iter()
+                    .filter(|n| !m.inputs.iter().any(|w| w.0 == n.0))
+                    .map(|(what, _)| what.as_str()),
+            )
+            .collect();
         return Err(CouplerError::Usage(format!(
-            "--resume {}: the checkpoint was written by a run of another case text (hash {:016x}; {} has {:016x}); \
-             resume with the case file the run was started with",
+            "--resume {}: {} changed since the run was started ({}), so its outputs would not continue the same run; \
+             resume with the case and files it was started with (comments and layout of the case file may change)",
             out.display(),
-            m.case_hash,
-            case.path.display(),
-            case.hash
+            changed.join(", "),
+            case.path.display()
         )));
     }
     let names: Vec<String> = case

@@ -55,7 +55,8 @@ pub struct CheckpointPlan {
     pub every: u64,
     /// The run's output folder.
     pub out: std::path::PathBuf,
-    pub case_hash: u64,
+    /// What the run was started with ([`schemas::case::Case::input_hashes`]).
+    pub inputs: Vec<(String, u64)>,
 }
 
 /// bincode bytes of `value` (the coupler's checkpoint keeps message types this way).
@@ -218,7 +219,7 @@ impl Windows<'_> {
             return Ok(());
         };
         let out = plan.out.clone();
-        let case_hash = plan.case_hash;
+        let inputs = plan.inputs.clone();
         checkpoint::create_folder(&out)?;
         let names: Vec<String> = self.stack.sessions.iter().map(|s| s.name.clone()).collect();
         for (p, name) in names.iter().enumerate() {
@@ -228,7 +229,7 @@ impl Windows<'_> {
         let geometry: Vec<Option<Geometry>> =
             self.stack.sessions.iter().map(|s| s.geometry.clone()).collect();
         let manifest = Manifest {
-            case_hash,
+            inputs,
             window: w,
             time,
             wall: self.stack.wall_seconds(),

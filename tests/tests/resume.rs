@@ -606,3 +606,65 @@ fn a_column_broken_under_implicit_drag_coupling_resumed_writes_the_same_outputs(
     // from 0.025 s (the later manifest gone): the resumed run breaks the column again
     resume_on_both_sides_of_a_fracture(&case, &whole, &dir, "0.05", "0.025");
 }
+
+/// Issue 41, item 9: a resume checks every input, not the case text alone. The oscillator with a
+/// load on m1 from a table and checkpoints, killed after its first checkpoint: an edited load
+/// table is refused naming the table, an edited setting is refused naming the case's settings,
+/// and a comment added to the case resumes (the settings are the same).
+#[test]
+fn a_resume_refuses_an_edited_load_table_or_setting_but_not_a_comment() {
+    let dir = out_dir("resume-inputs");
+    // long enough (about 5 s) to be killed soon after its first checkpoint
+    let case = case_from("oscillator", &dir, &[("end_time", "20.0")]);
+    with_checkpoints(&case, "2");
+    let text = std::fs::read_to_string(&case).unwrap_or_default();
+    let load = "\n[[structure.mass-left.load]]\npoint = \"m1\"\nhistory = \"table\"\ntable = \"push.csv\"\n";
+    let text = text.replacen(
+        "\n[structure.mass-left.history]",
+        &format!("{load}\n[structure.mass-left.history]"),
+        1,
+    );
+    std::fs::write(&case, &text).unwrap_or_else(|e| panic!("{e}"));
+    let push = "t, fx, fy, fz\n0, 0, 0, 0\n1, 1, 0, 0\n";
+    std::fs::write(dir.join("push.csv"), push).unwrap_or_else(|e| panic!("{e}"));
+    let out = dir.join("out");
+    let mut spread = 1.0;
+    while !run_and_kill(&case, &out, &dir.join("killed.txt"), spread) {
+        spread /= 4.0;
+        assert!(spread > 1e-4, "every run ended before its kill");
+        std::fs::remove_dir_all(&out).unwrap_or_else(|e| panic!("{e}"));
+    }
+    let resume_with = || {
+        coupler(&[
+            "run",
+            case.to_str().unwrap_or_default(),
+            "--resume",
+            out.to_str().unwrap_or_default(),
+        ])
+    };
+
+    std::fs::write(dir.join("push.csv"), push.replace("1, 1, 0, 0", "1, 2, 0, 0"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let edited = resume_with();
+    let err = stderr(&edited);
+    println!("{err}");
+    assert_eq!(edited.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("push.csv") && err.contains("changed since the run was started"),
+        "{err}"
+    );
+    std::fs::write(dir.join("push.csv"), push).unwrap_or_else(|e| panic!("{e}"));
+
+    std::fs::write(&case, text.replacen("mass = 1.0", "mass = 1.5", 1)).unwrap_or_else(|e| panic!("{e}"));
+    let heavier = resume_with();
+    let err = stderr(&heavier);
+    assert_eq!(heavier.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("the case's settings") && !err.contains("push.csv"),
+        "{err}"
+    );
+
+    std::fs::write(&case, format!("# a comment added after the run\n{text}"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    resume(&case, &out);
+}

@@ -10,6 +10,7 @@ pub mod drag;
 pub mod error;
 pub mod fluid;
 pub mod frame;
+pub mod inputs;
 pub mod key_reference;
 pub mod load_table;
 pub mod reference;
