@@ -11,7 +11,7 @@ use fluid_solver::vector_field::VectorField;
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::{Case, FluidConfig};
 use schemas::geometry::{write_binary_stl, TriangleMesh};
-use schemas::validation::{record, Record};
+use schemas::validation::{largest, record, smallest, Record};
 use std::path::PathBuf;
 
 fn folder(name: &str) -> PathBuf {
@@ -110,8 +110,8 @@ fn a_sphere_is_built_as_its_skin_inside_its_surface() {
             ((x[0] - centre[0]).powi(2) + (x[1] - centre[1]).powi(2) + (x[2] - centre[2]).powi(2)).sqrt()
         })
         .collect();
-    let outer = dist.iter().copied().fold(0.0, f64::max);
-    let inner = dist.iter().copied().fold(f64::INFINITY, f64::min);
+    let outer = largest(dist.iter().copied(), 0.0);
+    let inner = smallest(dist.iter().copied(), f64::INFINITY);
     println!(
         "{} sphere particles, at {:.4} … {:.4} m from the centre (r = {r} m)",
         dist.len(),
@@ -160,8 +160,8 @@ fn a_plane_beach_gives_isph_wall_normals_along_the_plane_normal_and_water_fills_
         .count();
     let deepest = (0..p.len())
         .filter(|&i| p.kind[i] == Kind::Wall.code() && inside(i))
-        .map(|i| height(p.x[i]) - p.z[i])
-        .fold(0.0, f64::max);
+        .map(|i| height(p.x[i]) - p.z[i]);
+    let deepest = largest(deepest, 0.0);
     println!("{terrain} terrain particles, the deepest {deepest:.3} m under the surface");
     assert_eq!(fluid_below, 0, "water filled below the beach");
     // The skin under a 1:2 slope: a site is skin when the cube of half-side wall_layers Δs
@@ -208,7 +208,7 @@ fn a_plane_beach_gives_isph_wall_normals_along_the_plane_normal_and_water_fills_
     let sum = slope
         .iter()
         .fold([0.0; 3], |s, m| [s[0] + m[0], s[1] + m[1], s[2] + m[2]]);
-    let worst = slope.iter().map(|&m| angle(m)).fold(0.0, f64::max);
+    let worst = largest(slope.iter().map(|&m| angle(m)), 0.0);
     println!(
         "{} slope particles: their mean normal {:.2}° off the plane's, each at most {worst:.2}°",
         slope.len(),

@@ -150,13 +150,24 @@ fn proc_field<'a>(text: &'a str, key: &str) -> Option<&'a str> {
 /// reports over axes or samples. `fold(0.0, f64::max)` would skip a NaN and report the others'
 /// largest, so a blown-up run could read as a small error.
 pub fn largest_abs(values: impl IntoIterator<Item = f64>) -> f64 {
-    values.into_iter().map(f64::abs).fold(0.0, |m, v| {
+    largest(values.into_iter().map(f64::abs), 0.0)
+}
+
+/// The largest of `values` and `floor`, NaN if any of them is NaN (unlike `f64::max`, which
+/// skips a NaN).
+pub fn largest(values: impl IntoIterator<Item = f64>, floor: f64) -> f64 {
+    values.into_iter().fold(floor, |m, v| {
         if v.is_nan() || m.is_nan() {
             f64::NAN
         } else {
             m.max(v)
         }
     })
+}
+
+/// The smallest of `values` and `ceiling`, NaN if any of them is NaN (unlike `f64::min`).
+pub fn smallest(values: impl IntoIterator<Item = f64>, ceiling: f64) -> f64 {
+    -largest(values.into_iter().map(|v| -v), -ceiling)
 }
 
 #[cfg(test)]
@@ -235,5 +246,15 @@ mod tests {
         assert_eq!(largest_abs([]), 0.0);
         assert!(largest_abs([1.0, f64::NAN, 2.0]).is_nan());
         assert!(largest_abs([f64::NAN, 5.0]).is_nan());
+    }
+
+    #[test]
+    fn largest_and_smallest_keep_a_nan_and_their_bound() {
+        assert_eq!(largest([1.0, -3.0, 2.0], 0.0), 2.0);
+        assert_eq!(largest([-1.0, -3.0], 0.0), 0.0);
+        assert_eq!(smallest([1.0, -3.0, 2.0], f64::INFINITY), -3.0);
+        assert_eq!(smallest([], 7.0), 7.0);
+        assert!(largest([1.0, f64::NAN, 2.0], 0.0).is_nan());
+        assert!(smallest([f64::NAN, 5.0], f64::INFINITY).is_nan());
     }
 }

@@ -69,7 +69,7 @@ pub fn sample(probe: &ProbeConfig, p: &Particles, kernel: &Kernel, tank: &Aabb) 
 }
 
 /// The run-up gauge: the highest water particle with a solid within r_e,grad, plus Δs/2, above
-/// the tank floor (0 when no water touches a solid). The solids are binned in cells of r_e,grad,
+/// the tank floor (0 when no water touches a solid; NaN when a position is). The solids are binned in cells of r_e,grad,
 /// so each water particle looks at the 27 cells around it.
 fn run_up(p: &Particles, kernel: &Kernel, tank: &Aabb, in_water: impl Fn(usize) -> bool) -> f64 {
     let reach = kernel.re_grad;
@@ -90,10 +90,10 @@ fn run_up(p: &Particles, kernel: &Kernel, tank: &Aabb, in_water: impl Fn(usize) 
             })
         })
     };
-    (0..p.len())
+    let heights = (0..p.len())
         .filter(|&i| in_water(i) && touches(i))
-        .map(|i| p.z[i] + 0.5 * kernel.spacing - tank.min[2])
-        .fold(0.0, f64::max)
+        .map(|i| p.z[i] + 0.5 * kernel.spacing - tank.min[2]);
+    schemas::validation::largest(heights, 0.0)
 }
 
 /// The water-height gauge: the top of the connected column on the bed (see the module doc).

@@ -512,9 +512,8 @@ mod tests {
                 let d = super::super::vec3::sub(x, centre);
                 // the site's coordinates in the box's frame: Rᵀ d
                 let local: [f64; 3] = std::array::from_fn(|a| (0..3).map(|b| r[b][a] * d[b]).sum());
-                let margin = (0..3)
-                    .map(|a| half[a] - local[a].abs())
-                    .fold(f64::INFINITY, f64::min);
+                let margin =
+                    crate::validation::smallest((0..3).map(|a| half[a] - local[a].abs()), f64::INFINITY);
                 if margin.abs() > 1e-9 {
                     assert_eq!(
                         set.contains(s[0], s[1], s[2]),
@@ -545,14 +544,12 @@ mod tests {
         let l = lattice([-1.2; 3], spacing, [48; 3]);
         let set = sites_inside_mesh(&mesh, &l);
         // the polyhedron lies between the sphere and the ball that touches its nearest face plane
-        let r_in = (0..mesh.triangles.len())
-            .map(|t| {
-                let [a, b, c] = mesh.corners(t);
-                let n =
-                    super::super::vec3::cross(super::super::vec3::sub(b, a), super::super::vec3::sub(c, a));
-                super::super::vec3::dot(n, super::super::vec3::sub(a, centre)) / super::super::vec3::norm(n)
-            })
-            .fold(f64::INFINITY, f64::min);
+        let r_in = (0..mesh.triangles.len()).map(|t| {
+            let [a, b, c] = mesh.corners(t);
+            let n = super::super::vec3::cross(super::super::vec3::sub(b, a), super::super::vec3::sub(c, a));
+            super::super::vec3::dot(n, super::super::vec3::sub(a, centre)) / super::super::vec3::norm(n)
+        });
+        let r_in = crate::validation::smallest(r_in, f64::INFINITY);
         assert!(r_in > 0.99 * r);
         for (s, x) in sites(&l) {
             let d = super::super::vec3::norm(super::super::vec3::sub(x, centre));
