@@ -3,7 +3,7 @@
 
 use crate::bodies::pair_law::{Exchange, PairLaw};
 use crate::bodies::RigidBodies;
-use crate::boundaries::damping;
+use crate::boundaries::damping::{self, DampingZone};
 use crate::boundaries::escape::OpenTop;
 use crate::boundaries::open_boundary::OpenBoundaries;
 use crate::boundaries::paddle::Paddle;
@@ -22,7 +22,7 @@ use crate::stage_timer::StageTimes;
 use crate::state::{BodyExchange, FluidState, PointReactions, RunState};
 use crate::unresolved;
 use crate::unresolved::spreading::{Share, Spread};
-use schemas::case::fluid::{Aabb, DampingConfig, FluidConfig, FluidMethodName};
+use schemas::case::fluid::{Aabb, FluidConfig, FluidMethodName};
 use std::sync::Mutex;
 
 /// Landing on a time: a remainder below this fraction of Δt is rounding, not a step; a step up to
@@ -79,7 +79,7 @@ pub struct FluidSolver {
     /// The wave maker's paddle, placed before every step.
     paddle: Option<Paddle>,
     /// Zones whose fluid velocity is relaxed after every step.
-    damping: Vec<DampingConfig>,
+    damping: Vec<DampingZone>,
     max_removed_fraction: f64,
     /// What the lattice moved (see [`crate::particles::lattice`]).
     layout_notes: Vec<String>,
@@ -217,7 +217,7 @@ impl FluidSolver {
             bodies,
             open_top,
             paddle,
-            damping: cfg.damping.clone(),
+            damping: cfg.damping.iter().filter_map(DampingZone::of).collect(),
             max_removed_fraction: cfg.max_removed_fraction,
             layout_notes: layout.notes,
             warnings: cfg.warnings(),

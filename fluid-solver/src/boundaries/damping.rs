@@ -1,6 +1,6 @@
 //! Damping zones (`[[fluid.NAME.damping]]`): after each step the fluid's velocity in a zone is
 //! relaxed towards rest, `u ← u exp(−rate s² Δt)`, s rising from 0 at the zone's near face to 1
-//! at its far one ([`schemas::case::fluid::DampingConfig::factor`]), so a wave running into it
+//! at its far one ([`DampingZone::factor`]), so a wave running into it
 //! is absorbed over its length instead of reflected at the tank's end. The quadratic ramp keeps
 //! the change of impedance at the zone's entrance small (the same idea as the relaxation zones
 //! of wave flumes, e.g. Altomare et al. 2017, Coastal Eng. 127).
@@ -8,10 +8,48 @@
 use crate::particles::kind::FLUID;
 use crate::particles::Particles;
 use rayon::prelude::*;
-use schemas::case::fluid::DampingConfig;
+use schemas::case::fluid::{Aabb, DampingConfig};
+
+/// One zone as the step reads it: its box, and the axis and direction the damping grows along,
+/// parsed once from its `[[damping]]` table.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DampingZone {
+    zone: Aabb,
+    axis: usize,
+    sign: f64,
+    rate: f64,
+}
+
+impl DampingZone {
+    /// The zone of a validated `[[damping]]` table (`None` for an axis validation refuses).
+    pub fn of(cfg: &DampingConfig) -> Option<DampingZone> {
+        let (axis, sign) = cfg.direction()?;
+        Some(DampingZone {
+            zone: cfg.zone(),
+            axis,
+            sign,
+            rate: cfg.rate,
+        })
+    }
+
+    /// The factor `exp(−rate s² Δt)` at `x` for a step of `dt` (1 outside the zone).
+    pub fn factor(&self, x: [f64; 3], dt: f64) -> f64 {
+        let (z, a) = (&self.zone, self.axis);
+        if !z.contains_point(x) {
+            return 1.0;
+        }
+        let len = z.max[a] - z.min[a];
+        let s = if self.sign > 0.0 {
+            (x[a] - z.min[a]) / len
+        } else {
+            (z.max[a] - x[a]) / len
+        };
+        (-self.rate * s * s * dt).exp()
+    }
+}
 
 /// Relaxes the velocity of the fluid in `zones` after a step of `dt`.
-pub fn relax(zones: &[DampingConfig], p: &mut Particles, dt: f64) {
+pub fn relax(zones: &[DampingZone], p: &mut Particles, dt: f64) {
     if zones.is_empty() {
         return;
     }
@@ -49,6 +87,7 @@ mod tests {
             p.push_moving([x, 0.5, 0.5], [1.0, -2.0, 0.5], Kind::Fluid, p.len() as u32);
         }
         p.push_moving([1.5, 0.5, 0.5], [1.0, 0.0, 0.0], Kind::Wall, 4);
+        let zone = DampingZone::of(&zone).unwrap_or_else(|| panic!("+x is an axis"));
         relax(&[zone], &mut p, 0.01);
         for (i, s) in [(0, None), (1, Some(0.0)), (2, Some(0.5)), (3, Some(1.0))] {
             let f = s.map_or(1.0, |s: f64| (-10.0 * s * s * 0.01).exp());

@@ -38,11 +38,6 @@ impl Paddle {
         }
     }
 
-    /// The stroke X(t) [m].
-    pub fn stroke(&self, t: f64) -> f64 {
-        self.motion.stroke(t)
-    }
-
     /// Places the paddle's particles for the step from `t` to `t + dt` (module doc).
     pub fn place(&self, p: &mut Particles, t: f64, dt: f64) {
         let (x0, x1) = (self.motion.stroke(t), self.motion.stroke(t + dt));

@@ -15,7 +15,7 @@
 //! rate = 10.0                   # [1/s] at the zone's far end
 //! ```
 
-use super::{Aabb, FluidConfig};
+use super::{signed_axis, Aabb, FluidConfig};
 use crate::case::error::check;
 use crate::case::FieldError;
 use crate::wave_motion::{GoringSolitary, PistonMotion, Ramp, RegularWaves, StrokeTable};
@@ -192,38 +192,17 @@ impl DampingConfig {
         }
     }
 
-    /// The axis (0 for x, 1 for y) and the sign of the direction the damping grows along.
+    /// The axis (0 for x, 1 for y) and the sign of the direction the damping grows along
+    /// ([`signed_axis`]; z is not an axis a wave runs along).
     pub fn direction(&self) -> Option<(usize, f64)> {
-        match self.axis.as_str() {
-            "x" | "+x" => Some((0, 1.0)),
-            "-x" => Some((0, -1.0)),
-            "y" | "+y" => Some((1, 1.0)),
-            "-y" => Some((1, -1.0)),
-            _ => None,
-        }
-    }
-
-    /// The factor `exp(−rate s² Δt)` at `x` for a step of `dt` (1 outside the zone).
-    pub fn factor(&self, x: [f64; 3], dt: f64) -> f64 {
-        if !self.zone().contains_point(x) {
-            return 1.0;
-        }
-        let Some((a, sign)) = self.direction() else {
-            return 1.0;
-        };
-        let len = self.max[a] - self.min[a];
-        let s = if sign > 0.0 {
-            (x[a] - self.min[a]) / len
-        } else {
-            (self.max[a] - x[a]) / len
-        };
-        (-self.rate * s * s * dt).exp()
+        signed_axis(&self.axis).filter(|&(a, _)| a < 2)
     }
 }
 
 impl FluidConfig {
-    /// Checks the wave maker and the damping zones; `paddle_room` is the paddle's box widened by
-    /// its stroke's range, which must stay inside the tank.
+    /// Checks the wave maker's paddle at rest and the damping zones; `named` are the section's
+    /// boxes, which the paddle must not overlap (its motion is checked by
+    /// [`FluidConfig::build_wave_maker`]).
     pub(super) fn validate_waves(&self, key: &str, named: &[(String, Aabb)]) -> Result<(), FieldError> {
         let tank = self.tank.inner();
         for (i, d) in self.damping.iter().enumerate() {
