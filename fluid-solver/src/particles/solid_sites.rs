@@ -33,14 +33,10 @@ impl SolidSites {
                 .placed
                 .get()
                 .expect("a solid's mesh is read when the case is loaded (FluidConfig::load_files)");
-            for [i, j, k] in sites_inside_mesh(mesh, &lattice).iter() {
-                solid.insert(i, j, k);
-            }
+            solid.insert_all(&sites_inside_mesh(mesh, &lattice));
         }
         for t in &cfg.terrain {
-            for [i, j, k] in sites_below_surface(|x, y| t.height_at(x, y), &lattice).iter() {
-                solid.insert(i, j, k);
-            }
+            solid.insert_all(&sites_below_surface(|x, y| t.height_at(x, y), &lattice));
         }
         let skin = solid.within_layers_of_outside(cfg.wall_layers as usize, false);
         SolidSites {

@@ -64,6 +64,17 @@ impl SiteSet {
         }
     }
 
+    /// Adds every site of `other`, word by word (the union); `other` must be a set of the same
+    /// lattice (nothing is added from one of another).
+    pub fn insert_all(&mut self, other: &SiteSet) {
+        if other.lattice == self.lattice {
+            self.bits
+                .par_iter_mut()
+                .zip(&other.bits)
+                .for_each(|(a, b)| *a |= b);
+        }
+    }
+
     /// Number of sites in the set.
     pub fn count(&self) -> usize {
         self.bits.par_iter().map(|w| w.count_ones() as usize).sum()
@@ -288,6 +299,21 @@ mod tests {
             spacing: 1.0,
             n,
         }
+    }
+
+    #[test]
+    fn insert_all_is_the_union_and_leaves_a_set_of_another_lattice_out() {
+        let l = lattice([3, 2, 70]);
+        let (mut a, mut b) = (SiteSet::empty(&l), SiteSet::empty(&l));
+        a.insert(0, 0, 1);
+        b.insert(2, 1, 65);
+        b.insert(0, 0, 1);
+        a.insert_all(&b);
+        assert_eq!(a.iter().collect::<Vec<_>>(), vec![[0, 0, 1], [2, 1, 65]]);
+        let mut other = SiteSet::empty(&lattice([3, 2, 69]));
+        other.insert(1, 1, 1);
+        a.insert_all(&other);
+        assert_eq!(a.count(), 2);
     }
 
     /// The skin by brute force: inside sites with an outside site (or, with `beyond`, a site
