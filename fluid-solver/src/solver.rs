@@ -159,11 +159,11 @@ impl FluidSolver {
         if open_boundaries.has_inflow() {
             monitor.set_driven(); // the inflow feeds energy in
         }
-        let paddle = layout.paddle.as_ref().map(|pp| {
+        let paddle = layout.paddle.map(|pp| {
             let motion = cfg.wave_maker.as_ref().and_then(|w| w.built.clone()).expect(
                 "the wave maker's motion is built when the case is loaded (FluidConfig::build_wave_maker)",
             );
-            Paddle::new(motion, pp.first, pp.rest_x.clone())
+            Paddle::new(motion, pp.first, pp.rest_x)
         });
         if paddle.is_some() {
             monitor.set_driven(); // the paddle does work on the water

@@ -105,11 +105,8 @@ fn load(
                 .table
                 .as_ref()
                 .ok_or_else(|| FieldError::new(format!("{key}.table"), "is required"))?;
-            let path = if file.is_absolute() {
-                file.clone()
-            } else {
-                case_dir.join(file)
-            };
+            // an absolute path replaces the case's folder (`Path::join`)
+            let path = case_dir.join(file);
             LoadHistory::Table(LoadTable::read(
                 &path,
                 target.components(),

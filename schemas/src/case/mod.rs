@@ -158,13 +158,10 @@ impl Case {
         self.path.parent().map(Path::to_path_buf).unwrap_or_default()
     }
 
-    /// Resolves a path written in the case against the case's folder.
+    /// Resolves a path written in the case against the case's folder (an absolute path stays as
+    /// it is: [`Path::join`] replaces the folder with it).
     pub fn resolve(&self, p: &Path) -> PathBuf {
-        if p.is_absolute() {
-            p.to_path_buf()
-        } else {
-            self.dir().join(p)
-        }
+        self.dir().join(p)
     }
 
     /// Each fluid section's warnings ([`fluid::FluidConfig::warnings`]: settings its method leaves

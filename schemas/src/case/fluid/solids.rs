@@ -214,13 +214,8 @@ impl FluidConfig {
     /// Errors name the key, the file and what is wrong.
     pub fn load_files(&mut self, dir: &Path, key: &str) -> Result<(), FieldError> {
         let tank = self.tank.inner();
-        let resolve = |p: &Path| {
-            if p.is_absolute() {
-                p.to_path_buf()
-            } else {
-                dir.join(p)
-            }
-        };
+        // an absolute path replaces `dir` (`Path::join`)
+        let resolve = |p: &Path| dir.join(p);
         for (i, s) in self.solid.iter_mut().enumerate() {
             let sk = format!("{key}.solid[{i}].mesh");
             let path = resolve(&s.mesh);

@@ -141,12 +141,8 @@ impl WaveMakerConfig {
                 let file = self.table.as_ref().ok_or_else(|| {
                     FieldError::new(format!("{key}.table"), "is required with motion = \"table\"")
                 })?;
-                let path = if file.is_absolute() {
-                    file.clone()
-                } else {
-                    dir.join(file)
-                };
-                StrokeTable::read(&path, ramp, &format!("{key}.table")).map(PistonMotion::Table)
+                // an absolute path replaces `dir` (`Path::join`)
+                StrokeTable::read(&dir.join(file), ramp, &format!("{key}.table")).map(PistonMotion::Table)
             }
         }
     }
