@@ -69,8 +69,8 @@ pub fn sample(probe: &ProbeConfig, p: &Particles, kernel: &Kernel, tank: &Aabb) 
 }
 
 /// The run-up gauge: the highest water particle with a solid within r_e,grad, plus Δs/2, above
-/// the tank floor (0 when no water touches a solid; NaN when a position is). The solids are binned in cells of r_e,grad,
-/// so each water particle looks at the 27 cells around it.
+/// the tank floor (0 when no water touches a solid; NaN when a position is). The solids are
+/// binned in cells of r_e,grad, so each water particle looks at the 27 cells around it.
 fn run_up(p: &Particles, kernel: &Kernel, tank: &Aabb, in_water: impl Fn(usize) -> bool) -> f64 {
     let reach = kernel.re_grad;
     let cell = |i: usize| [p.x[i], p.y[i], p.z[i]].map(|v| (v / reach).floor() as i64);

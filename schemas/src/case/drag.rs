@@ -27,9 +27,6 @@ pub const SUB_MEMBER_SPACINGS: f64 = 1.5;
 /// A `section_axis` within this angle of a member's axis lies along it [deg].
 pub const SECTION_AXIS_ALONG_DEG: f64 = 5.0;
 
-/// cos([`SECTION_AXIS_ALONG_DEG`]).
-const SECTION_AXIS_ALONG_COS: f64 = 0.996_194_698_091_745_5;
-
 /// Radius, in fluid particle spacings, of the kernel with which the fluid samples the flow at a
 /// point and spreads a reaction around a sub-member's centroid (S2 Table 1's influence radius;
 /// S2-24). Both sides of the contract use it: the fluid to sample and spread, the coupler to
@@ -186,6 +183,7 @@ impl DragLink {
         }
         let frame = case.structure.get(&self.structure).and_then(|s| s.frame.as_ref());
         if let (Some(axis), Some(frame)) = (self.section_axis, frame) {
+            let along_cos = SECTION_AXIS_ALONG_DEG.to_radians().cos();
             let along: Vec<usize> = frame
                 .member
                 .iter()
@@ -198,7 +196,7 @@ impl DragLink {
                     let d: [f64; 3] = std::array::from_fn(|k| b[k] - a[k]);
                     let dot = d.iter().zip(&axis).map(|(x, y)| x * y).sum::<f64>();
                     let norm = |v: &[f64; 3]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
-                    dot.abs() >= SECTION_AXIS_ALONG_COS * norm(&d) * norm(&axis)
+                    dot.abs() >= along_cos * norm(&d) * norm(&axis)
                 })
                 .map(|(i, _)| i)
                 .collect();

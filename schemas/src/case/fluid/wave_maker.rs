@@ -250,8 +250,9 @@ impl FluidConfig {
         Ok(())
     }
 
-    /// Builds the wave maker's motion and checks that the paddle stays inside the tank and off
-    /// the other boxes over the whole run (`end_time`); `dir` is the case file's folder.
+    /// Builds the wave maker's motion and checks that the paddle stays inside the tank over the
+    /// whole run (`end_time`); `dir` is the case file's folder. (Boxes in its path are not
+    /// checked: the paddle pushes what is in front of it.)
     pub fn build_wave_maker(&mut self, dir: &Path, key: &str, end_time: f64) -> Result<(), FieldError> {
         let g = self.gravity_magnitude();
         let tank = self.tank.inner();
