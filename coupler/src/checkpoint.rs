@@ -5,12 +5,26 @@
 //! [`Manifest`] (`coupler-WINDOW.bin`) last: the window, its own state (the last window's outputs,
 //! the accelerator, the magnitudes of the convergence measure, the ledger's worst balance, the
 //! counts) and the length of every output file at that moment. A checkpoint is complete only when
-//! its manifest exists; the last two are kept.
+//! its manifest exists; the last two are kept. A run whose end time is a whole number of checkpoint
+//! intervals also takes one at its end (before the participants write what they write at `Finish`),
+//! as a longer run would take it there: it can be extended from there (`coupler run CASE --resume
+//! OUT --end-time T`). Where a longer run would take no checkpoint, none is taken: writing one
+//! changes the arithmetic that follows (a beam frame factorises anew), so the extended run would
+//! not be that longer run.
 //!
 //! Resuming cuts every output file back to its length in the last complete manifest, deletes the
 //! files written after it, starts the participants with `--resume THEIR-FILE`, and runs the windows
 //! after it, appending to every file: the outputs end as those of a run that never stopped. The
 //! logs (`NAME.log`) are not cut: they are appended to, and keep the first run's lines.
+//!
+//! A resumed run goes to `--end-time` when given, else to the case's `end_time` (which a resume
+//! does not compare: [`schemas::case::Case::input_hashes`]); it must lie after the checkpoint.
+//! Extending a finished run is the same resume: the files written at its end (after the
+//! checkpoint) are cut off, and the outputs continue as those of a run started with the later end
+//! time. A finished run whose end is not a checkpoint time is extended from its last checkpoint
+//! before the end (its last windows are run again). A run resumed to the time of a checkpoint
+//! taken at its end (it finished, or was stopped while its solvers wrote their end-of-run output)
+//! continues from the checkpoint before that one, and ends as it did.
 
 use crate::error::CouplerError;
 use crate::out_folder::LOCK_FILE;
@@ -53,6 +67,8 @@ pub struct Manifest {
     /// The last window done (from 0), and its end time.
     pub window: u64,
     pub time: f64,
+    /// The end time the run was going to.
+    pub end_time: f64,
     /// Wall seconds since the run started, at the checkpoint.
     pub wall: f64,
     /// Participants in serial order.
@@ -124,6 +140,14 @@ fn prune(out: &Path) {
             }
         }
     }
+}
+
+/// The newest complete checkpoint in `out` of a window before `window`, if one reads back whole.
+pub fn latest_before(out: &Path, window: u64) -> Option<Manifest> {
+    manifests(out)
+        .iter()
+        .filter(|(w, _)| *w < window)
+        .find_map(|(_, path)| checkpoint::read::<Manifest>(path).ok())
 }
 
 /// The last complete checkpoint in `out`: the newest manifest that reads back whole.
@@ -198,8 +222,10 @@ pub fn output_files(out: &Path) -> Result<Vec<(String, u64)>, CouplerError> {
     Ok(found)
 }
 
-/// Cuts every output file back to its length in `manifest` and deletes those written after it.
-/// A file shorter than it was, or gone, cannot be continued: that is an error naming it.
+/// Cuts every output file back to its length in `manifest` and deletes those written after it,
+/// and the checkpoints of later windows (manifests first: a later manifest would describe outputs
+/// that are no longer there). A file shorter than it was, or gone, cannot be continued: that is
+/// an error naming it.
 pub fn cut_back(out: &Path, manifest: &Manifest) -> Result<(), CouplerError> {
     let now = output_files(out)?;
     let io = |what: &str, path: &Path, e: std::io::Error| {
@@ -245,13 +271,17 @@ pub fn cut_back(out: &Path, manifest: &Manifest) -> Result<(), CouplerError> {
         let path = out.join(rel);
         std::fs::remove_file(&path).map_err(|e| io("delete", &path, e))?;
     }
-    // checkpoint files cut short by the end of the first run
+    for (_, path) in manifests(out).iter().filter(|(w, _)| *w > manifest.window) {
+        std::fs::remove_file(path).map_err(|e| io("delete", path, e))?;
+    }
+    // checkpoint files cut short by the end of the first run, and those of later windows
     for entry in std::fs::read_dir(out.join(FOLDER))
         .into_iter()
         .flatten()
         .filter_map(Result::ok)
     {
-        if entry.file_name().to_string_lossy().ends_with(".tmp") {
+        let later = window_of(&entry.path()).is_some_and(|(w, _)| w > manifest.window);
+        if later || entry.file_name().to_string_lossy().ends_with(".tmp") {
             let _ = std::fs::remove_file(entry.path());
         }
     }

@@ -20,10 +20,12 @@ Case files: every key, with its type, unit, default, allowed values and the meth
 is in docs/guide/case-reference.md (`coupler reference` prints it, generated from the parser's
 types); cases/*/case.toml are commented examples.
 
-Exit codes: 0 success (replay: every recorded answer matches); 1 the run or replay failed (a
-participant died, hung or failed, no convergence, output could not be written, replay departed
-or compared less than the recording); 2 bad input, nothing was started (case file, command line,
-output folder in use or not empty, estimated output too large); 130 interrupted (Ctrl-C, SIGTERM, SIGHUP).";
+Exit codes: 0 success (replay: every recorded answer matches, also those of a run that died with
+its reason recorded); 1 the run or replay failed (a participant died, hung or failed, no
+convergence, output could not be written, replay departed or compared less than the recording, or
+the recording is damaged or cut: it has no end record); 2 bad input, nothing was started (case
+file, command line, output folder in use or not empty, estimated output too large);
+130 interrupted (Ctrl-C, SIGTERM, SIGHUP).";
 
 /// Runs tsunami–structure simulations as cooperating processes: a particle fluid solver and a
 /// structure solver started by this coupler, which exchanges their interface data window by
@@ -62,12 +64,25 @@ enum Command {
         /// Continue the run whose output folder is OUT from its last complete checkpoint (the case
         /// sets coupling.checkpoint_interval): every output is cut back to that point and appended
         /// to, ending as an uninterrupted run's would. Takes the folder's lock; needs no --overwrite.
+        /// The case and the files it names must be as the run was started with (comments, layout and
+        /// case.end_time may differ; a changed setting or file is refused, named). With --end-time,
+        /// also a finished run: it continues to the new end time.
         #[arg(long, value_name = "OUT", conflicts_with_all = ["out", "overwrite"])]
         resume: Option<PathBuf>,
+        /// Run to this time [s] instead of the case's end_time (coupled cases). With --resume OUT:
+        /// extend a finished or stopped run to it, from its last checkpoint, which must be earlier;
+        /// the outputs end as those of a run to this time from the start (what was written at the
+        /// old end is cut off and continued). A run keeps a checkpoint at its end when its end time
+        /// is a whole number of checkpoint intervals, so that extending it runs only the new
+        /// windows; otherwise it is extended from its last checkpoint before the end.
+        #[arg(long, value_name = "SECONDS", value_parser = parse_end_time)]
+        end_time: Option<f64>,
     },
     /// Drive one solver with its partners' recorded messages and compare its answers with the
     /// recorded ones; exits non-zero when it departs, when it compared fewer answers than the
-    /// recording holds, or when the recording is damaged.
+    /// recording holds, or when the recording is damaged or cut (it has no end record: the
+    /// coupler was killed while writing it, or the file was truncated). The recording of a run
+    /// that died with its reason recorded replays what it holds and says where and why it ended.
     #[command(after_help = AFTER_HELP)]
     Replay {
         /// A recording written by `coupler run` (out/<case>/recording.rec).
@@ -166,6 +181,14 @@ enum Command {
     },
 }
 
+/// `--end-time`: a time in seconds, finite and greater than 0.
+fn parse_end_time(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(t) if t.is_finite() && t > 0.0 => Ok(t),
+        _ => Err(format!("expected a time in seconds greater than 0, got `{s}`")),
+    }
+}
+
 fn parse_exe(s: &str) -> Result<(String, PathBuf), String> {
     match s.split_once('=') {
         Some((name, path)) if !name.is_empty() && !path.is_empty() => {
@@ -185,6 +208,7 @@ fn main() -> ExitCode {
             max_output,
             exe,
             resume,
+            end_time,
         } => run(&RunOptions {
             case,
             out,
@@ -192,6 +216,7 @@ fn main() -> ExitCode {
             overwrite,
             max_output,
             resume,
+            end_time,
         }),
         Command::Replay {
             recording,
@@ -299,8 +324,16 @@ fn check(path: &std::path::Path, out: Option<&std::path::Path>, max_output: u64)
             c.samples
         ));
         if let (Some(interval), Some(every)) = (c.checkpoint_interval, c.checkpoint_windows()) {
+            let windows = coupler::scheme::window_count(case.info.end_time, c.window);
+            let at_end = if windows.is_multiple_of(every)
+                && coupler::scheme::ends_on_window(case.info.end_time, c.window)
+            {
+                "; one at the end too (run --resume OUT --end-time T extends the run from it)"
+            } else {
+                "; none at the end (end_time is not a whole number of intervals)"
+            };
             lines.push(format!(
-                "  checkpoints: every {} s ({every} windows), the last {} kept in OUT/checkpoint/",
+                "  checkpoints: every {} s ({every} windows), the last {} kept in OUT/checkpoint/{at_end}",
                 short(interval),
                 coupler::checkpoint::KEEP
             ));

@@ -10,7 +10,7 @@ use crate::run::{new_run_id, output_folder, participant_args};
 use crate::stack::{variant, Launch, Stack};
 use schemas::case::{Case, Kind};
 use schemas::message::{Fields, FromParticipant, Role, ToParticipant, PROTOCOL_VERSION};
-use schemas::recording::{Message, Recording, RecordingEnd};
+use schemas::recording::{Message, Recording, RecordingEnd, RunEnd};
 use schemas::signals;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -50,8 +50,12 @@ pub struct ReplayReport {
 }
 
 /// Replays `opts.participant` against its recording. Fails (never passes) when the solver departs,
-/// when fewer answers were compared than the recording holds (none included), and when the
-/// recording is damaged.
+/// when fewer answers were compared than the recording holds (none included), when the recording
+/// is damaged, and when it is cut: it has no end record, so the run's last answers may be missing
+/// (the coupler was killed while writing it, or the file was truncated). A recording of a run that
+/// the coupler stopped on a failure ends with a record of who and why: it replays what it holds
+/// and passes when every answer matches, saying where and why the run died. Every failure is a
+/// [`CouplerError`] with exit code 1, like a departure.
 pub fn replay(opts: &ReplayOptions) -> Result<ReplayReport, CouplerError> {
     let recording = Recording::read(&opts.recording).map_err(|e| CouplerError::Usage(e.to_string()))?;
     if recording.header.protocol != PROTOCOL_VERSION {
@@ -77,12 +81,23 @@ pub fn replay(opts: &ReplayOptions) -> Result<ReplayReport, CouplerError> {
              departure of the solver"
         );
     }
-    match &recording.end {
-        RecordingEnd::Whole => {}
-        RecordingEnd::Cut { .. } => {
-            crate::say!("note: {}; replaying the complete frames before it", recording.end)
-        }
-        RecordingEnd::Corrupt { .. } => crate::say!(
+    let run_end = recording.run_end();
+    if recording.version < 3 && run_end != RunEnd::Corrupt {
+        crate::say!(
+            "note: a version-{} recording has no end record: it counts as whole when every participant's \
+             last message is `Finished`, or when it says why the run died",
+            recording.version
+        );
+    }
+    match run_end {
+        RunEnd::Finished { .. } | RunEnd::Died { .. } => {}
+        RunEnd::Cut => crate::say!(
+            "error: {}: the recording was cut (it has no end record); replaying its {} complete frames, but \
+             the replay cannot pass",
+            opts.recording.display(),
+            recording.frames.len()
+        ),
+        RunEnd::Corrupt => crate::say!(
             "error: {}: {}; replaying the frames before it, but the replay cannot pass",
             opts.recording.display(),
             recording.end
@@ -96,15 +111,19 @@ pub fn replay(opts: &ReplayOptions) -> Result<ReplayReport, CouplerError> {
         .collect();
     let recorded = mine.iter().filter(|m| is_answer(m)).count();
     if recorded == 0 {
+        let why = match run_end {
+            RunEnd::Cut => format!("{run_end}; {}", cut_detail(&recording)),
+            RunEnd::Corrupt => recording.end.to_string(),
+            _ => run_end.to_string(),
+        };
         return Err(CouplerError::Replay(format!(
-            "{}: the recording holds no answer of `{name}` to compare ({} complete frames; {}); nothing was \
-             replayed",
+            "{}: the recording holds no answer of `{name}` to compare ({} complete frames; {why}); nothing \
+             was replayed",
             opts.recording.display(),
             recording.frames.len(),
-            recording.end
         )));
     }
-    let ending = ending(&recording, name, &mine);
+    let ending = ending(&run_end, name, &mine);
     let out = opts
         .out
         .clone()
@@ -152,7 +171,7 @@ pub fn replay(opts: &ReplayOptions) -> Result<ReplayReport, CouplerError> {
             return Err(e);
         }
     };
-    stack.finish()?;
+    stack.finish(None)?;
     report.recorded = recorded;
     print_report(&report, opts.tolerance, ending.as_deref());
     if let Some((window, field)) = &report.departure {
@@ -171,19 +190,44 @@ pub fn replay(opts: &ReplayOptions) -> Result<ReplayReport, CouplerError> {
             report.messages
         )));
     }
-    if let RecordingEnd::Corrupt { .. } = recording.end {
-        return Err(CouplerError::Replay(format!(
-            "{}: {}; the {} answers before it match",
-            opts.recording.display(),
-            recording.end,
-            report.messages
-        )));
+    match run_end {
+        RunEnd::Corrupt => {
+            return Err(CouplerError::Replay(format!(
+                "{}: {}; the {} answers before it match",
+                opts.recording.display(),
+                recording.end,
+                report.messages
+            )))
+        }
+        RunEnd::Cut => {
+            return Err(CouplerError::Replay(format!(
+                "{}: {run_end}; {}; read {} complete frames holding {recorded} answers of `{name}`: the {} \
+                 compared match, but the run's last answers may be missing, so a cut recording cannot pass",
+                opts.recording.display(),
+                cut_detail(&recording),
+                recording.frames.len(),
+                report.messages
+            )))
+        }
+        RunEnd::Finished { .. } | RunEnd::Died { .. } => {}
     }
     crate::show!(
         "PASS: all {} recorded answers of `{name}` match the recording",
         report.messages
     );
     Ok(report)
+}
+
+/// Where a recording without an end record stops: inside a frame (as the reader says it), or at
+/// a frame boundary.
+fn cut_detail(recording: &Recording) -> String {
+    match &recording.end {
+        RecordingEnd::Whole => format!(
+            "the file ends after frame {}, at a frame boundary",
+            recording.frames.len()
+        ),
+        inside => inside.to_string(),
+    }
 }
 
 /// Whether a recorded message is a participant's answer to an `Advance`.
@@ -196,18 +240,13 @@ fn is_answer(m: &Message) -> bool {
 
 /// Where and why the recording of a run that did not finish ends, as seen by participant `name`;
 /// `None` for a run that finished, and for a damaged recording (reported as damage).
-fn ending(recording: &Recording, name: &str, mine: &[&Message]) -> Option<String> {
-    if let RecordingEnd::Corrupt { .. } = recording.end {
+fn ending(run_end: &RunEnd, name: &str, mine: &[&Message]) -> Option<String> {
+    let stopped = match run_end {
         // The damage, not the run, ends what can be read; it is reported as such.
-        return None;
-    }
-    let stopped = recording.frames.iter().find_map(|f| match &f.message {
-        Message::RunEnded { window, reason } => Some((*window, reason.clone())),
-        _ => None,
-    });
-    if matches!(mine.last(), Some(Message::From(FromParticipant::Finished))) && stopped.is_none() {
-        return None;
-    }
+        RunEnd::Corrupt | RunEnd::Finished { .. } => return None,
+        RunEnd::Died { window, reason, .. } => Some((*window, reason.clone())),
+        RunEnd::Cut => None,
+    };
     let last_window = mine.iter().rev().find_map(|m| match m {
         Message::To(ToParticipant::Advance { header, .. }) => Some(header.window),
         _ => None,
@@ -220,13 +259,11 @@ fn ending(recording: &Recording, name: &str, mine: &[&Message]) -> Option<String
     };
     Some(match (stopped, last_window) {
         (Some((Some(w), reason)), _) => format!("the run died in window {w}{request}: {reason}"),
-        (Some((None, reason)), _) => format!("the run died before the first window: {reason}"),
-        (None, Some(w)) => format!(
-            "the run died in window {w}{request}; the recording does not say why (the coupler itself was killed, \
-             or the file was cut: {})",
-            recording.end
-        ),
-        (None, None) => format!("the run died before the first window ({})", recording.end),
+        (Some((None, reason)), _) => format!("the run died: {reason}"),
+        (None, Some(w)) => {
+            format!("it was cut in window {w}{request}, without a record of why the run stopped")
+        }
+        (None, None) => "it was cut before the first window".to_string(),
     })
 }
 

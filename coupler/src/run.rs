@@ -8,9 +8,10 @@ use crate::launch::{describe, executable_for};
 use crate::ledger::Ledger;
 use crate::out_folder::OutputFolder;
 use crate::progress::Progress;
-use crate::scheme::{CheckpointPlan, Summary, Windows};
+use crate::scheme::{window_count, CheckpointPlan, Summary, Windows};
 use crate::stability::Detector;
 use crate::stack::{Launch, Stack};
+use schemas::case::error::check::short;
 use schemas::case::fluid::FluidBackend;
 use schemas::case::{Case, Kind};
 use schemas::message::{Role, PROTOCOL_VERSION};
@@ -33,6 +34,8 @@ pub struct RunOptions {
     pub max_output: u64,
     /// Continue the run in this output folder from its last complete checkpoint.
     pub resume: Option<PathBuf>,
+    /// Run to this time [s] instead of the case's `end_time` (with `resume`: extend the run to it).
+    pub end_time: Option<f64>,
 }
 
 /// The output folder a run writes to: `--out`, or `out/<case name>`.
@@ -75,9 +78,17 @@ pub fn participant_args(case: &Path, name: &str, run_id: &str, out: &Path) -> Ve
     ]
 }
 
-/// Runs a case to its end time.
+/// Runs a case to its end time (`opts.end_time` when given).
 pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
-    let case = Case::load(&opts.case)?;
+    let case = Case::load_to(&opts.case, opts.end_time)?;
+    if let (Some(t), None) = (opts.end_time, &case.coupling) {
+        return Err(CouplerError::Usage(format!(
+            "--end-time {}: {} has no [coupling]; its one solver runs alone and goes to the case's end_time \
+             (edit case.end_time instead)",
+            short(t),
+            opts.case.display()
+        )));
+    }
     for name in opts.exe.keys() {
         if case.kind_of(name).is_none() {
             return Err(CouplerError::Usage(format!(
@@ -115,7 +126,7 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
     };
     let out = folder.dir.clone();
     let resumed = match &opts.resume {
-        Some(_) => Some(resume_point(&case, &out)?),
+        Some(_) => Some(resume_point(&case, &out, opts.end_time.is_some())?),
         None => None,
     };
     signals::install();
@@ -139,6 +150,12 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
         })
         .collect::<Vec<_>>();
     let mut launches = launches;
+    if let Some(t) = opts.end_time {
+        // f64's Display reads back to the same number
+        for l in &mut launches {
+            l.args.extend(["--end-time".to_string(), t.to_string()]);
+        }
+    }
     if let Some(m) = &resumed {
         for l in &mut launches {
             let file = checkpoint::participant_file(&out, &l.name, m)?;
@@ -147,10 +164,11 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
         }
         checkpoint::cut_back(&out, m)?;
         crate::say!(
-            "resuming from the checkpoint of window {} (t = {} s) in {}",
+            "resuming from the checkpoint of window {} (t = {} s) in {}, to end at t = {} s",
             m.window,
             m.time,
-            out.join(schemas::checkpoint::FOLDER).display()
+            out.join(schemas::checkpoint::FOLDER).display(),
+            case.info.end_time
         );
     }
     let recording = out.join("recording.rec");
@@ -232,7 +250,7 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
     })();
     match result {
         Ok(summary) => {
-            stack.finish()?;
+            stack.finish(Some((summary.windows, case.info.end_time)))?;
             report(&summary, started.elapsed().as_secs_f64(), &out);
             Ok(())
         }
@@ -243,8 +261,11 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
     }
 }
 
-/// The last complete checkpoint in `out`, checked against the case.
-fn resume_point(case: &Case, out: &Path) -> Result<Manifest, CouplerError> {
+/// The checkpoint in `out` to resume from, checked against the case: its inputs and its
+/// participants. The end time (`--end-time` when `end_time_given`) must be after the last complete
+/// checkpoint; when it is that checkpoint's time, a checkpoint the run took at its end (it
+/// finished, or was stopped while finishing), the run continues from the checkpoint before it.
+fn resume_point(case: &Case, out: &Path, end_time_given: bool) -> Result<Manifest, CouplerError> {
     if case.coupling.is_none() {
         return Err(CouplerError::Usage(format!(
             "--resume: {} has no [coupling]; only coupled runs take checkpoints",
@@ -284,6 +305,54 @@ fn resume_point(case: &Case, out: &Path) -> Result<Manifest, CouplerError> {
             out.display(),
             m.participants,
             names
+        )));
+    }
+    let window = case.coupling.as_ref().map_or(1.0, |c| c.window);
+    let windows = window_count(case.info.end_time, window);
+    if windows == m.coupler.next_window && case.info.end_time == m.time {
+        return match checkpoint::latest_before(out, m.window) {
+            Some(earlier) => {
+                crate::say!(
+                    "note: the last checkpoint (t = {} s) is at the end time: the run is continued from the one \
+                     before it, and ends as it did (give --end-time a later time to extend it)",
+                    short(m.time)
+                );
+                Ok(earlier)
+            }
+            None => Err(CouplerError::Usage(format!(
+                "--resume {}: its only checkpoint is at its end time {} s, so there is nothing to resume; give \
+                 --end-time a later time to extend the run, or run it again with --overwrite",
+                out.display(),
+                short(m.time)
+            ))),
+        };
+    }
+    if windows <= m.coupler.next_window {
+        let end = short(case.info.end_time);
+        let before = if case.info.end_time < m.time {
+            "before it"
+        } else {
+            "within round-off of it"
+        };
+        let asked = if end_time_given {
+            format!("--end-time {end} s")
+        } else {
+            format!("the case's end_time {end} s")
+        };
+        // a run extended and stopped before its new end
+        let hint = if !end_time_given && m.end_time > m.time {
+            let was = short(m.end_time);
+            format!(" (the run was going to t = {was} s: --end-time {was})")
+        } else {
+            String::new()
+        };
+        return Err(CouplerError::Usage(format!(
+            "--resume {}: its last checkpoint is at t = {} s (window {}) and {asked} is {before}; a resumed run \
+             continues from that checkpoint, so give --end-time a time after {} s{hint}",
+            out.display(),
+            short(m.time),
+            m.window,
+            short(m.time)
         )));
     }
     Ok(m)

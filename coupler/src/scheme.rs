@@ -75,6 +75,20 @@ fn decode<T: bincode::Decode<()>>(bytes: &[u8], what: &str) -> Result<T, Coupler
         })
 }
 
+/// The number of windows of a run to `end_time` with windows of `window` seconds: the last one
+/// ends at `end_time`, shorter than the others when `end_time` is not a whole number of them.
+pub fn window_count(end_time: f64, window: f64) -> u64 {
+    ((end_time / window) - 1e-9).ceil().max(1.0) as u64
+}
+
+/// Whether the last window of a run to `end_time` ends where the same window of a longer run
+/// does, exactly (`end_time` is a whole number of windows, and the window ends computed from it
+/// equal). A run whose end is then also a checkpoint time takes that checkpoint, from which it
+/// can be extended ([`crate::checkpoint`]).
+pub fn ends_on_window(end_time: f64, window: f64) -> bool {
+    window_count(end_time, window) as f64 * window == end_time
+}
+
 impl Windows<'_> {
     /// Runs every window from 0 to `end_time`, starting from the participants' initial outputs.
     pub fn run(self, end_time: f64, initial: Vec<Fields>) -> Result<Summary, CouplerError> {
@@ -137,7 +151,8 @@ impl Windows<'_> {
         mut summary: Summary,
     ) -> Result<Summary, CouplerError> {
         let dt = self.config.window;
-        let total = ((end_time / dt) - 1e-9).ceil().max(1.0) as u64;
+        let total = window_count(end_time, dt);
+        let whole_last_window = ends_on_window(end_time, dt);
         for w in first..total {
             let t0 = w as f64 * dt;
             let t1 = if w + 1 == total {
@@ -193,8 +208,10 @@ impl Windows<'_> {
             summary.max_iterations = summary.max_iterations.max(iterations);
             self.progress.update(t1, end_time, w + 1, total);
             if let Some(plan) = &self.checkpoints {
-                if (w + 1) % plan.every == 0 && w + 1 < total {
-                    self.write_checkpoint(w, t1, &last, accelerator.as_ref(), &summary)?;
+                // at the end too, when a longer run would take this checkpoint: a run extended
+                // from it then does what that run does (checkpoints change a frame's arithmetic)
+                if (w + 1) % plan.every == 0 && (w + 1 < total || whole_last_window) {
+                    self.write_checkpoint(w, t1, end_time, &last, accelerator.as_ref(), &summary)?;
                 }
             }
         }
@@ -205,12 +222,13 @@ impl Windows<'_> {
         Ok(summary)
     }
 
-    /// The checkpoint at the end of window `w` (see [`crate::checkpoint`]): every participant's
-    /// state, then the manifest.
+    /// The checkpoint at the end of window `w` (see [`crate::checkpoint`]) of a run to `end_time`:
+    /// every participant's state, then the manifest.
     fn write_checkpoint(
         &mut self,
         w: u64,
         time: f64,
+        end_time: f64,
         last: &[Waveform],
         accelerator: &dyn Accelerator,
         summary: &Summary,
@@ -232,6 +250,7 @@ impl Windows<'_> {
             inputs,
             window: w,
             time,
+            end_time,
             wall: self.stack.wall_seconds(),
             participants: names,
             coupler: CouplerState {

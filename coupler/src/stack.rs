@@ -45,7 +45,8 @@ impl Stack {
     /// case hash). Returns the stack and each participant's initial outputs. A run resumed from a
     /// checkpoint taken `resumed` wall seconds into the run appends to the logs, keeps its wall
     /// clock going from there, and does not record the handshake (the recording already holds the
-    /// first run's).
+    /// first run's). When a participant cannot be started or refuses the handshake, the others are
+    /// stopped and the recording ends with why ([`Stack::abort`]).
     pub fn launch(
         launches: Vec<Launch>,
         run_id: &str,
@@ -73,15 +74,38 @@ impl Stack {
                 None
             }
         };
-        for l in &launches {
+        let initial = match stack.start(&launches, run_id, case_hash, out, resumed.is_some()) {
+            Ok(initial) => initial,
+            Err(e) => {
+                if held.is_some() {
+                    stack.recorder = held;
+                }
+                stack.abort(&e);
+                return Err(e);
+            }
+        };
+        if held.is_some() {
+            stack.recorder = held;
+        }
+        Ok((stack, initial))
+    }
+
+    /// Starts every participant, opens its link and shakes hands; returns their initial outputs.
+    fn start(
+        &mut self,
+        launches: &[Launch],
+        run_id: &str,
+        case_hash: u64,
+        out: &std::path::Path,
+        append_logs: bool,
+    ) -> Result<Vec<schemas::message::Fields>, CouplerError> {
+        for l in launches {
             let log = out.join(format!("{}.log", l.name));
-            let pid = stack
-                .children
-                .spawn(&l.name, &l.exe, &l.args, &log, resumed.is_some())?;
+            let pid = self.children.spawn(&l.name, &l.exe, &l.args, &log, append_logs)?;
             crate::say!("started {} ({}, pid {pid})", l.name, l.exe.display());
             let link =
                 Link::open(run_id, &l.name, Side::Coupler).map_err(|e| link_error(&l.name, None, e))?;
-            stack.sessions.push(Session {
+            self.sessions.push(Session {
                 name: l.name.clone(),
                 role: l.role,
                 interface: InterfaceDecl::default(),
@@ -91,13 +115,10 @@ impl Stack {
             });
         }
         let mut initial = Vec::new();
-        for i in 0..stack.sessions.len() {
-            initial.push(stack.handshake(i, run_id, case_hash)?);
+        for i in 0..self.sessions.len() {
+            initial.push(self.handshake(i, run_id, case_hash)?);
         }
-        if held.is_some() {
-            stack.recorder = held;
-        }
-        Ok((stack, initial))
+        Ok(initial)
     }
 
     fn handshake(
@@ -317,14 +338,35 @@ impl Stack {
     }
 
     /// Ends the run: `Finish` to everyone, their `Finished`, and their exit; then the warnings in their
-    /// logs are passed on to the user.
-    pub fn finish(self) -> Result<(), CouplerError> {
-        self.finish_participants()
+    /// logs are passed on to the user. The recording is closed with its end record: `end`, the
+    /// windows the run ran (from its start, a resumed run's included) and the simulated time it
+    /// reached [s] — or, when a participant fails now, why ([`Stack::abort`]). `end` is `None` where
+    /// nothing is recorded (a replay).
+    pub fn finish(mut self, end: Option<(u64, f64)>) -> Result<(), CouplerError> {
+        if let Err(e) = self
+            .finish_participants()
             .map_err(CouplerError::after_last_window)
+        {
+            self.abort(&e);
+            return Err(e);
+        }
+        let wall = self.started.elapsed().as_secs_f64();
+        match (self.recorder.take(), end) {
+            (Some(r), Some((windows, time))) => {
+                let path = r.path().to_path_buf();
+                r.end(wall, windows, time).map_err(|e| {
+                    CouplerError::Io(format!(
+                        "cannot write the end of the recording {}: {e}",
+                        path.display()
+                    ))
+                })
+            }
+            _ => Ok(()),
+        }
     }
 
     /// The steps of [`Stack::finish`]; its participants' errors carry no window.
-    fn finish_participants(mut self) -> Result<(), CouplerError> {
+    fn finish_participants(&mut self) -> Result<(), CouplerError> {
         for i in 0..self.sessions.len() {
             self.send(i, ToParticipant::Finish, None)?;
             match self.recv(i, None)? {
@@ -359,15 +401,22 @@ impl Stack {
         Ok(())
     }
 
-    /// Stops every participant now (after an error or Ctrl-C), and records why the run ended.
+    /// Stops every participant now (after an error or Ctrl-C), and ends the recording with why the
+    /// run ended ([`Message::Died`]: the window, the participant at fault if any, and `why` as the
+    /// user is told it). Nothing is recorded after it.
     pub fn abort(&mut self, why: &CouplerError) {
-        let ended = Message::RunEnded {
-            window: why.window(),
-            reason: why.to_string(),
-        };
-        // The run already failed with `why`; a recording that cannot take its last frame adds nothing
-        // the user must act on first.
-        let _ = self.record("", ended);
+        if let Some(r) = self.recorder.take() {
+            let participant = match why {
+                CouplerError::Participant { name, .. } | CouplerError::AfterLastWindow { name, .. } => {
+                    Some(name.clone())
+                }
+                _ => None,
+            };
+            let wall = self.started.elapsed().as_secs_f64();
+            // The run already failed with `why`; a recording that cannot take its last frame adds
+            // nothing the user must act on first.
+            let _ = r.died(wall, why.window(), participant, why.to_string());
+        }
         self.children.stop_all(Duration::from_secs(1));
     }
 }

@@ -36,7 +36,7 @@ enum Command {
 }
 
 fn participant(args: &ParticipantArgs) -> Result<(), String> {
-    let case = Case::load(&args.case).map_err(|e| e.to_string())?;
+    let case = Case::load_to(&args.case, args.end_time).map_err(|e| e.to_string())?;
     let mut solver = match &args.resume {
         Some(from) => FluidParticipant::resume(&case, &args.name, args.out.as_deref(), from)?,
         None => FluidParticipant::from_case(&case, &args.name, args.out.as_deref())?,

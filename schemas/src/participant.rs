@@ -73,6 +73,10 @@ pub struct ParticipantArgs {
     /// coupler has cut back to their length at the checkpoint.
     #[arg(long)]
     pub resume: Option<PathBuf>,
+    /// Simulate to this time [s] instead of the case's `case.end_time` (the coupler passes on its
+    /// own `run --end-time`).
+    #[arg(long, value_name = "SECONDS")]
+    pub end_time: Option<f64>,
 }
 
 /// Why a participant stopped.

@@ -6,9 +6,11 @@
 //!
 //! With an output folder, the case's histories (and frame snapshots) are written as in standalone
 //! mode, at the first exchange time at or after each history time (the stepping is never changed
-//! for output); the rows of a window are kept back until the window is accepted
-//! (the next advance comes without a restore, or the run finishes), so an implicit iteration
-//! that is repeated never writes twice.
+//! for output), and at the end of the run; the rows of a window are kept back until the window is
+//! accepted (the next advance comes without a restore, or the run finishes), so an implicit
+//! iteration that is repeated never writes twice. The end's row, when the end is not a history
+//! time, is written at `Finish`, after any checkpoint taken at the end: a run extended from that
+//! checkpoint (`coupler run --resume OUT --end-time T`) has only the rows a run to T would have.
 
 mod resume;
 
@@ -35,8 +37,11 @@ pub struct StructureParticipant {
     /// Frame connectivity version last sent as geometry.
     geometry_sent: Option<u64>,
     output: Option<Output>,
-    /// History interval [s] and the case's end time.
-    history: Option<(f64, f64)>,
+    /// History interval [s].
+    history: Option<f64>,
+    /// Whether the state the structure is at has its history row (written or kept back); at
+    /// `Finish` one is written when it has not.
+    row_now: bool,
     /// States of the last window due for a history row, written once the window is accepted.
     pending: Vec<Structure>,
 }
@@ -69,7 +74,7 @@ impl StructureParticipant {
             .history
             .as_ref()
             .filter(|_| output.is_some())
-            .map(|h| (h.interval, case.info.end_time));
+            .map(|h| h.interval);
         Ok(Self {
             name: name.to_string(),
             structure,
@@ -78,6 +83,7 @@ impl StructureParticipant {
             geometry_sent: None,
             output,
             history,
+            row_now: true,
             pending: Vec::new(),
         })
     }
@@ -96,18 +102,18 @@ impl StructureParticipant {
     /// after each history time k·interval (within round-off). The stepping is never changed for
     /// output, so a run with an output folder answers exactly as one without.
     fn history_rows(&self, times: &[f64]) -> Vec<bool> {
-        let Some((interval, end)) = self.history else {
+        let Some(interval) = self.history else {
             return vec![false; times.len().saturating_sub(1)];
         };
         let start = times.first().copied().unwrap_or(0.0);
-        let due = |k: f64| (k * interval).min(end) - 1e-9 * interval;
+        let due = |k: f64| k * interval - 1e-9 * interval;
         let mut k = (start / interval + 1e-9).floor() + 1.0;
         times
             .iter()
             .skip(1)
             .map(|&t| {
                 let row = t >= due(k);
-                while t >= due(k) && k * interval < end + interval {
+                while t >= due(k) {
                     k += 1.0;
                 }
                 row
@@ -205,6 +211,7 @@ impl Participant for StructureParticipant {
         }
         self.commit()?;
         let rows = self.history_rows(&inputs.times);
+        self.row_now = rows.last().copied().unwrap_or(self.row_now);
         let mut outputs = vec![self.outputs()];
         for (&t, row) in inputs.times.iter().skip(1).zip(rows) {
             let schedule = &self.schedule;
@@ -234,6 +241,11 @@ impl Participant for StructureParticipant {
 
     fn finish(&mut self) -> Result<(), String> {
         self.commit()?;
+        // the end of the run, when it is not a history time
+        if let (Some(_), false, Some(o)) = (self.history, self.row_now, &mut self.output) {
+            o.record(&self.structure)?;
+            self.row_now = true;
+        }
         for (body, t) in self.structure.releases() {
             println!("{}: body `{body}` released at t = {t} s", self.name);
         }

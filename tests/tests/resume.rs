@@ -668,3 +668,261 @@ fn a_resume_refuses_an_edited_load_table_or_setting_but_not_a_comment() {
         .unwrap_or_else(|e| panic!("{e}"));
     resume(&case, &out);
 }
+
+/// Runs `coupler ARGS…` and asserts that it succeeded; returns its stderr.
+fn coupler_ok(args: &[&str]) -> String {
+    let done = coupler(args);
+    let err = stderr(&done);
+    println!("{err}");
+    assert!(done.status.success(), "coupler {args:?} failed:\n{err}");
+    err
+}
+
+/// The window of each checkpoint manifest in `out`, oldest first.
+fn manifest_windows(out: &Path) -> Vec<u64> {
+    manifests(out)
+        .iter()
+        .filter_map(|p| p.file_stem()?.to_str()?.strip_prefix("coupler-")?.parse().ok())
+        .collect()
+}
+
+/// Issue 41, item 9: `coupler run CASE --resume OUT --end-time T` extends a finished run. The
+/// implicit oscillator (IQN-ILS, windows of 0.01 s, checkpoints every 0.4 s, m1's history every
+/// 0.03 s so that neither end below is a history time) run to its end_time 0.5 s, which is not a
+/// checkpoint time (its last checkpoint is at 0.4 s), extended to 0.8 s (a checkpoint time: the
+/// run keeps a checkpoint there), then to 1.3 s: every output and the recording equal those of
+/// one run of the same case with `--end-time 1.3`, and the extended recording replays.
+#[test]
+fn a_run_extended_twice_with_end_time_writes_what_a_run_to_that_time_writes() {
+    let dir = out_dir("resume-extend");
+    let case = case_from("oscillator", &dir, &[("end_time", "0.5"), ("interval", "0.03")]);
+    with_checkpoints(&case, "0.4");
+    let path = case.to_str().unwrap_or_default();
+    let straight = dir.join("straight");
+    let s = straight.to_str().unwrap_or_default();
+    coupler_ok(&["run", path, "--out", s, "--end-time", "1.3"]);
+    let ledger = csv_rows(&straight.join("ledger.csv"));
+    assert_eq!(ledger.len(), 130, "130 windows to 1.3 s");
+    assert!(
+        (ledger[129][1] - 1.3).abs() < 1e-12,
+        "the last window ends at 1.3 s"
+    );
+    // m1's rows: every 0.03 s, and the end, which is not a history time
+    let m1: Vec<f64> = csv_rows(&straight.join("mass-left/point-m1.csv"))
+        .iter()
+        .map(|r| r[0])
+        .collect();
+    assert!(
+        m1.len() == 45 && (m1[43] - 1.29).abs() < 1e-9 && m1[44] == 1.3,
+        "rows at 0, 0.03, …, 1.29 and 1.3 s: {m1:?}"
+    );
+
+    let extended = dir.join("extended");
+    let e = extended.to_str().unwrap_or_default();
+    coupler_ok(&["run", path, "--out", e]);
+    assert_eq!(
+        manifest_windows(&extended),
+        vec![39],
+        "0.5 s is not a checkpoint time"
+    );
+    let err = coupler_ok(&["run", path, "--resume", e, "--end-time", "0.8"]);
+    assert!(
+        err.contains("(t = 0.4 s)") && err.contains("to end at t = 0.8 s"),
+        "{err}"
+    );
+    assert_eq!(
+        manifest_windows(&extended),
+        vec![39, 79],
+        "a checkpoint at the end, 0.8 s"
+    );
+    let err = coupler_ok(&["run", path, "--resume", e, "--end-time", "1.3"]);
+    assert!(
+        err.contains("window 79 (t = 0.8 s)"),
+        "extended from its end: {err}"
+    );
+    // the rows written at the old ends (0.5 and 0.8 s, not history times) were cut off
+    assert_same_outputs(&straight, &extended);
+
+    let replay = coupler(&[
+        "replay",
+        extended.join("recording.rec").to_str().unwrap_or_default(),
+        "--participant",
+        "mass-left",
+        "--out",
+        dir.join("replay").to_str().unwrap_or_default(),
+    ]);
+    assert!(replay.status.success(), "{}", stderr(&replay));
+}
+
+/// The same for a fluid: the floating box (E-MPS, a rigid body, surface meshes, frames every
+/// 0.01 s) run to 0.02 s, a checkpoint time, and extended to 0.03 s from its checkpoint there:
+/// every output and the recording equal those of one run with `--end-time 0.03`.
+#[test]
+fn a_floating_box_extended_with_end_time_writes_what_a_run_to_that_time_writes() {
+    let dir = out_dir("resume-extend-floating-box");
+    let case = case_from(
+        "dam-break-floating-box",
+        &dir,
+        &[
+            ("end_time", "0.02"),
+            ("spacing", "0.02"),
+            ("output_interval", "0.01"),
+            ("surface_mesh", "true"),
+            (
+                "tank",
+                "{ min = [0.0, 0.0, 0.0], max = [0.6, 0.44, 0.4], lid = true }",
+            ),
+        ],
+    );
+    with_checkpoints(&case, "0.01");
+    let path = case.to_str().unwrap_or_default();
+    let straight = dir.join("straight");
+    coupler_ok(&[
+        "run",
+        path,
+        "--out",
+        straight.to_str().unwrap_or_default(),
+        "--end-time",
+        "0.03",
+    ]);
+    let extended = dir.join("extended");
+    let e = extended.to_str().unwrap_or_default();
+    coupler_ok(&["run", path, "--out", e]);
+    let err = coupler_ok(&["run", path, "--resume", e, "--end-time", "0.03"]);
+    assert!(
+        err.contains("window 39 (t = 0.02 s)"),
+        "extended from its end: {err}"
+    );
+    assert_same_outputs(&straight, &extended);
+}
+
+/// A finished run whose end is a checkpoint time, resumed without a later end time, continues from
+/// the checkpoint before its last (as a run killed after its last checkpoint, while its solvers
+/// wrote their end-of-run output, is completed): its outputs end as they were. Then the case file
+/// is edited: a changed value is refused, naming the settings; comments, layout and a later
+/// `end_time` extend the run from its end, to the same outputs as a run of the unedited case with
+/// `--end-time`.
+#[test]
+fn a_finished_run_resumed_to_its_end_ends_as_it_did_and_an_edited_end_time_extends_it() {
+    let dir = out_dir("resume-extend-edited");
+    let case = case_from("oscillator", &dir, &[("end_time", "0.8")]);
+    with_checkpoints(&case, "0.4");
+    let text = std::fs::read_to_string(&case).unwrap_or_default();
+    let path = case.to_str().unwrap_or_default();
+    let out = dir.join("out");
+    let o = out.to_str().unwrap_or_default();
+    coupler_ok(&["run", path, "--out", o]);
+    assert_eq!(manifest_windows(&out), vec![39, 79]);
+
+    let again = dir.join("again");
+    copy_folder(&out, &again);
+    let err = coupler_ok(&["run", path, "--resume", again.to_str().unwrap_or_default()]);
+    assert!(
+        err.contains("the last checkpoint (t = 0.8 s) is at the end time")
+            && err.contains("window 39 (t = 0.4 s)"),
+        "{err}"
+    );
+    assert_same_outputs(&out, &again);
+    assert_eq!(manifest_windows(&again), vec![39, 79]);
+
+    let heavier =
+        text.replacen("mass = 1.0", "mass = 1.5", 1)
+            .replacen("end_time = 0.8", "end_time = 1.3", 1);
+    std::fs::write(&case, heavier).unwrap_or_else(|e| panic!("{e}"));
+    let refused = coupler(&["run", path, "--resume", o]);
+    let err = stderr(&refused);
+    assert_eq!(refused.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("the case's settings") && err.contains("changed since the run was started"),
+        "{err}"
+    );
+
+    let edited = format!(
+        "# extended to 1.3 s after the run\n{}",
+        text.replacen("end_time = 0.8", "end_time   =   1.3   # was 0.8", 1)
+            .replacen("mass = 1.0", "mass = 1.0  # kg", 1)
+    );
+    std::fs::write(&case, edited).unwrap_or_else(|e| panic!("{e}"));
+    let err = coupler_ok(&["run", path, "--resume", o]);
+    assert!(
+        err.contains("window 79 (t = 0.8 s)") && err.contains("to end at t = 1.3 s"),
+        "{err}"
+    );
+
+    std::fs::write(&case, &text).unwrap_or_else(|e| panic!("{e}"));
+    let straight = dir.join("straight");
+    coupler_ok(&[
+        "run",
+        path,
+        "--out",
+        straight.to_str().unwrap_or_default(),
+        "--end-time",
+        "1.3",
+    ]);
+    assert_same_outputs(&straight, &out);
+}
+
+/// What `--end-time` refuses, with exit code 2: an end time before the last checkpoint (naming its
+/// time; resumed without `--end-time`, a case whose end_time is before it is told the end time the
+/// run was going to), a time that is not a positive number, and a case without coupling.
+#[test]
+fn an_end_time_before_the_last_checkpoint_is_refused_naming_the_checkpoint_time() {
+    let dir = out_dir("resume-extend-refused");
+    let case = case_from("oscillator", &dir, &[("end_time", "0.8")]);
+    with_checkpoints(&case, "0.4");
+    let path = case.to_str().unwrap_or_default();
+    let out = dir.join("out");
+    let o = out.to_str().unwrap_or_default();
+    // to 1.3 s: the last checkpoint is at 1.2 s
+    coupler_ok(&["run", path, "--out", o, "--end-time", "1.3"]);
+    assert_eq!(manifest_windows(&out), vec![79, 119]);
+    let refused = |args: &[&str], expected: &[&str]| {
+        let done = coupler(args);
+        let err = stderr(&done);
+        println!("{err}");
+        assert_eq!(done.status.code(), Some(2), "{err}");
+        for e in expected {
+            assert!(err.contains(e), "`{e}` in: {err}");
+        }
+    };
+    refused(
+        &["run", path, "--resume", o, "--end-time", "1.1"],
+        &[
+            "last checkpoint is at t = 1.2 s (window 119)",
+            "--end-time 1.1 s is before it",
+        ],
+    );
+    refused(
+        &["run", path, "--resume", o],
+        &[
+            "last checkpoint is at t = 1.2 s",
+            "the case's end_time 0.8 s is before it",
+            "the run was going to t = 1.3 s: --end-time 1.3",
+        ],
+    );
+    for bad in ["0", "-1", "nan", "inf", "soon"] {
+        let arg = format!("--end-time={bad}");
+        refused(&["run", path, "--resume", o, &arg], &["greater than 0"]);
+    }
+    let alone = dir.join("alone.toml");
+    std::fs::write(
+        &alone,
+        "[case]\nname = \"alone\"\nend_time = 0.1\n\n[structure.s]\nmax_step = 0.01\n\n\
+         [[structure.s.point_mass]]\nname = \"m\"\nmass = 1.0\nposition = [0, 0, 0]\n",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    refused(
+        &[
+            "run",
+            alone.to_str().unwrap_or_default(),
+            "--out",
+            dir.join("alone").to_str().unwrap_or_default(),
+            "--end-time",
+            "0.2",
+        ],
+        &["--end-time 0.2", "no [coupling]"],
+    );
+    // nothing was changed by the refusals: the run still extends
+    let err = coupler_ok(&["run", path, "--resume", o, "--end-time", "1.5"]);
+    assert!(err.contains("window 119 (t = 1.2 s)"), "{err}");
+}

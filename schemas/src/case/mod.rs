@@ -109,16 +109,30 @@ pub struct Case {
 impl Case {
     /// Reads, parses and validates a case file.
     pub fn load(path: &Path) -> Result<Case, CaseError> {
+        Case::load_to(path, None)
+    }
+
+    /// Reads, parses and validates a case file, with `end_time` (when given) in place of its
+    /// `case.end_time` (`coupler run --end-time`): the case is validated for that end time (a
+    /// wave maker's paddle must stay in its tank until then, a coupling window must not be longer).
+    /// [`Case::text`] and [`Case::hash`] stay those of the file.
+    pub fn load_to(path: &Path, end_time: Option<f64>) -> Result<Case, CaseError> {
         let text = std::fs::read_to_string(path).map_err(|e| CaseError {
             file: path.to_path_buf(),
             key: String::new(),
             message: format!("cannot read the case file: {e}"),
         })?;
-        Case::parse(path, text)
+        Case::parse_to(path, text, end_time)
     }
 
     /// Parses and validates case text that came from `path`.
     pub fn parse(path: &Path, text: String) -> Result<Case, CaseError> {
+        Case::parse_to(path, text, None)
+    }
+
+    /// Parses and validates case text that came from `path`, with `end_time` (when given) in place
+    /// of its `case.end_time`, as [`Case::load_to`].
+    pub fn parse_to(path: &Path, text: String, end_time: Option<f64>) -> Result<Case, CaseError> {
         if text.trim().is_empty() {
             return Err(CaseError {
                 file: path.to_path_buf(),
@@ -129,7 +143,7 @@ impl Case {
                         .into(),
             });
         }
-        let file: CaseFile = toml::from_str(&text).map_err(|e| CaseError {
+        let mut file: CaseFile = toml::from_str(&text).map_err(|e| CaseError {
             file: path.to_path_buf(),
             key: e.span().map(|s| key_at(&text, s.start)).unwrap_or_default(),
             message: match e.span() {
@@ -137,6 +151,9 @@ impl Case {
                 None => e.message().trim().to_string(),
             },
         })?;
+        if let Some(t) = end_time {
+            file.case.end_time = t;
+        }
         let mut case = Case {
             path: path.to_path_buf(),
             hash: fnv1a(text.as_bytes()),

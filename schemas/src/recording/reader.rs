@@ -1,11 +1,16 @@
-//! Reading a recording back: every complete frame, checked (version 2: its CRC-32C), and how the
-//! file ends — whole, cut inside a frame, or damaged at a frame with its byte offset. Nothing read
-//! from the file is trusted for an allocation: a frame's bytes are allocated only when the file
-//! still holds them, and decoding is bounded by [`super::bounded_decode`].
+//! Reading a recording back: every complete frame, checked (versions 2 and 3: its CRC-32C), how
+//! the file ends — whole, cut inside a frame, or damaged at a frame with its byte offset — and how
+//! the run ended ([`Recording::run_end`]). Nothing read from the file is trusted for an allocation:
+//! a frame's bytes are allocated only when the file still holds them, and decoding is bounded by
+//! [`super::bounded_decode`].
 
 use super::bounded_decode::decode;
-use super::{Frame, Recording, RecordingEnd, RecordingError, RecordingHeader, MAGIC_V1, MAGIC_V2};
+use super::{
+    Frame, Message, Recording, RecordingEnd, RecordingError, RecordingHeader, RunEnd, MAGIC_V1, MAGIC_V2,
+    MAGIC_V3,
+};
 use crate::link::MAX_MESSAGE_BYTES;
+use crate::message::{FromParticipant, ToParticipant};
 use bincode::Decode;
 use std::fs::File;
 use std::io::{BufReader, Read};
@@ -123,8 +128,16 @@ impl Recording {
             return Err("not a recording (file too short)".into());
         }
         let version = match &magic[..] {
+            m if m == MAGIC_V3 => 3,
             m if m == MAGIC_V2 => 2,
             m if m == MAGIC_V1 => 1,
+            m if m.starts_with(b"TSUNAMI-REC v") => {
+                return Err(format!(
+                "a recording of format `{}`, which this build does not read (it reads versions 1 to 3): it \
+                     was made by a newer build; replay it with that build",
+                String::from_utf8_lossy(m.strip_suffix(b"\n").unwrap_or(m))
+            ))
+            }
             _ => return Err("not a recording of this project (wrong magic line)".into()),
         };
         let header: RecordingHeader = match src.frame(version) {
@@ -156,5 +169,74 @@ impl Recording {
             frames,
             end,
         })
+    }
+}
+
+/// The run end an end record states, if `message` is one that says the run died.
+fn died(message: &Message) -> Option<RunEnd> {
+    match message {
+        Message::Died {
+            window,
+            participant,
+            reason,
+        } => Some(RunEnd::Died {
+            window: *window,
+            participant: participant.clone(),
+            reason: reason.clone(),
+        }),
+        Message::RunEnded { window, reason } => Some(RunEnd::Died {
+            window: *window,
+            participant: None,
+            reason: reason.clone(),
+        }),
+        _ => None,
+    }
+}
+
+impl Recording {
+    /// How the recorded run ended. A file that ends inside a frame is [`RunEnd::Cut`], one with a
+    /// damaged frame [`RunEnd::Corrupt`]. Otherwise, in version 3, the last frame says: an
+    /// [`Message::End`] is [`RunEnd::Finished`], a [`Message::Died`] (or [`Message::RunEnded`]) is
+    /// [`RunEnd::Died`], anything else — no end record — is [`RunEnd::Cut`]. Versions 1 and 2 have
+    /// no end record: a `RunEnded` frame makes them [`RunEnd::Died`]; every participant's last
+    /// message being `Finished` makes them [`RunEnd::Finished`] (windows and time from the last
+    /// `Advance`); anything else is [`RunEnd::Cut`].
+    pub fn run_end(&self) -> RunEnd {
+        match self.end {
+            RecordingEnd::Corrupt { .. } => return RunEnd::Corrupt,
+            RecordingEnd::Cut { .. } => return RunEnd::Cut,
+            RecordingEnd::Whole => {}
+        }
+        if self.version >= 3 {
+            return match self.frames.last().map(|f| &f.message) {
+                Some(Message::End { windows, time }) => RunEnd::Finished {
+                    windows: *windows,
+                    time: *time,
+                },
+                Some(other) => died(other).unwrap_or(RunEnd::Cut),
+                None => RunEnd::Cut,
+            };
+        }
+        if let Some(stopped) = self.frames.iter().rev().find_map(|f| died(&f.message)) {
+            return stopped;
+        }
+        let participants = &self.header.participants;
+        let finished = !participants.is_empty()
+            && participants.iter().all(|p| {
+                self.frames
+                    .iter()
+                    .rev()
+                    .find(|f| &f.participant == p)
+                    .is_some_and(|f| matches!(f.message, Message::From(FromParticipant::Finished)))
+            });
+        if !finished {
+            return RunEnd::Cut;
+        }
+        let last = self.frames.iter().rev().find_map(|f| match &f.message {
+            Message::To(ToParticipant::Advance { header, .. }) => Some((header.window + 1, header.time)),
+            _ => None,
+        });
+        let (windows, time) = last.unwrap_or((0, 0.0));
+        RunEnd::Finished { windows, time }
     }
 }

@@ -21,6 +21,9 @@ struct Saved {
     geometry_sent: Option<u64>,
     /// Where the outputs stand (`None` without an output folder).
     output: Option<OutputState>,
+    /// Whether the state has its history row (a run resumed at its end writes one at `Finish`
+    /// when it has not).
+    row_now: bool,
 }
 
 impl StructureParticipant {
@@ -36,6 +39,7 @@ impl StructureParticipant {
             structure: self.structure.clone(),
             geometry_sent: self.geometry_sent,
             output: self.output.as_ref().map(Output::state),
+            row_now: self.row_now,
         };
         schemas::checkpoint::write(path, &saved).map_err(|e| {
             format!(
@@ -64,10 +68,11 @@ impl StructureParticipant {
             .ok_or_else(|| format!("{}: there is no [structure.{name}] section", case.path.display()))?;
         p.structure = saved.structure;
         p.geometry_sent = saved.geometry_sent;
+        p.row_now = saved.row_now;
         if let Some(dir) = out {
             let state = saved.output.unwrap_or_default();
             p.output = Some(Output::resume(dir, cfg, &p.structure, &state)?);
-            p.history = cfg.history.as_ref().map(|h| (h.interval, case.info.end_time));
+            p.history = cfg.history.as_ref().map(|h| h.interval);
         }
         eprintln!(
             "structure `{name}`: resumed from {} at t = {} s",
