@@ -1,0 +1,172 @@
+//! A linear standing wave in a closed tank (issue 37): the methods' gravity waves against
+//! ω² = g k tanh(k d), with no paddle and no step in the surface to make a bore.
+//!
+//! The tank is L = 0.4 m long, d = 0.1 m deep and four spacings wide (the quasi-2-D flume of
+//! `cases/solitary-wave-flat`). The water starts flat with the velocity of the first sloshing
+//! mode at its zero crossing: the potential φ = (a g/ω) cosh(kz)/cosh(kd) cos(kx) cos(ωt),
+//! k = π/L, a = 0.01 m (ka = 0.079, so the second-order frequency shift is below 1 %). Its
+//! surface is then η = a cos(kx) sin(ωt), and the water's centre of mass moves along the tank as
+//! x̄ − L/2 = −A sin(ωt) with A = 2aL/(π²d), the only shape the first mode gives it.
+//!
+//! Every test here fails today (`docs/notes/standing-wave.md`): the symmetric gradients
+//! (`"symmetric"`, `"conservative"`) reach 0.71–0.76 A at the first swing at d/8, d/16 and
+//! d/32, whatever the time step, the checkerboard share or the shifting; the corrected difference
+//! reaches A but crosses L/2 first 12 % of a half period early and its next swing grows to
+//! 1.3–1.8 A; E-MPS
+//! is dominated by its own settling noise.
+
+mod common;
+
+use fluid_solver::{FluidSolver, Kind};
+use schemas::case::fluid::{FluidMethodName, PressureGradient};
+use schemas::case::FluidConfig;
+use std::f64::consts::PI;
+
+/// Depth d [m].
+const DEPTH: f64 = 0.1;
+/// Tank length L [m]: half the first mode's wavelength.
+const LENGTH: f64 = 0.4;
+/// Amplitude a of the surface [m].
+const AMPLITUDE: f64 = 0.01;
+/// Gravity of the cases [m/s²].
+const G: f64 = 9.8;
+
+/// ω of the first mode (the linear dispersion relation ω² = g k tanh(k d)).
+fn omega() -> f64 {
+    let k = PI / LENGTH;
+    (G * k * (k * DEPTH).tanh()).sqrt()
+}
+
+/// The closed tank at `per_depth` spacings per depth, still water to d, with ISPH's gradient
+/// `gradient` or with E-MPS (c = 7 m/s, 5 √(gd), Courant 0.5).
+fn tank(method: FluidMethodName, gradient: PressureGradient, per_depth: f64) -> FluidConfig {
+    let (_, mut cfg) = common::load_case("solitary-wave-flat");
+    let ds = DEPTH / per_depth;
+    let width = 4.0 * ds;
+    cfg.spacing = ds;
+    cfg.wave_maker = None;
+    cfg.probe.clear();
+    cfg.damping.clear();
+    cfg.tank.max = [LENGTH, width, 0.16];
+    cfg.block.truncate(1);
+    cfg.block[0].min = [0.0, 0.0, 0.0];
+    cfg.block[0].max = [LENGTH, width, DEPTH];
+    // the wave's top speed is a ω / (k d) ≈ 0.1 m/s: the flume's u_in + 2√(gd) is far too high
+    cfg.max_velocity = Some(1.0);
+    if method == FluidMethodName::Emps {
+        cfg.method = method;
+        cfg.isph = None;
+        cfg.sound_speed = Some(7.0);
+        cfg.time_step = 0.5 * ds / 7.0;
+    } else {
+        if let Some(i) = cfg.isph.as_mut() {
+            i.pressure_gradient = gradient;
+        }
+        cfg.time_step = 0.2 * ds;
+    }
+    cfg.validate("fluid.tank").unwrap_or_else(|e| panic!("{e:?}"));
+    cfg
+}
+
+/// Sets the first mode's velocity at its zero crossing on every fluid particle (module doc).
+fn start_the_mode(solver: &mut FluidSolver) {
+    let k = PI / LENGTH;
+    let scale = AMPLITUDE * G * k / omega() / (k * DEPTH).cosh();
+    let p = solver.particles_mut();
+    for i in 0..p.len() {
+        if p.kind[i] == Kind::Fluid.code() {
+            p.vx[i] = -scale * (k * p.z[i]).cosh() * (k * p.x[i]).sin();
+            p.vz[i] = scale * (k * p.z[i]).sinh() * (k * p.x[i]).cos();
+        }
+    }
+}
+
+/// x̄ − L/2 of the fluid.
+fn centre_offset(solver: &FluidSolver) -> f64 {
+    let p = solver.particles();
+    let (sum, n) = (0..p.len())
+        .filter(|&i| p.kind[i] == Kind::Fluid.code())
+        .fold((0.0, 0.0), |(s, n), i| (s + p.x[i], n + 1.0));
+    sum / n - LENGTH / 2.0
+}
+
+/// What the centre of mass did over two periods: the extremum of each swing over A, and the
+/// times it crossed L/2.
+struct Swing {
+    extrema: Vec<f64>,
+    crossings: Vec<f64>,
+}
+
+fn swing(method: FluidMethodName, gradient: PressureGradient, per_depth: f64) -> Swing {
+    let cfg = tank(method, gradient, per_depth);
+    let mut solver = FluidSolver::new(&cfg);
+    start_the_mode(&mut solver);
+    let period = 2.0 * PI / omega();
+    let big_a = 2.0 * AMPLITUDE * LENGTH / (PI * PI * DEPTH);
+    let every = 2.5e-3;
+    let (mut t, mut last, mut extremum) = (0.0, 0.0, 0.0_f64);
+    let (mut extrema, mut crossings) = (Vec::new(), Vec::new());
+    while t < 2.1 * period {
+        t += every;
+        solver.advance_to(t).unwrap_or_else(|e| panic!("{method:?}: {e}"));
+        let x = centre_offset(&solver);
+        assert!(x.is_finite(), "{method:?}: the centre of mass is {x} at {t} s");
+        if t > 0.1 * period && (last > 0.0) != (x > 0.0) {
+            crossings.push(t - every * x / (x - last));
+            extrema.push(extremum / big_a);
+            extremum = 0.0;
+        }
+        extremum = extremum.max(x.abs());
+        last = x;
+    }
+    Swing { extrema, crossings }
+}
+
+/// Each swing's extremum within 5 % of A (the second-order shift at ka = 0.079 is below 1 %;
+/// the other modes the lattice lets in are of order Δs/L = 1.6 %), and each crossing of L/2
+/// within 3 % of a period of n π/ω, over two periods.
+fn check(name: &str, s: &Swing) {
+    let period = 2.0 * PI / omega();
+    println!(
+        "{name}: swings {:.3?} A; crossings {:.4?} s (theory every {:.4} s from {:.4} s)",
+        s.extrema,
+        s.crossings,
+        0.5 * period,
+        0.5 * period
+    );
+    assert!(
+        s.crossings.len() >= 4,
+        "{name}: {} crossings in two periods",
+        s.crossings.len()
+    );
+    for (n, (&x, &t)) in s.extrema.iter().zip(&s.crossings).enumerate() {
+        assert!((x - 1.0).abs() < 0.05, "{name}: swing {} reaches {x:.3} A", n + 1);
+        let theory = 0.5 * period * (n + 1) as f64;
+        assert!(
+            (t - theory).abs() < 0.03 * period,
+            "{name}: crossing {} at {t:.4} s against {theory:.4} s",
+            n + 1
+        );
+    }
+}
+
+#[test]
+#[ignore = "fails today: the symmetric gradient keeps 0.76 A (docs/notes/standing-wave.md)"]
+fn a_standing_wave_keeps_its_amplitude_and_period_with_conservative_isph() {
+    let s = swing(FluidMethodName::Isph, PressureGradient::Conservative, 16.0);
+    check("ISPH conservative, d/16", &s);
+}
+
+#[test]
+#[ignore = "fails today: the first half period is 12 % short and the wave grows (docs/notes/standing-wave.md)"]
+fn a_standing_wave_keeps_its_amplitude_and_period_with_default_isph() {
+    let s = swing(FluidMethodName::Isph, PressureGradient::CorrectedDifference, 16.0);
+    check("ISPH corrected difference, d/16", &s);
+}
+
+#[test]
+#[ignore = "fails today: E-MPS's settling noise swamps the wave (docs/notes/standing-wave.md)"]
+fn a_standing_wave_keeps_its_amplitude_and_period_with_emps() {
+    let s = swing(FluidMethodName::Emps, PressureGradient::default(), 16.0);
+    check("E-MPS, d/16", &s);
+}
