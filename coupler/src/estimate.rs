@@ -1,78 +1,142 @@
-//! Before a run starts: how many windows it has and how much it will write — a lower bound, from
-//! the case alone — printed, and a run refused when that is more than the disk has free or more
-//! than `--max-output` allows.
+//! Before a run starts: how many windows it has and about how much it will write, from the case
+//! alone, printed, and a run refused when that is more than the disk has free or more than
+//! `--max-output` allows.
 //!
-//! What is counted (each the least the run writes):
-//! - fluid frames: `floor(end_time / output_interval) + 1` VTU files of 78 bytes per written particle
-//!   (position and velocity as 3 × f64, pressure f64, kind u8, id u32, and a vertex cell: i64
-//!   connectivity and offset, u8 type; `fluid-solver/src/vtu.rs`); written particles are the
-//!   blocks' water, the bodies and the two wall layers next to the tank (the outer ones are not
-//!   written); inflow particles and free-surface meshes come on top;
-//! - the recording: per window and participant one request and one answer, each about 40 bytes
-//!   plus, per sample, 8 bytes of time, 14 array lengths and 8 bytes per interface value (a fluid
-//!   body: 25 values; a structure body 19, point mass 9, frame node 15); implicit windows repeat
-//!   this per sweep (counted once);
-//! - the ledger: per window about 30 bytes of window, time, iterations and residual, then 19 bytes
-//!   per `{:.12e}` number: 4 per participant and the net force's 3.
-//!
-//! Measured on the floating box at Δs = 2 cm, 0.2 s (400 windows): VTU frames 876 kB each against
-//! 875 kB estimated (11 215 particles; the first frame also holds the gate), ledger 97.5 kB against
-//! 95.6 kB, recording 418 kB against 240 kB (the lower bound leaves out the handshake and message
-//! framing).
-//! - structure histories: one row per interval per file, at least 10 bytes per value;
-//! - `interface_energy.csv` (coupled runs): about 100 bytes per window;
-//! - checkpoints (`coupling.checkpoint_interval`): the last two are kept, each at least 86 bytes
-//!   per written fluid particle (measured: 1.9 MB for 21 919 particles, docs/guide/checkpoint-resume.md) and the coupler's manifest, about 1 kB; the structure's are small.
+//! An estimate, not a bound: each output is modelled from its byte counts measured on the shipped
+//! cases (2026-11-29, the 2-core machine, release build); the table in docs/guide/outputs.md
+//! ("How large a run is") compares it with what every shipped case wrote: 0.79–1.16 of it.
+//! - fluid frames: `floor(end_time / output_interval) + 1` VTU files of 78 bytes per written
+//!   particle (`fluid-solver/src/output/vtu.rs`); written particles are the blocks' water, the
+//!   walls, the box bodies, an inflow's strip at full level and the two wall layers next to the
+//!   tank; a `.pvd` line per frame; a solver running alone also writes one at `end_time`;
+//! - free-surface meshes (`surface_mesh`): per frame 700 bytes per Δs² of the water blocks'
+//!   surface area (tutorial: 918 kB a frame over 0.5 s for 1300 Δs²; floating box 734 B/Δs² in
+//!   its first frame);
+//! - probes: a row per `probe_interval` of 13 bytes plus 13 per probe (`{:.6e}` columns);
+//! - the recording: per solver sweep, per participant a request and an answer of 178 bytes of
+//!   framing (names, wall times, checksum) plus 5 per sample, and 8 bytes per sample and interface
+//!   value (a fluid body 25 values, a structure body 19, point mass 9, frame node 15); fitted to
+//!   the oscillator (1362 B a sweep) and the floating box (1083 B a window). An implicit window
+//!   is counted as [`TYPICAL_SWEEPS`] sweeps (at most `max_iterations`): measured 2.5 on the
+//!   tutorial, 5.0 on the oscillator;
+//! - the ledger: per window about 30 bytes then 19 per `{:.12e}` number, 4 per participant and
+//!   the net force's 3; `interface_energy.csv` about 100 bytes per window;
+//! - structure histories: a row per history interval (and one at 0) of 53 bytes per point mass,
+//!   165 per free body, 60 per body held by a support (rigid-washout: its initial pose until the
+//!   release), 145 per frame node;
+//! - a frame's outputs per history row: a snapshot (1500 bytes of tags, 98 per node and per cell
+//!   value block: nodes + 3 per member; plastic collapse: 3.2 kB), a `.pvd` line, the section
+//!   forces (78 bytes per element end, 4 per member) and an `energy.csv` row (125 bytes);
+//! - checkpoints (`coupling.checkpoint_interval`, once the run passes one): the last two, each
+//!   87 bytes per fluid particle, outer wall layers included (tutorial: 1.92 MB for 21 919), and
+//!   the coupler's, about 10 kB.
 
 use crate::error::CouplerError;
+use schemas::case::coupling::Scheme;
 use schemas::case::{Case, FluidConfig};
 use std::path::Path;
 
 /// Bytes per written particle in a VTU frame.
 const VTU_BYTES_PER_PARTICLE: f64 = 78.0;
 
-/// Bytes per fluid particle in a checkpoint.
-const CHECKPOINT_BYTES_PER_PARTICLE: f64 = 86.0;
+/// Bytes of a free-surface mesh per frame and Δs² of the water blocks' surface area.
+const SURFACE_BYTES_PER_DS2: f64 = 700.0;
 
-/// Bytes of the coupler's manifest in a checkpoint (measured: about 1 kB).
-const CHECKPOINT_MANIFEST_BYTES: f64 = 1000.0;
+/// Bytes of a `.pvd` line (one per frame or snapshot).
+const PVD_LINE_BYTES: f64 = 70.0;
+
+/// Bytes per fluid particle in a checkpoint.
+const CHECKPOINT_BYTES_PER_PARTICLE: f64 = 87.0;
+
+/// Bytes of the coupler's part of a checkpoint (measured: 8–10 kB).
+const CHECKPOINT_COUPLER_BYTES: f64 = 10_000.0;
 
 /// Bytes per window of `interface_energy.csv`.
 const INTERFACE_ENERGY_BYTES_PER_WINDOW: f64 = 100.0;
 
-/// What a run will write, at least.
+/// Sweeps counted per implicit window (at most `max_iterations`): measured 2.5 (tutorial, 1256
+/// sweeps in 500 windows) to 5.0 (oscillator, tolerance 1e-10: 498 in 100).
+pub const TYPICAL_SWEEPS: u32 = 5;
+
+/// What a run will write, about.
 #[derive(Debug, Clone, Default)]
 pub struct Estimate {
     /// Coupling windows (none for a solver run alone).
     pub windows: Option<f64>,
+    /// Sweeps counted per window: 1, or [`TYPICAL_SWEEPS`] for an implicit scheme.
+    pub sweeps: f64,
     /// Fluid VTU frames: (frames, written particles per frame, bytes).
     pub fluid: Vec<(f64, f64, f64)>,
-    pub surface_meshes: bool,
+    /// Free-surface meshes.
+    pub surface_meshes: f64,
+    /// Probe CSVs.
+    pub probes: f64,
     pub recording: f64,
     /// `ledger.csv` and `interface_energy.csv`.
     pub ledger: f64,
+    /// Structure CSV histories and frame outputs.
     pub histories: f64,
     /// The checkpoints kept at once ([`crate::checkpoint::KEEP`]).
     pub checkpoints: f64,
+}
+
+/// Rows of an output every `interval` up to `end`, the one at 0 included; a solver running
+/// `alone` also writes one at `end`, a coupled one only at the window ends at or after each
+/// multiple.
+fn rows(end: f64, interval: f64, alone: bool) -> f64 {
+    let ratio = end / interval;
+    1.0 + if alone {
+        (ratio - 1e-9).ceil().max(0.0)
+    } else {
+        (ratio + 1e-9).floor()
+    }
 }
 
 impl Estimate {
     /// The estimate for `case`.
     pub fn of(case: &Case) -> Estimate {
         let end = case.info.end_time;
-        let mut e = Estimate::default();
+        let alone = case.coupling.is_none();
+        let mut e = Estimate {
+            sweeps: 1.0,
+            ..Estimate::default()
+        };
         for f in case.fluid.values() {
-            let frames = (end / f.output_interval).floor() + 1.0;
+            let frames = rows(end, f.output_interval, alone);
             let particles = written_particles(f);
-            e.fluid
-                .push((frames, particles, frames * particles * VTU_BYTES_PER_PARTICLE));
-            e.surface_meshes |= f.surface_mesh;
+            e.fluid.push((
+                frames,
+                particles,
+                frames * (particles * VTU_BYTES_PER_PARTICLE + PVD_LINE_BYTES),
+            ));
+            if f.surface_mesh {
+                let area = surface_area(&f.block);
+                let per_frame = SURFACE_BYTES_PER_DS2 * area / (f.spacing * f.spacing) + PVD_LINE_BYTES;
+                e.surface_meshes += frames * per_frame;
+            }
+            let interval = f.probe_interval.unwrap_or(f.output_interval);
+            e.probes += rows(end, interval, alone) * (13.0 + 13.0 * f.probe.len() as f64);
         }
         for s in case.structure.values() {
-            if let Some(h) = &s.history {
-                let rows = (end / h.interval).ceil();
-                let values = 7 * h.points.len() + 15 * h.bodies.len() + 10 * h.nodes.len();
-                e.histories += rows * values as f64 * 10.0;
+            let Some(h) = &s.history else { continue };
+            let n = rows(end, h.interval, alone);
+            let held = |b: &str| s.support.iter().any(|x| x.body == b);
+            let bodies: f64 = h.bodies.iter().map(|b| if held(b) { 60.0 } else { 165.0 }).sum();
+            e.histories += n * (53.0 * h.points.len() as f64 + bodies + 145.0 * h.nodes.len() as f64);
+            if let Some(frame) = &s.frame {
+                let (nodes, members) = (frame.node.len() as f64, frame.member.len() as f64);
+                let snapshots = match (h.vtu, h.vtu_interval) {
+                    (false, _) => 0.0,
+                    (true, Some(i)) => rows(end, i.max(h.interval), alone),
+                    (true, None) => n,
+                };
+                let snapshot = 1500.0 + 98.0 * (nodes + 3.0 * members) + PVD_LINE_BYTES;
+                let sections = if h.section_forces {
+                    78.0 * 4.0 * members
+                } else {
+                    0.0
+                };
+                e.histories += snapshots * snapshot + n * (sections + 125.0);
             }
         }
         if let Some(c) = &case.coupling {
@@ -89,15 +153,18 @@ impl Estimate {
                 }))
                 .sum();
             let participants = case.participants().len() as f64;
-            let per_window = participants * 2.0 * (40.0 + samples * 22.0) + samples * 8.0 * values as f64;
+            if c.scheme == Scheme::Implicit {
+                e.sweeps = f64::from(TYPICAL_SWEEPS.min(c.max_iterations.max(1)));
+            }
+            let per_sweep = participants * 2.0 * (178.0 + samples * 5.0) + samples * 8.0 * values as f64;
             e.windows = Some(windows);
-            e.recording = windows * per_window;
+            e.recording = windows * e.sweeps * per_sweep;
             e.ledger = windows * (30.0 + 19.0 * (4.0 * participants + 3.0))
                 + windows * INTERFACE_ENERGY_BYTES_PER_WINDOW;
-            if c.checkpoint_interval.is_some() {
-                let particles: f64 = e.fluid.iter().map(|f| f.1).sum();
-                e.checkpoints = crate::checkpoint::KEEP as f64
-                    * (CHECKPOINT_MANIFEST_BYTES + particles * CHECKPOINT_BYTES_PER_PARTICLE);
+            if let Some(interval) = c.checkpoint_interval {
+                let kept = (crate::checkpoint::KEEP as f64).min((end / interval + 1e-9).floor());
+                let particles: f64 = case.fluid.values().map(all_particles).sum();
+                e.checkpoints = kept * (CHECKPOINT_COUPLER_BYTES + particles * CHECKPOINT_BYTES_PER_PARTICLE);
             }
         }
         e
@@ -106,6 +173,8 @@ impl Estimate {
     /// Bytes in all.
     pub fn total(&self) -> f64 {
         self.fluid.iter().map(|f| f.2).sum::<f64>()
+            + self.surface_meshes
+            + self.probes
             + self.recording
             + self.ledger
             + self.histories
@@ -117,38 +186,43 @@ impl Estimate {
         let mut parts = Vec::new();
         for (frames, particles, bytes) in &self.fluid {
             parts.push(format!(
-                "fluid frames {} ({} × {} particles × 78 B{})",
+                "fluid frames {} ({} × {} particles × 78 B)",
                 bytes_text(*bytes),
                 count_text(*frames),
                 count_text(*particles),
-                if self.surface_meshes {
-                    ", plus free-surface meshes"
-                } else {
-                    ""
-                }
             ));
         }
+        if self.surface_meshes > 0.0 {
+            parts.push(format!("free-surface meshes {}", bytes_text(self.surface_meshes)));
+        }
+        if self.probes > 0.0 {
+            parts.push(format!("probes {}", bytes_text(self.probes)));
+        }
         if self.windows.is_some() {
-            parts.push(format!("recording {}", bytes_text(self.recording)));
+            let sweeps = if self.sweeps > 1.0 {
+                format!(", assuming {} sweeps per window", self.sweeps)
+            } else {
+                String::new()
+            };
+            parts.push(format!("recording {}{sweeps}", bytes_text(self.recording)));
             parts.push(format!("ledger and interface energy {}", bytes_text(self.ledger)));
         }
         if self.checkpoints > 0.0 {
             parts.push(format!("checkpoints {}", bytes_text(self.checkpoints)));
         }
         if self.histories > 0.0 {
-            parts.push(format!("structure histories {}", bytes_text(self.histories)));
+            parts.push(format!("structure outputs {}", bytes_text(self.histories)));
         }
         let windows = self
             .windows
             .map(|w| format!("{} windows; ", count_text(w)))
             .unwrap_or_default();
         format!(
-            "{windows}at least {} of output ({})",
+            "{windows}about {} of output ({})",
             bytes_text(self.total()),
             parts.join(", ")
         )
     }
-
     /// Refuses a run whose estimate exceeds `max_output` bytes or the free space where `out` is.
     pub fn check(&self, out: &Path, max_output: u64) -> Result<(), CouplerError> {
         let total = self.total();
@@ -177,6 +251,16 @@ impl Estimate {
 /// Particles a fluid frame holds: the blocks' water, the bodies and the two wall layers next to
 /// the tank (lattice counts, `round(extent / Δs)` per axis as the fluid solver lays them out).
 fn written_particles(f: &FluidConfig) -> f64 {
+    particles(f, 2.0_f64.min(f64::from(f.wall_layers)))
+}
+
+/// Particles a checkpoint holds: as [`written_particles`], with every wall layer.
+fn all_particles(f: &FluidConfig) -> f64 {
+    particles(f, f64::from(f.wall_layers))
+}
+
+/// The blocks' water, the bodies and `layers` wall layers around the tank.
+fn particles(f: &FluidConfig, layers: f64) -> f64 {
     let ds = f.spacing;
     let count = |min: [f64; 3], max: [f64; 3]| -> f64 {
         (0..3)
@@ -184,8 +268,20 @@ fn written_particles(f: &FluidConfig) -> f64 {
             .product()
     };
     let water: f64 = f.block.iter().map(|b| count(b.min, b.max)).sum();
-    let bodies: f64 = f.body.iter().map(|b| count(b.min, b.max)).sum();
-    let layers = 2.0_f64.min(f64::from(f.wall_layers)) * ds;
+    // a mesh body (no `min`/`max`) is left out: small beside the water and walls
+    let walls: f64 = f.wall.iter().map(|w| count(w.min, w.max)).sum();
+    // an inflow's strip at its full level (bridge-washout-small: frames grow from 11 935 to
+    // 15 303 particles over 7.2 s; the strip at full level accounts for a third of that)
+    let inflow = f.inflow.as_ref().map_or(0.0, |i| {
+        let span = i.span.unwrap_or([f.tank.min[1], f.tank.max[1]]);
+        let floor = f.tank.min[2];
+        count(
+            [i.plane - i.strip_length, span[0], floor],
+            [i.plane, span[1], floor + i.level],
+        )
+    });
+    let bodies: f64 = f.body.iter().filter_map(|b| Some(count(b.min?, b.max?))).sum();
+    let layers = layers * ds;
     let t = &f.tank;
     let outer_min = [t.min[0] - layers, t.min[1] - layers, t.min[2] - layers];
     let outer_max = [
@@ -193,8 +289,34 @@ fn written_particles(f: &FluidConfig) -> f64 {
         t.max[1] + layers,
         t.max[2] + if t.lid { layers } else { 0.0 },
     ];
-    let walls = count(outer_min, outer_max) - count(t.min, t.max);
-    water + bodies + walls.max(0.0)
+    let tank_walls = count(outer_min, outer_max) - count(t.min, t.max);
+    water + walls + inflow + bodies + tank_walls.max(0.0)
+}
+
+/// Surface area [m²] of the union of `blocks`: their faces less twice the faces two blocks share
+/// (blocks that touch; overlaps are not looked for).
+fn surface_area(blocks: &[schemas::case::fluid::Aabb]) -> f64 {
+    let extent = |b: &schemas::case::fluid::Aabb, a: usize| (b.max[a] - b.min[a]).max(0.0);
+    let faces: f64 = blocks
+        .iter()
+        .map(|b| {
+            2.0 * (extent(b, 0) * extent(b, 1) + extent(b, 1) * extent(b, 2) + extent(b, 2) * extent(b, 0))
+        })
+        .sum();
+    let mut shared = 0.0;
+    for (i, a) in blocks.iter().enumerate() {
+        for b in &blocks[i + 1..] {
+            for axis in 0..3 {
+                let touch =
+                    (a.max[axis] - b.min[axis]).abs() < 1e-9 || (b.max[axis] - a.min[axis]).abs() < 1e-9;
+                if touch {
+                    let overlap = |k: usize| (a.max[k].min(b.max[k]) - a.min[k].max(b.min[k])).max(0.0);
+                    shared += overlap((axis + 1) % 3) * overlap((axis + 2) % 3);
+                }
+            }
+        }
+    }
+    (faces - 2.0 * shared).max(0.0)
 }
 
 /// Free bytes for an unprivileged user on the file system that holds `dir` (or its nearest
@@ -263,5 +385,17 @@ mod tests {
         assert_eq!(bytes_text(3e300), "3.0e300 B");
         assert_eq!(count_text(7000.0), "7000");
         assert_eq!(count_text(1e302), "1.0e302");
+    }
+
+    #[test]
+    fn blocks_that_touch_share_no_surface() {
+        use schemas::case::fluid::Aabb;
+        let block = |x0: f64, x1: f64| Aabb {
+            min: [x0, 0.0, 0.0],
+            max: [x1, 1.0, 1.0],
+        };
+        // one unit cube: 6 m²; two side by side: a 2 × 1 × 1 box, 10 m²
+        assert!((surface_area(&[block(0.0, 1.0)]) - 6.0).abs() < 1e-12);
+        assert!((surface_area(&[block(0.0, 1.0), block(1.0, 2.0)]) - 10.0).abs() < 1e-12);
     }
 }

@@ -9,7 +9,9 @@ use crate::launch::executable_for;
 use crate::run::{new_run_id, output_folder, participant_args};
 use crate::stack::{variant, Launch, Stack};
 use schemas::case::{Case, Kind};
-use schemas::message::{Fields, FromParticipant, Role, ToParticipant, PROTOCOL_VERSION};
+use schemas::message::{
+    Fields, FromParticipant, Role, ToParticipant, OLDEST_REPLAYABLE_PROTOCOL, PROTOCOL_VERSION,
+};
 use schemas::recording::{Message, Recording, RecordingEnd, RunEnd};
 use schemas::signals;
 use std::collections::BTreeMap;
@@ -58,11 +60,12 @@ pub struct ReplayReport {
 /// [`CouplerError`] with exit code 1, like a departure.
 pub fn replay(opts: &ReplayOptions) -> Result<ReplayReport, CouplerError> {
     let recording = Recording::read(&opts.recording).map_err(|e| CouplerError::Usage(e.to_string()))?;
-    if recording.header.protocol != PROTOCOL_VERSION {
+    if !(OLDEST_REPLAYABLE_PROTOCOL..=PROTOCOL_VERSION).contains(&recording.header.protocol) {
         return Err(CouplerError::Usage(format!(
-            "{}: recorded with message protocol version {}, this coupler speaks version {PROTOCOL_VERSION}: \
-             its messages do not read back with this build. Replay it with the build that recorded it, or \
-             record the case again with this one",
+            "{}: recorded with message protocol version {}, this coupler speaks version {PROTOCOL_VERSION} and \
+             replays recordings of versions {OLDEST_REPLAYABLE_PROTOCOL} to {PROTOCOL_VERSION}: its messages do \
+             not read back with this build. Replay it with the build that recorded it, or record the case \
+             again with this one",
             opts.recording.display(),
             recording.header.protocol
         )));

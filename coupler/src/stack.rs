@@ -1,8 +1,11 @@
 //! The running participants of a case: their processes, their links, the handshake, and
-//! every message in and out (each one recorded).
+//! every message in and out (each one recorded, but for progress reports: [`liveness`]).
+
+mod liveness;
 
 use crate::error::CouplerError;
 use crate::launch::{log_tail, Children};
+use liveness::{no_progress, progress_interval, LastReport};
 use schemas::link::{Link, LinkError, Side};
 use schemas::message::{FromParticipant, Geometry, InterfaceDecl, Role, ToParticipant, PROTOCOL_VERSION};
 use schemas::recording::{Message, Recorder};
@@ -37,16 +40,19 @@ pub struct Stack {
     children: Children,
     recorder: Option<Recorder>,
     started: Instant,
+    /// Longest wall time a participant may go without answering or reporting progress.
     timeout: Duration,
 }
 
 impl Stack {
     /// Starts every participant, opens their links and shakes hands (protocol version, role,
-    /// case hash). Returns the stack and each participant's initial outputs. A run resumed from a
-    /// checkpoint taken `resumed` wall seconds into the run appends to the logs, keeps its wall
-    /// clock going from there, and does not record the handshake (the recording already holds the
-    /// first run's). When a participant cannot be started or refuses the handshake, the others are
-    /// stopped and the recording ends with why ([`Stack::abort`]).
+    /// case hash); each is asked for progress reports at [`progress_interval`] of `timeout`, the
+    /// longest wall time it may go without answering or reporting. Returns the stack and each
+    /// participant's initial outputs. A run resumed from a checkpoint taken `resumed` wall seconds
+    /// into the run appends to the logs, keeps its wall clock going from there, and does not record
+    /// the handshake (the recording already holds the first run's). When a participant cannot be
+    /// started or refuses the handshake, the others are stopped and the recording ends with why
+    /// ([`Stack::abort`]).
     pub fn launch(
         launches: Vec<Launch>,
         run_id: &str,
@@ -99,9 +105,12 @@ impl Stack {
         out: &std::path::Path,
         append_logs: bool,
     ) -> Result<Vec<schemas::message::Fields>, CouplerError> {
+        let interval = progress_interval(self.timeout).as_secs_f64().to_string();
         for l in launches {
             let log = out.join(format!("{}.log", l.name));
-            let pid = self.children.spawn(&l.name, &l.exe, &l.args, &log, append_logs)?;
+            let mut args = l.args.clone();
+            args.extend(["--progress-interval".to_string(), interval.clone()]);
+            let pid = self.children.spawn(&l.name, &l.exe, &args, &log, append_logs)?;
             crate::say!("started {} ({}, pid {pid})", l.name, l.exe.display());
             let link =
                 Link::open(run_id, &l.name, Side::Coupler).map_err(|e| link_error(&l.name, None, e))?;
@@ -130,8 +139,17 @@ impl Stack {
         let name = self.sessions[i].name.clone();
         let expected_role = self.sessions[i].role;
         let deadline = Instant::now() + START_TIMEOUT;
-        self.wait(i, None, |link, alive| link.wait_for_peer(deadline, alive))?;
-        let hello = match self.recv_until(i, None, Some(deadline))? {
+        let late = format!(
+            "did not connect and say Hello within {} s of its start",
+            START_TIMEOUT.as_secs()
+        );
+        self.wait(i, None, late.clone(), |link, alive| {
+            link.wait_for_peer(deadline, alive)
+        })?;
+        let hello = self.wait(i, None, late, |link, alive| {
+            link.recv::<FromParticipant>(Some(deadline), alive)
+        })?;
+        let hello = match self.take(i, hello)? {
             FromParticipant::Hello(h) => h,
             other => return Err(self.protocol_error(i, None, "Hello", &other)),
         };
@@ -214,11 +232,7 @@ impl Stack {
             .link
             .send(&msg)
             .map_err(|e| link_error(&name, Some(window), e))?;
-        let deadline = Instant::now() + self.timeout;
-        let answer = self.wait(i, Some(window), |link, alive| {
-            link.recv::<FromParticipant>(Some(deadline), alive)
-        })?;
-        match answer {
+        match self.answer(i, Some(window))? {
             FromParticipant::CheckpointWritten { window: w, bytes } if w == window => Ok(bytes),
             FromParticipant::Failed { diagnostic, .. } => Err(CouplerError::Participant {
                 name,
@@ -235,21 +249,36 @@ impl Stack {
         self.started.elapsed().as_secs_f64()
     }
 
-    /// Waits (idle) for participant `i`'s next message, at most the case's timeout, and records it.
+    /// Waits (idle) for participant `i`'s answer ([`Stack::answer`]) and records it.
     pub fn recv(&mut self, i: usize, window: Option<u64>) -> Result<FromParticipant, CouplerError> {
-        let deadline = Instant::now() + self.timeout;
-        self.recv_until(i, window, Some(deadline))
+        let msg = self.answer(i, window)?;
+        self.take(i, msg)
     }
 
-    fn recv_until(
-        &mut self,
-        i: usize,
-        window: Option<u64>,
-        deadline: Option<Instant>,
-    ) -> Result<FromParticipant, CouplerError> {
-        let msg = self.wait(i, window, |link, alive| {
-            link.recv::<FromParticipant>(deadline, alive)
-        })?;
+    /// Waits (idle) for participant `i`'s answer, taking its progress reports on the way (not
+    /// recorded): it is taken as hung when neither comes for the case's timeout, however long the
+    /// whole answer takes.
+    fn answer(&mut self, i: usize, window: Option<u64>) -> Result<FromParticipant, CouplerError> {
+        let mut last: Option<LastReport> = None;
+        loop {
+            let deadline = Instant::now() + self.timeout;
+            let late = no_progress(self.timeout, last.as_ref());
+            match self.wait(i, window, late, |link, alive| {
+                link.recv::<FromParticipant>(Some(deadline), alive)
+            })? {
+                FromParticipant::Progress { header, steps } => {
+                    last = Some(LastReport {
+                        steps,
+                        time: header.time,
+                    })
+                }
+                answer => return Ok(answer),
+            }
+        }
+    }
+
+    /// Records a message of participant `i`; a `Failed` one becomes the participant's error.
+    fn take(&mut self, i: usize, msg: FromParticipant) -> Result<FromParticipant, CouplerError> {
         let name = self.sessions[i].name.clone();
         self.record(&name, Message::From(msg.clone()))?;
         if let FromParticipant::Failed { header, diagnostic } = &msg {
@@ -262,11 +291,13 @@ impl Stack {
         Ok(msg)
     }
 
-    /// Runs a blocking link call for participant `i` while watching every process and Ctrl-C.
+    /// Runs a blocking link call for participant `i` while watching every process and Ctrl-C; when
+    /// the call times out, the participant's error says `late`.
     fn wait<T>(
         &mut self,
         i: usize,
         window: Option<u64>,
+        late: String,
         call: impl FnOnce(&Link, &mut dyn FnMut() -> Result<(), String>) -> Result<T, LinkError>,
     ) -> Result<T, CouplerError> {
         let mut cause: Option<CouplerError> = None;
@@ -304,10 +335,7 @@ impl Stack {
             (Err(LinkError::Timeout), None) => Err(CouplerError::Participant {
                 name: self.sessions[i].name.clone(),
                 window,
-                message: format!(
-                    "no answer within {:.1} s (hung?); raise coupling.timeout if it is only slow",
-                    self.timeout.as_secs_f64()
-                ),
+                message: late,
             }),
             (Err(e), None) => Err(link_error(&self.sessions[i].name, window, e)),
         }
@@ -430,6 +458,7 @@ pub fn variant(m: &FromParticipant) -> &'static str {
         FromParticipant::Failed { .. } => "Failed",
         FromParticipant::Finished => "Finished",
         FromParticipant::CheckpointWritten { .. } => "CheckpointWritten",
+        FromParticipant::Progress { .. } => "Progress",
     }
 }
 

@@ -18,7 +18,8 @@
 //! exchange time at or after each output time, and the probe CSV (`NAME_probes.csv`) at the
 //! first exchange time at or after each probe time, once the window is accepted. Progress lines
 //! go to the participant's log at the case's `progress_interval`, and `finish` writes the run's
-//! summary there.
+//! summary there. Every step is reported to the coupler as it is done (`advance_reporting`), so a
+//! window longer than `coupling.timeout` is not taken for a hang.
 
 mod body_motion;
 mod resume;
@@ -34,7 +35,7 @@ use schemas::case::fluid::FluidBackend;
 use schemas::case::Case;
 use schemas::f64s::F64s;
 use schemas::message::{Fields, InterfaceDecl, Role, Waveform};
-use schemas::participant::Participant;
+use schemas::participant::{DiscardProgress, Participant, ProgressSink};
 use schemas::pvd::Collection;
 use std::path::{Path, PathBuf};
 
@@ -403,6 +404,15 @@ impl Participant for FluidParticipant {
     }
 
     fn advance(&mut self, inputs: &Waveform) -> Result<Vec<Fields>, String> {
+        self.advance_reporting(inputs, &mut DiscardProgress)
+    }
+
+    /// Advances over the window, telling `progress` of every step.
+    fn advance_reporting(
+        &mut self,
+        inputs: &Waveform,
+        progress: &mut dyn ProgressSink,
+    ) -> Result<Vec<Fields>, String> {
         let now = self.solver.time();
         let start = inputs.start();
         if (start - now).abs() > TIME_MATCH * now.abs().max(1.0) {
@@ -435,6 +445,7 @@ impl Participant for FluidParticipant {
                 self.solver
                     .step(dt)
                     .map_err(|e| format!("fluid `{}`: {e}", self.name))?;
+                progress.step_done(self.solver.time());
                 if let Some(p) = &mut self.probes {
                     let next = p.next_row();
                     p.probes.observe(&self.solver, next);

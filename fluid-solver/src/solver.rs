@@ -128,22 +128,15 @@ impl FluidSolver {
             }
         };
         let grid = CellGrid::with_cell(layout.grid_box.lo, layout.grid_box.hi, cell);
-        let boxes: Vec<([f64; 3], [f64; 3])> = cfg.body.iter().map(|b| (b.min, b.max)).collect();
-        let bodies = RigidBodies::new(&layout.bodies, &boxes, &layout.particles);
-        let body_pose: Vec<f64> = (0..boxes.len())
+        let centres: Vec<[f64; 3]> = cfg.body.iter().map(|b| b.centre()).collect();
+        let bodies = RigidBodies::new(&layout.bodies, &centres, &layout.particles);
+        let body_pose: Vec<f64> = (0..centres.len())
             .flat_map(|b| {
                 let c = bodies.initial_centre(b);
                 [c[0], c[1], c[2], 1.0, 0.0, 0.0, 0.0]
             })
             .collect();
-        let body_boxes: Vec<Aabb> = cfg
-            .body
-            .iter()
-            .map(|b| Aabb {
-                min: b.min,
-                max: b.max,
-            })
-            .collect();
+        let body_boxes: Vec<Option<Aabb>> = cfg.body.iter().map(|b| b.box_bounds()).collect();
         let mut monitor = StabilityMonitor::new(
             layout.domain,
             open_top,
@@ -196,7 +189,7 @@ impl FluidSolver {
                 particles,
                 grid,
                 method: method_state,
-                body_velocity: vec![0.0; 6 * boxes.len()],
+                body_velocity: vec![0.0; 6 * centres.len()],
                 body_exchange: BodyExchange::default(),
                 body_pose,
                 time: 0.0,

@@ -65,9 +65,10 @@ pub struct StabilityMonitor {
     solids: Vec<Aabb>,
     /// The mesh solids' and terrains' sites ([`SolidSites::deep_inside`]).
     solid_sites: Arc<SolidSites>,
-    /// Each body's half extents less half a spacing, about its centre (checked at the pose given
-    /// to [`StabilityMonitor::check`]).
-    bodies: Vec<[f64; 3]>,
+    /// Each box body's half extents less half a spacing, about its centre (checked at the pose
+    /// given to [`StabilityMonitor::check`]); `None` for a mesh body, whose bounding box may
+    /// hold water (under a deck's arch), so it is not checked.
+    bodies: Vec<Option<[f64; 3]>>,
     spacing: f64,
     gravity: [f64; 3],
     /// Mechanical energy per unit particle mass at the start, and the allowed growth.
@@ -82,20 +83,21 @@ type Finding = (u32, &'static str, String);
 
 impl StabilityMonitor {
     /// A monitor for a tank with fixed `walls` and rigid `bodies` (boxes at their initial
-    /// placement), particles of `spacing`; fluid leaving through `open_top` is not a finding.
+    /// placement; `None` for a mesh body, not checked), particles of `spacing`; fluid leaving
+    /// through `open_top` is not a finding.
     pub fn new(
         domain: Domain,
         open_top: OpenTop,
         tank: Aabb,
         walls: &[Aabb],
-        bodies: &[Aabb],
+        bodies: &[Option<Aabb>],
         spacing: f64,
         gravity: [f64; 3],
     ) -> Self {
         let h = 0.5 * spacing;
         let bodies = bodies
             .iter()
-            .map(|b| std::array::from_fn(|a| 0.5 * (b.max[a] - b.min[a]) - h))
+            .map(|b| b.map(|b| std::array::from_fn(|a| 0.5 * (b.max[a] - b.min[a]) - h)))
             .collect();
         let solids = walls
             .iter()
@@ -332,6 +334,7 @@ impl StabilityMonitor {
     /// Whether `r` lies inside a body at its present pose; the message says which and where.
     fn inside_body(&self, r: [f64; 3], body_pose: &[f64]) -> Option<String> {
         self.bodies.iter().enumerate().find_map(|(b, half)| {
+            let half = half.as_ref()?;
             let pose = body_pose.get(7 * b..7 * b + 7)?;
             let c = [pose[0], pose[1], pose[2]];
             let inverse = [pose[3], -pose[4], -pose[5], -pose[6]];

@@ -1,10 +1,11 @@
 //! The coupled-run side: checkpoints repeat a window bit for bit, windows land exactly on
-//! their end, and the pressure load on a resolved body is hydrostatic at rest.
+//! their end, the pressure load on a resolved body is hydrostatic at rest, and every step is
+//! reported as progress.
 
 use fluid_solver::participant::FluidParticipant;
 use schemas::case::Case;
 use schemas::message::{Fields, Waveform};
-use schemas::participant::Participant;
+use schemas::participant::{Participant, ProgressSink};
 use std::path::Path;
 
 /// A 4 × 4 × 4-particle box on the floor of a 0.2 × 0.2 m tank, water 0.3 m deep around it.
@@ -222,4 +223,37 @@ fn a_checkpoint_file_continues_the_run_bit_for_bit() {
         );
         let _ = std::fs::remove_file(&file);
     }
+}
+
+/// Counts the steps reported to it and keeps the times.
+#[derive(Default)]
+struct Reports {
+    times: Vec<f64>,
+}
+
+impl ProgressSink for Reports {
+    fn step_done(&mut self, time: f64) {
+        self.times.push(time);
+    }
+}
+
+/// The coupler takes a long window for a hang unless the fluid reports its steps as it goes.
+#[test]
+fn every_step_of_a_window_is_reported_with_the_time_it_reached() {
+    let mut p = participant();
+    let mut reports = Reports::default();
+    let steps_before = p.solver().steps();
+    let outputs = p
+        .advance_reporting(&window(0.0, 0.0101, 2), &mut reports)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(outputs.len(), 3);
+    let steps = p.solver().steps() - steps_before;
+    assert!(steps >= 13, "0.0101 s in steps of at most 8e-4 s: {steps}");
+    assert_eq!(reports.times.len() as u64, steps, "one report per step");
+    assert!(
+        reports.times.windows(2).all(|t| t[0] < t[1]),
+        "times rise: {:?}",
+        reports.times
+    );
+    assert_eq!(reports.times.last().copied(), Some(0.0101));
 }

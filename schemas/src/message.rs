@@ -1,14 +1,20 @@
 //! Interface messages between the coupler and a participant, with the protocol version.
 //!
 //! Every exchange is lock-step: the coupler sends one [`ToParticipant`], the participant answers
-//! with one [`FromParticipant`]. Bulk data travel as [`Fields`] of flat `f64` arrays whose order
-//! is fixed by the participant's [`InterfaceDecl`] at the handshake.
+//! with one [`FromParticipant`] — before which, while it works on a long window, it may send any
+//! number of [`FromParticipant::Progress`] reports. Bulk data travel as [`Fields`] of flat `f64`
+//! arrays whose order is fixed by the participant's [`InterfaceDecl`] at the handshake.
 
 use crate::f64s::F64s;
 use bincode::{Decode, Encode};
 
 /// Version of this message set; a participant with another version is refused at the handshake.
-pub const PROTOCOL_VERSION: u32 = 3;
+/// Version 4 added [`FromParticipant::Progress`].
+pub const PROTOCOL_VERSION: u32 = 4;
+
+/// The oldest protocol version whose recordings this build replays: every recorded message of
+/// versions 3 and 4 encodes the same ([`FromParticipant::Progress`], new in 4, is never recorded).
+pub const OLDEST_REPLAYABLE_PROTOCOL: u32 = 3;
 
 /// Which solver a participant is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Encode, Decode)]
@@ -195,5 +201,15 @@ pub enum FromParticipant {
     CheckpointWritten {
         window: u64,
         bytes: u64,
+    },
+    /// Not an answer: the participant is still working on the `Advance` of `header`'s window and
+    /// iteration, and has taken `steps` solver steps of it so far, reaching `header.time` [s]. Sent
+    /// at most every `--progress-interval` seconds of wall time, only after a step; the coupler
+    /// takes a participant as hung when neither a report nor an answer comes for
+    /// `coupling.timeout`. Not recorded: reports come at wall-clock times, so a run and its replay
+    /// differ in them (protocol version 4).
+    Progress {
+        header: Header,
+        steps: u64,
     },
 }

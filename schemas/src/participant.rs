@@ -2,13 +2,19 @@
 //!
 //! The loop: open the link, wait for the coupler, say [`Hello`], get `Welcome` (or `Refused`),
 //! send the initial outputs, then answer every `Advance` until `Finish`. The coupler's liveness
-//! is checked during every wait; a participant whose coupler is gone stops.
+//! is checked during every wait; a participant whose coupler is gone stops. While the solver works
+//! on a window it reports its steps ([`progress`]), so that a window longer than
+//! `coupling.timeout` is not taken for a hang.
 //!
 //! SIGTERM and SIGINT (the coupler stopping the run, or the kernel when the coupler died) do not
 //! kill a participant in the middle of writing an output: they are noted ([`crate::signals`]), the
 //! answer being computed is finished, and the participant stops at its next wait, with every row
 //! and frame written so far whole. Rows of the last answered window that the coupler had not yet
 //! accepted (written at the next window's start or at `Finish`) are not written.
+
+mod progress;
+
+pub use progress::{DiscardProgress, LinkProgress, ProgressSink};
 
 use crate::link::{process_alive, Link, LinkError, Side};
 use crate::message::{
@@ -39,6 +45,17 @@ pub trait Participant {
     /// Advances from `inputs.start()` to exactly `inputs.end()`, reading inputs with
     /// `inputs.at(t)`; returns the outputs at each of `inputs.times` (the first is the window start).
     fn advance(&mut self, inputs: &Waveform) -> Result<Vec<Fields>, String>;
+    /// [`Participant::advance`], telling `progress` of every solver step it finishes, so that the
+    /// coupler does not take a window longer than `coupling.timeout` for a hang. The default
+    /// reports nothing: then each whole answer must come within the timeout.
+    fn advance_reporting(
+        &mut self,
+        inputs: &Waveform,
+        progress: &mut dyn ProgressSink,
+    ) -> Result<Vec<Fields>, String> {
+        let _ = progress;
+        self.advance(inputs)
+    }
     /// The run is over: write final output.
     fn finish(&mut self) -> Result<(), String>;
     /// Writes every output kept back from the accepted window, then the full state (solver, output
@@ -77,6 +94,26 @@ pub struct ParticipantArgs {
     /// own `run --end-time`).
     #[arg(long, value_name = "SECONDS")]
     pub end_time: Option<f64>,
+    /// Wall seconds between two progress reports while a window is computed (the coupler passes a
+    /// quarter of `coupling.timeout`, at most 5 s).
+    #[arg(
+        long,
+        value_name = "SECONDS",
+        default_value_t = DEFAULT_PROGRESS_INTERVAL,
+        value_parser = positive_seconds
+    )]
+    pub progress_interval: f64,
+}
+
+/// Wall seconds between progress reports when `--progress-interval` is not given.
+pub const DEFAULT_PROGRESS_INTERVAL: f64 = 5.0;
+
+/// A positive, finite number of seconds.
+fn positive_seconds(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(s) if s.is_finite() && s > 0.0 => Ok(s),
+        _ => Err(format!("must be a positive number of seconds, got `{text}`")),
+    }
 }
 
 /// Why a participant stopped.
@@ -181,6 +218,7 @@ fn serve_until_stopped<P: Participant>(
     let outputs = solver.initial_outputs();
     let geometry = solver.geometry_update();
     link.send(&FromParticipant::Initial { outputs, geometry })?;
+    let report_every = Duration::try_from_secs_f64(args.progress_interval).unwrap_or(Duration::MAX);
     loop {
         if crate::signals::interrupted() {
             // A request may already be waiting, so the wait below would not look at the flag.
@@ -200,7 +238,10 @@ fn serve_until_stopped<P: Participant>(
                     }
                     Checkpoint::Restore => solver.restore_checkpoint(),
                 }
-                .and_then(|()| solver.advance(&inputs))
+                .and_then(|()| {
+                    let mut progress = LinkProgress::new(&link, header, report_every);
+                    solver.advance_reporting(&inputs, &mut progress)
+                })
                 .and_then(|outputs| {
                     if outputs.len() == inputs.times.len() {
                         Ok(outputs)

@@ -1,5 +1,7 @@
 //! Mass properties of a rigid body from its `inertia = { … }` table: a homogeneous box, a given
-//! tensor, or a set of equal-mass particles (the paper's bodies are particle sets, S1 §2.2).
+//! tensor, a set of equal-mass particles (the paper's bodies are particle sets, S1 §2.2), or the
+//! homogeneous solid a closed mesh bounds (its mass, centre and world tensor are computed when
+//! the case is loaded, `TriangleMesh::mass_properties`).
 
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 use schemas::case::structure::{check_inertia_tensor, BodyConfig};
@@ -14,8 +16,9 @@ pub struct MassProperties {
 }
 
 impl MassProperties {
-    /// From a validated body section; `key` is its dotted path. Particle positions are world
-    /// positions at t = 0 and are turned into the body frame with the body's initial orientation.
+    /// From a validated body section; `key` is its dotted path. Particle positions and meshes are
+    /// world positions at t = 0; their tensor `I_w` is turned into the body frame with the body's
+    /// initial orientation R: `I_b = Rᵀ I_w R`.
     pub fn from_config(c: &BodyConfig, key: &str) -> Result<Self, FieldError> {
         let q = c.orientation;
         let rotation = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[0], q[1], q[2], q[3]))
@@ -46,6 +49,20 @@ impl MassProperties {
                 inertia,
             });
         }
+        if i.mesh.is_some() {
+            let m = i.mesh_properties.ok_or_else(|| {
+                FieldError::new(
+                    format!("{key}.inertia.mesh"),
+                    "was not read: load the case with `Case::load`, which reads the mesh",
+                )
+            })?;
+            let world = Matrix3::from_fn(|r, col| m.inertia[r][col]);
+            return Ok(Self {
+                mass: m.mass,
+                centre: Vector3::from(m.centre),
+                inertia: rotation.matrix().transpose() * world * rotation.matrix(),
+            });
+        }
         let mass = c.mass.ok_or_else(|| missing("mass"))?;
         let centre = Vector3::from(c.centre.ok_or_else(|| missing("centre"))?);
         let inertia = if let Some([lx, ly, lz]) = i.box_size {
@@ -61,7 +78,7 @@ impl MassProperties {
         } else {
             return Err(FieldError::new(
                 format!("{key}.inertia"),
-                "needs `box`, `tensor` or `particles`",
+                "needs `box`, `tensor`, `particles` or `mesh`",
             ));
         };
         Ok(Self {

@@ -305,14 +305,14 @@ fn absurd_sizes_are_refused_before_the_run_with_the_estimate() {
     let err = stderr(&run);
     assert_eq!(run.status.code(), Some(2), "{err}");
     assert!(
-        err.contains("100 windows; at least") && err.contains("above --max-output 10.0 kB"),
+        err.contains("100 windows; about") && err.contains("above --max-output 10.0 kB"),
         "{err}"
     );
     assert!(!out.exists());
     let run = coupler_run(&case, &out);
     let err = stderr(&run);
     assert!(run.status.success(), "{err}");
-    assert!(err.contains("estimate: 100 windows; at least"), "{err}");
+    assert!(err.contains("estimate: 100 windows; about"), "{err}");
     assert!(
         err.contains(&format!("output: {}, ", out.display())) && err.contains(" kB ("),
         "the size written: {err}"

@@ -1,7 +1,10 @@
-//! Faults: a participant killed mid-run, a participant that hangs, a participant that speaks
-//! another protocol version, Ctrl-C — each stops the run cleanly with a message that names who
-//! and when, and the next run on the same machine starts cleanly.
+//! Faults: a participant killed mid-run, a participant that hangs or is frozen (SIGSTOP), a
+//! participant that speaks another protocol version, Ctrl-C — each stops the run cleanly with a
+//! message that names who and when, and the next run on the same machine starts cleanly. A
+//! window longer than the timeout is no fault while its participant reports progress.
 
+use schemas::message::{FromParticipant, ToParticipant};
+use schemas::recording::Message;
 use stack_tests::{binary, coupler, oscillator_case, oscillator_error, out_dir, stderr};
 use std::io::{BufRead, BufReader};
 use std::path::Path;
@@ -23,6 +26,12 @@ fn start(case: &Path, out: &Path, env: &[(&str, &str)]) -> (Child, mpsc::Receive
         .stdout(Stdio::null())
         .spawn()
         .unwrap_or_else(|e| panic!("cannot start the coupler: {e}"));
+    let rx = stream_stderr(&mut child);
+    (child, rx)
+}
+
+/// The child's stderr (piped), line by line.
+fn stream_stderr(child: &mut Child) -> mpsc::Receiver<String> {
     let (tx, rx) = mpsc::channel();
     let err = child.stderr.take().unwrap_or_else(|| panic!("no stderr pipe"));
     std::thread::spawn(move || {
@@ -32,7 +41,7 @@ fn start(case: &Path, out: &Path, env: &[(&str, &str)]) -> (Child, mpsc::Receive
             }
         }
     });
-    (child, rx)
+    rx
 }
 
 /// Waits for a line containing `needle`; returns it.
@@ -164,8 +173,163 @@ fn a_hung_participant_is_stopped_after_the_case_timeout() {
     println!("{err}");
     assert!(!run.status.success());
     assert!(err.contains("participant `mass-right` in window 5"), "{err}");
-    assert!(err.contains("no answer within 1.0 s"), "{err}");
+    assert!(
+        err.contains("no answer and no progress report for 1.0 s (hung?); it reported no step"),
+        "{err}"
+    );
     assert!(t0.elapsed() < Duration::from_secs(8), "took {:?}", t0.elapsed());
+}
+
+/// The oscillator with `coupling.timeout = 1 s`.
+fn one_second_timeout_case(dir: &Path) -> std::path::PathBuf {
+    oscillator_case(dir, &[("max_iterations", "30\ntimeout = 1.0")])
+}
+
+/// `coupler ARGS…` with `mass-right` played by the faulty participant, working `seconds` of wall
+/// time at the start of window `window` while it reports progress.
+fn with_slow_window(args: &[&str], window: u64, seconds: f64) -> Command {
+    let mut command = Command::new(binary("coupler"));
+    command
+        .args(args)
+        .env("FAULTY_SLOW_AT_WINDOW", window.to_string())
+        .env("FAULTY_SLOW_SECONDS", seconds.to_string());
+    command
+}
+
+#[test]
+fn a_window_longer_than_the_timeout_completes_while_its_participant_reports_progress() {
+    let dir = out_dir("slow-window");
+    let case = one_second_timeout_case(&dir);
+    let out = dir.join("out");
+    let faulty = binary("faulty-participant");
+    let exe = format!("--exe=mass-right={}", faulty.display());
+    let run = with_slow_window(
+        &[
+            "run",
+            case.to_str().unwrap_or_default(),
+            "--out",
+            out.to_str().unwrap_or_default(),
+            &exe,
+        ],
+        3,
+        3.0,
+    )
+    .output()
+    .unwrap_or_else(|e| panic!("{e}"));
+    let err = stderr(&run);
+    println!("{err}");
+    assert!(
+        run.status.success(),
+        "a slow window that reports progress is no hang: {err}"
+    );
+    let log = std::fs::read_to_string(out.join("mass-right.log")).unwrap_or_default();
+    assert!(log.contains("working 3 s in window 3"), "{log}");
+
+    // The answer took three timeouts; the reports that kept it alive are not recorded.
+    let rec =
+        schemas::recording::Recording::read(&out.join("recording.rec")).unwrap_or_else(|e| panic!("{e}"));
+    let asked = rec.frames.iter().position(|f| {
+        f.participant == "mass-right"
+            && matches!(&f.message, Message::To(ToParticipant::Advance { header, .. }) if header.window == 3)
+    });
+    let asked = asked.unwrap_or_else(|| panic!("no Advance of window 3 to mass-right recorded"));
+    let answered = &rec.frames[asked + 1];
+    assert!(
+        matches!(answered.message, Message::From(FromParticipant::Advanced { .. })),
+        "the answer follows the request in the recording: {:?}",
+        answered.message
+    );
+    let took = answered.wall_time - rec.frames[asked].wall_time;
+    assert!(took >= 3.0, "window 3 took {took} s of wall time");
+    assert!(
+        !rec.frames
+            .iter()
+            .any(|f| matches!(f.message, Message::From(FromParticipant::Progress { .. }))),
+        "progress reports are not recorded"
+    );
+
+    // A replay waits for the slow answer as the run did.
+    let rec_path = out.join("recording.rec");
+    let replay_exe = format!("--exe={}", faulty.display());
+    let replay_out = dir.join("replay");
+    let replay = with_slow_window(
+        &[
+            "replay",
+            rec_path.to_str().unwrap_or_default(),
+            "--participant",
+            "mass-right",
+            &replay_exe,
+            "--out",
+            replay_out.to_str().unwrap_or_default(),
+        ],
+        3,
+        2.0,
+    )
+    .output()
+    .unwrap_or_else(|e| panic!("{e}"));
+    let text = format!("{}{}", String::from_utf8_lossy(&replay.stdout), stderr(&replay));
+    println!("{text}");
+    assert!(replay.status.success(), "{text}");
+    assert!(text.contains("PASS"), "{text}");
+}
+
+#[test]
+fn a_participant_frozen_in_a_long_window_is_stopped_after_the_timeout_and_named() {
+    let dir = out_dir("frozen");
+    let case = one_second_timeout_case(&dir);
+    let out = dir.join("out");
+    let exe = format!("--exe=mass-right={}", binary("faulty-participant").display());
+    let mut child = with_slow_window(
+        &[
+            "run",
+            case.to_str().unwrap_or_default(),
+            "--out",
+            out.to_str().unwrap_or_default(),
+            &exe,
+        ],
+        2,
+        60.0,
+    )
+    .stderr(Stdio::piped())
+    .stdout(Stdio::null())
+    .spawn()
+    .unwrap_or_else(|e| panic!("cannot start the coupler: {e}"));
+    let rx = stream_stderr(&mut child);
+    let mut lines = Vec::new();
+    let right = pid_of(&wait_line(&rx, "started mass-right", &mut lines));
+    let log = out.join("mass-right.log");
+    let t0 = Instant::now();
+    while !std::fs::read_to_string(&log).is_ok_and(|l| l.contains("working 60 s in window 2")) {
+        assert!(t0.elapsed() < Duration::from_secs(30), "window 2 did not start");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    // Working and reporting, it outlives the timeout.
+    std::thread::sleep(Duration::from_millis(2500));
+    assert!(
+        matches!(child.try_wait(), Ok(None)),
+        "the coupler stopped a participant that reports progress"
+    );
+    // SAFETY: SIGSTOP to the participant this test's coupler started: alive, but no progress.
+    unsafe { libc::kill(right, libc::SIGSTOP) };
+    let (status, took) = wait_exit(&mut child, Duration::from_secs(20));
+    lines.extend(rx.try_iter());
+    let text = lines.join("\n");
+    println!("{text}\ncoupler exited {took:?} after the SIGSTOP");
+    if alive(right) {
+        // SAFETY: as above; the coupler left it behind, which the assertion below reports.
+        unsafe { libc::kill(right, libc::SIGKILL) };
+        panic!("the frozen participant was left running");
+    }
+    assert!(!status.success(), "{text}");
+    assert!(text.contains("participant `mass-right` in window 2"), "{text}");
+    assert!(
+        text.contains("no answer and no progress report for 1.0 s (hung?); it last reported step"),
+        "{text}"
+    );
+    assert!(
+        took < Duration::from_secs(6),
+        "took {took:?} to stop a frozen participant"
+    );
 }
 
 #[test]

@@ -2,8 +2,8 @@
 //! structure solver), their hydrodynamic loads go out.
 //!
 //! A body's pose is its centre and a unit quaternion (w, x, y, z) relative to its initial
-//! placement: at t = 0 the centre is the middle of its `[[body]]` box and the quaternion is
-//! (1, 0, 0, 0). Each body particle keeps its offset from the initial centre.
+//! placement: at t = 0 the centre is the middle of its `[[body]]` box (a mesh body's: the mesh's
+//! volume centroid) and the quaternion is (1, 0, 0, 0). Each body particle keeps its offset from the initial centre.
 //!
 //! What the fluid exchanges with a body, pair by pair between a fluid particle i and a body
 //! particle j, comes from the fluid method's pair laws ([`crate::bodies::pair_law`]): each pair force
@@ -62,11 +62,11 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 }
 
 impl RigidBodies {
-    /// Records the bodies of a fresh layout (`p` still in layout order: index = id).
-    pub fn new(bodies: &[BodyParticles], boxes: &[([f64; 3], [f64; 3])], p: &Particles) -> RigidBodies {
+    /// Records the bodies of a fresh layout (`p` still in layout order: index = id) with their
+    /// initial `centres` ([`schemas::case::fluid::BodyConfig::centre`]).
+    pub fn new(bodies: &[BodyParticles], centres: &[[f64; 3]], p: &Particles) -> RigidBodies {
         let mut out = RigidBodies::default();
-        for (b, (body, (lo, hi))) in bodies.iter().zip(boxes).enumerate() {
-            let centre = std::array::from_fn(|a| 0.5 * (lo[a] + hi[a]));
+        for (b, (body, &centre)) in bodies.iter().zip(centres).enumerate() {
             out.names.push(body.name.clone());
             out.centres.push(centre);
             for &id in &body.ids {

@@ -45,13 +45,11 @@ pub fn snap(cfg: &FluidConfig) -> (FluidConfig, Vec<String>) {
         }
     }
     for b in &mut out.body {
-        let raw = Aabb {
-            min: b.min,
-            max: b.max,
-        };
+        // a mesh body is not moved: its sites are those inside the mesh
+        let Some(raw) = b.box_bounds() else { continue };
         let s = snap_box(&raw);
         note_moves(&format!("body `{}`", b.name), &raw, &s, ds, &mut notes);
-        (b.min, b.max) = (s.min, s.max);
+        (b.min, b.max) = (Some(s.min), Some(s.max));
     }
     if let Some(w) = &mut out.wave_maker {
         let raw = w.paddle();

@@ -4,11 +4,12 @@
 //! Lattice sites are `tank.min + (i + ½) Δs`; the tank's inner faces lie half a spacing from the
 //! nearest sites. Sites outside the tank within `wall_layers` layers are walls: the two layers
 //! next to the tank are [`Kind::Wall`] (they carry pressure), the outer ones [`Kind::Dummy`].
-//! Sites inside the tank whose centre is inside a gate, a body, a solid wall box or a water block
-//! get that kind; so do the skins of mesh solids and terrains ([`SolidSites`]), and the wave
+//! Sites inside the tank whose centre is inside a gate, a body (its box or its mesh,
+//! [`BodySites`]), a solid wall box or a water block get that kind; so do the skins of mesh solids and terrains ([`SolidSites`]), and the wave
 //! maker's paddle, whose particles come last. Boxes and the tank are first moved onto the lattice ([`crate::particles::lattice`]); the
 //! layout keeps that config and the messages saying what moved.
 
+use crate::particles::body_sites::BodySites;
 use crate::particles::kind::Kind;
 use crate::particles::solid_sites::SolidSites;
 use crate::particles::Particles;
@@ -91,14 +92,7 @@ pub fn build(cfg: &FluidConfig) -> Layout {
     let in_paddle = |p: [f64; 3]| paddle_box.is_some_and(|b| b.contains_point(p));
     let mut paddle_sites = Vec::new();
     let solids = SolidSites::build(cfg, n);
-    let boxes_of_bodies: Vec<Aabb> = cfg
-        .body
-        .iter()
-        .map(|b| Aabb {
-            min: b.min,
-            max: b.max,
-        })
-        .collect();
+    let body_sites = BodySites::build(cfg, n);
     for k in -layers..top {
         for j in -layers..n[1] + layers {
             for i in -layers..n[0] + layers {
@@ -119,7 +113,7 @@ pub fn build(cfg: &FluidConfig) -> Layout {
                     paddle_sites.push(p);
                 } else if cfg.gate.iter().any(|g| g.contains_point(p)) {
                     particles.push(p, Kind::Gate);
-                } else if let Some(b) = boxes_of_bodies.iter().position(|b| b.contains_point(p)) {
+                } else if let Some(b) = body_sites.body_at(idx, p) {
                     bodies[b].ids.push(particles.len() as u32);
                     particles.push(p, Kind::Body);
                 } else if cfg.wall.iter().any(|w| w.contains_point(p)) {

@@ -44,11 +44,7 @@ pub fn tank_with_body(tank: [f64; 3], ds: f64, dt: f64, water: Aabb, body: Aabb)
     cfg.tank.max = tank;
     cfg.probe.clear();
     cfg.block = water_around(water, body);
-    cfg.body = vec![BodyConfig {
-        name: "box".into(),
-        min: body.min,
-        max: body.max,
-    }];
+    cfg.body = vec![BodyConfig::from_box("box", body.min, body.max)];
     cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
     cfg
 }

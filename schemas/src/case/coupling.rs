@@ -111,7 +111,12 @@ pub struct CouplingConfig {
     /// module; default 10; a run warns above 1).
     #[serde(default = "default_created_energy_limit")]
     pub created_energy_limit: f64,
-    /// Wall-clock time a participant may take for one answer before it is taken as hung [s].
+    /// Wall-clock time a participant may go without showing progress before it is taken as hung
+    /// [s]: neither an answer nor a progress report comes for this long. A window may take longer
+    /// as long as its participant keeps reporting its steps (the fluid solver does, every quarter
+    /// of this timeout or every 5 s, whichever is shorter); it must exceed the longest single
+    /// solver step, and the longest whole answer of a solver that does not report its steps (the
+    /// structure solver; a checkpoint write).
     #[serde(default = "default_timeout")]
     pub timeout: f64,
     /// Simulated time between checkpoints [s] (a whole number of windows; none by default): at

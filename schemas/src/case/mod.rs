@@ -13,6 +13,7 @@ pub mod frame;
 pub mod inputs;
 pub mod key_reference;
 pub mod load_table;
+pub mod mesh_placement;
 pub mod reference;
 pub mod report;
 pub mod structure;
@@ -325,7 +326,8 @@ impl Case {
 
 impl Case {
     /// Reads the meshes and height grids of the fluid sections and builds their wave makers'
-    /// motions (reading their tables), relative to the case's folder.
+    /// motions (reading their tables), and reads the structure bodies' inertia meshes, relative
+    /// to the case's folder.
     fn load_geometry(&mut self) -> Result<(), FieldError> {
         let dir = self.dir();
         let end = self.info.end_time;
@@ -333,6 +335,11 @@ impl Case {
             let key = format!("fluid.{name}");
             cfg.load_files(&dir, &key)?;
             cfg.build_wave_maker(&dir, &key, end)?;
+        }
+        for (name, cfg) in &mut self.structure {
+            for (i, b) in cfg.body.iter_mut().enumerate() {
+                b.load_mesh(&dir, &format!("structure.{name}.body[{i}]"))?;
+            }
         }
         Ok(())
     }

@@ -23,6 +23,7 @@
 //! mass = 2.0
 //! centre = [0, 0, 1]
 //! inertia = { box = [1, 0.5, 0.2] }   # or { tensor = [[..],[..],[..]] } or { particles = [[..], ..], particle_mass = m }
+//!                                     # or { mesh = { file = "deck.stl" }, density = 500 } (no mass, centre)
 //!
 //! [[structure.tower.support]]    # S1-22: held until the upward force exceeds release_force
 //! body = "deck"
@@ -49,11 +50,13 @@
 
 use super::error::check;
 use super::frame::FrameConfig;
+use super::mesh_placement::MeshPlacement;
 use super::FieldError;
+use crate::geometry::MassProperties;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeSet;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The spring end that is fixed in space.
 pub const GROUND: &str = "ground";
@@ -133,11 +136,12 @@ pub struct BodyConfig {
     /// `participant/name`).
     pub name: String,
     /// Mass [kg]; required with `inertia.box` / `inertia.tensor`, omitted with `inertia.particles`
-    /// (then it is the particle count × `particle_mass`).
+    /// (then it is the particle count × `particle_mass`) and `inertia.mesh` (density × volume).
     #[serde(default)]
     pub mass: Option<f64>,
     /// Centre of mass [m]; required with `inertia.box` / `inertia.tensor`, omitted with
-    /// `inertia.particles` (then it is the particles' centroid).
+    /// `inertia.particles` (then it is the particles' centroid) and `inertia.mesh` (the volume
+    /// centroid).
     #[serde(default)]
     pub centre: Option<[f64; 3]>,
     /// Initial orientation, unit quaternion `[w, x, y, z]` (body → world) [–].
@@ -156,8 +160,8 @@ fn identity_quaternion() -> [f64; 4] {
     [1.0, 0.0, 0.0, 0.0]
 }
 
-/// `inertia = { … }`: exactly one of `box`, `tensor`, `particles` (with `particle_mass`),
-/// all in the body frame.
+/// `inertia = { … }`: exactly one of `box`, `tensor`, `particles` (with `particle_mass`) or
+/// `mesh` (with `density`), all in the body frame.
 #[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct InertiaConfig {
@@ -174,6 +178,18 @@ pub struct InertiaConfig {
     /// Mass of each particle [kg].
     #[serde(default)]
     pub particle_mass: Option<f64>,
+    /// A closed mesh placed in world coordinates at t = 0 (as a fluid body's `mesh`): the body
+    /// is the homogeneous solid it bounds, of `density`; its mass is `density` × volume and its
+    /// centre the volume centroid (then `mass` and `centre` are omitted).
+    #[serde(default)]
+    pub mesh: Option<MeshPlacement>,
+    /// Density of the mesh's solid [kg/m³] (with `mesh` only). Range: > 0.
+    #[serde(default)]
+    pub density: Option<f64>,
+    /// The mesh's mass properties (world frame), computed when the case is loaded.
+    #[serde(skip)]
+    #[schemars(skip)]
+    pub mesh_properties: Option<MassProperties>,
 }
 
 /// `[[structure.NAME.support]]`: holds a body fixed until the upward force exceeds
@@ -559,12 +575,37 @@ impl BodyConfig {
         check::finite(&format!("{key}.angular_velocity"), &self.angular_velocity)?;
         let i = &self.inertia;
         let ik = format!("{key}.inertia");
-        let given = [i.box_size.is_some(), i.tensor.is_some(), i.particles.is_some()];
+        let given = [
+            i.box_size.is_some(),
+            i.tensor.is_some(),
+            i.particles.is_some(),
+            i.mesh.is_some(),
+        ];
         if given.iter().filter(|g| **g).count() != 1 {
             return Err(FieldError::new(
                 ik,
-                "must give exactly one of `box = [lx, ly, lz]`, `tensor = [[..], [..], [..]]`, or `particles = [[x, y, z], ..]` with `particle_mass`",
+                "must give exactly one of `box = [lx, ly, lz]`, `tensor = [[..], [..], [..]]`, `particles = [[x, y, z], ..]` with `particle_mass`, or `mesh = { file = \"….stl\" }` with `density`",
             ));
+        }
+        if i.density.is_some() && i.mesh.is_none() {
+            return Err(FieldError::new(
+                format!("{ik}.density"),
+                "is only used with `mesh`",
+            ));
+        }
+        if let Some(m) = &i.mesh {
+            m.validate(&format!("{ik}.mesh"))?;
+            let density = i
+                .density
+                .ok_or_else(|| FieldError::new(format!("{ik}.density"), "is required with `mesh` [kg/m³]"))?;
+            check::positive(&format!("{ik}.density"), density)?;
+            if i.particle_mass.is_some() {
+                return Err(FieldError::new(
+                    format!("{ik}.particle_mass"),
+                    "is only used with `particles`",
+                ));
+            }
+            return self.refuse_mass_and_centre(key, "mesh", "the mesh (and `density`)");
         }
         if let Some(particles) = &i.particles {
             let pm = i.particle_mass.ok_or_else(|| {
@@ -583,17 +624,7 @@ impl BodyConfig {
             for (j, p) in particles.iter().enumerate() {
                 check::finite(&format!("{ik}.particles[{j}]"), p)?;
             }
-            for (name, given) in [("mass", self.mass.is_some()), ("centre", self.centre.is_some())] {
-                if given {
-                    return Err(FieldError::new(
-                        format!("{key}.{name}"),
-                        format!(
-                            "must be omitted with `inertia.particles`: the {name} comes from the particles"
-                        ),
-                    ));
-                }
-            }
-            return Ok(());
+            return self.refuse_mass_and_centre(key, "particles", "the particles");
         }
         if i.particle_mass.is_some() {
             return Err(FieldError::new(
@@ -622,6 +653,33 @@ impl BodyConfig {
         }
         if let Some(t) = &i.tensor {
             check_inertia_tensor(&format!("{ik}.tensor"), t)?;
+        }
+        Ok(())
+    }
+}
+
+impl BodyConfig {
+    /// `mass` and `centre` must be omitted with `inertia.{what}`: they come from `from`.
+    fn refuse_mass_and_centre(&self, key: &str, what: &str, from: &str) -> Result<(), FieldError> {
+        for (name, given) in [("mass", self.mass.is_some()), ("centre", self.centre.is_some())] {
+            if given {
+                return Err(FieldError::new(
+                    format!("{key}.{name}"),
+                    format!("must be omitted with `inertia.{what}`: the {name} comes from {from}"),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Reads the body's `inertia.mesh` (if any) relative to `dir` (the case file's folder) and
+    /// keeps its mass properties; `key` is the body's dotted path. Errors are at
+    /// `….inertia.mesh.file` and name the file.
+    pub fn load_mesh(&mut self, dir: &Path, key: &str) -> Result<(), FieldError> {
+        let i = &mut self.inertia;
+        if let (Some(m), Some(density)) = (&i.mesh, i.density) {
+            let placed = m.load(dir, &format!("{key}.inertia.mesh"))?;
+            i.mesh_properties = Some(placed.mass_properties(density));
         }
         Ok(())
     }

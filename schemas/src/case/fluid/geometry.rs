@@ -1,9 +1,12 @@
 //! Boxes of a fluid section: `tank` ([`TankConfig`]), `[[fluid.NAME.block]]`,
 //! `[[fluid.NAME.gate]]`, `[[fluid.NAME.wall]]` (an [`Aabb`] each) and `[[fluid.NAME.body]]`
-//! ([`BodyConfig`]).
+//! ([`BodyConfig`]: a box or a closed mesh).
 
+use super::Loaded;
 use crate::case::error::check;
+use crate::case::mesh_placement::MeshPlacement;
 use crate::case::FieldError;
+use crate::geometry::TriangleMesh;
 use schemars::JsonSchema;
 use serde::Deserialize;
 
@@ -78,16 +81,69 @@ impl TankConfig {
     }
 }
 
-/// `[[fluid.NAME.body]]`: a rigid box made of `Body` particles. In a fluid-only run it is held
-/// fixed (an obstacle); coupled scenes move it with the structure's kinematics.
-#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
+/// `[[fluid.NAME.body]]`: a rigid body made of `Body` particles: a box (`min`, `max`) or the
+/// lattice sites inside a closed mesh (`mesh`), exactly one of the two. In a fluid-only run it is
+/// held fixed (an obstacle); coupled scenes move it with the structure's kinematics.
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BodyConfig {
     /// The body's name, unique in the participant (`[[coupling.body]]` names it
     /// `fluid-participant/name`).
     pub name: String,
-    /// Lower corner `[x, y, z]` [m].
-    pub min: [f64; 3],
-    /// Upper corner `[x, y, z]` [m].
-    pub max: [f64; 3],
+    /// Box body: lower corner `[x, y, z]` [m].
+    #[serde(default)]
+    pub min: Option<[f64; 3]>,
+    /// Box body: upper corner `[x, y, z]` [m].
+    #[serde(default)]
+    pub max: Option<[f64; 3]>,
+    /// Mesh body, instead of `min`/`max`: every lattice site inside the placed mesh is a body
+    /// particle, and the body's centre is the mesh's volume centroid (give the structure body
+    /// `inertia = { mesh = … }` with the same mesh so the two centres agree).
+    #[serde(default)]
+    pub mesh: Option<MeshPlacement>,
+    /// The placed mesh, read when the case is loaded.
+    #[serde(skip)]
+    #[schemars(skip)]
+    pub placed: Loaded<TriangleMesh>,
+}
+
+impl BodyConfig {
+    /// A box body `[min, max]`.
+    pub fn from_box(name: &str, min: [f64; 3], max: [f64; 3]) -> BodyConfig {
+        BodyConfig {
+            name: name.into(),
+            min: Some(min),
+            max: Some(max),
+            mesh: None,
+            placed: Loaded::default(),
+        }
+    }
+
+    /// The box of a box body; `None` for a mesh body.
+    pub fn box_bounds(&self) -> Option<Aabb> {
+        match (self.min, self.max) {
+            (Some(min), Some(max)) => Some(Aabb { min, max }),
+            _ => None,
+        }
+    }
+
+    /// The body's placed mesh: `None` for a box body, or before [`FluidConfig::load_files`].
+    ///
+    /// [`FluidConfig::load_files`]: super::FluidConfig::load_files
+    pub fn placed_mesh(&self) -> Option<&TriangleMesh> {
+        self.placed.get()
+    }
+
+    /// The body's centre at t = 0 [m], the reference of its pose and moments: a box body's
+    /// middle `(min + max) / 2`, a mesh body's volume centroid `∫ x dV / V` (NaN for a mesh body
+    /// before [`FluidConfig::load_files`]).
+    ///
+    /// [`FluidConfig::load_files`]: super::FluidConfig::load_files
+    pub fn centre(&self) -> [f64; 3] {
+        match (self.box_bounds(), self.placed_mesh()) {
+            (Some(b), _) => std::array::from_fn(|a| 0.5 * (b.min[a] + b.max[a])),
+            (None, Some(mesh)) => mesh.mass_properties(1.0).centre,
+            (None, None) => [f64::NAN; 3],
+        }
+    }
 }

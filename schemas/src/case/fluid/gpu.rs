@@ -37,6 +37,9 @@ impl FluidConfig {
         if !self.solid.is_empty() || !self.terrain.is_empty() {
             return refuse("solids from meshes or terrains ([[solid]], [[terrain]])");
         }
+        if let Some(b) = self.body.iter().find(|b| b.mesh.is_some()) {
+            return refuse(&format!("a body from a mesh (body `{}` has `mesh`)", b.name));
+        }
         if let Some(p) = self.probe.iter().find(|p| p.window.is_some()) {
             return refuse(&format!(
                 "filtered probes (probe `{}` has a window; probes are read from a copy at each probe row, not every step)",

@@ -50,6 +50,7 @@
 mod geometry;
 mod gpu;
 mod isph;
+mod mesh_bodies;
 mod open_boundary;
 mod probes;
 mod solids;
@@ -331,12 +332,32 @@ impl FluidConfig {
                     format!("body name `{}` is used twice; names must be unique", b.name),
                 ));
             }
-            let bb = Aabb {
-                min: b.min,
-                max: b.max,
-            };
-            bb.validate(&bk)?;
-            named.push((bk, bb));
+            match (b.box_bounds(), &b.mesh, b.min.is_some() || b.max.is_some()) {
+                (Some(bb), None, _) => {
+                    bb.validate(&bk)?;
+                    named.push((bk, bb));
+                }
+                // a mesh body's box is known when its file is read (`load_files`)
+                (None, Some(m), false) => m.validate(&format!("{bk}.mesh"))?,
+                (_, Some(_), true) => {
+                    return Err(FieldError::new(
+                        format!("{bk}.mesh"),
+                        format!(
+                            "body `{}` gives both `mesh` and `min`/`max`: a body is a box (`min` and `max`) or a closed mesh (`mesh = {{ file = \"….stl\" }}`), not both",
+                            b.name
+                        ),
+                    ))
+                }
+                _ => {
+                    return Err(FieldError::new(
+                        bk,
+                        format!(
+                            "body `{}` needs a shape: `min` and `max` (a box) or `mesh = {{ file = \"….stl\" }}` (a closed mesh)",
+                            b.name
+                        ),
+                    ))
+                }
+            }
         }
         for (i, (ka, a)) in named.iter().enumerate() {
             if !tank.contains(a) {

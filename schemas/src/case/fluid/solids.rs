@@ -209,8 +209,8 @@ impl FluidConfig {
         Ok(())
     }
 
-    /// Reads the mesh and grid files of the solids and terrains, relative to `dir` (the case
-    /// file's folder), checks them and keeps them placed; `key` is the section's dotted path.
+    /// Reads the mesh and grid files of the solids, terrains and mesh bodies, relative to `dir`
+    /// (the case file's folder), checks them and keeps them placed; `key` is the section's dotted path.
     /// Errors name the key, the file and what is wrong.
     pub fn load_files(&mut self, dir: &Path, key: &str) -> Result<(), FieldError> {
         let tank = self.tank.inner();
@@ -282,6 +282,6 @@ impl FluidConfig {
             }
             t.heights = Loaded(Some(Arc::new(grid)));
         }
-        Ok(())
+        self.load_mesh_bodies(dir, key)
     }
 }
