@@ -3,16 +3,17 @@
 //! methods; the run-up gauge reads the still-water line on a beach.
 //!
 //! The generated wave against the solitary wave's height and speed is
-//! `the_solitary_wave_keeps_its_height_and_speed_over_ten_depths` (ignored: it fails today, see
+//! `the_solitary_wave_keeps_its_height_and_speed_over_ten_depths` (ignored for its length, see
 //! `docs/notes/solitary-waves.md`).
 
 mod common;
+mod standing_wave;
 
 use fluid_solver::probes::{self, ProbeSet};
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{FluidMethodName, ProbeConfig, ProbeKind};
 use schemas::case::Case;
-use schemas::validation::{largest, record, Record};
+use schemas::validation::{record, Record};
 
 /// The solitary case at Δs = 0.0125 m (d/8) in a 0.6 m flume four particles wide, with its own
 /// ISPH settings or with E-MPS (c = 7 m/s, 5 √(g d)).
@@ -194,10 +195,11 @@ fn gauge(name: &str, x: f64) -> ProbeConfig {
 /// The generated wave against the first-order solitary wave (H = 0.02 m, d = 0.1 m) with the
 /// case's settings at its resolution (d/16) in a flume cut to 1.85 m: its height at 5 and 10
 /// depths from the paddle within 10 % of H, and its speed between them within 2 % of
-/// √(g(d + H)) (the bound), crest times by the η²-weighted mean time of each passage.
-/// Fails today (`docs/notes/solitary-waves.md`: 1.07 H and 0.81 H, 1.029 m/s against 1.084).
+/// √(g(d + H)) (the bound), crest times by [`main_passage`]. Fails today with the case's
+/// ISPH default gradient and Lind shifting: 1.06 H and 1.00 H, but 0.99 m/s, √(g d), against
+/// 1.084 (`docs/notes/solitary-waves.md`); 11–17 min on 2 cores.
 #[test]
-#[ignore = "fails today: the wave loses a fifth of its height by 10 depths (docs/notes/solitary-waves.md)"]
+#[ignore = "fails today: the heights are met, the wave travels at √(gd), 8 % slow (docs/notes/solitary-waves.md)"]
 fn the_solitary_wave_keeps_its_height_and_speed_over_ten_depths() {
     let (_, mut cfg) = common::load_case("solitary-wave-flat");
     cfg.tank.max[0] = 1.85;
@@ -207,26 +209,46 @@ fn the_solitary_wave_keeps_its_height_and_speed_over_ten_depths() {
     let mut solver = FluidSolver::new(&cfg);
     let mut set = ProbeSet::new(&cfg.probe, &solver).unwrap_or_else(|e| panic!("{e}"));
     let level = set.row(&solver);
-    let (mut t_mean, mut weight, mut height) = ([0.0; 2], [0.0; 2], [0.0f64; 2]);
+    let mut series: [Vec<(f64, f64)>; 2] = [Vec::new(), Vec::new()];
     let mut t = 0.0;
     while t < 2.6 {
         t += 0.005;
         solver.advance_to(t).unwrap_or_else(|e| panic!("{e}"));
         let row = set.row(&solver);
         for g in 0..2 {
-            let eta = row[g] - level[g];
-            height[g] = largest([eta], height[g]);
-            if eta > 0.002 {
-                t_mean[g] += eta * eta * t;
-                weight[g] += eta * eta;
-            }
+            series[g].push((t, row[g] - level[g]));
         }
     }
+    let passages = series.map(|s| main_passage(&s));
+    let height = passages.map(|p| p.0);
+    let speed = 0.5 / (passages[1].1 - passages[0].1);
     let c = (9.8f64 * 0.12).sqrt();
-    let speed = 0.5 / (t_mean[1] / weight[1] - t_mean[0] / weight[0]);
     println!("heights {height:?} m (H = 0.02), speed {speed:.3} m/s (c = {c:.3})");
     for h in height {
         assert!((h / 0.02 - 1.0).abs() <= 0.1, "height {h}");
     }
     assert!((speed / c - 1.0).abs() <= 0.02, "speed {speed}");
+}
+
+/// A gauge's main passage: its highest η, and the η²-weighted mean time over the contiguous
+/// samples around that peak where η is above half of it (the sech² core; the trailing shelf and
+/// later waves, which moved an all-run mean by several per cent, are left out).
+fn main_passage(series: &[(f64, f64)]) -> (f64, f64) {
+    let peak = (0..series.len())
+        .max_by(|&a, &b| series[a].1.total_cmp(&series[b].1))
+        .unwrap_or_else(|| panic!("an empty gauge series"));
+    let half = 0.5 * series[peak].1;
+    let first = (0..=peak)
+        .rev()
+        .take_while(|&i| series[i].1 > half)
+        .last()
+        .unwrap_or(peak);
+    let last = (peak..series.len())
+        .take_while(|&i| series[i].1 > half)
+        .last()
+        .unwrap_or(peak);
+    let core = &series[first..=last];
+    let weight: f64 = core.iter().map(|(_, e)| e * e).sum();
+    let time = core.iter().map(|(t, e)| e * e * t).sum::<f64>() / weight;
+    (series[peak].1, time)
 }
