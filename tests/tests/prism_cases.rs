@@ -152,13 +152,21 @@ fn frame_snapshots(out: &Path) -> Vec<Vec<[f64; 3]>> {
 /// the drag law cuts the new members) with the ledger balanced to round-off. The pieces are
 /// carried downstream on the channel's floor (the frame's wall at z = 0): no node goes more than
 /// 1 mm below it (measured 3e-6 m; without the wall the pieces sank 24 mm by 0.45 s), none flies
-/// above the water (0.2 m).
+/// above the water (0.2 m). The frame warns of nothing: its energy balance holds through the
+/// fractures and every step reaches its equilibrium tolerance (measured: worst residual 3.5e-5 of
+/// the energy scale; before the restart after a fracture and the rule that a free end holds no
+/// hinge, `structure-solver/src/frame/fracture.rs`, the balance was lost at 0.2424 s and ended at
+/// −8.4e-2 J against 7.9e-2 J of external work).
 #[test]
 fn the_washout_prism_fractures_and_the_coupled_run_goes_on() {
     let dir = out_dir("prism-washout-ci");
     let case = coarse_case("prism-washout", "case.toml", &dir, 0.45);
     let out = dir.join("out");
-    let (rows, header, _) = run(&case, &out);
+    let (rows, header, log) = run(&case, &out);
+    assert!(
+        !log.contains("warning from prism"),
+        "the frame's solution is not to be trusted:\n{log}"
+    );
     let balance = column(&header, "balance");
     let worst = largest_abs(rows.iter().map(|r| r[balance]));
     assert!(worst <= 1e-12, "ledger balance {worst:e}");

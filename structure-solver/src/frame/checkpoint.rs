@@ -3,9 +3,9 @@
 //! velocities and accelerations, contact, hinge events, the energy account, counters and the
 //! accuracy record — without what it caches to go faster: the condensed system with its symbolic
 //! and numeric factorisations, the factor's age, the internal forces kept from the last step, the
-//! kept state's scratch copy and the stress states before the last update. Those are made again
-//! from the state: a frame read back has no factor, and its next step assembles and factorises
-//! anew.
+//! kept state's scratch copy, the stress states before the last update and which element ends are
+//! free. Those are made again from the state: a frame read back has no factor, and its next step
+//! assembles and factorises anew.
 //!
 //! So that a resumed run does exactly the arithmetic of one that never stopped, a run that writes
 //! a checkpoint drops the same caches at that moment ([`Frame::drop_caches`]): both then continue
@@ -16,7 +16,7 @@
 
 use super::contact::Contact;
 use super::energy::EnergyAccount;
-use super::fracture::FractureCriterion;
+use super::fracture::{free_ends, FractureCriterion};
 use super::hinge::StressState;
 use super::hinge_events::HingeEvent;
 use super::section::Section;
@@ -80,6 +80,7 @@ impl From<Frame> for FrameFile {
             end_of_step_forces: _,
             kept: _,
             predicted_velocity: _,
+            free_ends: _,
             connectivity,
             factorizations,
             assemblies,
@@ -143,6 +144,7 @@ impl TryFrom<FrameFile> for Frame {
             ));
         }
         let system = condensed_system_of(&f.nodes, &f.elements)?;
+        let free_ends = free_ends(&f.nodes, &f.elements);
         Ok(Frame {
             time_step: f.time_step,
             gravity: f.gravity,
@@ -176,6 +178,7 @@ impl TryFrom<FrameFile> for Frame {
             events: f.events,
             damping: f.damping,
             energy: f.energy,
+            free_ends,
         })
     }
 }

@@ -18,15 +18,25 @@
 //!   Newmark's β = 4/9, γ = 5/6 takes out. From `[[u]] = Δt⟨v⟩ + Δt²(β − γ/2)[[a]]` and
 //!   `[[v]] = Δt⟨a⟩ + Δt(γ − ½)[[a]]` and `M a = f − R − C v` at both ends of a step,
 //!   `[[T]] = [[u]]ᵀ⟨f⟩ − [[u]]ᵀ⟨R⟩ − [[u]]ᵀ⟨C v⟩ − D_alg` exactly (M held constant over the step).
-//! - `external` W = Σ_steps [[u]]ᵀ ⟨f⟩, f the applied node loads (interface and contact forces
-//!   included) plus the weights m g; the first step after recording starts takes for f_n the load
-//!   that balances the state then, `M a + R + a0 M v`.
+//! - `external` W = Σ_steps [[u]]ᵀ ⟨f⟩ + Σ_nodes m g · [[x]], f the applied node loads (interface
+//!   and contact forces included), the weights' work exact (m and g constant over a step). A node
+//!   a fracture made had no load at the step's start (f_n = 0 there; its weight counts whole). The
+//!   first step after recording starts takes for f_n the load that balances the state then,
+//!   `M a + R + a0 M v − m g`.
 //! - `residual` W − (ΔT + ΔU − S + D_p + D_d + D_alg), Δ from when recording started. Every term above
 //!   is computed on its own, so the residual measures what the solver does not balance: the
 //!   internal work `[[u]]ᵀ⟨R⟩` against ΔU + D_p (the co-rotational forces are not the exact
 //!   gradient of U, the trapezoid of a plastic step, moves of an integration point when a hinge
-//!   forms), the unbalanced force a one-solve step carries into the next, the change of the
-//!   spatial rotary inertia over a step, and the work of the sudden unbalance a fracture leaves.
+//!   forms), the unbalanced force a one-solve step carries into the next, and the change of the
+//!   spatial rotary inertia over a step.
+//!
+//! A fracture does no work (positions and velocities do not jump; the split node's mass and
+//! momentum are shared by its pieces, so T does not jump either): it releases the fractured
+//! element's U, booked in S. It also changes the forces on the nodes at once, which the step after
+//! it must start from (`fracture.rs` makes their accelerations satisfy `M a = f − R − C v` again):
+//! from the old accelerations, that step's ⟨M a⟩ missed ½ ΔF, and the account showed ½ [[u]]ᵀ ΔF
+//! as lost: 3.9 J after a 132.9 J release at Δt = 1e-4 s, 2.1e-6 J from balanced accelerations
+//! (`tests/frame_fracture.rs`, `docs/notes/frame-energy-at-fracture.md`).
 //!
 //! Measured (`tests/frame_energy.rs`): a cantilever's elastic free vibration at Δt = T1/100 leaves
 //! a residual of 8e-12 of its initial energy over 5 periods with first-order elements
@@ -49,9 +59,9 @@ use nalgebra::{Matrix3, Vector3};
 /// Running sums of the energy account.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub(super) struct EnergyAccount {
-    /// f_n: the loads with the weights at the end of the last step, 6 per node (`None`: the
-    /// balancing load, worked out at the first step).
-    previous_force: Option<Vec<f64>>,
+    /// f_n: the applied loads (without the weights) of the last step, 6 per node; nodes a fracture
+    /// made since have none (`None`: the balancing load, worked out at the first step).
+    previous_loads: Option<Vec<f64>>,
     external: f64,
     damping: f64,
     algorithmic: f64,
@@ -64,7 +74,7 @@ pub(super) struct EnergyAccount {
 impl EnergyAccount {
     /// Whether the next step is the first one recorded (it needs R at its start).
     pub(super) fn starting(&self) -> bool {
-        self.previous_force.is_none()
+        self.previous_loads.is_none()
     }
 }
 
@@ -88,7 +98,7 @@ impl Frame {
     /// Starts (or stops) keeping the energy account; it starts from the current state.
     pub fn record_energy(&mut self, on: bool) {
         self.energy = on.then(|| EnergyAccount {
-            previous_force: None,
+            previous_loads: None,
             external: 0.0,
             damping: 0.0,
             algorithmic: 0.0,
@@ -193,19 +203,8 @@ impl Frame {
         (mass, rotary)
     }
 
-    /// The loads with the weights, 6 per node.
-    fn applied_force(&self, loads: &[f64], mass: &[f64]) -> Vec<f64> {
-        let mut f = loads.to_vec();
-        for (fv, m) in f.chunks_exact_mut(NODE_DOFS).zip(mass) {
-            for (fk, g) in fv.iter_mut().zip(self.gravity.iter()) {
-                *fk += m * g;
-            }
-        }
-        f
-    }
-
-    /// The inertia and mass-damping part `M a + a0 M v` of the load that balances the state
-    /// `before` at the start of the first recorded step (R is added by the caller).
+    /// The part `M a + a0 M v − m g` of the load that balances the state `before` at the start of
+    /// the first recorded step (R is added by the caller).
     fn balancing_force(&self, before: &Motion, mass: &[f64], rotary: &[Matrix3<f64>]) -> Vec<f64> {
         let mut f = vec![0.0; self.nodes.len() * NODE_DOFS];
         for (i, (v, a)) in before.iter().enumerate() {
@@ -215,7 +214,7 @@ impl Frame {
                 rate[k] += self.damping.0 * v[k];
             }
             for k in 0..3 {
-                fv[k] += mass[i] * rate[k];
+                fv[k] += mass[i] * (rate[k] - self.gravity[k]);
                 fv[3 + k] += (0..3).map(|l| rotary[i][(k, l)] * rate[3 + l]).sum::<f64>();
             }
         }
@@ -236,10 +235,10 @@ impl Frame {
             return;
         };
         let (mass, rotary) = self.lumped_inertia();
-        let force = self.applied_force(loads, &mass);
-        let previous = match &acc.previous_force {
-            Some(f) if f.len() == force.len() => f.clone(),
-            _ => {
+        let previous = match &acc.previous_loads {
+            // a node a fracture made since has no load before (nodes are only ever appended)
+            Some(f) => f.clone(),
+            None => {
                 let mut f = self.balancing_force(before, &mass, &rotary);
                 if let Some(r) = internal_before {
                     for (fv, rv) in f.chunks_exact_mut(NODE_DOFS).zip(r) {
@@ -262,8 +261,12 @@ impl Frame {
             let g = i * NODE_DOFS;
             let mut vm = [0.0; NODE_DOFS];
             let mut da = [0.0; NODE_DOFS];
+            let load = |f: &[f64], k: usize| f.get(g + k).copied().unwrap_or(0.0);
             for k in 0..NODE_DOFS {
-                external += du[g + k] * 0.5 * (previous[g + k] + force[g + k]);
+                external += du[g + k] * 0.5 * (load(&previous, k) + load(loads, k));
+                if k < 3 {
+                    external += du[g + k] * mass[i] * self.gravity[k];
+                }
                 vm[k] = 0.5 * (v0[k] + n.velocity[k]);
                 da[k] = n.acceleration[k] - acc0[k];
                 mean_velocity[g + k] = vm[k];
@@ -299,7 +302,7 @@ impl Frame {
             acc.external += external;
             acc.damping += mass_damping + a1 * stiffness_damping;
             acc.algorithmic += algorithmic;
-            acc.previous_force = Some(force);
+            acc.previous_loads = Some(loads.to_vec());
         }
     }
 }

@@ -116,19 +116,25 @@ impl StressState {
     /// with the integration point already at the hinge, which keeps the response consistent with the
     /// hinge's tangent), flows plastically at a loading hinge (closest-point return) and closes a
     /// hinge whose elastic trial falls inside the surface. This state becomes `start` so advanced
-    /// (`stress_states.rs` keeps both).
+    /// (`stress_states.rs` keeps both). No hinge forms at a `free` end (its node held by no other
+    /// element and no support, `fracture.rs`): nothing lies beyond it to turn about it, and the
+    /// section force there is only what its node's own load and inertia ask.
     pub fn update_from(
         &mut self,
         start: &StressState,
         section: &Section,
         length: f64,
         dd: &[f64; ELEMENT_DOFS],
+        free: [bool; 2],
     ) {
         *self = *start;
         self.elastic_trial(section, length, dd);
         match self.hinge {
             None => {
                 let f_at = |end: End| {
+                    if free[end.node()] {
+                        return f64::NEG_INFINITY;
+                    }
                     let (my, mz) = moments_at(length, self.s, &self.sigma, end.xi());
                     section.yield_function(self.sigma[0], my, mz)
                 };

@@ -116,6 +116,9 @@ pub struct Frame {
     predicted_velocity: Vec<f64>,
     /// The energy account, when kept (`energy.rs`).
     energy: Option<energy::EnergyAccount>,
+    /// Which ends of each element are free, held by no other element and no support
+    /// (`fracture.rs`); made again when a fracture changes the connectivity.
+    free_ends: Vec<[bool; 2]>,
 }
 
 impl Frame {
@@ -155,6 +158,7 @@ impl Frame {
             None => None,
         };
         let system = condensed_system_of(&nodes, &elements).map_err(|m| FieldError::new(key, m))?;
+        let free_ends = fracture::free_ends(&nodes, &elements);
         Ok(Frame {
             time_step: cfg.time_step,
             gravity: Vector3::from(cfg.gravity),
@@ -194,6 +198,7 @@ impl Frame {
             },
             predicted_velocity: Vec::new(),
             energy: None,
+            free_ends,
         })
     }
 

@@ -189,7 +189,7 @@ impl Frame {
             self.record_hinge_changes(before);
         }
         self.update_integration_points();
-        self.split_fractured()?;
+        self.split_fractured(loads)?;
         self.check_stability(dt)?;
         self.steps += 1;
         self.worst_unbalance = self.worst_unbalance.max(self.unbalance);
@@ -417,14 +417,17 @@ impl Frame {
     /// New co-rotational frames, natural deformation increments and resultants of every element
     /// (the stress states before them stay in their other array, `stress_states.rs`).
     pub(super) fn update_elements(&mut self) {
-        let (nodes, sections) = (&self.nodes, &self.sections);
+        let (nodes, sections, free) = (&self.nodes, &self.sections, &self.free_ends);
         let (before, after) = self.stresses.to_update();
         self.elements
             .par_iter_mut()
             .zip(before)
             .zip(after)
+            .zip(free)
             .with_min_len(PARALLEL_CHUNK)
-            .for_each(|((e, before), after)| update_element(e, before, after, nodes, sections));
+            .for_each(|(((e, before), after), &free)| {
+                update_element(e, before, after, nodes, sections, free)
+            });
         self.stresses.updated();
     }
 
@@ -432,15 +435,17 @@ impl Frame {
     /// state without stiffness.
     fn update_elements_with_forces(&mut self) -> Vec<Contribution> {
         let (nodes, sections, density) = (&self.nodes, &self.sections, self.density);
+        let free = &self.free_ends;
         let (before, after) = self.stresses.to_update();
         let contributions = self
             .elements
             .par_iter_mut()
             .zip(before)
             .zip(after)
+            .zip(free)
             .with_min_len(PARALLEL_CHUNK)
-            .map(|((e, before), after)| {
-                update_element(e, before, after, nodes, sections);
+            .map(|(((e, before), after), &free)| {
+                update_element(e, before, after, nodes, sections, free);
                 Contribution::of(e, after, &sections[e.section], density)
             })
             .collect();
@@ -526,13 +531,14 @@ fn update_element(
     after: &mut StressState,
     nodes: &[Node],
     sections: &[Section],
+    free: [bool; 2],
 ) {
     let now = e.kinematics(nodes);
     let mut dd = [0.0; ELEMENT_DOFS];
     for (i, d) in dd.iter_mut().enumerate() {
         *d = now.deformation[i] - e.current.deformation[i];
     }
-    after.update_from(before, &sections[e.section], e.length0, &dd);
+    after.update_from(before, &sections[e.section], e.length0, &dd, free);
     e.current = now;
 }
 
