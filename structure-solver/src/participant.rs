@@ -21,7 +21,7 @@ use crate::structure::Structure;
 use schemas::case::Case;
 use schemas::f64s::F64s;
 use schemas::message::{Fields, Geometry, InterfaceDecl, Role, Waveform};
-use schemas::participant::Participant;
+use schemas::participant::{DiscardProgress, Participant, ProgressSink};
 use std::path::Path;
 
 /// A window may start this far (relative to max(1, t)) from the time the structure is at.
@@ -201,6 +201,14 @@ impl Participant for StructureParticipant {
     }
 
     fn advance(&mut self, inputs: &Waveform) -> Result<Vec<Fields>, String> {
+        self.advance_reporting(inputs, &mut DiscardProgress)
+    }
+
+    fn advance_reporting(
+        &mut self,
+        inputs: &Waveform,
+        progress: &mut dyn ProgressSink,
+    ) -> Result<Vec<Fields>, String> {
         let now = self.structure.time();
         let start = inputs.start();
         if (start - now).abs() > TIME_MATCH * now.abs().max(1.0) {
@@ -222,7 +230,7 @@ impl Participant for StructureParticipant {
             };
             let warned = self.structure.frame().and_then(Frame::energy_warning).is_some();
             self.structure
-                .advance(t, &loads)
+                .advance_reporting(t, &loads, progress)
                 .map_err(|e| format!("structure `{}`: {e}", self.name))?;
             if let (false, Some(w)) = (warned, self.structure.frame().and_then(Frame::energy_warning)) {
                 eprintln!("warning: structure.{}.frame: {w}", self.name);

@@ -26,6 +26,7 @@ use crate::support::Support;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use schemas::case::structure::{StructureConfig, GROUND};
 use schemas::case::FieldError;
+use schemas::participant::{DiscardProgress, ProgressSink};
 
 /// The state of one structure participant; `Clone` is its checkpoint, and so is its serde form
 /// (a frame's without its caches: see [`Structure::drop_caches`]).
@@ -277,6 +278,17 @@ impl Structure {
     /// fracture (a load schedule is made once, a coupler may not have seen the new geometry yet):
     /// the nodes made by fracture come last and get no load then.
     pub fn advance(&mut self, t_end: f64, external: &Loads) -> Result<(), StepError> {
+        self.advance_reporting(t_end, external, &mut DiscardProgress)
+    }
+
+    /// [`Structure::advance`], telling `progress` of every substep and frame step it finishes (a
+    /// coupled run tells a long window from a hung participant by these reports).
+    pub fn advance_reporting(
+        &mut self,
+        t_end: f64,
+        external: &Loads,
+        progress: &mut dyn ProgressSink,
+    ) -> Result<(), StepError> {
         let t0 = self.time;
         let span = t_end - t0;
         if !(span.is_finite() && span >= 0.0) {
@@ -304,12 +316,19 @@ impl Structure {
             self.time = t1;
             self.substeps += 1;
             start = end;
+            progress.step_done(t1);
         }
-        self.advance_frame(t0, t_end, external)
+        self.advance_frame(t0, t_end, external, progress)
     }
 
     /// Newmark steps of the frame from `t0` to `t_end`, loads at each step end.
-    fn advance_frame(&mut self, t0: f64, t_end: f64, external: &Loads) -> Result<(), StepError> {
+    fn advance_frame(
+        &mut self,
+        t0: f64,
+        t_end: f64,
+        external: &Loads,
+        progress: &mut dyn ProgressSink,
+    ) -> Result<(), StepError> {
         let Some(time_step) = self.frame.as_ref().map(Frame::time_step) else {
             return Ok(());
         };
@@ -329,6 +348,7 @@ impl Structure {
                     .map_err(|m| StepError::new(t, m))?;
             }
             t = t1;
+            progress.step_done(t1);
         }
         Ok(())
     }

@@ -5,7 +5,7 @@
 
 use schemas::message::{FromParticipant, ToParticipant};
 use schemas::recording::Message;
-use stack_tests::{binary, coupler, oscillator_case, oscillator_error, out_dir, stderr};
+use stack_tests::{binary, coupler, coupler_run, oscillator_case, oscillator_error, out_dir, stderr};
 use std::io::{BufRead, BufReader};
 use std::path::Path;
 use std::process::{Child, Command, Stdio};
@@ -423,4 +423,50 @@ fn two_runs_at_once_do_not_interfere() {
     println!("concurrent errors: {e:?}");
     assert!(e[0] < 1.6e-5 && e[1] < 1e-3, "{e:?}");
     assert_ne!(e[0], e[1]);
+}
+
+/// The structure solver reports its steps too (`Structure::advance_reporting`): the oscillator
+/// with `mass-left` stepped at 4e-8 s, 250 000 substeps per window (about 0.5 s of wall time each
+/// on the 2-core machine), under a 0.2 s timeout, completes. Before the structure solver reported,
+/// such a run stopped at window 0: "no answer and no progress report for 0.5 s (hung?)" (measured
+/// with 1e-8 s steps and a 0.5 s timeout).
+#[test]
+fn a_structure_window_longer_than_the_timeout_completes() {
+    let dir = out_dir("slow-structure-window");
+    let case = oscillator_case(
+        &dir,
+        &[
+            ("end_time", "0.04"),
+            ("max_step", "4.0e-8"),
+            ("scheme", "\"explicit\""),
+            ("max_iterations", "30\ntimeout = 0.2"),
+        ],
+    );
+    let out = dir.join("out");
+    let run = coupler_run(&case, &out);
+    let err = stderr(&run);
+    println!("{err}");
+    assert!(
+        run.status.success(),
+        "a structure that reports its steps is no hang: {err}"
+    );
+    let rec =
+        schemas::recording::Recording::read(&out.join("recording.rec")).unwrap_or_else(|e| panic!("{e}"));
+    let waits: Vec<f64> = rec
+        .frames
+        .windows(2)
+        .filter(|f| {
+            f[0].participant == "mass-left"
+                && matches!(f[0].message, Message::To(ToParticipant::Advance { .. }))
+                && matches!(f[1].message, Message::From(FromParticipant::Advanced { .. }))
+        })
+        .map(|f| f[1].wall_time - f[0].wall_time)
+        .collect();
+    println!("mass-left's answers took {waits:?} s");
+    assert_eq!(waits.len(), 4, "four windows answered by mass-left");
+    // The test means something only where a window outlasts the timeout.
+    assert!(
+        waits.iter().any(|&w| w > 0.2),
+        "no window of mass-left took longer than the 0.2 s timeout: {waits:?}; step it finer"
+    );
 }
