@@ -60,8 +60,13 @@ impl Frame {
             let mut rhs = self.residual(&self.gather(&contributions), loads, inertia, &du, mass_factor, dt);
             let residual = norm(&rhs);
             let first = *first_residual.get_or_insert(residual);
-            if residual <= tolerance * first || residual <= round_off {
-                self.unbalance = if first > 0.0 { residual / first } else { 0.0 };
+            if residual <= round_off {
+                // in balance to round-off: a step that starts so has nothing left to share out
+                self.unbalance = 0.0;
+                break;
+            }
+            if residual <= tolerance * first {
+                self.unbalance = residual / first;
                 break;
             }
             if iteration > MAX_CORRECTIONS {
