@@ -3,7 +3,7 @@
 //! its horizontal force and moment vanish by symmetry, and the fluid's reaction is its exact
 //! opposite.
 
-mod bodies_common;
+use crate::bodies_common;
 
 use bodies_common::tank_with_body;
 use fluid_solver::FluidSolver;

@@ -2,7 +2,7 @@
 //! in the body's frame at its present pose, not against the box of the initial placement (the
 //! false alarm that stopped the seed's floating box at t = 0.518 s).
 
-mod bodies_common;
+use crate::bodies_common;
 
 use bodies_common::tank_with_body;
 use fluid_solver::{FluidSolver, Kind};

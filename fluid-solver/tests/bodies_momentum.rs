@@ -4,7 +4,7 @@
 //! is in the loads, and the reaction the fluid reports balances them, forces and moments. No
 //! water particle gets through the box's outer particle layer.
 
-mod bodies_common;
+use crate::bodies_common;
 
 use bodies_common::tank_with_body;
 use fluid_solver::{FluidSolver, Kind};

@@ -1,8 +1,8 @@
 //! Conservation: fluid mass is the particle count; the fluid's momentum changes only by
 //! gravity and the forces of the walls; save/restore and advance-to behave as the coupler needs.
 
-mod closed_box;
-mod common;
+use crate::closed_box;
+use crate::common;
 
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{Aabb, FluidConfig};

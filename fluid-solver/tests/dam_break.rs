@@ -2,9 +2,9 @@
 //! (1996) and Martin & Moyce (1952, n² = 2, a = 2.25 in), in the dimensionless variables of the
 //! data: T = t √(2g/L), Z = z/L (data: cases/dam-break-koshizuka/reference/, carried by pysph's examples).
 
-mod common;
-mod front_common;
-mod front_record;
+use crate::common;
+use crate::front_common;
+use crate::front_record;
 
 use front_common::FrontErrors;
 use front_record::FrontRecord;

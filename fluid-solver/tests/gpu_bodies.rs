@@ -4,8 +4,8 @@
 //! and the fixed submerged box's settled load has the CPU's mean over an ensemble of starts
 //! (ignored: minutes on lavapipe, 85 s on an H100).
 
-mod bodies_common;
-mod gpu_common;
+use crate::bodies_common;
+use crate::gpu_common;
 
 use bodies_common::tank_with_body;
 use fluid_solver::FluidSolver;

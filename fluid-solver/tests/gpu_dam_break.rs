@@ -2,8 +2,8 @@
 //! Δs = 0.02 m: the same particles after 200 steps, within a bound derived from f32 rounding,
 //! and the surge front within 1 %.
 
-mod common;
-mod gpu_common;
+use crate::common;
+use crate::gpu_common;
 
 use fluid_solver::probes;
 use fluid_solver::{FluidSolver, Kind};

@@ -2,7 +2,7 @@
 //! detector on a copy): the same finding at the same step as on the CPU for a particle made too
 //! fast, a particle put inside a wall, a NaN, and energy fed in without a source.
 
-mod gpu_common;
+use crate::gpu_common;
 
 use fluid_solver::{FluidSolver, Instability, Kind};
 use schemas::case::Case;

@@ -2,10 +2,10 @@
 //! CPU test's setting and bounds (`dam_break.rs`): about 500 steps of 8 000 particles, a minute
 //! on lavapipe, so ignored in CI, where `gpu_dam_break.rs` compares the GPU step with the CPU step.
 
-mod common;
-mod front_common;
-mod front_record;
-mod gpu_common;
+use crate::common;
+use crate::front_common;
+use crate::front_record;
+use crate::gpu_common;
 
 use front_record::FrontRecord;
 use schemas::case::fluid::FluidBackend;

@@ -22,9 +22,8 @@
 //! mean pressures follow the CPU's within 0.1 % over 1 s (`gpu_pressure_stages.rs`): no GPU
 //! bias was found.
 
-mod common;
-mod gpu_common;
-mod hydrostatic_common;
+use crate::gpu_common;
+use crate::hydrostatic_common;
 
 use schemas::case::fluid::FluidBackend;
 

@@ -3,8 +3,8 @@
 //! prefix sum; the dam-break slab in a cell grid of 4.4 M cells against the CPU step; and every
 //! kernel dispatched in rows of a few workgroups against the same run in one row.
 
-mod common;
-mod gpu_common;
+use crate::common;
+use crate::gpu_common;
 
 use bytemuck::Zeroable;
 use fluid_solver::escape::OpenTop;

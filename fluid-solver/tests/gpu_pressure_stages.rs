@@ -19,8 +19,8 @@
 //! `gpu_hydrostatic.rs`, +11 % in `gpu_bodies.rs`' ρgV test): those are single samples of a
 //! time average that scatters by several % on the CPU too.
 
-mod common;
-mod gpu_common;
+use crate::common;
+use crate::gpu_common;
 
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::FluidConfig;

@@ -1,7 +1,7 @@
 //! What the GPU path refuses: cases with features it does not run yet (by the case key or the
 //! command-line flag), and no adapter at all (exit code 2 with how to get one).
 
-mod gpu_common;
+use crate::gpu_common;
 
 use schemas::case::Case;
 use std::path::{Path, PathBuf};

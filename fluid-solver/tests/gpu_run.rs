@@ -2,7 +2,7 @@
 //! copied back at each probe row (surge front, water height, point pressure), and the probes read
 //! them as on the CPU.
 
-mod gpu_common;
+use crate::gpu_common;
 
 use fluid_solver::run::run_case;
 use schemas::case::Case;

@@ -2,7 +2,7 @@
 //! `REQUIRE_GPU=1` it passes by skipping, and the harness shows nothing of a passing test's
 //! output, so the skip line goes straight to the process's stderr (`gpu_common::device`).
 
-mod gpu_common;
+use crate::gpu_common;
 
 use std::process::Command;
 

@@ -1,8 +1,7 @@
 //! Hydrostatic tank: after settling, the pressure at depth h is ρ g h within 3 % in the interior
 //! (issue 3's bound), the floor carries the water's weight, and no particle gets through a wall.
 
-mod common;
-mod hydrostatic_common;
+use crate::hydrostatic_common;
 
 use schemas::case::fluid::FluidBackend;
 

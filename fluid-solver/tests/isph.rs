@@ -1,8 +1,8 @@
 //! ISPH (issue 12): hydrostatics, free-surface detection, the PPE fault, the time-step check and
 //! bit-identical checkpoints for both methods.
 
-mod common;
-mod isph_slab;
+use crate::common;
+use crate::isph_slab;
 
 use fluid_solver::isph::free_surface::{self, SURFACE};
 use fluid_solver::isph::kernel::Wendland;

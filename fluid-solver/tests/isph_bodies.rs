@@ -2,7 +2,7 @@
 //! buoyancy ρ g V within 5 % (issue 5's bound, as for E-MPS in `bodies_fixed_hydrostatic.rs`),
 //! and its load and the fluid's reaction come from one pair law (action = −reaction).
 
-mod bodies_common;
+use crate::bodies_common;
 
 use bodies_common::tank_with_body;
 use fluid_solver::{FluidSolver, Kind};

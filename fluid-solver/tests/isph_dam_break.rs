@@ -2,10 +2,10 @@
 //! Moyce (1952, n² = 2, a = 2.25 in), as `dam_break.rs` does for E-MPS, with bounds at least as
 //! tight as its (issue 12).
 
-mod common;
-mod front_common;
-mod front_record;
-mod isph_slab;
+use crate::common;
+use crate::front_common;
+use crate::front_record;
+use crate::isph_slab;
 
 use front_record::FrontRecord;
 use std::time::Instant;

@@ -45,9 +45,9 @@
 //! still water is 4.7× less divergent than with S2-8, the dam break 2.7× more (its gradient's
 //! zero-order part moves particles that D reads as divergence; the PPE does not see it).
 
-mod bodies_common;
-mod common;
-mod isph_slab;
+use crate::bodies_common;
+use crate::common;
+use crate::isph_slab;
 
 use fluid_solver::collision::COLLISION_DISTANCE;
 use fluid_solver::isph::exact_projection;

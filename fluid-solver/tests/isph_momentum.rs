@@ -25,8 +25,8 @@
 //!   0.1 s, both ways). The face law's pressure × area is more than the difference-form gradient
 //!   takes out of the fluid.
 
-mod bodies_common;
-mod common;
+use crate::bodies_common;
+use crate::common;
 
 use bodies_common::tank_with_body;
 use fluid_solver::{FluidSolver, Kind};

@@ -2,9 +2,8 @@
 //! default, and `"two-level-pcg"`) on the ISPH CI dam break against Jacobi-PCG: the same pressures
 //! within what the PPE tolerance allows, and the same surge front.
 
-mod common;
-mod front_common;
-mod isph_slab;
+use crate::front_common;
+use crate::isph_slab;
 
 use fluid_solver::method::MethodState;
 use fluid_solver::{FluidSolver, Kind};

@@ -3,8 +3,7 @@
 //! computation gives ([`walls::normals`], [`walls::depths`], [`walls::convex`]), after the water has moved and the
 //! cell sort has reordered every particle.
 
-mod common;
-mod isph_slab;
+use crate::isph_slab;
 
 use fluid_solver::isph::kernel::Wendland;
 use fluid_solver::isph::neighbour_list::{cell_edge, NeighbourList};

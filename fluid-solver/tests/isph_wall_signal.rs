@@ -17,7 +17,7 @@
 //! jet a few particles thick at the wall within one step (E-MPS's sound speed spreads the stop
 //! over several); it is printed, not bounded.
 
-mod common;
+use crate::common;
 
 use fluid_solver::probe_signal::Series;
 use fluid_solver::probes::{self, ProbeSet};

@@ -3,7 +3,7 @@
 //! column, 0.161 m box), none whole multiples of Δs = 0.02 m in every direction, are built
 //! within half a layer of their sizes, with a message for every face that moved.
 
-mod common;
+use crate::common;
 
 use fluid_solver::layout;
 use fluid_solver::Kind;

@@ -2,7 +2,7 @@
 //! thrown over a side wall leaves, the run goes on to its end with the count, and the run stops
 //! only when more than the case's `max_removed_fraction` has left.
 
-mod common;
+use crate::common;
 
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::FluidConfig;

@@ -2,7 +2,7 @@
 //! hydrostatic tank reads ρ g h at its depth, a water-height gauge next to a drop against the
 //! lid reads the water below it, and a surge front runs towards −x as well as +x.
 
-mod common;
+use crate::common;
 
 use fluid_solver::probes::{self, ProbeSet};
 use fluid_solver::{FluidSolver, Kind};

@@ -3,8 +3,7 @@
 //! `Δp = M g t + wall impulse + reaction impulse` closes to round-off (as conservation.rs's does
 //! without them), and the reaction impulse is Σ F Δt; the same for reactions spread over a wide
 //! member's footprint.
-mod closed_box;
-mod common;
+use crate::closed_box;
 
 use fluid_solver::{FluidSolver, Kind};
 use schemas::validation::{largest_abs, record, Record};

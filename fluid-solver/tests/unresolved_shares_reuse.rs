@@ -3,8 +3,7 @@
 //! particles have not moved and the centroids and sample points are the same, and then give the
 //! same forces to the last bit as searching the cell list again; the samples are those of
 //! `sample_points` to the last bit.
-mod closed_box;
-mod common;
+use crate::closed_box;
 
 use fluid_solver::unresolved::spreading::spread;
 use fluid_solver::FluidSolver;

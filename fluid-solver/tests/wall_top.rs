@@ -24,7 +24,7 @@
 //! surface now gets only the wall's push (`isph::walls`): 2 of 800 removed by 1.5 s (6 once the
 //! push waits for contact), Martin & Moyce 0.028 (0.027).
 
-mod common;
+use crate::common;
 
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{FluidConfig, FluidMethodName, IsphConfig};

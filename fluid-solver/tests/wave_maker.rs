@@ -6,8 +6,7 @@
 //! `the_solitary_wave_keeps_its_height_and_speed_over_ten_depths` (ignored for its length, see
 //! `docs/notes/solitary-waves.md`).
 
-mod common;
-mod standing_wave;
+use crate::common;
 
 use fluid_solver::probes::{self, ProbeSet};
 use fluid_solver::{FluidSolver, Kind};

@@ -5,7 +5,7 @@
 //! measured by `benches/frame_steps.rs`); at 0.5 ms steps leave at most 2 % and the hinge pattern
 //! agrees.
 
-mod frame_common;
+use crate::frame_common;
 
 use structure_solver::frame::{Equilibrium, Frame};
 

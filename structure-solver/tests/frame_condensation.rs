@@ -3,7 +3,7 @@
 //! through the condensed system agrees with a dense solve of the full tangent stiffness (nothing
 //! condensed, from `dense_matrices`) to round-off.
 
-mod frame_common;
+use crate::frame_common;
 
 use frame_common::{rectangle, steel, support, ALL};
 use schemas::case::frame::{FrameConfig, MemberConfig, NodeConfig};

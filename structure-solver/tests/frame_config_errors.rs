@@ -1,7 +1,7 @@
 //! Bad frame input gives a clear error naming the key and what is allowed; bad step input and
 //! unstable runs give an error, never a panic.
 
-mod frame_common;
+use crate::frame_common;
 
 use frame_common::{beam, steel, support, ALL};
 use schemas::case::Case;

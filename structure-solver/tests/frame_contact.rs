@@ -1,7 +1,7 @@
 //! Contact (S2 §3(2)): members land on a wall and on each other and come to rest without passing
 //! through.
 
-mod frame_common;
+use crate::frame_common;
 
 use frame_common::{beam, rectangle, steel, support, ALL};
 use schemas::case::frame::{ContactConfig, FrameConfig, MemberConfig, NodeConfig, WallConfig};

@@ -1,7 +1,7 @@
 //! Rayleigh damping (`[frame.damping]`): a cantilever's free vibration decays at the damping ratio
 //! asked for at its first frequency.
 
-mod frame_common;
+use crate::frame_common;
 
 use frame_common::{beam, steel, support, ALL};
 use schemas::case::frame::DampingConfig;

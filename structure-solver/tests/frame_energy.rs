@@ -1,7 +1,7 @@
 //! The frame's energy account (`frame/energy.rs`): every term is computed on its own, so the
 //! balance residual W − (ΔT + ΔU + D_p + D_d + D_alg) checks the solver.
 
-mod frame_common;
+use crate::frame_common;
 
 use frame_common::{beam, steel, support, ALL};
 use schemas::case::frame::{DampingConfig, FrameConfig, Geometry};

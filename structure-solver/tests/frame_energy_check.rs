@@ -3,7 +3,7 @@
 //! One solve per step at 1 ms loses the balance (its hinges chatter) and warns; the same building
 //! iterated at 1 ms, or with one solve per step at 0.5 ms, balances and does not.
 
-mod frame_common;
+use crate::frame_common;
 
 use frame_common::{building, sideways_loads};
 use structure_solver::frame::energy_check::ENERGY_WARNING_SHARE;

@@ -1,7 +1,7 @@
 //! Equilibrium iterations (`equilibrium_tolerance`) on a quasi-static large-rotation cantilever: a
 //! step that does not converge is an error, never a silently frozen structure (issue 11, item 1).
 
-mod frame_common;
+use crate::frame_common;
 
 use frame_common::{beam, steel, support, ALL};
 use schemas::case::frame::MaterialConfig;

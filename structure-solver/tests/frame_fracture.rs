@@ -1,7 +1,7 @@
 //! Fracture (S2-17): a member loaded past its critical curvature splits off at its hinge onto a new
 //! node; the two pieces move apart and the mass is conserved.
 
-mod frame_common;
+use crate::frame_common;
 
 use frame_common::{rectangle, steel, support, ALL};
 use schemas::case::frame::{FrameConfig, MemberConfig, NodeConfig};

@@ -1,7 +1,7 @@
 //! `geometry = "linear"` (first order) against `"corotational"` (the default): a cantilever under a
 //! large tip load, PL²/EI = 5.
 
-mod frame_common;
+use crate::frame_common;
 
 use frame_common::{beam, steel, support, ALL};
 use schemas::case::frame::Geometry;

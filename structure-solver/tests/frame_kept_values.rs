@@ -3,7 +3,7 @@
 //! benchmark's 3 × 3 × 3 building collapsing (σy = 20 MPa, 20 kN sideways on every node, Δt =
 //! 0.5 ms, 0.1 s) that must leave the motion as it is with a new assembly at every step (η = 0).
 
-mod frame_common;
+use crate::frame_common;
 
 use structure_solver::frame::{Equilibrium, Frame};
 

@@ -1,7 +1,7 @@
 //! The frame's building blocks checked against exact identities: the rotation-vector log map, the
 //! moment transfer of ASI-Gauss elements, the closest-point return and the Newmark update.
 
-mod frame_common;
+use crate::frame_common;
 
 use frame_common::{rectangle, steel};
 use nalgebra::{Rotation3, Vector3};

@@ -2,7 +2,7 @@
 //! stays straight and unstrained (co-rotational update of the elements, rotations composed as
 //! exp(Δθ) R on the nodes).
 
-mod frame_common;
+use crate::frame_common;
 
 use frame_common::{beam, steel};
 use schemas::validation::{record, Record};

@@ -1,7 +1,7 @@
 //! Bending frequencies of the slender cantilever by a dense eigen-analysis of the assembled tangent
 //! stiffness and the lumped mass (with rotary inertia).
 
-mod frame_common;
+use crate::frame_common;
 
 use frame_common::{beam, steel, support, ALL};
 use nalgebra::SymmetricEigen;

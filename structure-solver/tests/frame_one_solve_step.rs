@@ -2,7 +2,7 @@
 //! portal frame under a vertical load on its beam and a sideways load ramped past its combined
 //! mechanism.
 
-mod frame_common;
+use crate::frame_common;
 
 use frame_common::{rectangle, steel, support, ALL};
 use schemas::case::frame::{FrameConfig, MemberConfig, NodeConfig};

@@ -2,7 +2,7 @@
 //! hinges at both ends and the centre (plastic limit analysis; Neal, *The Plastic Methods of
 //! Structural Analysis*, ch. 2).
 
-mod frame_common;
+use crate::frame_common;
 
 use frame_common::{beam, steel, support, ALL};
 use schemas::validation::{record, Record};

@@ -1,6 +1,6 @@
 //! Static accuracy of the ASI-Gauss element: one member reproduces the Timoshenko cantilever.
 
-mod frame_common;
+use crate::frame_common;
 
 use frame_common::{beam, steel, support, ALL};
 use schemas::validation::{record, Record};

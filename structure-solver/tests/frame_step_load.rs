@@ -1,6 +1,6 @@
 //! Newmark (δ = 5/6, β = 4/9) response of a simply supported beam to a suddenly applied mid-span load.
 
-mod frame_common;
+use crate::frame_common;
 
 use frame_common::{beam, steel, support};
 use schemas::validation::{record, Record};

@@ -2,7 +2,7 @@
 //! `|M|/Mp + (N/Np)² = 1` by default, the wide-flange I section's and the quadratic form on request,
 //! each with its return to the surface normal to that surface.
 
-mod frame_common;
+use crate::frame_common;
 
 use frame_common::{rectangle, steel};
 use schemas::case::frame::SectionConfig;

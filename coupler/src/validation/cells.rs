@@ -150,7 +150,7 @@ mod tests {
             Some(("coupler/src/laws/drag.rs", "uniform"))
         );
         assert_eq!(
-            test_source("cargo test --release -p fluid-solver --test gpu_front"),
+            test_source("cargo test --release -p fluid-solver --test all gpu_front::"),
             None
         );
         assert_eq!(test_source("fluid-solver run cases/x.toml"), None);
