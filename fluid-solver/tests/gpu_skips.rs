@@ -15,6 +15,13 @@ fn a_gpu_test_opens_the_device() {
     assert!(!device.description().is_empty());
 }
 
+/// The full name of [`a_gpu_test_opens_the_device`] in this binary (its module path without the
+/// crate's name: the tests are modules of the package's one test binary).
+fn child_test_name() -> String {
+    let module = module_path!().split_once("::").map_or("", |(_, m)| m);
+    format!("{module}::a_gpu_test_opens_the_device")
+}
+
 /// This test binary run again on [`a_gpu_test_opens_the_device`] alone, with the Vulkan loader
 /// pointed at no driver and `REQUIRE_GPU` unset: it passes (a skip) and its stderr says that the
 /// GPU path was not tested, and why.
@@ -22,7 +29,7 @@ fn a_gpu_test_opens_the_device() {
 fn without_an_adapter_a_skipped_gpu_test_says_so_on_stderr() {
     let exe = std::env::current_exe().unwrap_or_else(|e| panic!("{e}"));
     let out = Command::new(exe)
-        .args(["--exact", "a_gpu_test_opens_the_device", "--test-threads", "1"])
+        .args(["--exact", &child_test_name(), "--test-threads", "1"])
         .env("VK_ICD_FILENAMES", "/nonexistent/icd.json")
         .env("VK_DRIVER_FILES", "/nonexistent/icd.json")
         .env_remove("REQUIRE_GPU")

@@ -41,6 +41,13 @@ fn payload(seq: u64, len: usize) -> Vec<u8> {
         .collect()
 }
 
+/// The full name of the test [`link_child`] in this binary (its module path without the crate's
+/// name: the tests are modules of the package's one test binary).
+fn child_test_name() -> String {
+    let module = module_path!().split_once("::").map_or("", |(_, m)| m);
+    format!("{module}::link_child")
+}
+
 /// A child process playing `role`; killed and reaped when dropped.
 struct Peer {
     child: Child,
@@ -51,7 +58,7 @@ impl Peer {
         let exe = std::env::current_exe().expect("path of the test binary");
         let child = Command::new(exe)
             .args([
-                "link_child",
+                child_test_name().as_str(),
                 "--exact",
                 "--ignored",
                 "--nocapture",
