@@ -7,6 +7,7 @@
 
 pub mod ascii_grid;
 pub mod error;
+pub mod geotiff;
 pub mod height_grid;
 pub mod lattice;
 pub mod lattice_fill;
@@ -18,6 +19,7 @@ pub mod triangle_mesh;
 mod vec3;
 
 pub use ascii_grid::{read_height_grid, write_ascii_grid};
+pub use geotiff::{read_geotiff, write_geotiff};
 pub use error::{EdgeFault, GridError, MeshError, MeshProblem};
 pub use height_grid::HeightGrid;
 pub use lattice::Lattice;

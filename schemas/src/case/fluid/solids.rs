@@ -25,7 +25,7 @@
 use super::{Aabb, FluidConfig};
 use crate::case::error::check;
 use crate::case::FieldError;
-use crate::geometry::{read_height_grid, read_mesh, HeightGrid, TriangleMesh};
+use crate::geometry::{read_geotiff, read_height_grid, read_mesh, HeightGrid, TriangleMesh};
 use schemars::JsonSchema;
 use serde::Deserialize;
 use std::fmt;
@@ -112,7 +112,8 @@ impl PlaneConfig {
 #[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct TerrainConfig {
-    /// An ESRI ASCII grid (`.asc`, the format DEMs are shared in), relative to the case file's
+    /// An ESRI ASCII grid (`.asc`, the format DEMs are shared in) or a GeoTIFF (`.tif`, `.tiff`:
+    /// one band, north up, placed by its pixel scale and tiepoint), relative to the case file's
     /// folder: heights [m] at cell centres, bilinear in between; no missing values inside the
     /// tank. Columns of the tank outside the grid's cell centres get no terrain.
     #[serde(default)]
@@ -255,7 +256,24 @@ impl FluidConfig {
             let Some(file) = &t.grid else { continue };
             let tk = format!("{key}.terrain[{i}].grid");
             let path = resolve(file);
-            let grid = read_height_grid(&path).map_err(|e| FieldError::new(&tk, e.to_string()))?;
+            let extension = path
+                .extension()
+                .and_then(|e| e.to_str())
+                .map(str::to_ascii_lowercase);
+            let grid = match extension.as_deref() {
+                Some("asc") => read_height_grid(&path),
+                Some("tif" | "tiff") => read_geotiff(&path),
+                _ => {
+                    return Err(FieldError::new(
+                        &tk,
+                        format!(
+                            "{}: a height grid is an ESRI ASCII grid (.asc) or a GeoTIFF (.tif, .tiff)",
+                            path.display()
+                        ),
+                    ))
+                }
+            }
+            .map_err(|e| FieldError::new(&tk, e.to_string()))?;
             let (lo, hi) = grid.centres_extent();
             let (t0, t1) = (t.translate[0], t.translate[1]);
             let overlaps = lo[0] + t0 < tank.max[0]
