@@ -7,8 +7,10 @@
 //! ("How large a run is") compares it with what every shipped case wrote: 0.79–1.16 of it.
 //! - fluid frames: `floor(end_time / output_interval) + 1` VTU files of 78 bytes per written
 //!   particle (`fluid-solver/src/output/vtu.rs`); written particles are the blocks' water, the
-//!   walls, the box bodies, an inflow's strip at full level and the two wall layers next to the
-//!   tank; a `.pvd` line per frame; a solver running alone also writes one at `end_time`;
+//!   walls, the bodies (a mesh body: its volume in cells), an inflow's strip at full level, the two
+//!   wall layers next to the tank and the two outer layers of the mesh solids' and terrains' skins
+//!   (their surface area in cells, a plane's slope counted, a grid's not); a `.pvd` line per frame;
+//!   a solver running alone also writes one at `end_time`;
 //! - free-surface meshes (`surface_mesh`): per frame 700 bytes per Δs² of the water blocks'
 //!   surface area (tutorial: 918 kB a frame over 0.5 s for 1300 Δs²; floating box 734 B/Δs² in
 //!   its first frame);
@@ -268,7 +270,6 @@ fn particles(f: &FluidConfig, layers: f64) -> f64 {
             .product()
     };
     let water: f64 = f.block.iter().map(|b| count(b.min, b.max)).sum();
-    // a mesh body (no `min`/`max`) is left out: small beside the water and walls
     let walls: f64 = f.wall.iter().map(|w| count(w.min, w.max)).sum();
     // an inflow's strip at its full level (bridge-washout-small: frames grow from 11 935 to
     // 15 303 particles over 7.2 s; the strip at full level accounts for a third of that)
@@ -277,10 +278,32 @@ fn particles(f: &FluidConfig, layers: f64) -> f64 {
         let floor = f.tank.min[2];
         count(
             [i.plane - i.strip_length, span[0], floor],
-            [i.plane, span[1], floor + i.level],
+            [i.plane, span[1], floor + i.law().map_or(0.0, |l| l.max_level())],
         )
     });
-    let bodies: f64 = f.body.iter().filter_map(|b| Some(count(b.min?, b.max?))).sum();
+    let bodies: f64 = f
+        .body
+        .iter()
+        .map(|b| match (b.min, b.max, b.placed.get()) {
+            (Some(min), Some(max), _) => count(min, max),
+            // every site inside the mesh: its volume in cells
+            (_, _, Some(mesh)) => mesh.signed_volume().abs() / ds.powi(3),
+            _ => 0.0,
+        })
+        .sum();
+    // the skins of mesh solids and terrains, `layers` deep: their surface in cells, times layers
+    let skins: f64 = f
+        .solid
+        .iter()
+        .filter_map(|s| s.placed.get())
+        .map(|mesh| {
+            (0..mesh.triangles.len())
+                .map(|t| mesh.triangle_area(t))
+                .sum::<f64>()
+        })
+        .chain(f.terrain.iter().map(|t| terrain_area(t, f)))
+        .map(|area| area / (ds * ds) * layers)
+        .sum();
     let layers = layers * ds;
     let t = &f.tank;
     let outer_min = [t.min[0] - layers, t.min[1] - layers, t.min[2] - layers];
@@ -290,7 +313,27 @@ fn particles(f: &FluidConfig, layers: f64) -> f64 {
         t.max[2] + if t.lid { layers } else { 0.0 },
     ];
     let tank_walls = count(outer_min, outer_max) - count(t.min, t.max);
-    water + walls + inflow + bodies + tank_walls.max(0.0)
+    water + walls + inflow + bodies + skins + tank_walls.max(0.0)
+}
+
+/// The area of a terrain's surface inside the tank (or its region): a plane's plan area over the
+/// cosine of its slope, a grid's plan area (its slopes left out).
+fn terrain_area(t: &schemas::case::fluid::TerrainConfig, f: &FluidConfig) -> f64 {
+    let (mut lo, mut hi) = ([f.tank.min[0], f.tank.min[1]], [f.tank.max[0], f.tank.max[1]]);
+    if let Some(r) = &t.region {
+        for a in 0..2 {
+            lo[a] = lo[a].max(r.min[a]);
+            hi[a] = hi[a].min(r.max[a]);
+        }
+    }
+    let plan = (hi[0] - lo[0]).max(0.0) * (hi[1] - lo[1]).max(0.0);
+    match &t.plane {
+        Some(p) => {
+            let n = p.normal;
+            plan * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt() / n[2].abs()
+        }
+        None => plan,
+    }
 }
 
 /// Surface area [m²] of the union of `blocks`: their faces less twice the faces two blocks share

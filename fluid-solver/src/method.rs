@@ -10,6 +10,7 @@ use crate::bodies::pair_law::{Exchange, ExchangeScales, PairLaw};
 use crate::emps::step::EmpsStep;
 use crate::isph::ppe::PpeFailure;
 use crate::isph::step::{IsphState, IsphStep};
+use crate::isph::walls::TurnedSolids;
 use crate::neighbours::neighbour_search::CellGrid;
 use crate::particles::Particles;
 use crate::stability::Instability;
@@ -72,6 +73,15 @@ impl FluidMethod {
                 let _ = s.refresh_pressure(p, grid, st);
             }
             (FluidMethod::Isph(_), MethodState::Emps) => unreachable!("ISPH is always built with its state"),
+        }
+    }
+
+    /// The solids turned rigidly from rest at the present positions (a flap paddle; `None`: none),
+    /// whose kept wall normals ISPH turns with them ([`crate::isph::walls::TurnedSolids`]); E-MPS
+    /// keeps no wall geometry.
+    pub fn turn_solids(&mut self, turned: Option<TurnedSolids>) {
+        if let FluidMethod::Isph(s) = self {
+            s.turn_solids(turned);
         }
     }
 

@@ -495,12 +495,13 @@ impl Participant for FluidParticipant {
         if self.solver.open_boundaries().is_active() {
             let (b, p) = (self.solver.open_boundaries().balance(), self.solver.particles());
             eprintln!(
-                "fluid `{}`: open boundaries at t = {} s: {} inserted, {} entered, {} removed; {} fluid, {} inflow, {} particles",
+                "fluid `{}`: open boundaries at t = {} s: {} inserted, {} entered, {} removed, {} withdrawn; {} fluid, {} inflow, {} particles",
                 self.name,
                 self.solver.time(),
                 b.inserted,
                 b.entered,
                 b.removed,
+                b.withdrawn,
                 p.count(crate::Kind::Fluid),
                 p.count(crate::Kind::Inflow),
                 p.len()

@@ -152,11 +152,12 @@ impl FluidSolver {
         if open_boundaries.has_inflow() {
             monitor.set_driven(); // the inflow feeds energy in
         }
-        let paddle = layout.paddle.map(|pp| {
-            let motion = cfg.wave_maker.as_ref().and_then(|w| w.built.clone()).expect(
+        let paddle = layout.paddle.zip(cfg.wave_maker.as_ref()).map(|(pp, w)| {
+            let motion = w.built.clone().expect(
                 "the wave maker's motion is built when the case is loaded (FluidConfig::build_wave_maker)",
             );
-            Paddle::new(motion, pp.first, pp.rest_x)
+            // the paddle's front face on the lattice: a flap's hinge lies on it
+            Paddle::new(motion, pp, w.max[0])
         });
         if paddle.is_some() {
             monitor.set_driven(); // the paddle does work on the water
@@ -431,6 +432,7 @@ impl FluidSolver {
         }
         if let Some(paddle) = &self.paddle {
             paddle.place(&mut st.particles, st.time, dt);
+            self.method.turn_solids(paddle.turned_solids(st.time + dt));
         }
         let balance = st.open_boundaries.balance();
         let open = st.open_boundaries.is_active() || self.paddle.is_some();

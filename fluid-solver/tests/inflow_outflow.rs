@@ -236,7 +236,7 @@ fn inflow_rate_of(cfg: &FluidConfig, end: f64) -> FluidSolver {
             100.0 * err
         );
     }
-    assert_eq!(U_IN, cfg.inflow.as_ref().map_or(0.0, |i| i.velocity));
+    assert_eq!(Some(U_IN), cfg.inflow.as_ref().and_then(|i| i.velocity));
     s
 }
 
@@ -264,7 +264,7 @@ fn sound_speed_defaults_to_s1_16_with_the_inflow_speed() {
     // (the table's value, given to 0.1 m/s).
     let mut cfg = channel();
     if let Some(i) = cfg.inflow.as_mut() {
-        (i.velocity, i.level) = (10.0, 20.0);
+        (i.velocity, i.level) = (Some(10.0), Some(20.0));
     }
     assert!(
         (cfg.sound_speed() - 110.9).abs() < 0.05,
@@ -423,14 +423,280 @@ fn standalone_run_writes_the_balance_csv() {
         .map(|l| l.split(',').map(|v| v.parse().unwrap_or(f64::NAN)).collect())
         .collect();
     assert!(
-        csv.starts_with("time,inserted,entered,removed,inflow,fluid,total,fluid_mass"),
+        csv.starts_with("time,inserted,entered,removed,withdrawn,inflow,fluid,total,fluid_mass"),
         "{csv}"
     );
     assert_eq!(rows.len(), 4, "rows at t = 0, 0.1, 0.2, 0.3 s:\n{csv}");
     let (first, last) = (&rows[0], &rows[3]);
     assert_eq!(last[0], 0.3);
-    // Δ total = inserted − removed; Δ fluid = entered − removed.
-    assert_eq!(last[6] - first[6], last[1] - last[3], "{csv}");
-    assert_eq!(last[5] - first[5], last[2] - last[3], "{csv}");
+    // Δ total = inserted − removed − withdrawn (none: the level only rises); Δ fluid = entered − removed.
+    assert_eq!(last[4], 0.0, "{csv}");
+    assert_eq!(last[7] - first[7], last[1] - last[3] - last[4], "{csv}");
+    assert_eq!(last[6] - first[6], last[2] - last[3], "{csv}");
     assert!(last[2] > 0.0, "{csv}");
+}
+
+/// Rows `t, level, velocity` of the surge of [`a_series_drives_the_strip_up_and_down`]: the level
+/// rises from 0.1 to 0.32 m over 0.4 s while u rises from 1.0 to 1.5 m/s, holds while u falls to
+/// 1.0 m/s, falls back to 0.1 m by 1.2 s while u falls to 0.5 m/s, and holds after the last row.
+/// Row times are whole steps (Δt = 2 ms); the crossings of h through (k + ½) Δs are not.
+const SURGE: [[f64; 3]; 4] = [
+    [0.0, 0.1, 1.0],
+    [0.4, 0.32, 1.5],
+    [0.8, 0.32, 1.0],
+    [1.2, 0.1, 0.5],
+];
+
+/// Writes `text` to a new file `name` under the target's temporary folder; returns its path.
+fn series_file(name: &str, text: &str) -> PathBuf {
+    let dir =
+        PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("inflow-series-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap_or_else(|e| panic!("{e}"));
+    path
+}
+
+/// The channel with its inflow driven by the series file `path` (its velocity and level keys
+/// replaced by `series`).
+fn series_channel(path: &Path) -> String {
+    CHANNEL.replace("velocity = 1.0\n", "").replace(
+        "level = 0.3\ninitial_level = 0.1\nrise_time = 0.4\n",
+        &format!("series = \"{}\"\n", path.display()),
+    )
+}
+
+/// Column `c` (1: h, 2: u) of [`SURGE`] at `t`: linear between rows, held after the last.
+fn surge(t: f64, c: usize) -> f64 {
+    let j = SURGE.iter().rposition(|r| r[0] <= t).unwrap_or(0);
+    match SURGE.get(j + 1) {
+        Some(next) => {
+            let w = (t - SURGE[j][0]) / (next[0] - SURGE[j][0]);
+            SURGE[j][c] + w * (next[c] - SURGE[j][c])
+        }
+        None => SURGE[j][c],
+    }
+}
+
+/// Exact integrals of the surge over [0, T], per unit width: (∫u dt, ∫u h dt, Δs ∫u n dt, the
+/// changes of n, the largest n) with n(t) = round(h(t)/Δs) the strip's rows. On each piece
+/// between rows u and h are linear, so ∫u is the trapezoid and ∫u h (quadratic) Simpson's rule,
+/// both exact; n is constant between the times h crosses (k + ½) Δs, found on each piece, and
+/// ∫u n is the trapezoid on each such interval.
+fn surge_integrals(end: f64) -> (f64, f64, f64, usize, usize) {
+    let ds = SPACING;
+    let mut cuts: Vec<f64> = SURGE.iter().map(|r| r[0]).filter(|&t| t < end).collect();
+    cuts.push(end);
+    let (mut travel, mut exact, mut rounded, mut jumps, mut most) = (0.0, 0.0, 0.0, 0, 0);
+    for w in cuts.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let (ha, hb) = (surge(a, 1), surge(b, 1));
+        let (ua, um, ub) = (surge(a, 2), surge(0.5 * (a + b), 2), surge(b, 2));
+        travel += 0.5 * (b - a) * (ua + ub);
+        exact += (b - a) / 6.0 * (ua * ha + 4.0 * um * surge(0.5 * (a + b), 1) + ub * hb);
+        let mut times = vec![a, b];
+        if ha != hb {
+            for k in 0..=(0.6 / ds) as usize {
+                let s = (((k as f64 + 0.5) * ds - ha) / (hb - ha)) * (b - a) + a;
+                if s > a && s < b {
+                    times.push(s);
+                    jumps += 1;
+                }
+            }
+        }
+        times.sort_by(f64::total_cmp);
+        for p in times.windows(2) {
+            let n = (surge(0.5 * (p[0] + p[1]), 1) / ds).round();
+            rounded += ds * n * 0.5 * (p[1] - p[0]) * (surge(p[0], 2) + surge(p[1], 2));
+            most = most.max(n as usize);
+        }
+    }
+    (travel, exact, rounded, jumps, most)
+}
+
+/// Issue 37 item 3: an inflow driven by a time series whose level rises, holds and falls while
+/// its velocity changes ([`SURGE`]), run with E-MPS to 1.4 s (700 steps, past the last row).
+///
+/// Every step: the balance closes exactly (Δ all = inserted − removed − withdrawn − escaped,
+/// Δ fluid = entered − removed − escaped, Δ strip = inserted − entered − withdrawn); the strip
+/// holds exactly the rows n = round(h(t)/Δs), so its top n Δs is within ½ Δs of h(t); every strip
+/// particle moves at u(t − Δt/2), the step's midpoint velocity.
+///
+/// The volume entered, V_e = entered Δs³, against the analytic references of
+/// [`surge_integrals`]: V_n = W Δs ∫u n dt (rows rounded) and V = W ∫u h dt (exact), W = 0.5 m the
+/// channel's width (10 sites). Derivation, with D(t) = ∫u the strip's travel (the midpoint
+/// velocity makes it exact: no row falls inside a step), ν(D) = n at travel D, and W Δs ν dD the
+/// volume the strip carries over dD: V_n = W Δs ∫₀^{D(T)} ν dD. Layer j crosses the plane in the
+/// step k in which D passes D_j = (j + ½) Δs and is turned into fluid at the next step's start;
+/// it carries n_j = min(n(t_{k−1}), n(t_k)) rows (rows added in step k skip it, rows withdrawn do
+/// not), i.e. ν at some D' within u_max Δt of D_j. So V_e = W Δs Σ_{j<N} Δs n_j with N the layers
+/// turned into fluid by T, and
+/// - on layer j's interval [j Δs, (j + 1) Δs] ν differs from n_j only beyond a change of n
+///   between D and D': at most ½ Δs + u_max Δt of the interval per change, by 1 row each: at most
+///   C (½ Δs + u_max Δt) over the run, C = 8 changes of n (2 → 6 → 2 rows);
+/// - N Δs differs from D(T) by at most ½ Δs + u_max Δt (N = round-down of D(t_{K−1})/Δs + ½, one
+///   step behind), at most n_max = 6 rows high.
+///
+/// Hence |V_e − V_n| ≤ W Δs (C + n_max)(½ Δs + u_max Δt) = 0.5 · 0.05 · 14 · 0.028 = 9.8e-3 m³,
+/// and since |n Δs − h| ≤ ½ Δs, |V_n − V| ≤ ½ W Δs D(T) = 0.5 · 0.5 · 0.05 · 1.4 = 1.75e-2 m³:
+/// |V_e − V| ≤ 2.73e-2 m³. Measured: see the printed line.
+#[test]
+fn a_series_drives_the_strip_up_and_down() {
+    let text = SURGE
+        .iter()
+        .map(|r| format!("{}, {}, {}\n", r[0], r[1], r[2]))
+        .collect::<String>();
+    let path = series_file("surge.csv", &format!("t, level, velocity\n{text}"));
+    let case = parse(&series_channel(&path)).unwrap_or_else(|e| panic!("{e}"));
+    let cfg = &case.fluid["river"];
+    let mut s = FluidSolver::new(cfg);
+    let (ds, dt, end) = (SPACING, cfg.time_step, 1.4);
+    let floor_site = 0.5 * ds;
+    let (n0, f0, i0) = counts(&s);
+    assert_eq!(
+        (f0, i0),
+        (0, 10 * 10 * 2),
+        "the initial strip: 10 layers × 10 sites × 2 rows"
+    );
+    let inflow = Kind::Inflow.code();
+    while s.time() < end - 1e-9 {
+        s.step(dt).unwrap_or_else(|e| panic!("{e}"));
+        let (t, b) = (s.time(), s.open_boundaries().balance());
+        let (n, f, i) = counts(&s);
+        let (ins, ent, rem, wd, esc) = (
+            b.inserted as i64,
+            b.entered as i64,
+            b.removed as i64,
+            b.withdrawn as i64,
+            s.escaped() as i64,
+        );
+        assert_eq!(n - n0, ins - rem - wd - esc, "t = {t}: all particles vs {b:?}");
+        assert_eq!(f - f0, ent - rem - esc, "t = {t}: fluid vs {b:?}");
+        assert_eq!(i - i0, ins - ent - wd, "t = {t}: strip vs {b:?}");
+        let p = s.particles();
+        let strip: Vec<usize> = (0..p.len()).filter(|&k| p.kind[k] == inflow).collect();
+        let rows = (surge(t, 1) / ds).round() as usize;
+        let row_of = |k: usize| ((p.z[k] - floor_site) / ds).round() as usize;
+        let top = strip.iter().map(|&k| row_of(k) + 1).max().unwrap_or(0);
+        assert_eq!(top, rows, "t = {t}: strip rows vs round(h/Δs)");
+        assert!(
+            (top as f64 * ds - surge(t, 1)).abs() <= 0.5 * ds + 1e-9,
+            "t = {t}: strip top {} m vs h = {} m",
+            top as f64 * ds,
+            surge(t, 1)
+        );
+        let u = surge(t - 0.5 * dt, 2);
+        assert!(
+            strip.iter().all(|&k| (p.vx[k] - u).abs() < 1e-12),
+            "t = {t}: the strip moves at u(t − Δt/2) = {u} m/s"
+        );
+    }
+    let b = s.open_boundaries().balance();
+    let (travel, exact, rounded, jumps, most) = surge_integrals(end);
+    assert_eq!((jumps, most), (8, 6), "the surge's changes of n and largest n");
+    let width = 10.0 * ds;
+    let entered = b.entered as f64 * ds.powi(3);
+    let (v_n, v) = (width * rounded, width * exact);
+    let u_max = 1.5;
+    let layers_bound = width * ds * (jumps + most) as f64 * (0.5 * ds + u_max * dt);
+    let rows_bound = 0.5 * width * ds * travel;
+    println!(
+        "{b:?}; strip travel {travel:.4} m; entered {entered:.5} m³, W Δs ∫u n dt = {v_n:.5} m³ (bound {layers_bound:.2e}), W ∫u h dt = {v:.5} m³ (bound {:.2e})",
+        layers_bound + rows_bound
+    );
+    assert!((entered - v_n).abs() <= layers_bound, "{entered} vs {v_n}");
+    assert!(
+        (entered - v).abs() <= layers_bound + rows_bound,
+        "{entered} vs {v}"
+    );
+    // Four falls of one row, each withdrawing a row of 10 sites from every strip layer: 9 or 10
+    // layers upstream of the plane (the front one crosses half a spacing after a whole layer's
+    // travel) and at most one that crossed in that step.
+    assert!(
+        (4 * 9 * 10..=4 * 11 * 10).contains(&b.withdrawn),
+        "withdrawn {}",
+        b.withdrawn
+    );
+}
+
+/// A series with a constant level and velocity drives the same strip as the constant keys, to
+/// the bit: the same particles and balance after 0.3 s with E-MPS and 0.04 s with ISPH.
+#[test]
+fn a_constant_series_gives_the_particles_of_the_constant_keys() {
+    let keys = CHANNEL.replace("initial_level = 0.1\nrise_time = 0.4\n", "");
+    let path = series_file("constant.csv", "t, level, velocity\n0, 0.3, 1.0\n1, 0.3, 1.0\n");
+    let series = series_channel(&path);
+    for (method, end) in [(FluidMethodName::Emps, 0.3), (FluidMethodName::Isph, 0.04)] {
+        let run = |text: &str| {
+            let case = parse(text).unwrap_or_else(|e| panic!("{e}"));
+            let mut cfg = case.fluid["river"].clone();
+            if method == FluidMethodName::Isph {
+                cfg.method = method;
+                cfg.isph = Some(schemas::case::fluid::IsphConfig::default());
+                cfg.validate("fluid.river").unwrap_or_else(|e| panic!("{e:?}"));
+            }
+            let mut s = FluidSolver::new(&cfg);
+            s.advance_to(end).unwrap_or_else(|e| panic!("{e}"));
+            (
+                s.particles().clone(),
+                s.open_boundaries().balance(),
+                cfg.sound_speed(),
+            )
+        };
+        let (a, b) = (run(&keys), run(&series));
+        assert_eq!((a.1, a.2), (b.1, b.2), "{method:?}: balance and sound speed");
+        assert!(a.1.entered > 0, "{method:?}: {:?}", a.1);
+        assert!(a.0 == b.0, "{method:?}: the particles differ");
+    }
+}
+
+#[test]
+fn bad_series_keys_are_refused_naming_the_key_and_the_file() {
+    let good = series_file("good.csv", "0, 0.1, 1.0\n1, 0.3, 1.0\n");
+    let text = series_channel(&good);
+    let case = parse(&text).unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        case.named_files().contains(&good),
+        "the series is among the case's input files"
+    );
+    let key = "`fluid.river.inflow.series`";
+    let with = |extra: &str| text.replace("strip_length = 0.5\n", &format!("strip_length = 0.5\n{extra}"));
+    let e = error_of(&with("velocity = 1.0\n"));
+    assert!(e.contains(key) && e.contains("`velocity` must be absent"), "{e}");
+    let e = error_of(&with("level = 0.3\nrise_time = 1.0\n"));
+    assert!(
+        e.contains(key) && e.contains("`level`, `rise_time` must be absent"),
+        "{e}"
+    );
+    let e = error_of(&CHANNEL.replace("velocity = 1.0\n", ""));
+    assert!(
+        e.contains("`fluid.river.inflow.velocity`") && e.contains("is required") && e.contains("series"),
+        "{e}"
+    );
+    let e = error_of(&series_channel(Path::new("/nonexistent/inflow.csv")));
+    assert!(
+        e.contains(key) && e.contains("cannot read the inflow series /nonexistent/inflow.csv"),
+        "{e}"
+    );
+    let high = series_file("high.csv", "t, level, velocity\n0, 0.1, 1.0\n1, 0.7, 1.0\n");
+    let e = error_of(&series_channel(&high));
+    let at = format!("{} line 3 (t = 1 s)", high.display());
+    assert!(
+        e.contains(key) && e.contains(&at) && e.contains("[0, 0.6]"),
+        "{e}"
+    );
+    let backwards = series_file("backwards.csv", "0, 0.1, 1.0\n1, 0.3, -1.0\n");
+    let e = error_of(&series_channel(&backwards));
+    let at = format!("{} line 2 (t = 1 s)", backwards.display());
+    assert!(
+        e.contains(key) && e.contains(&at) && e.contains("backwards"),
+        "{e}"
+    );
+    // The GPU path refuses an inflow, naming the series.
+    let gpu = text.replace("[fluid.river]\n", "[fluid.river]\nbackend = \"gpu\"\n");
+    let e = error_of(&gpu);
+    assert!(
+        e.contains("`fluid.river.backend`") && e.contains("driven by a time series: `series`"),
+        "{e}"
+    );
 }

@@ -3,7 +3,8 @@
 //! case is loaded, with the key, the file and what is wrong: a mesh that is not closed, one with
 //! a flipped or a degenerate triangle, an inverted one, one far larger than the tank (drawn in
 //! millimetres), a grid with a missing value, a grid outside the tank, a paddle too thin or one
-//! that would leave the tank, and the GPU path refusing each feature by name.
+//! that would leave the tank, a flap with a bad hinge, without a depth, turning too far or
+//! leaving the tank, and the GPU path refusing each feature by name.
 
 use schemas::case::Case;
 use schemas::geometry::{write_ascii_grid, write_binary_stl, HeightGrid, TriangleMesh};
@@ -239,5 +240,140 @@ fn a_wave_maker_too_thin_or_leaving_the_tank_is_refused_and_the_gpu_path_names_w
         &dir,
         damped.replace("rate = 5.0", "rate = 5.0\naxis = \"z\""),
         &["fluid.flume.damping[0].axis"],
+    );
+}
+
+/// A flap (`kind = "flap"`) in the 1 m flume: hinged l = 0.2 m under the floor it makes the
+/// solitary wave (H/d = 0.2) with a stroke (d + l)/(d/2 + l) = 6/5 of Goring's at the
+/// still-water level, turning by θ = atan(X / (d + l)); refused, naming the key: without
+/// `hinge_z`, with it above the paddle's bottom or on a piston, without `depth` (a table), hinged
+/// on the floor (tan θ = X_p / (d/2): 50° by the run's end at 1 s, > 30°), swinging back through
+/// the tank's end wall (regular waves, ±16°), rising into a lid, and on the GPU.
+#[test]
+fn a_flap_with_a_bad_hinge_no_depth_too_steep_or_leaving_the_tank_is_refused() {
+    let dir = folder("flap");
+    let flap = |min_x: f64, motion: &str, extra: &str| {
+        let max_x = min_x + 0.08;
+        format!(
+            "\n[fluid.flume.wave_maker]\nkind = \"flap\"\nmin = [{min_x}, 0.0, 0.0]\nmax = [{max_x}, 0.2, 0.3]\nmotion = \"{motion}\"\n{extra}"
+        )
+    };
+    let solitary = "wave_height = 0.02\ndepth = 0.1\n";
+    let good = flume(&flap(0.0, "solitary", &format!("{solitary}hinge_z = -0.2\n")));
+    let case = parse(&dir, good.clone()).unwrap_or_else(|e| panic!("{e}"));
+    let built = case.fluid["flume"]
+        .wave_maker
+        .as_ref()
+        .and_then(|w| w.built.clone());
+    let Some(schemas::wave_motion::WaveMakerMotion::Flap(m)) = built.as_deref() else {
+        panic!("not a flap: {built:?}")
+    };
+    // X = X_p (d + l)/(d/2 + l) with Goring's X_p → √(16 H d / 3) (less 0.05 %, his cut)
+    let goring = (16.0 * 0.02 * 0.1 / 3.0f64).sqrt();
+    assert!((m.range(100.0).1 / (goring * 0.3 / 0.25) - 1.0).abs() < 1e-3);
+    let (_, top) = m.angle_range(1.0);
+    assert!(
+        (top.tan() - m.range(1.0).1 / 0.3).abs() < 1e-12,
+        "{}",
+        top.to_degrees()
+    );
+
+    refused(
+        &dir,
+        flume(&flap(0.0, "solitary", solitary)),
+        &["fluid.flume.wave_maker.hinge_z", "required", "flap"],
+    );
+    refused(
+        &dir,
+        flume(&flap(0.0, "solitary", &format!("{solitary}hinge_z = 0.05\n"))),
+        &["fluid.flume.wave_maker.hinge_z", "at or below", "min.z = 0"],
+    );
+    refused(
+        &dir,
+        flume(
+            &flap(0.0, "solitary", &format!("{solitary}hinge_z = -0.2\n")).replace("kind = \"flap\"\n", ""),
+        ),
+        &["fluid.flume.wave_maker.hinge_z", "kind = \"flap\" only"],
+    );
+    std::fs::write(dir.join("flap.csv"), "t, x\n0, 0\n1, 0.02\n").unwrap_or_else(|e| panic!("{e}"));
+    refused(
+        &dir,
+        flume(&flap(0.0, "table", "table = \"flap.csv\"\nhinge_z = 0.0\n")),
+        &["fluid.flume.wave_maker.depth", "required with kind = \"flap\""],
+    );
+    refused(
+        &dir,
+        flume(&flap(0.0, "solitary", &format!("{solitary}hinge_z = 0.0\n"))),
+        &[
+            "fluid.flume.wave_maker.motion",
+            "the flap turns from 0.0° to",
+            "±30°",
+        ],
+    );
+    // Regular waves T = 1 s on d = 0.1 m (kd = 0.68, H/S = 0.35 for l = 0): S/2 = 0.029 m,
+    // θ = ±16°; leaning back the top of a paddle against the end wall (x = 0) goes through it,
+    // 0.1 m further in it stays in.
+    let regular = "wave_height = 0.02\ndepth = 0.1\nperiod = 1.0\nhinge_z = 0.0\n";
+    refused(
+        &dir,
+        flume(&flap(0.0, "regular", regular)),
+        &[
+            "fluid.flume.wave_maker.motion",
+            "would leave the tank",
+            "x from 0 to 1",
+        ],
+    );
+    let inside = flume(&flap(0.1, "regular", regular)).replace(
+        "min = [0.1, 0.0, 0.0]\nmax = [1.0",
+        "min = [0.18, 0.0, 0.0]\nmax = [1.0",
+    );
+    parse(&dir, inside).unwrap_or_else(|e| panic!("{e}"));
+    // the top back corner rises by √(0.08² + 0.5²) − 0.5 = 6 mm as the flap passes tan θ = 0.16
+    refused(
+        &dir,
+        good.replace("max = [1.0, 0.2, 0.3] }", "max = [1.0, 0.2, 0.3], lid = true }"),
+        &["fluid.flume.wave_maker.motion", "lid at 0.3"],
+    );
+    refused(
+        &dir,
+        good.replace("spacing = 0.02", "backend = \"gpu\"\nspacing = 0.02"),
+        &["fluid.flume.backend", "flap wave maker"],
+    );
+}
+
+/// A terrain from a GeoTIFF (`grid = "bed.tif"`) is the terrain from the ESRI ASCII grid of the
+/// same cells: the heights at every lattice column of the flume agree exactly (both hold the
+/// heights as written, f64). A grid file of another kind is refused naming the formats read.
+#[test]
+fn a_geotiff_terrain_is_the_ascii_grids_terrain() {
+    let dir = folder("geotiff");
+    let grid = HeightGrid::from_fn(11, 5, [0.0, 0.0], [0.1, 0.05], |x, y| 0.05 * x + 0.01 * y)
+        .unwrap_or_else(|e| panic!("{e}"));
+    write_ascii_grid(&dir.join("bed.asc"), &grid).unwrap_or_else(|e| panic!("{e}"));
+    schemas::geometry::write_geotiff(&dir.join("bed.tif"), &grid).unwrap_or_else(|e| panic!("{e}"));
+    let load = |file: &str| {
+        let case = parse(
+            &dir,
+            flume(&format!("\n[[fluid.flume.terrain]]\ngrid = \"{file}\"\n")),
+        )
+        .unwrap_or_else(|e| panic!("{file}: {e}"));
+        case.fluid["flume"].terrain[0].clone()
+    };
+    let (asc, tif) = (load("bed.asc"), load("bed.tif"));
+    let mut compared = 0;
+    for i in 0..50 {
+        for j in 0..10 {
+            let (x, y) = (0.01 + 0.02 * f64::from(i), 0.01 + 0.02 * f64::from(j));
+            assert_eq!(asc.height_at(x, y), tif.height_at(x, y), "at {x}, {y}");
+            compared += usize::from(asc.height_at(x, y).is_some());
+        }
+    }
+    assert!(compared > 200, "only {compared} columns have terrain");
+
+    std::fs::copy(dir.join("bed.asc"), dir.join("bed.xyz")).unwrap_or_else(|e| panic!("{e}"));
+    refused(
+        &dir,
+        flume("\n[[fluid.flume.terrain]]\ngrid = \"bed.xyz\"\n"),
+        &["fluid.flume.terrain[0].grid", "bed.xyz", ".asc", ".tif"],
     );
 }

@@ -1,27 +1,34 @@
 //! Inflow and outflow boundaries for tsunami run-up (Saitoh & Akitomo, §IV-B and Fig. 5):
-//! water is fed in at u_in with a rising level, and removed downstream, so the particle count
+//! water is fed in at u(t) with a level h(t), and removed downstream, so the particle count
 //! changes during the run.
 //!
 //! Inflow: a strip of [`Kind::Inflow`] particles on the tank's lattice, `strip_length` deep
-//! upstream of the plane x = x_in, moves rigidly with u_in along +x. Its particles are not
-//! integrated by S1-10 … S1-13; like wall particles they count in the number density (S1-15),
-//! get a pressure from S1-14 and enter the gradient (S1-3) of their fluid neighbours, so the
-//! strip pushes the water in front of it like a piston moving at u_in. Whenever the strip has
-//! advanced one spacing a new layer is inserted at its back; whenever the level h(t) reaches a
-//! new particle row (h rounded to whole spacings), that row is added along the whole strip, so
-//! the strip is always a box of height h(t). A strip particle that crosses the plane becomes
-//! fluid, keeping u_in.
+//! upstream of the plane x = x_in, moves rigidly along +x by the law of the section
+//! ([`InflowLaw`]: a constant u_in and a linear rise of h, or a CSV time series of both). Its
+//! particles are not integrated by S1-10 … S1-13; like wall particles they count in the number
+//! density (S1-15), get a pressure from S1-14 and enter the gradient (S1-3) of their fluid
+//! neighbours, so the strip pushes the water in front of it like a piston.
+//!
+//! In the step from t to t + Δt the strip moves by u_s Δt with u_s = u(t + Δt/2), and every strip
+//! particle's velocity is set to u_s (a rigid piston; new particles are born with it). The
+//! midpoint makes the strip's travel the exact integral ∫u dt over every step that no row of a
+//! series falls inside (u is linear there); for a constant u it is u_in Δt. Whenever the strip has
+//! advanced one spacing a new layer is inserted at its back. The strip's rows follow the level:
+//! n(t) = round(h(t)/Δs) rows, at z_k = z_floor + (k + ½) Δs, k < n. When n rises the new rows
+//! are added along the whole strip; when it falls the strip particles of rows k ≥ n are withdrawn
+//! (deleted), so the strip is always a box of n(t) rows. A strip particle that crosses the plane
+//! becomes fluid, keeping its velocity.
 //!
 //! Outflow: fluid particles beyond the plane x = x_out are removed.
 //!
-//! [`ParticleBalance`] counts the particles inserted, turned into fluid and removed; with the
-//! counts by kind they close exactly: Δ(all particles) = inserted − removed and
-//! Δ(fluid) = entered − removed.
+//! [`ParticleBalance`] counts the particles inserted, turned into fluid, removed and withdrawn;
+//! with the counts by kind they close exactly: Δ(all particles) = inserted − removed − withdrawn,
+//! Δ(fluid) = entered − removed and Δ(strip) = inserted − entered − withdrawn.
 
 use crate::particles::kind::{Kind, FLUID};
 use crate::particles::Particles;
 use rayon::prelude::*;
-use schemas::case::fluid::{FluidConfig, InflowConfig};
+use schemas::case::fluid::{FluidConfig, InflowConfig, InflowLaw};
 use std::fs;
 use std::io::{self, BufWriter, Write};
 use std::path::Path;
@@ -35,12 +42,17 @@ pub struct ParticleBalance {
     pub entered: u64,
     /// Fluid particles removed behind the outflow plane.
     pub removed: u64,
+    /// Strip particles deleted above a falling level.
+    pub withdrawn: u64,
 }
 
 /// The inflow strip: where its lattice is and how far it is filled.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 struct InflowStrip {
-    cfg: InflowConfig,
+    /// h(t) and u(t).
+    law: InflowLaw,
+    /// x of the inflow plane.
+    plane: f64,
     spacing: f64,
     /// x of the strip's back face: `plane − strip_length`.
     back: f64,
@@ -62,7 +74,10 @@ impl InflowStrip {
         let first = ((span[0] - tank.min[1]) / ds - 0.5).ceil().max(0.0) as usize;
         let last = ((span[1] - tank.min[1]) / ds - 0.5).floor().max(0.0) as usize;
         InflowStrip {
-            cfg: cfg.clone(),
+            law: cfg.law().expect(
+                "a validated inflow has its law (the series is read when the case is loaded: InflowConfig::read_series)",
+            ),
+            plane: cfg.plane,
             spacing: ds,
             back: cfg.plane - cfg.strip_length,
             ys: (first..=last)
@@ -76,24 +91,31 @@ impl InflowStrip {
 
     /// Rows of particles for the level h(t): h rounded to whole spacings.
     fn rows_at(&self, t: f64) -> usize {
-        (self.cfg.level_at(t) / self.spacing).round() as usize
+        (self.law.level_at(t) / self.spacing).round() as usize
     }
 
     /// x of the strip's layers that are still upstream of the plane, back to front.
     fn layers(&self) -> Vec<f64> {
         (0..)
             .map(|m| self.back + self.shift + (m as f64 + 0.5) * self.spacing)
-            .take_while(|&x| x < self.cfg.plane)
+            .take_while(|&x| x < self.plane)
             .collect()
     }
 
-    /// Adds the sites of layer `x`, rows `rows`, moving with u_in; returns how many.
-    fn fill(&self, p: &mut Particles, x: f64, rows: std::ops::Range<usize>, next_id: &mut u32) -> u64 {
+    /// Adds the sites of layer `x`, rows `rows`, moving with `u`; returns how many.
+    fn fill(
+        &self,
+        p: &mut Particles,
+        x: f64,
+        rows: std::ops::Range<usize>,
+        u: f64,
+        next_id: &mut u32,
+    ) -> u64 {
         let mut added = 0;
         for k in rows {
             let z = self.z0 + k as f64 * self.spacing;
             for &y in &self.ys {
-                p.push_moving([x, y, z], [self.cfg.velocity, 0.0, 0.0], Kind::Inflow, *next_id);
+                p.push_moving([x, y, z], [u, 0.0, 0.0], Kind::Inflow, *next_id);
                 *next_id += 1;
                 added += 1;
             }
@@ -101,33 +123,40 @@ impl InflowStrip {
         added
     }
 
-    /// Raises the whole strip to the rows of level h(t); returns the particles added.
-    fn raise_to(&mut self, p: &mut Particles, t: f64, next_id: &mut u32) -> u64 {
+    /// Sets the whole strip to the rows of level h(t): adds the missing rows along it, moving
+    /// with `u`, or withdraws the strip particles above them; returns (added, withdrawn).
+    fn level_to(&mut self, p: &mut Particles, t: f64, u: f64, next_id: &mut u32) -> (u64, u64) {
         let rows = self.rows_at(t);
-        if rows <= self.rows {
-            return 0;
+        let (mut added, mut withdrawn) = (0, 0);
+        if rows > self.rows {
+            added = self
+                .layers()
+                .into_iter()
+                .map(|x| self.fill(p, x, self.rows..rows, u, next_id))
+                .sum();
+        } else if rows < self.rows {
+            // rows k ≥ n sit at z ≥ z0 + n Δs; the cut lies half a spacing below
+            let cut = self.z0 + (rows as f64 - 0.5) * self.spacing;
+            let inflow = Kind::Inflow.code();
+            withdrawn = remove_where(p, |p, i| p.kind[i] == inflow && p.z[i] > cut);
         }
-        let added = self
-            .layers()
-            .into_iter()
-            .map(|x| self.fill(p, x, self.rows..rows, next_id))
-            .sum();
         self.rows = rows;
-        added
+        (added, withdrawn)
     }
 
     /// Turns the strip particles that crossed the plane during the last step into fluid, moves
-    /// the rest by u_in·dt and inserts a back layer for every spacing travelled; returns
-    /// (inserted, entered). Converting before moving moves every particle once per step: a
-    /// particle moved across the plane here is integrated from the next step on, not moved
-    /// twice (by the strip, then by the E-MPS step) in this one.
-    fn advance(&mut self, p: &mut Particles, dt: f64, next_id: &mut u32) -> (u64, u64) {
-        let (u, plane) = (self.cfg.velocity, self.cfg.plane);
+    /// the rest by u_s·dt with u_s = u(t + dt/2), sets their velocity to u_s and inserts a back
+    /// layer for every spacing travelled; returns (inserted, entered, u_s). Converting before
+    /// moving moves every particle once per step: a particle moved across the plane here is
+    /// integrated from the next step on, not moved twice (by the strip, then by the E-MPS step)
+    /// in this one.
+    fn advance(&mut self, p: &mut Particles, t: f64, dt: f64, next_id: &mut u32) -> (u64, u64, f64) {
+        let (u, plane) = (self.law.velocity_at(t + 0.5 * dt), self.plane);
         let inflow = Kind::Inflow.code();
-        let entered: u64 = (&mut p.x, &mut p.kind)
+        let entered: u64 = (&mut p.x, &mut p.vx, &mut p.kind)
             .into_par_iter()
             .with_min_len(4096)
-            .map(|(x, k)| {
+            .map(|(x, vx, k)| {
                 if *k != inflow {
                     0
                 } else if *x >= plane {
@@ -135,6 +164,7 @@ impl InflowStrip {
                     1
                 } else {
                     *x += u * dt;
+                    *vx = u;
                     0
                 }
             })
@@ -144,9 +174,9 @@ impl InflowStrip {
         while self.shift >= self.spacing {
             self.shift -= self.spacing;
             let x = self.back + self.shift + 0.5 * self.spacing;
-            inserted += self.fill(p, x, 0..self.rows, next_id);
+            inserted += self.fill(p, x, 0..self.rows, u, next_id);
         }
-        (inserted, entered)
+        (inserted, entered, u)
     }
 }
 
@@ -162,12 +192,14 @@ pub struct OpenBoundaries {
 }
 
 impl OpenBoundaries {
-    /// The boundaries of a validated section; adds the initial strip (level h(0)) to `p`.
+    /// The boundaries of a validated section of a loaded case; adds the initial strip (level
+    /// h(0), velocity u(0)) to `p`.
     pub fn new(cfg: &FluidConfig, p: &mut Particles) -> OpenBoundaries {
         let mut next_id = p.id.iter().max().map_or(0, |&m| m + 1);
         let inflow = cfg.inflow.as_ref().map(|c| {
             let mut strip = InflowStrip::new(c, cfg);
-            strip.raise_to(p, 0.0, &mut next_id);
+            let u = strip.law.velocity_at(0.0);
+            strip.level_to(p, 0.0, u, &mut next_id);
             strip
         });
         OpenBoundaries {
@@ -194,28 +226,31 @@ impl OpenBoundaries {
     }
 
     /// The boundaries' part of a step from `t` to `t + dt`, done before the E-MPS stages: strip
-    /// particles past the inflow plane become fluid, the rest of the strip moves by u_in·dt and
-    /// gets its new back layers and the rows of h(t + dt); fluid behind the outflow plane is
-    /// removed. The particle order changes (the step re-sorts).
+    /// particles past the inflow plane become fluid, the rest of the strip moves by
+    /// u(t + dt/2)·dt and gets its new back layers and the rows of h(t + dt) (added or
+    /// withdrawn); fluid behind the outflow plane is removed. The particle order changes (the
+    /// step re-sorts).
     pub fn apply(&mut self, p: &mut Particles, t: f64, dt: f64) {
         if let Some(strip) = &mut self.inflow {
-            let (inserted, entered) = strip.advance(p, dt, &mut self.next_id);
-            let raised = strip.raise_to(p, t + dt, &mut self.next_id);
-            self.balance.inserted += inserted + raised;
+            let (inserted, entered, u) = strip.advance(p, t, dt, &mut self.next_id);
+            let (added, withdrawn) = strip.level_to(p, t + dt, u, &mut self.next_id);
+            self.balance.inserted += inserted + added;
             self.balance.entered += entered;
+            self.balance.withdrawn += withdrawn;
         }
         if let Some(plane) = self.outflow {
-            self.balance.removed += remove_fluid_beyond(p, plane);
+            self.balance.removed += remove_where(p, |p, i| p.kind[i] == FLUID && p.x[i] > plane);
         }
     }
 }
 
-/// Removes the fluid particles with x > `plane` (the others keep their order); returns how many.
-fn remove_fluid_beyond(p: &mut Particles, plane: f64) -> u64 {
+/// Removes the particles `i` for which `gone(p, i)` holds (the others keep their order);
+/// returns how many.
+fn remove_where(p: &mut Particles, gone: impl Fn(&Particles, usize) -> bool + Sync) -> u64 {
     let keep: Vec<u32> = (0..p.len() as u32)
         .into_par_iter()
         .with_min_len(4096)
-        .filter(|&i| !(p.kind[i as usize] == FLUID && p.x[i as usize] > plane))
+        .filter(|&i| !gone(p, i as usize))
         .collect();
     let removed = p.len() - keep.len();
     if removed > 0 {
@@ -225,7 +260,8 @@ fn remove_fluid_beyond(p: &mut Particles, plane: f64) -> u64 {
     removed as u64
 }
 
-/// The balance CSV: `time, inserted, entered, removed, inflow, fluid, total, fluid_mass`.
+/// The balance CSV: `time, inserted, entered, removed, withdrawn, inflow, fluid, total,
+/// fluid_mass`.
 pub struct BalanceFile {
     out: BufWriter<fs::File>,
 }
@@ -234,7 +270,10 @@ impl BalanceFile {
     /// Creates the file with its header.
     pub fn create(path: &Path) -> io::Result<BalanceFile> {
         let mut out = BufWriter::new(fs::File::create(path)?);
-        writeln!(out, "time,inserted,entered,removed,inflow,fluid,total,fluid_mass")?;
+        writeln!(
+            out,
+            "time,inserted,entered,removed,withdrawn,inflow,fluid,total,fluid_mass"
+        )?;
         out.flush()?;
         Ok(BalanceFile { out })
     }
@@ -244,10 +283,11 @@ impl BalanceFile {
         let fluid = p.count(Kind::Fluid);
         writeln!(
             self.out,
-            "{t:.6},{},{},{},{},{fluid},{},{:.6e}",
+            "{t:.6},{},{},{},{},{},{fluid},{},{:.6e}",
             b.inserted,
             b.entered,
             b.removed,
+            b.withdrawn,
             p.count(Kind::Inflow),
             p.len(),
             fluid as f64 * particle_mass

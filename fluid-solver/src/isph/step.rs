@@ -180,6 +180,12 @@ impl IsphStep {
         pair_laws::pressure(&self.kernel, self.neumann(p, self.time_step), &self.faces)
     }
 
+    /// The solids turned rigidly from rest at the present positions (a flap paddle), whose kept
+    /// wall normals turn with them ([`walls::TurnedSolids`]).
+    pub fn turn_solids(&mut self, turned: Option<walls::TurnedSolids>) {
+        self.walls.turned = turned;
+    }
+
     /// The walls' Neumann differences for a step of `dt` with v* in the particles.
     fn neumann<'a>(&'a self, p: &'a Particles, dt: f64) -> NeumannPair<'a> {
         self.walls

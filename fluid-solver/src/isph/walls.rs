@@ -206,13 +206,37 @@ fn geometry(k: &Wendland, list: &NeighbourList, p: &Particles, limit: f64, w: us
 /// fixed (walls and dummies only: no body, gate or inflow strip). A fixed solid's solid
 /// neighbours never change, nor their order in its list (the cell sort is stable and fixed
 /// particles keep their cells), so its geometry comes out as the same bits every step; at S2's
-/// scale computing normals and depths took 9 ms of a 270 ms step.
+/// scale computing normals and depths took 9 ms of a 270 ms step. A wave maker's paddle is kept
+/// too: it moves rigidly, which leaves depths and convexity as they are; a piston's normals too,
+/// a flap's turn with it ([`TurnedSolids`]: they are kept as at rest). A fixed solid with a
+/// flap's particle in its support is not kept: the flap moves past it (the side walls and the
+/// floor beside the flap; a side-wall particle that first met water with the flap leaning back
+/// over it kept a normal tilted by the flap's particles, and at Δs = d/16 the pressure beside it
+/// reached 8 MPa and the PPE diverged at t = 1.7 s of regular waves).
+
 #[derive(Debug, Clone, Default)]
 struct FixedSolids {
     normal: Vec<[f64; 3]>,
     depth: Vec<f64>,
     convex: Vec<u8>,
     known: Vec<bool>,
+}
+
+/// Solid particles turned rigidly about an axis along y from where they were at rest (a flap
+/// paddle, [`crate::boundaries::paddle`]): the ids `ids`, turned by `angle` θ (rad), positive
+/// turning +z towards +x. Their kept normals are their normals at rest, turned by θ as their
+/// positions are:
+///
+///   n = (n₀ₓ cos θ + n₀_z sin θ, n₀_y, −n₀ₓ sin θ + n₀_z cos θ).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TurnedSolids {
+    pub ids: std::ops::Range<u32>,
+    pub angle: f64,
+}
+
+/// `n` turned by the angle whose (sin, cos) is `sin_cos` about y (the [`TurnedSolids`] rotation).
+fn turn(n: [f64; 3], (sin, cos): (f64, f64)) -> [f64; 3] {
+    [n[0] * cos + n[2] * sin, n[1], -n[0] * sin + n[2] * cos]
 }
 
 /// What the pair differences read of a step besides the particles: the solids' normals into the
@@ -224,6 +248,8 @@ pub struct WallFields {
     pub surface: Vec<u8>,
     pub depth: Vec<f64>,
     pub convex: Vec<u8>,
+    /// The solids turned from rest at the present positions (a flap paddle), if any.
+    pub turned: Option<TurnedSolids>,
     fixed: FixedSolids,
 }
 
@@ -231,6 +257,7 @@ impl WallFields {
     /// [`normals`], [`depths`] and [`convex`] of the particles in their present order (without
     /// `body_edges` no body particle is convex: its pairs take its own normal): those of a solid
     /// with fluid near it taken from [`FixedSolids`] once known there, while every solid is fixed.
+    /// The [`TurnedSolids`]' normals are kept turned back to rest and read turned by their angle.
     pub fn update_geometry(&mut self, k: &Wendland, list: &NeighbourList, p: &Particles, body_edges: bool) {
         let limit = convex_fill_limit(k);
         let body = Kind::Body.code();
@@ -248,9 +275,18 @@ impl WallFields {
         self.normals.resize(p.len());
         self.depth.resize(p.len(), 0.0);
         self.convex.resize(p.len(), 0);
+        // (ids, sin θ, cos θ) of the turned solids
+        let turned = self.turned.as_ref().map(|t| (t.ids.clone(), t.angle.sin_cos()));
+        let turned = turned.as_ref();
+        // A fixed solid with a turned one in its support sees it move: found afresh each step.
+        let beside_turned = |w: usize| {
+            turned.is_some_and(|(ids, _)| {
+                !ids.contains(&p.id[w]) && list.of(w).iter().any(|&j| ids.contains(&p.id[j as usize]))
+            })
+        };
         // A solid with water near: its geometry is read from, or recorded in, the cache while
-        // every solid is fixed.
-        let cached = |w: usize| all_fixed && near_water(p, list, w);
+        // every solid is fixed (or turned with the flap).
+        let cached = |w: usize| all_fixed && near_water(p, list, w) && !beside_turned(w);
         let known = &cache.known;
         let (normal_of, depth_of_id, convex_of) = (&cache.normal, &cache.depth, &cache.convex);
         let new = (
@@ -267,7 +303,11 @@ impl WallFields {
                 let id = p.id[w] as usize;
                 let keep = cached(w);
                 let (n, d, c, new) = if keep && known[id] {
-                    (normal_of[id], depth_of_id[id], convex_of[id], 0)
+                    let n = match turned {
+                        Some((ids, sin_cos)) if ids.contains(&p.id[w]) => turn(normal_of[id], *sin_cos),
+                        _ => normal_of[id],
+                    };
+                    (n, depth_of_id[id], convex_of[id], 0)
                 } else {
                     let (n, d, c) = geometry(k, list, p, limit, w);
                     let c = if p.kind[w] == body && !body_edges { 0 } else { c };
@@ -283,7 +323,11 @@ impl WallFields {
                 let id = p.id[w] as usize;
                 if cached(w) && !cache.known[id] {
                     cache.known[id] = true;
-                    cache.normal[id] = [self.normals.x[w], self.normals.y[w], self.normals.z[w]];
+                    let n = [self.normals.x[w], self.normals.y[w], self.normals.z[w]];
+                    cache.normal[id] = match turned {
+                        Some((ids, (sin, cos))) if ids.contains(&p.id[w]) => turn(n, (-sin, *cos)),
+                        _ => n,
+                    };
                     cache.depth[id] = self.depth[w];
                     cache.convex[id] = self.convex[w];
                 }

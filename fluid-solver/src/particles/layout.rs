@@ -49,6 +49,8 @@ pub struct PaddleParticles {
     pub first: u32,
     /// Each paddle particle's x at rest, in id order.
     pub rest_x: Vec<f64>,
+    /// Each paddle particle's z at rest, in id order (a flap turns them in the x–z plane).
+    pub rest_z: Vec<f64>,
 }
 
 /// The initial state built from a case section.
@@ -133,6 +135,7 @@ pub fn build(cfg: &FluidConfig) -> Layout {
     let paddle = paddle_box.map(|_| PaddleParticles {
         first: particles.len() as u32,
         rest_x: paddle_sites.iter().map(|p| p[0]).collect(),
+        rest_z: paddle_sites.iter().map(|p| p[2]).collect(),
     });
     for p in paddle_sites {
         particles.push(p, Kind::Wall);

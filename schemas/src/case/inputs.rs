@@ -1,6 +1,6 @@
 //! What a run's result depends on besides the code: the case's settings (its TOML as parsed, so
 //! comments and layout do not count) and the bytes of every file it names (load tables, meshes,
-//! height grids, stroke tables). A checkpoint keeps their hashes, and a resume refuses a case
+//! height grids, stroke tables, inflow series). A checkpoint keeps their hashes, and a resume refuses a case
 //! whose settings or files changed since, naming which ([`Case::input_hashes`]).
 //!
 //! `case.end_time` is not among the settings: it says how far the run goes, not what it computes
@@ -15,8 +15,8 @@ pub const SETTINGS: &str = "the case's settings";
 
 impl Case {
     /// Every file the case names that its solvers read, resolved against the case's folder:
-    /// structure load tables, solid meshes, terrain grids and wave-maker stroke tables (not the
-    /// executables: a solver swapped for another is the user's call).
+    /// structure load tables, solid meshes, terrain grids, wave-maker stroke tables and inflow
+    /// series (not the executables: a solver swapped for another is the user's call).
     pub fn named_files(&self) -> Vec<PathBuf> {
         let tables = self
             .structure
@@ -31,10 +31,15 @@ impl Case {
             .fluid
             .values()
             .filter_map(|f| f.wave_maker.as_ref().and_then(|w| w.table.as_ref()));
+        let series = self
+            .fluid
+            .values()
+            .filter_map(|f| f.inflow.as_ref().and_then(|i| i.series.as_ref()));
         tables
             .chain(meshes)
             .chain(grids)
             .chain(strokes)
+            .chain(series)
             .map(|p| self.resolve(p))
             .collect()
     }

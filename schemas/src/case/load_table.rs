@@ -5,12 +5,14 @@ use super::FieldError;
 use std::path::Path;
 
 /// Rows of time and `n` components, times strictly increasing.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct LoadTable {
     times: Vec<f64>,
     /// Row-major, `components` values per row.
     values: Vec<f64>,
     components: usize,
+    /// The file's line (from 1) of each row, for error messages.
+    lines: Vec<usize>,
 }
 
 impl LoadTable {
@@ -26,6 +28,7 @@ impl LoadTable {
     pub fn parse(text: &str, components: usize, key: &str, path: &Path) -> Result<Self, FieldError> {
         let mut times: Vec<f64> = Vec::new();
         let mut values = Vec::new();
+        let mut lines = Vec::new();
         let mut seen_row = false;
         let bad = |line: usize, what: String| {
             FieldError::new(key, format!("{} line {line}: {what}", path.display()))
@@ -76,6 +79,7 @@ impl LoadTable {
             }
             times.push(numbers[0]);
             values.extend_from_slice(&numbers[1..]);
+            lines.push(line_no);
         }
         if times.is_empty() {
             return Err(FieldError::new(
@@ -87,6 +91,7 @@ impl LoadTable {
             times,
             values,
             components,
+            lines,
         })
     }
 
@@ -95,10 +100,18 @@ impl LoadTable {
         &self.times
     }
 
+    /// The components of row `i` (from 0), as written.
+    pub fn row(&self, i: usize) -> &[f64] {
+        &self.values[i * self.components..(i + 1) * self.components]
+    }
+
+    /// The file's line (from 1) that holds row `i` (from 0).
+    pub fn line(&self, i: usize) -> usize {
+        self.lines[i]
+    }
+
     /// Adds the interpolated components at time `t` to `out` (length `components`).
     pub fn add_at(&self, t: f64, out: &mut [f64]) {
-        let n = self.components;
-        let row = |i: usize| &self.values[i * n..(i + 1) * n];
         let last = self.times.len() - 1;
         let (i, w) = if t <= self.times[0] {
             (0, 0.0)
@@ -108,11 +121,11 @@ impl LoadTable {
             let j = self.times.partition_point(|&x| x <= t) - 1;
             (j, (t - self.times[j]) / (self.times[j + 1] - self.times[j]))
         };
-        let a = row(i);
+        let a = self.row(i);
         if w == 0.0 {
             out.iter_mut().zip(a).for_each(|(o, v)| *o += v);
         } else {
-            let b = row(i + 1);
+            let b = self.row(i + 1);
             out.iter_mut()
                 .zip(a.iter().zip(b))
                 .for_each(|(o, (x, y))| *o += x + w * (y - x));
@@ -150,5 +163,12 @@ mod tests {
         assert!(table("0,1,2,nan\n").is_err(), "non-finite");
         let e = table("0,1,2,3\n1,1,2,3,4\n").unwrap_err();
         assert!(e.message.contains("f.csv line 2"), "{}", e.message);
+    }
+
+    #[test]
+    fn rows_keep_their_values_and_lines() {
+        let t = table("# comment\nt, fx, fy, fz\n0, 1, 2, 3\n\n2, 4, 5, 6\n").expect("valid");
+        assert_eq!((t.row(0), t.line(0)), (&[1.0, 2.0, 3.0][..], 3));
+        assert_eq!((t.row(1), t.line(1)), (&[4.0, 5.0, 6.0][..], 5));
     }
 }

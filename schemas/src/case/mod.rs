@@ -166,6 +166,7 @@ impl Case {
             reference: file.reference,
             report: file.report,
         };
+        case.read_inflow_series().map_err(|e| CaseError::at(path, e))?;
         case.validate().map_err(|e| CaseError::at(path, e))?;
         case.load_geometry().map_err(|e| CaseError::at(path, e))?;
         Ok(case)
@@ -325,6 +326,18 @@ impl Case {
 }
 
 impl Case {
+    /// Reads the inflow series of the fluid sections, relative to the case's folder, before they
+    /// are validated: the strip's height and the time step's velocity scale come from them.
+    fn read_inflow_series(&mut self) -> Result<(), FieldError> {
+        let dir = self.dir();
+        for (name, cfg) in &mut self.fluid {
+            if let Some(inflow) = &mut cfg.inflow {
+                inflow.read_series(&dir, &format!("fluid.{name}.inflow"))?;
+            }
+        }
+        Ok(())
+    }
+
     /// Reads the meshes and height grids of the fluid sections and builds their wave makers'
     /// motions (reading their tables), and reads the structure bodies' inertia meshes, relative
     /// to the case's folder.

@@ -19,8 +19,8 @@ pub mod triangle_mesh;
 mod vec3;
 
 pub use ascii_grid::{read_height_grid, write_ascii_grid};
-pub use geotiff::{read_geotiff, write_geotiff};
 pub use error::{EdgeFault, GridError, MeshError, MeshProblem};
+pub use geotiff::{read_geotiff, write_geotiff};
 pub use height_grid::HeightGrid;
 pub use lattice::Lattice;
 pub use lattice_fill::{sites_below_surface, sites_inside_mesh};

@@ -1,26 +1,68 @@
-//! The motions of a piston wave maker: a vertical paddle across the tank that moves along +x
-//! (into the tank) by X(t) from its rest position, as pure functions of time.
+//! The motions of a wave maker's paddle, as pure functions of time: a piston, a vertical paddle
+//! across the tank that moves along +x (into the tank) by X(t) from its rest position, or a flap
+//! that turns about a hinge so that its face moves by X(t) at the still-water level.
 //!
 //! - [`goring`]: Goring's (1978) motion for a solitary wave, [`solitary_wave`]: that wave;
 //! - [`regular`]: regular waves by linear wave-maker theory (Biesel's transfer function);
 //! - [`stroke_table`]: a stroke read from a CSV table;
-//! - [`ramp`]: the raised-cosine start of the regular and table motions.
+//! - [`ramp`]: the raised-cosine start of the regular and table motions;
+//! - [`flap`]: a flap's angle, its transfer function and its reading of Goring's motion.
 //!
-//! [`PistonMotion`] holds one of them; the solver moves the paddle's wall particles by
-//! [`PistonMotion::stroke`] at [`PistonMotion::velocity`], and [`PistonMotion::range`] says how
-//! far the paddle travels, to refuse one that would leave the tank.
+//! [`PistonMotion`] holds one of the first three; [`WaveMakerMotion`] a piston's or a flap's.
+//! The solver moves the paddle's wall particles by [`PistonMotion::stroke`] at
+//! [`PistonMotion::velocity`] (a flap's by [`FlapMotion::angle`]), and
+//! [`PistonMotion::range`] says how far the paddle travels, to refuse one that would leave the
+//! tank.
 
+pub mod flap;
 pub mod goring;
 pub mod ramp;
 pub mod regular;
 pub mod solitary_wave;
 pub mod stroke_table;
 
+pub use flap::{FlapHinge, FlapMotion};
 pub use goring::GoringSolitary;
 pub use ramp::Ramp;
 pub use regular::RegularWaves;
 pub use solitary_wave::SolitaryWave;
 pub use stroke_table::StrokeTable;
+
+/// A wave maker's motion: a piston's stroke, or a flap's (its stroke at the still-water level
+/// and the angle that gives it).
+#[derive(Debug, Clone, PartialEq)]
+pub enum WaveMakerMotion {
+    /// A paddle that translates along +x by the stroke.
+    Piston(PistonMotion),
+    /// A paddle that turns about its hinge.
+    Flap(FlapMotion),
+}
+
+impl WaveMakerMotion {
+    /// X(t), m: a flap's at the still-water level.
+    pub fn stroke(&self, t: f64) -> f64 {
+        match self {
+            Self::Piston(m) => m.stroke(t),
+            Self::Flap(m) => m.stroke(t),
+        }
+    }
+
+    /// X'(t), m/s.
+    pub fn velocity(&self, t: f64) -> f64 {
+        match self {
+            Self::Piston(m) => m.velocity(t),
+            Self::Flap(m) => m.velocity(t),
+        }
+    }
+
+    /// (min, max) of X over [0, t_end], m.
+    pub fn range(&self, t_end: f64) -> (f64, f64) {
+        match self {
+            Self::Piston(m) => m.range(t_end),
+            Self::Flap(m) => m.range(t_end),
+        }
+    }
+}
 
 /// A piston paddle's motion: X(t) (m) from the rest position, +x into the tank, and X'(t) (m/s).
 /// Every motion stands still at X(0) before t = 0.
@@ -174,6 +216,18 @@ mod tests {
         );
         assert_eq!(m.range(3.0), (0.0, 0.1));
         assert_eq!(m.duration(), Some(1.0));
+        let piston = WaveMakerMotion::Piston(PistonMotion::Solitary(solitary));
+        assert_eq!(
+            (piston.stroke(t), piston.velocity(t), piston.range(t)),
+            (solitary.stroke(t), solitary.velocity(t), solitary.range(t))
+        );
+        let hinge = FlapHinge::new(-0.1, 0.0, 0.5).expect("valid");
+        let flap = FlapMotion::solitary(0.1, G, hinge).expect("valid");
+        let m = WaveMakerMotion::Flap(flap.clone());
+        assert_eq!(
+            (m.stroke(t), m.velocity(t), m.range(t)),
+            (flap.stroke(t), flap.velocity(t), flap.range(t))
+        );
     }
 
     #[test]

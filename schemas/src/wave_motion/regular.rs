@@ -31,6 +31,20 @@ impl RegularWaves {
     /// Waves of `height` H (m) and `period` T (s) on `depth` d (m) under `gravity` g (m/s²),
     /// started by `ramp`; refuses values that are not finite and > 0.
     pub fn new(height: f64, period: f64, depth: f64, gravity: f64, ramp: Ramp) -> Result<Self, String> {
+        Self::with_transfer(height, period, depth, gravity, ramp, height_to_stroke)
+    }
+
+    /// As [`RegularWaves::new`], with the paddle's transfer function H/S = `transfer`(kd) in
+    /// place of the piston's: the stroke S = H / transfer(kd) (a flap's,
+    /// [`super::flap::flap_height_to_stroke`], where S is its stroke at the still-water level).
+    pub fn with_transfer(
+        height: f64,
+        period: f64,
+        depth: f64,
+        gravity: f64,
+        ramp: Ramp,
+        transfer: impl Fn(f64) -> f64,
+    ) -> Result<Self, String> {
         for (name, v) in [
             ("wave height H", height),
             ("period T", period),
@@ -50,7 +64,7 @@ impl RegularWaves {
             period,
             depth,
             wavenumber: k,
-            stroke_length: height / height_to_stroke(k * depth),
+            stroke_length: height / transfer(k * depth),
             ramp,
         })
     }
@@ -85,7 +99,8 @@ impl RegularWaves {
         self.wavenumber * self.depth
     }
 
-    /// S = H / (H/S), m: the paddle's excursion from end to end once the ramp is over.
+    /// S = H / (H/S), m: the paddle's excursion from end to end once the ramp is over (a flap's at
+    /// the still-water level).
     pub fn stroke_length(&self) -> f64 {
         self.stroke_length
     }

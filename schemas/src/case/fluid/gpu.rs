@@ -1,6 +1,6 @@
 //! `backend = "gpu"`: what the GPU path of a fluid section refuses.
 
-use super::{FluidConfig, FluidMethodName};
+use super::{FluidConfig, FluidMethodName, PaddleKind};
 use crate::case::FieldError;
 
 /// The largest f32 rounding of a position the GPU path accepts, in spacings: 1e-3 Δs is 5 % of
@@ -25,11 +25,23 @@ impl FluidConfig {
         if self.artificial_viscosity != 0.0 {
             return refuse("the E-MPS artificial viscosity (artificial_viscosity > 0)");
         }
-        if self.inflow.is_some() || self.outflow.is_some() {
-            return refuse("inflow or outflow boundaries");
+        if let Some(inflow) = &self.inflow {
+            return refuse(if inflow.series.is_some() {
+                "an inflow boundary ([inflow], here driven by a time series: `series`)"
+            } else {
+                "an inflow boundary ([inflow])"
+            });
         }
-        if self.wave_maker.is_some() {
-            return refuse("a wave maker ([wave_maker]: a paddle moving by a prescribed stroke)");
+        if self.outflow.is_some() {
+            return refuse("an outflow boundary ([outflow])");
+        }
+        if let Some(w) = &self.wave_maker {
+            return refuse(match w.kind {
+                PaddleKind::Piston => "a wave maker ([wave_maker]: a paddle moving by a prescribed stroke)",
+                PaddleKind::Flap => {
+                    "a flap wave maker ([wave_maker] with kind = \"flap\": a paddle turning about its hinge)"
+                }
+            });
         }
         if !self.damping.is_empty() {
             return refuse("damping zones ([[damping]])");

@@ -107,12 +107,10 @@ impl FluidConfig {
     }
 
     /// u_max of S1-16: the case's `max_velocity`, else √(u_in² + 2gH) with H the highest block
-    /// top or inflow level above the floor (u_in = 0 without an inflow).
+    /// top or inflow level above the floor (u_in = 0 without an inflow; a series' largest u and h).
     pub fn max_velocity(&self) -> f64 {
         self.max_velocity.unwrap_or_else(|| {
-            let (u_in, inflow_top) = self.inflow.as_ref().map_or((0.0, self.tank.min[2]), |i| {
-                (i.velocity, self.tank.min[2] + i.level)
-            });
+            let (u_in, inflow_top) = self.inflow_extremes();
             let top = self.block.iter().map(|b| b.max[2]).fold(inflow_top, f64::max);
             (u_in * u_in + 2.0 * self.gravity_magnitude() * (top - self.tank.min[2])).sqrt()
         })
@@ -125,12 +123,20 @@ impl FluidConfig {
     /// tripped the instability detector's 0.5 Δs).
     pub fn advective_velocity(&self) -> f64 {
         self.max_velocity.unwrap_or_else(|| {
-            let (u_in, inflow_top) = self.inflow.as_ref().map_or((0.0, self.tank.min[2]), |i| {
-                (i.velocity, self.tank.min[2] + i.level)
-            });
+            let (u_in, inflow_top) = self.inflow_extremes();
             let top = self.block.iter().map(|b| b.max[2]).fold(inflow_top, f64::max);
             u_in + 2.0 * (self.gravity_magnitude() * (top - self.tank.min[2])).sqrt()
         })
+    }
+
+    /// (u_in, the inflow's top z) for the velocity scales: the largest velocity and level of
+    /// the inflow's law, (0, the tank floor) without an inflow.
+    fn inflow_extremes(&self) -> (f64, f64) {
+        let floor = self.tank.min[2];
+        self.inflow
+            .as_ref()
+            .and_then(|i| i.law())
+            .map_or((0.0, floor), |law| (law.max_velocity(), floor + law.max_level()))
     }
 
     /// c of S1-16: the case's `sound_speed`, else `u_max / 0.2`.
