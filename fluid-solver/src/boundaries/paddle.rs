@@ -25,7 +25,7 @@
 //! normal, depth and edge flag once found ([`crate::isph::walls`]). A rigid motion leaves depths
 //! and edge flags as they are, and a piston's normals: it only translates. A flap's normals turn
 //! with it: [`Paddle::turned_solids`] tells ISPH its ids and angle, and ISPH keeps their normals
-//! as at rest and turns them by θ.
+//! as at rest and turns them by θ, and leaves the flap out of the fixed walls' geometry.
 
 use crate::isph::walls::TurnedSolids;
 use crate::particles::layout::PaddleParticles;
@@ -70,14 +70,14 @@ impl Paddle {
         }
     }
 
-    /// A flap's particle ids and its angle θ(`t`), for ISPH's wall normals (module doc); `None`
-    /// for a piston.
-    pub fn turned_solids(&self, t: f64) -> Option<TurnedSolids> {
+    /// A flap's particle ids and its angle θ(`t`) (`None`: at rest, θ = 0, before the first
+    /// step), for ISPH's wall geometry (module doc); `None` for a piston.
+    pub fn turned_solids(&self, t: Option<f64>) -> Option<TurnedSolids> {
         match self.motion.as_ref() {
             WaveMakerMotion::Piston(_) => None,
             WaveMakerMotion::Flap(m) => Some(TurnedSolids {
                 ids: self.first..self.first + self.rest_x.len() as u32,
-                angle: m.angle(t),
+                angle: t.map_or(0.0, |t| m.angle(t)),
             }),
         }
     }

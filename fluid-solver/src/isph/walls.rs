@@ -87,18 +87,25 @@ pub fn normals(k: &Wendland, list: &NeighbourList, p: &Particles, out: &mut Vect
         .into_par_iter()
         .enumerate()
         .with_min_len(512)
-        .for_each(|(w, (nx, ny, nz))| [*nx, *ny, *nz] = normal_and_fill(k, list, p, w).0);
+        .for_each(|(w, (nx, ny, nz))| [*nx, *ny, *nz] = normal_and_fill(k, list, p, w, |_| false).0);
 }
 
 /// [`normals`] of particle `w`, and the fill of its support by solids,
-/// `(V W(0) + Σ_{solid j} V W_wj) / Σ_lattice V W` (0 for fluid particles).
-fn normal_and_fill(k: &Wendland, list: &NeighbourList, p: &Particles, w: usize) -> ([f64; 3], f64) {
+/// `(V W(0) + Σ_{solid j} V W_wj) / Σ_lattice V W` (0 for fluid particles), leaving out the
+/// solids j for which `skip(j)`.
+fn normal_and_fill(
+    k: &Wendland,
+    list: &NeighbourList,
+    p: &Particles,
+    w: usize,
+    skip: impl Fn(usize) -> bool,
+) -> ([f64; 3], f64) {
     let mut g = [0.0; 3];
     let mut fill = 0.0;
     if p.kind[w] != FLUID {
         fill = k.volume * k.w(0.0);
         for (j, q) in list.pairs(w) {
-            if p.kind[j] == FLUID {
+            if p.kind[j] == FLUID || skip(j) {
                 continue;
             }
             let d = [p.x[w] - p.x[j], p.y[w] - p.y[j], p.z[w] - p.z[j]];
@@ -146,7 +153,7 @@ pub fn convex(k: &Wendland, list: &NeighbourList, p: &Particles, out: &mut Vec<u
     out.par_iter_mut()
         .enumerate()
         .with_min_len(512)
-        .for_each(|(w, c)| *c = convex_flag(p, list, normal_and_fill(k, list, p, w).1, limit, w));
+        .for_each(|(w, c)| *c = convex_flag(p, list, normal_and_fill(k, list, p, w, |_| false).1, limit, w));
 }
 
 /// Whether `w` is a solid with fluid near it (it has a list).
@@ -173,17 +180,24 @@ pub fn depths(k: &Wendland, list: &NeighbourList, p: &Particles, normals: &Vecto
         .with_min_len(512)
         .for_each(|(w, depth)| {
             let n = [normals.x[w], normals.y[w], normals.z[w]];
-            *depth = depth_of(k, list, p, n, w);
+            *depth = depth_of(k, list, p, n, w, |_| false);
         });
 }
 
-/// [`depths`] of particle `w` with normal `n`.
-fn depth_of(k: &Wendland, list: &NeighbourList, p: &Particles, n: [f64; 3], w: usize) -> f64 {
+/// [`depths`] of particle `w` with normal `n`, leaving out the solids j for which `skip(j)`.
+fn depth_of(
+    k: &Wendland,
+    list: &NeighbourList,
+    p: &Particles,
+    n: [f64; 3],
+    w: usize,
+    skip: impl Fn(usize) -> bool,
+) -> f64 {
     let mut outer: f64 = 0.0;
     if p.kind[w] != FLUID {
         for &j in list.of(w) {
             let j = j as usize;
-            if p.kind[j] != FLUID {
+            if p.kind[j] != FLUID && !skip(j) {
                 let d = [p.x[j] - p.x[w], p.y[j] - p.y[w], p.z[j] - p.z[w]];
                 outer = outer.max(d[0] * n[0] + d[1] * n[1] + d[2] * n[2]);
             }
@@ -192,12 +206,20 @@ fn depth_of(k: &Wendland, list: &NeighbourList, p: &Particles, n: [f64; 3], w: u
     0.5 * k.spacing + outer
 }
 
-/// The normal, depth and convexity flag of solid `w` ([`normals`], [`depths`], [`convex`]).
-fn geometry(k: &Wendland, list: &NeighbourList, p: &Particles, limit: f64, w: usize) -> ([f64; 3], f64, u8) {
-    let (n, fill) = normal_and_fill(k, list, p, w);
+/// The normal, depth and convexity flag of solid `w` ([`normals`], [`depths`], [`convex`]),
+/// leaving out the solids j for which `skip(j)`.
+fn geometry(
+    k: &Wendland,
+    list: &NeighbourList,
+    p: &Particles,
+    limit: f64,
+    w: usize,
+    skip: impl Fn(usize) -> bool + Copy,
+) -> ([f64; 3], f64, u8) {
+    let (n, fill) = normal_and_fill(k, list, p, w, skip);
     (
         n,
-        depth_of(k, list, p, n, w),
+        depth_of(k, list, p, n, w, skip),
         convex_flag(p, list, fill, limit, w),
     )
 }
@@ -208,11 +230,13 @@ fn geometry(k: &Wendland, list: &NeighbourList, p: &Particles, limit: f64, w: us
 /// particles keep their cells), so its geometry comes out as the same bits every step; at S2's
 /// scale computing normals and depths took 9 ms of a 270 ms step. A wave maker's paddle is kept
 /// too: it moves rigidly, which leaves depths and convexity as they are; a piston's normals too,
-/// a flap's turn with it ([`TurnedSolids`]: they are kept as at rest). A fixed solid with a
-/// flap's particle in its support is not kept: the flap moves past it (the side walls and the
-/// floor beside the flap; a side-wall particle that first met water with the flap leaning back
-/// over it kept a normal tilted by the flap's particles, and at Δs = d/16 the pressure beside it
-/// reached 8 MPa and the PPE diverged at t = 1.7 s of regular waves).
+/// a flap's turn with it ([`TurnedSolids`]: they are kept as at rest). A fixed solid's geometry
+/// leaves a flap's particles out: the flap moves past it, and the side walls and floor beside
+/// it are the same walls wherever it stands (a side-wall particle that first met water with the
+/// flap leaning back over it kept a normal tilted by the flap's particles, and at Δs = d/16 the
+/// pressure beside it reached 8 MPa and the PPE diverged at t = 1.7 s of regular waves; found
+/// afresh every step with the flap in, they let 18 particles slip between the side walls and the
+/// flap's edges by 0.95 s of `fluid-solver/tests/wave_maker.rs`'s solitary flap).
 
 #[derive(Debug, Clone, Default)]
 struct FixedSolids {
@@ -257,7 +281,8 @@ impl WallFields {
     /// [`normals`], [`depths`] and [`convex`] of the particles in their present order (without
     /// `body_edges` no body particle is convex: its pairs take its own normal): those of a solid
     /// with fluid near it taken from [`FixedSolids`] once known there, while every solid is fixed.
-    /// The [`TurnedSolids`]' normals are kept turned back to rest and read turned by their angle.
+    /// The [`TurnedSolids`]' normals are kept turned back to rest and read turned by their angle;
+    /// the other solids' geometry leaves them out ([`FixedSolids`]).
     pub fn update_geometry(&mut self, k: &Wendland, list: &NeighbourList, p: &Particles, body_edges: bool) {
         let limit = convex_fill_limit(k);
         let body = Kind::Body.code();
@@ -278,15 +303,14 @@ impl WallFields {
         // (ids, sin θ, cos θ) of the turned solids
         let turned = self.turned.as_ref().map(|t| (t.ids.clone(), t.angle.sin_cos()));
         let turned = turned.as_ref();
-        // A fixed solid with a turned one in its support sees it move: found afresh each step.
-        let beside_turned = |w: usize| {
-            turned.is_some_and(|(ids, _)| {
-                !ids.contains(&p.id[w]) && list.of(w).iter().any(|&j| ids.contains(&p.id[j as usize]))
-            })
+        // Whether solid j is left out of the geometry of solid w: a turned one, of a fixed one.
+        let turned_ids = turned.map(|(ids, _)| ids);
+        let skip = |w: usize, j: usize| {
+            turned_ids.is_some_and(|ids| !ids.contains(&p.id[w]) && ids.contains(&p.id[j]))
         };
         // A solid with water near: its geometry is read from, or recorded in, the cache while
         // every solid is fixed (or turned with the flap).
-        let cached = |w: usize| all_fixed && near_water(p, list, w) && !beside_turned(w);
+        let cached = |w: usize| all_fixed && near_water(p, list, w);
         let known = &cache.known;
         let (normal_of, depth_of_id, convex_of) = (&cache.normal, &cache.depth, &cache.convex);
         let new = (
@@ -309,7 +333,7 @@ impl WallFields {
                     };
                     (n, depth_of_id[id], convex_of[id], 0)
                 } else {
-                    let (n, d, c) = geometry(k, list, p, limit, w);
+                    let (n, d, c) = geometry(k, list, p, limit, w, |j| skip(w, j));
                     let c = if p.kind[w] == body && !body_edges { 0 } else { c };
                     (n, d, c, usize::from(keep))
                 };

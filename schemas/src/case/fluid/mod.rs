@@ -463,17 +463,6 @@ impl FluidConfig {
                 "`isph.pressure_gradient` = \"{name}\" with a `body`: that gradient has no face normals at a body's convex edges (with them a held box read +9.6 % of ρgV), and the still water at a held box's corners moves (0.2 m/s at a 12 cm box, where the default's stays below 1e-3 m/s); without them, on the wall box of the MARIN dam break's CI twin (cases/dam-break-obstacle, Δs = 0.04 m), the sensor 2 cm under the box's top edge read a pull (−169 … −204 % of the measured mean over 0.6–0.8 s; −20 … −23 % with them); for loads near a body's edges use the default pressure_gradient = \"corrected-difference\""
             ));
         }
-        if self.method == FluidMethodName::Isph
-            && self
-                .wave_maker
-                .as_ref()
-                .is_some_and(|w| w.kind == PaddleKind::Flap)
-        {
-            warnings.push(
-                "a flap wave maker with ISPH lets water through the turning face (18 fluid particles behind it by 0.95 s, at 11.7°, on the test flume of fluid-solver/tests/wave_maker.rs; none with E-MPS): use E-MPS, or a piston, until it is fixed"
-                    .into(),
-            );
-        }
         warnings
     }
 
