@@ -18,7 +18,7 @@ use fluid_solver::vector_field::VectorField;
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{FluidMethodName, PaddleKind, ProbeConfig, ProbeKind};
 use schemas::case::Case;
-use schemas::validation::{record, Record};
+use schemas::validation::{largest, record, Record};
 use schemas::wave_motion::flap::turned;
 use schemas::wave_motion::{FlapMotion, WaveMakerMotion};
 use std::collections::HashMap;
@@ -171,9 +171,10 @@ fn the_flap_turns_about_its_hinge_with_both_methods() {
             "the paddle's particles: 4 thick, 4 wide, 13 high"
         );
         let hinge = [0.05, -0.2];
-        let top_rate = (0..=1000)
-            .map(|i| flap.angular_velocity(1e-3 * f64::from(i)).abs())
-            .fold(0.0, f64::max);
+        let top_rate = largest(
+            (0..=1000).map(|i| flap.angular_velocity(1e-3 * f64::from(i)).abs()),
+            0.0,
+        );
         let dt = cfg.time_step;
         for t in [0.396, 0.954] {
             solver.advance_to(t).unwrap_or_else(|e| panic!("{method:?}: {e}"));
@@ -202,7 +203,7 @@ fn the_flap_turns_about_its_hinge_with_both_methods() {
                 let analytic = [rate * r[1], -rate * r[0]];
                 let miss = (p.vx[i] - analytic[0]).hypot(p.vz[i] - analytic[1]);
                 let reach = (r0[0] - hinge[0]).hypot(r0[1] - hinge[1]);
-                worst = worst.max(miss / (top_rate * reach));
+                worst = largest([worst, miss / (top_rate * reach)], 0.0);
                 assert!(
                     miss <= 1e-2 * top_rate * reach,
                     "{method:?}: at {t} s velocity ({}, {}) against ω × r = {analytic:?}",
@@ -295,8 +296,8 @@ fn the_flaps_isph_wall_normals_turn_with_it() {
     assert!(turned_now.len() >= 4 * 6);
     let (mut kept_off, mut fresh_off): (f64, f64) = (0.0, 0.0);
     for (kept, fresh) in &turned_now {
-        kept_off = kept_off.max((tilt(*kept) - theta).abs());
-        fresh_off = fresh_off.max((tilt(*fresh) - theta).abs());
+        kept_off = largest([kept_off, (tilt(*kept) - theta).abs()], 0.0);
+        fresh_off = largest([fresh_off, (tilt(*fresh) - theta).abs()], 0.0);
     }
     println!(
         "θ = {:.3}°: kept normals within {kept_off:.1e} rad of the face's normal, fresh ones within {fresh_off:.2e} rad ({:.2}°), over {} front particles",

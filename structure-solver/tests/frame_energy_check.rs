@@ -5,7 +5,8 @@
 
 use crate::frame_common;
 
-use frame_common::{building, sideways_loads};
+use frame_common::{building, energy_share, sideways_loads};
+use schemas::validation::largest;
 use structure_solver::frame::energy_check::ENERGY_WARNING_SHARE;
 use structure_solver::frame::{Equilibrium, Frame};
 
@@ -24,12 +25,7 @@ fn building_run(dt: f64, equilibrium: Equilibrium, duration: f64) -> (Frame, f64
     for _ in 0..steps {
         frame.step(dt, &loads).expect("stable step");
         let row = frame.energy().expect("recorded");
-        let scale = row
-            .external
-            .abs()
-            .max(row.kinetic + row.strain)
-            .max(row.plastic + row.damping + row.algorithmic);
-        worst = worst.max(row.residual.abs() / scale);
+        worst = largest([worst, energy_share(&row)], 0.0);
     }
     let row = frame.energy().expect("recorded");
     println!(

@@ -3,9 +3,10 @@
 
 use crate::frame_common;
 
-use frame_common::{rectangle, steel, support, ALL};
+use frame_common::{energy_share, rectangle, steel, support, ALL};
 use schemas::case::frame::{FrameConfig, MemberConfig, NodeConfig};
 use schemas::case::Case;
+use schemas::validation::largest;
 use std::path::Path;
 use structure_solver::frame::energy_check::ENERGY_WARNING_SHARE;
 use structure_solver::frame::{EnergyRow, Equilibrium, Frame};
@@ -305,12 +306,7 @@ fn pushed_washout_frame(dt: Option<f64>) -> (Frame, f64) {
         }
         frame.step(cfg.time_step, &loads).expect("stable step");
         let r = frame.energy().expect("recorded");
-        let scale = r
-            .external
-            .abs()
-            .max(r.kinetic + r.strain)
-            .max(r.plastic + r.damping + r.algorithmic);
-        worst = worst.max(r.residual.abs() / scale);
+        worst = largest([worst, energy_share(&r)], 0.0);
     }
     let r = frame.energy().expect("recorded");
     println!(

@@ -237,7 +237,6 @@ fn geometry(
 /// pressure beside it reached 8 MPa and the PPE diverged at t = 1.7 s of regular waves; found
 /// afresh every step with the flap in, they let 18 particles slip between the side walls and the
 /// flap's edges by 0.95 s of `fluid-solver/tests/wave_maker.rs`'s solitary flap).
-
 #[derive(Debug, Clone, Default)]
 struct FixedSolids {
     normal: Vec<[f64; 3]>,

@@ -147,3 +147,17 @@ pub fn sideways_loads(node_count: usize, force: f64) -> Vec<f64> {
     loads.iter_mut().step_by(6).for_each(|f| *f = force);
     loads
 }
+
+/// |residual| / energy scale of an energy row, the scale being the largest of |W|, T + U and the
+/// dissipation so far (`frame/energy_check.rs` adds T + U at the start of recording: 0 for a frame
+/// started at rest); NaN when the residual or a term is NaN.
+pub fn energy_share(row: &structure_solver::frame::EnergyRow) -> f64 {
+    let scale = schemas::validation::largest(
+        [
+            row.kinetic + row.strain,
+            row.plastic + row.damping + row.algorithmic,
+        ],
+        row.external.abs(),
+    );
+    row.residual.abs() / scale
+}

@@ -142,9 +142,10 @@ impl InflowSeries {
 
     /// The largest value of column `c` (0: level, 1: velocity) over the rows.
     fn largest(&self, c: usize) -> f64 {
-        (0..self.table.times().len())
-            .map(|i| self.values(i)[c])
-            .fold(f64::NEG_INFINITY, f64::max)
+        crate::validation::largest(
+            (0..self.table.times().len()).map(|i| self.values(i)[c]),
+            f64::NEG_INFINITY,
+        )
     }
 
     /// An error at row `i`, naming the file and its line.
