@@ -5,6 +5,7 @@
 mod abnormal_endings;
 mod bad_cases;
 mod body_on_wall;
+mod bridge_deck;
 mod bridge_washout;
 mod closed_streams;
 mod coupling_instability;
