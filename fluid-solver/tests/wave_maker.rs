@@ -1,7 +1,8 @@
 //! The wave maker and the run-up gauge (issue 37) in the solver: the paddle of
 //! `cases/solitary-wave-flat` moves exactly by Goring's stroke and at its velocity, with both
 //! methods, and so does a flap turning about its hinge, whose ISPH wall normals turn with it;
-//! the run-up gauge reads the still-water line on a beach.
+//! the run-up gauge reads the still-water line on a beach; an initial solitary wave is laid out
+//! with its volume and velocity.
 //!
 //! The generated wave against the solitary wave's height and speed is
 //! `the_solitary_wave_keeps_its_height_and_speed_over_ten_depths` (ignored for its length, see
@@ -564,4 +565,92 @@ fn regular_flap_waves_resolution_study() {
             started.elapsed().as_secs_f64()
         );
     }
+}
+
+/// `[initial_wave]` (H = 0.02 m on d = 0.1 m, crest at 0.5 m) in a flume four particles wide
+/// with a 1:3 beach from x = 1 m, as laid out at t = 0:
+/// - the water above the still level is the wave's volume 2H/k per width, within the lattice's
+///   rounding: a column holds round(η/Δs) sites, so it is off by at most min(η, Δs/2), summed
+///   over the columns from the profile itself;
+/// - every water particle moves with the wave's velocity at its place ([`SolitaryWave::velocity_at`],
+///   whose continuity and surface condition the schemas crate tests), along +x;
+/// - the run-up gauge reads the still-water line on the beach (0.1 m plus at most Δs/2 of
+///   rounding), not the crest, which touches only the flume's side walls.
+#[test]
+fn the_initial_wave_carries_the_solitary_waves_volume_and_velocity() {
+    let dir = std::env::temp_dir().join(format!("initial-wave-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+    let text = r#"[case]
+name = "initial-wave"
+end_time = 0.1
+
+[fluid.flume]
+method = "isph"
+spacing = 0.005
+time_step = 1.0e-3
+output_interval = 0.1
+tank = { min = [0.0, 0.0, 0.0], max = [1.4, 0.02, 0.2] }
+
+[fluid.flume.initial_wave]
+height = 0.02
+depth = 0.1
+crest = 0.5
+
+[[fluid.flume.terrain]]
+plane = { point = [1.0, 0.0, 0.0], normal = [-1.0, 0.0, 3.0] }
+
+[[fluid.flume.block]]
+min = [0.0, 0.0, 0.0]
+max = [1.4, 0.02, 0.1]
+
+[[fluid.flume.probe]]
+name = "run-up"
+kind = "run-up"
+"#;
+    let case = Case::parse(&dir.join("case.toml"), text.into()).unwrap_or_else(|e| panic!("{e}"));
+    let cfg = case.fluid["flume"].clone();
+    let wave = cfg
+        .initial_wave
+        .as_ref()
+        .and_then(|w| w.wave(9.8).ok())
+        .unwrap_or_else(|| panic!("the case has an initial wave"));
+    let solver = FluidSolver::new(&cfg);
+    let p = solver.particles();
+    let (ds, width, still) = (cfg.spacing, 0.02, 0.1);
+    let fluid: Vec<usize> = (0..p.len()).filter(|&i| p.kind_of(i) == Kind::Fluid).collect();
+    let raised = fluid.iter().filter(|&&i| p.z[i] > still).count() as f64 * ds * ds * ds / width;
+    // the columns left of the beach's toe (the beach takes the still water's place beyond it)
+    let columns = (0..(1.0 / ds).round() as usize).map(|c| (c as f64 + 0.5) * ds);
+    let theory: f64 = columns.clone().map(|x| wave.elevation(x, 0.0) * ds).sum();
+    let rounding: f64 = columns.map(|x| wave.elevation(x, 0.0).min(0.5 * ds) * ds).sum();
+    println!(
+        "raised water {raised:.6} m² per width, the profile's {theory:.6} (2H/k = {:.6}), rounding bound {rounding:.6}",
+        wave.volume_per_width()
+    );
+    assert!(
+        (raised - theory).abs() <= rounding,
+        "{raised} against {theory} ± {rounding}"
+    );
+    let mut worst: f64 = 0.0;
+    for &i in &fluid {
+        let [u, w] = wave.velocity_at(p.x[i], p.z[i], 0.0);
+        worst = largest(
+            [worst, (p.vx[i] - u).abs(), p.vy[i].abs(), (p.vz[i] - w).abs()],
+            0.0,
+        );
+    }
+    assert!(
+        worst < 1e-12,
+        "a particle's velocity is {worst} m/s off the wave's"
+    );
+    assert!(fluid.iter().any(|&i| p.vx[i] > 0.9 * wave.crest_velocity()));
+    let reading = probes::sample(&cfg.probe[0], p, solver.kernel(), &solver.tank());
+    println!(
+        "run-up gauge at t = 0: {reading:.4} m (the crest's top is {:.4} m)",
+        still + 0.02
+    );
+    assert!(
+        reading >= still - 1e-12 && reading <= still + 0.5 * ds + 1e-12,
+        "the run-up gauge reads {reading} m"
+    );
 }

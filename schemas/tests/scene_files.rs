@@ -4,7 +4,8 @@
 //! a flipped or a degenerate triangle, an inverted one, one far larger than the tank (drawn in
 //! millimetres), a grid with a missing value, a grid outside the tank, a paddle too thin or one
 //! that would leave the tank, a flap with a bad hinge, without a depth, turning too far or
-//! leaving the tank, and the GPU path refusing each feature by name.
+//! leaving the tank, an initial wave off the water or out of the tank, and the GPU path refusing
+//! each feature by name.
 
 use schemas::case::Case;
 use schemas::geometry::{write_ascii_grid, write_binary_stl, HeightGrid, TriangleMesh};
@@ -375,5 +376,49 @@ fn a_geotiff_terrain_is_the_ascii_grids_terrain() {
         &dir,
         flume("\n[[fluid.flume.terrain]]\ngrid = \"bed.xyz\"\n"),
         &["fluid.flume.terrain[0].grid", "bed.xyz", ".asc", ".tif"],
+    );
+}
+
+/// `[initial_wave]` in the 1 m flume (still level 0.1 m): a good wave loads; refused, naming the
+/// key: H/d above 0.6, a crest outside the tank, a direction other than ±x, a still level no
+/// block's top is at (depth 0.15 m: the wave would float above the water), a crest above the
+/// tank's top.
+#[test]
+fn an_initial_wave_off_the_water_or_out_of_the_tank_is_refused() {
+    let dir = folder("initial-wave");
+    let wave = |extra: &str| {
+        flume(&format!(
+            "\n[fluid.flume.initial_wave]\nheight = 0.02\ndepth = 0.1\ncrest = 0.5\n{extra}"
+        ))
+    };
+    let case = parse(&dir, wave("direction = \"-x\"\n")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(
+        case.fluid["flume"].initial_wave.as_ref().and_then(|w| w.sign()),
+        Some(-1.0)
+    );
+    refused(
+        &dir,
+        wave("").replace("height = 0.02", "height = 0.07"),
+        &["fluid.flume.initial_wave.height", "0.6"],
+    );
+    refused(
+        &dir,
+        wave("").replace("crest = 0.5", "crest = 1.5"),
+        &["fluid.flume.initial_wave.crest", "outside the tank"],
+    );
+    refused(
+        &dir,
+        wave("direction = \"x\"\n"),
+        &["fluid.flume.initial_wave.direction", "\"+x\" or \"-x\""],
+    );
+    refused(
+        &dir,
+        wave("").replace("depth = 0.1", "depth = 0.15"),
+        &["fluid.flume.initial_wave.depth", "no block's top"],
+    );
+    refused(
+        &dir,
+        wave("").replace("max = [1.0, 0.2, 0.3] }", "max = [1.0, 0.2, 0.11] }"),
+        &["fluid.flume.initial_wave.depth", "above the tank's top"],
     );
 }

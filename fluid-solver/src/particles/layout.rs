@@ -5,7 +5,8 @@
 //! nearest sites. Sites outside the tank within `wall_layers` layers are walls: the two layers
 //! next to the tank are [`Kind::Wall`] (they carry pressure), the outer ones [`Kind::Dummy`].
 //! Sites inside the tank whose centre is inside a gate, a body (its box or its mesh,
-//! [`BodySites`]), a solid wall box or a water block get that kind; so do the skins of mesh solids and terrains ([`SolidSites`]), and the wave
+//! [`BodySites`]), a solid wall box or a water block (raised by an initial wave, whose water moves
+//! with it) get that kind; so do the skins of mesh solids and terrains ([`SolidSites`]), and the wave
 //! maker's paddle, whose particles come last. Boxes and the tank are first moved onto the lattice ([`crate::particles::lattice`]); the
 //! layout keeps that config and the messages saying what moved.
 
@@ -93,6 +94,12 @@ pub fn build(cfg: &FluidConfig) -> Layout {
     let paddle_box = cfg.wave_maker.as_ref().map(|w| w.paddle());
     let in_paddle = |p: [f64; 3]| paddle_box.is_some_and(|b| b.contains_point(p));
     let mut paddle_sites = Vec::new();
+    let wave = cfg.initial_wave.as_ref().map(|w| {
+        let g = cfg.gravity.iter().map(|c| c * c).sum::<f64>().sqrt();
+        let sign = w.sign().expect("the initial wave's direction was validated");
+        let wave = w.wave(g).expect("the initial wave was validated");
+        (wave, sign)
+    });
     let solids = SolidSites::build(cfg, n);
     let body_sites = BodySites::build(cfg, n);
     for k in -layers..top {
@@ -126,8 +133,15 @@ pub fn build(cfg: &FluidConfig) -> Layout {
                     particles.push(p, Kind::Wall);
                 } else if solids.buries(idx) {
                     // deeper inside a mesh solid or a terrain than its skin: no particle
-                } else if cfg.block.iter().any(|b| b.contains_point(p)) {
-                    particles.push(p, Kind::Fluid);
+                } else if cfg.block.iter().any(|b| b.contains_point(p))
+                    || wave.is_some_and(|(w, _)| cfg.raised_by_initial_wave(p, &w))
+                {
+                    let v = wave.map_or([0.0; 3], |(w, sign)| {
+                        let [u, w] = w.velocity_at(p[0], p[2] - tank.min[2], 0.0);
+                        [sign * u, 0.0, sign * w]
+                    });
+                    let id = particles.len() as u32;
+                    particles.push_moving(p, v, Kind::Fluid, id);
                 }
             }
         }

@@ -68,9 +68,13 @@ pub fn sample(probe: &ProbeConfig, p: &Particles, kernel: &Kernel, tank: &Aabb) 
     }
 }
 
-/// The run-up gauge: the highest water particle with a solid within r_e,grad, plus Δs/2, above
-/// the tank floor (0 when no water touches a solid; NaN when a position is). The solids are
-/// binned in cells of r_e,grad, so each water particle looks at the 27 cells around it.
+/// The run-up gauge: the highest water particle resting on a solid, plus Δs/2, above the tank
+/// floor (0 when no water rests on a solid; NaN when a position is). Resting: a solid particle
+/// lies below it within r_e,grad and within atan ½ ≈ 27° of the vertical (its horizontal
+/// offset under half its depth below), as a beach's or a floor's top layer does; the side walls
+/// of a narrow flume, beside the water at a horizontal offset of Δs, and vertical faces do not
+/// hold it up. The solids are binned in cells of r_e,grad, so each water particle looks at the
+/// 27 cells around it.
 fn run_up(p: &Particles, kernel: &Kernel, tank: &Aabb, in_water: impl Fn(usize) -> bool) -> f64 {
     let reach = kernel.re_grad;
     let cell = |i: usize| [p.x[i], p.y[i], p.z[i]].map(|v| (v / reach).floor() as i64);
@@ -78,20 +82,21 @@ fn run_up(p: &Particles, kernel: &Kernel, tank: &Aabb, in_water: impl Fn(usize) 
     for i in (0..p.len()).filter(|&i| matches!(p.kind_of(i), Kind::Wall | Kind::Body)) {
         solids.entry(cell(i)).or_default().push(i);
     }
-    let touches = |i: usize| {
+    let rests = |i: usize| {
         let c = cell(i);
         (0..27).any(|n| {
             let at = [c[0] + n % 3 - 1, c[1] + (n / 3) % 3 - 1, c[2] + n / 9 - 1];
             solids.get(&at).is_some_and(|js| {
                 js.iter().any(|&j| {
-                    (p.x[j] - p.x[i]).powi(2) + (p.y[j] - p.y[i]).powi(2) + (p.z[j] - p.z[i]).powi(2)
-                        <= reach * reach
+                    let across = (p.x[j] - p.x[i]).powi(2) + (p.y[j] - p.y[i]).powi(2);
+                    let below = p.z[i] - p.z[j];
+                    below > 0.0 && 4.0 * across < below * below && across + below * below <= reach * reach
                 })
             })
         })
     };
     let heights = (0..p.len())
-        .filter(|&i| in_water(i) && touches(i))
+        .filter(|&i| in_water(i) && rests(i))
         .map(|i| p.z[i] + 0.5 * kernel.spacing - tank.min[2]);
     schemas::validation::largest(heights, 0.0)
 }

@@ -101,6 +101,25 @@ impl SolitaryWave {
         self.celerity * eta / (self.depth + eta)
     }
 
+    /// ∂η/∂x at (x, t) = −2 k H sech² θ tanh θ, –.
+    pub fn slope(&self, x: f64, t: f64) -> f64 {
+        let theta = self.phase(x, t);
+        -2.0 * self.wavenumber * self.height * sech_squared(theta) * theta.tanh()
+    }
+
+    /// The velocity (u, w) at (x, t) a height `above_floor` over the floor, m/s: u = c η / (d + η)
+    /// over the whole depth, and w = −z c d η_x / (d + η)² from continuity (∂w/∂z = −∂u/∂x, w = 0
+    /// at the floor); at the surface it is (u − c) η_x, the kinematic condition of a profile
+    /// moving at c (derived here).
+    pub fn velocity_at(&self, x: f64, above_floor: f64, t: f64) -> [f64; 2] {
+        let eta = self.elevation(x, t);
+        let total = self.depth + eta;
+        [
+            self.velocity_under(eta),
+            -above_floor * self.celerity * self.depth * self.slope(x, t) / (total * total),
+        ]
+    }
+
     /// u at the crest, c H / (d + H), m/s: the largest depth-averaged velocity.
     pub fn crest_velocity(&self) -> f64 {
         self.velocity_under(self.height)
@@ -186,6 +205,32 @@ mod tests {
             let q = |x: f64| w.depth_averaged_velocity(x, t) * (w.depth() + w.elevation(x, t));
             let dq_dx = (q(x + h) - q(x - h)) / (2.0 * h);
             assert!((deta_dt + dq_dx).abs() < 1e-8, "x = {x}: {deta_dt} + {dq_dx}");
+        }
+    }
+
+    #[test]
+    fn the_vertical_velocity_meets_the_kinematic_surface_condition() {
+        // At the surface w = ∂η/∂t + u ∂η/∂x (the profile moves at c: ∂η/∂t = −c η_x), ∂w/∂z =
+        // −∂u/∂x inside (central differences, h = 1e-6 m: truncation far below 1e-8 m/s here),
+        // and η_x matches a central difference of η.
+        let w = SolitaryWave::new(0.2, 0.5, G).expect("valid").with_crest_at(0.3);
+        let h = 1e-6;
+        for i in -30..30 {
+            let x = i as f64 * 0.07;
+            let eta = w.elevation(x, 0.0);
+            let fd = (w.elevation(x + h, 0.0) - w.elevation(x - h, 0.0)) / (2.0 * h);
+            assert!((w.slope(x, 0.0) - fd).abs() < 1e-8, "x = {x}");
+            let [u, ws] = w.velocity_at(x, w.depth() + eta, 0.0);
+            let kinematic = -w.celerity() * w.slope(x, 0.0) + u * w.slope(x, 0.0);
+            assert!(
+                (ws - kinematic).abs() < 1e-12,
+                "x = {x}: {ws} against {kinematic}"
+            );
+            let z = 0.3;
+            let dw_dz = (w.velocity_at(x, z + h, 0.0)[1] - w.velocity_at(x, z - h, 0.0)[1]) / (2.0 * h);
+            let du_dx = (w.velocity_at(x + h, z, 0.0)[0] - w.velocity_at(x - h, z, 0.0)[0]) / (2.0 * h);
+            assert!((dw_dz + du_dx).abs() < 1e-7, "x = {x}: {dw_dz} + {du_dx}");
+            assert_eq!(w.velocity_at(x, 0.0, 0.0)[1], 0.0);
         }
     }
 

@@ -53,6 +53,7 @@ mod geometry;
 mod gpu;
 mod inflow_law;
 mod inflow_series;
+mod initial_wave;
 mod isph;
 mod mesh_bodies;
 mod open_boundary;
@@ -65,6 +66,7 @@ pub use geometry::{Aabb, BodyConfig, TankConfig};
 pub use gpu::GPU_MAX_ROUNDING;
 pub use inflow_law::InflowLaw;
 pub use inflow_series::InflowSeries;
+pub use initial_wave::InitialWaveConfig;
 pub use isph::{
     IsphConfig, PpeSolver, PressureGradient, Shifting, WallSlip, MAX_SHIFTING_COEFFICIENT, SYMMETRIC_SUPPORT,
 };
@@ -194,6 +196,10 @@ pub struct FluidConfig {
     /// CPU only: a piston or flap wave maker.
     #[serde(default)]
     pub wave_maker: Option<WaveMakerConfig>,
+    /// A solitary wave in the tank at t = 0 (as NTHMP benchmark 1 starts), instead of a paddle
+    /// that makes it.
+    #[serde(default)]
+    pub initial_wave: Option<InitialWaveConfig>,
     /// Zones that absorb waves (the fluid's velocity relaxed towards rest).
     #[serde(default)]
     pub damping: Vec<DampingConfig>,
@@ -398,6 +404,7 @@ impl FluidConfig {
         }
         self.validate_solids(key)?;
         self.validate_waves(key, &named)?;
+        self.validate_initial_wave(key)?;
         self.validate_probes(key)?;
         self.validate_open_boundaries(key, &named)?;
         if self.backend == FluidBackend::Gpu {

@@ -27,10 +27,12 @@ pub enum ProbeKind {
     /// normal force of the fluid on the wall particles behind the disc per unit area, optionally
     /// box-filtered over the last `window` seconds.
     WallPressure,
-    /// Run-up: the elevation above the tank floor of the highest water particle on a solid (a
-    /// wall, terrain, solid or body particle within r_e,grad = 2.1 Δs), plus Δs/2 as the
-    /// water-height gauge adds; spray (number density below half of n0) is left out. No
-    /// position. The column's maximum minus the still-water level is the run-up R.
+    /// Run-up: the elevation above the tank floor of the highest water particle resting on a
+    /// solid (a wall, terrain, solid or body particle below it within r_e,grad = 2.1 Δs and
+    /// within 27° of the vertical: a beach or a floor holds it, the side walls of a narrow flume
+    /// and vertical faces do not), plus Δs/2 as the water-height gauge adds; spray (number
+    /// density below half of n0) is left out. No position. The column's maximum minus the
+    /// still-water level is the run-up R.
     RunUp,
 }
 
