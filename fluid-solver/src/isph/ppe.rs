@@ -7,7 +7,8 @@
 //! p = 0 (Dirichlet) and wall neighbours as known pressure differences (Neumann, see
 //! [`super::walls`]), which the step puts into b. A is symmetric (equal volumes) and, with at
 //! least one surface neighbour per connected body of water, positive definite: conjugate
-//! gradients apply.
+//! gradients apply. A pocket of water enclosed by solids has none; after a failed solve the step
+//! finds such pockets ([`PpeSystem::enclosed_pockets`]) and ties their level ([`PpeSystem::tie`]).
 //!
 //! The solve is memory-bound (about 55 entries per row against a few vector values), so only the
 //! strict upper triangle is stored, in f32: 4 bytes of value and 4 of column per pair of
@@ -50,6 +51,9 @@ pub struct PpeSystem {
     pub rhs: Vec<f64>,
     /// Aggregate of each unknown for [`super::ppe_two_level`] (filled only for that solver).
     pub aggregate: Vec<u32>,
+    /// Whether each row has a Dirichlet neighbour (a surface particle): a connected set of rows
+    /// with none is a pocket of water enclosed by solids ([`PpeSystem::enclosed_pockets`]).
+    pub anchored: Vec<bool>,
 }
 
 /// A PPE that did not reach its tolerance.
@@ -153,6 +157,47 @@ impl PpeSystem {
             PpeSolver::AdditiveTwoLevelPcg => {
                 super::ppe_two_level::solve(self, Form::Additive, x, tol, max_iterations)
             }
+        }
+    }
+
+    /// One row (the lowest) of each pocket: a set of unknowns connected through A's entries none
+    /// of which has a Dirichlet neighbour. A pocket's rows sum to zero (water enclosed by walls
+    /// and bodies: a pure Neumann problem), so A is singular there and CG diverges unless b sums
+    /// to zero over it. Union–find over the stored entries, run only after a failed solve.
+    pub fn enclosed_pockets(&self) -> Vec<usize> {
+        let n = self.len();
+        let mut parent: Vec<usize> = (0..n).collect();
+        fn root(parent: &mut [usize], mut r: usize) -> usize {
+            while parent[r] != r {
+                parent[r] = parent[parent[r]];
+                r = parent[r];
+            }
+            r
+        }
+        for r in 0..n {
+            for &c in &self.col[self.start[r] as usize..self.start[r + 1] as usize] {
+                let (a, b) = (root(&mut parent, r), root(&mut parent, c as usize));
+                // the lower row becomes the root, so a pocket is named by its lowest row
+                parent[a.max(b)] = a.min(b);
+            }
+        }
+        let mut anchored = vec![false; n];
+        for r in 0..n {
+            let top = root(&mut parent, r);
+            anchored[top] |= self.anchored.get(r).copied().unwrap_or(true);
+        }
+        (0..n).filter(|&r| parent[r] == r && !anchored[r]).collect()
+    }
+
+    /// Ties each row in `rows` to `level[k]` by a penalty as strong as its diagonal,
+    /// A_rr += A_rr and b_r += A_rr level: a pocket's system becomes positive definite, and the
+    /// pocket's pressure level, which nothing else sets in incompressible flow, follows the tied
+    /// value (the step passes the last step's pressure).
+    pub fn tie(&mut self, rows: &[usize], level: &[f64]) {
+        for (&r, &l) in rows.iter().zip(level) {
+            let d = self.diag[r];
+            self.diag[r] += d;
+            self.rhs[r] += d * l;
         }
     }
 
@@ -526,6 +571,39 @@ pub(super) mod tests {
                 (x / k + b * (y / k + b * (z / k))) as u32
             })
             .collect()
+    }
+
+    /// The 5³ Dirichlet Laplacian (every row anchored) beside a pocket of three unknowns in a
+    /// row, connected only to each other (Neumann all round: rows summing to zero) with a
+    /// right-hand side that does not sum to zero over it: CG fails on the whole; the pocket is
+    /// found by its lowest row, and once tied to a level the system solves, the pocket's
+    /// pressures lying about that level (they differ by what its rows ask: x1 − x0 = b0, …).
+    #[test]
+    fn a_pocket_enclosed_by_solids_is_found_and_tied() {
+        let mut a = laplacian(5);
+        a.anchored = vec![true; a.len()];
+        let first = a.len();
+        for (k, col) in [(0, Some(first + 1)), (1, Some(first + 2)), (2, None)] {
+            if let Some(c) = col {
+                a.col.push(c as u32);
+                a.val.push(-1.0);
+            }
+            a.start.push(a.col.len() as u32);
+            a.diag.push(if k == 1 { 2.0 } else { 1.0 });
+            a.rhs.push([1.0, 0.0, 2.0][k]);
+            a.particle.push((first + k) as u32);
+            a.anchored.push(false);
+        }
+        let mut x = vec![0.0; a.len()];
+        assert!(a.solve(PpeSolver::JacobiPcg, &mut x, 1e-8, 2000).is_err());
+        assert_eq!(a.enclosed_pockets(), vec![first]);
+        a.tie(&[first], &[100.0]);
+        let mut x = vec![0.0; a.len()];
+        let report = a.solve(PpeSolver::JacobiPcg, &mut x, 1e-10, 2000);
+        assert!(report.is_ok(), "{report:?}");
+        assert!(a.relative_residual(&x) <= 1e-10);
+        let pocket = &x[first..];
+        assert!(pocket.iter().all(|v| (v - 100.0).abs() < 10.0), "{pocket:?}");
     }
 
     #[test]

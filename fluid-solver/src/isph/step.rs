@@ -69,6 +69,7 @@ struct RowBlock {
     end: Vec<u32>,
     diag: Vec<f64>,
     rhs: Vec<f64>,
+    anchored: Vec<bool>,
 }
 
 /// What ISPH keeps between steps beyond the particles (whose pressure is the PPE's warm start).
@@ -116,6 +117,9 @@ pub struct IsphStep {
     known_gradient: VectorField,
     /// The exact projection's kernel gradients of the step's pairs.
     pair_gradients: PairGradients,
+    /// Pockets of water enclosed by solids whose pressure level was tied to the last step's
+    /// ([`IsphStep::solve_with_pockets_tied`]), over the run.
+    pockets_tied: u64,
     times: StageTimes,
 }
 
@@ -150,8 +154,14 @@ impl IsphStep {
             known_gradient: VectorField::default(),
             pair_gradients: PairGradients::default(),
             faces: pair_laws::BodyFaces::default(),
+            pockets_tied: 0,
             times: StageTimes::default(),
         }
+    }
+
+    /// Pockets of water enclosed by solids whose pressure level was tied, over the run.
+    pub fn pockets_tied(&self) -> u64 {
+        self.pockets_tied
     }
 
     /// Wall time per stage since the start.
@@ -476,11 +486,12 @@ impl IsphStep {
                 out.end.clear();
                 out.diag.clear();
                 out.rhs.clear();
+                out.anchored.clear();
                 for &i in block {
                     let i = i as usize;
                     let row = row_of[i];
                     // Σ_j F_ij, the known terms, and the divergence of v* in the same pass.
-                    let (mut diag, mut rhs) = (0.0, 0.0);
+                    let (mut diag, mut rhs, mut anchored) = (0.0, 0.0, false);
                     let mut div = DivergenceSum::new(form, lambda[i]);
                     for (j, q) in list.pairs(i) {
                         div.add(&k, p, i, j, q);
@@ -494,6 +505,7 @@ impl IsphStep {
                             diag += f;
                             if row_of[j] == NOT_AN_UNKNOWN {
                                 rhs += f * dirichlet[j];
+                                anchored = true;
                             } else if row_of[j] > row {
                                 // The upper triangle only (super::ppe).
                                 out.col.push(row_of[j]);
@@ -506,6 +518,7 @@ impl IsphStep {
                     let div = div.value(&k);
                     out.end.push(out.col.len() as u32);
                     out.diag.push(diag);
+                    out.anchored.push(anchored);
                     out.rhs
                         .push(rhs - (rho / dt * div + alpha * rho * (1.0 - ratio[i]) / (dt * relax)));
                 }
@@ -517,6 +530,9 @@ impl IsphStep {
         ppe.val.resize(entries, 0.0);
         ppe.diag.resize(rows, 0.0);
         ppe.rhs.resize(rows, 0.0);
+        ppe.anchored.clear();
+        ppe.anchored
+            .extend(blocks.iter().flat_map(|b| b.anchored.iter().copied()));
         ppe.start[0] = 0;
         // Each block's slice of every CSR array, split off in order.
         let (mut start, mut col, mut val) = (&mut ppe.start[1..], &mut ppe.col[..], &mut ppe.val[..]);
@@ -603,15 +619,20 @@ impl IsphStep {
                 &mut self.solution,
                 s.ppe_tolerance,
                 s.ppe_max_iterations,
-            )
+            )?
         } else {
-            ppe.solve(
+            let solved = ppe.solve(
                 s.ppe_solver,
                 &mut self.solution,
                 s.ppe_tolerance,
                 s.ppe_max_iterations,
-            )
-        }?;
+            );
+            match solved {
+                Err(failure) => self.solve_with_pockets_tied(p, failure)?,
+                Ok(report) => report,
+            }
+        };
+        let ppe = &self.ppe;
         let (row_of, x, dirichlet) = (&ppe.row_of, &self.solution, &self.dirichlet);
         (&mut p.pressure, &p.kind)
             .into_par_iter()
@@ -626,6 +647,42 @@ impl IsphStep {
                 };
             });
         Ok(report)
+    }
+
+    /// After a failed solve: when the water holds pockets enclosed by solids
+    /// ([`PpeSystem::enclosed_pockets`]), ties each to its last pressure ([`PpeSystem::tie`]) and
+    /// solves again from the warm start; otherwise (or when that fails too) the failure stands.
+    fn solve_with_pockets_tied(
+        &mut self,
+        p: &Particles,
+        failure: PpeFailure,
+    ) -> Result<PpeReport, PpeFailure> {
+        let rows = self.ppe.enclosed_pockets();
+        if rows.is_empty() {
+            return Err(failure);
+        }
+        let level: Vec<f64> = rows
+            .iter()
+            .map(|&r| p.pressure[self.ppe.particle[r] as usize])
+            .collect();
+        self.ppe.tie(&rows, &level);
+        if self.pockets_tied == 0 {
+            eprintln!(
+                "ISPH: {} pocket(s) of water enclosed by solids (no free surface): the pressure Poisson equation is singular there; each pocket's pressure level is tied to its last step's (said once per run)",
+                rows.len()
+            );
+        }
+        self.pockets_tied += rows.len() as u64;
+        self.solution.clear();
+        self.solution
+            .extend(self.ppe.particle.iter().map(|&i| p.pressure[i as usize]));
+        let s = &self.settings;
+        self.ppe.solve(
+            s.ppe_solver,
+            &mut self.solution,
+            s.ppe_tolerance,
+            s.ppe_max_iterations,
+        )
     }
 
     /// The bodies' face laws ([`pair_laws::body_faces`]) from the present pressures, with v* of a
