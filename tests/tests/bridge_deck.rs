@@ -3,8 +3,8 @@
 //! solitary wave (H/d = 0.4) from a Goring piston, run by E-MPS and by ISPH through the real
 //! processes. The case's d/16 is halved to d/8, its Δt doubled and its end cut from 1.4 s to
 //! 1.15 s (the load passes by 1.1 s); ISPH adds Lind's shifting and its own Δt. Checks: the
-//! forces are finite; the deck is unloaded until the wave reaches it and loaded after; both
-//! methods bring the wave at the same time; the peak uplift against the hydrostatic uplift under
+//! forces are finite; the deck is unloaded until the wave reaches it and loaded after; each
+//! method brings the wave between the times of the solitary and the linear long-wave speeds; the peak uplift against the hydrostatic uplift under
 //! the crest. The two methods' peak horizontal forces are reported: they disagree by 1.85. Numbers: docs/notes/case-bridge-deck-solitary.md.
 
 use schemas::validation::{record, Record};
@@ -230,6 +230,19 @@ fn hydrostatic_uplift(crest: f64) -> f64 {
     RHO * G * (girders + slab)
 }
 
+/// The times the front η = H/4 of the first-order solitary wave Goring's paddle makes reaches
+/// the deck's gauge, 0.4 m from the paddle's face at rest, travelling at √(g(d + H)) and at
+/// √(g d). Goring's motion starts with the crest a = 3.8/k behind the paddle, moving at
+/// c = √(g(d + H)); the front, arcosh 2 / k ahead of the crest, leaves the paddle's face at
+/// (a − arcosh 2)/(k c).
+fn arrival_window() -> (f64, f64) {
+    let k = (3.0 * HEIGHT / (4.0 * DEPTH.powi(3))).sqrt();
+    let (solitary, linear) = ((G * (DEPTH + HEIGHT)).sqrt(), (G * DEPTH).sqrt());
+    let leaves = (3.8 - 2.0f64.acosh()) / (k * solitary);
+    let distance = 0.45 - 0.05;
+    (leaves + distance / solitary, leaves + distance / linear)
+}
+
 #[test]
 fn a_solitary_wave_loads_the_held_deck_near_its_hydrostatic_uplift_by_both_methods() {
     let emps_run = run("emps");
@@ -237,13 +250,24 @@ fn a_solitary_wave_loads_the_held_deck_near_its_hydrostatic_uplift_by_both_metho
     let emps = loads("E-MPS", &emps_run);
     let isph = loads("ISPH", &isph_run);
 
-    // Both methods bring the wave to the deck at the same time (within 4 probe rows, 20 ms).
-    assert!(
-        (emps.arrival - isph.arrival).abs() <= 0.02 + 1e-9,
-        "arrivals {} s (E-MPS), {} s (ISPH)",
-        emps.arrival,
-        isph.arrival
-    );
+    // Each method brings the wave's front (η = H/4) to the deck's gauge between the times of a
+    // front travelling from the paddle at the solitary wave's celerity √(g(d + H)) and at the
+    // linear long-wave speed √(g d), one probe row (5 ms) either way: slower than the latter is a
+    // numerical loss, faster than the former no wave Goring's paddle makes.
+    let window = arrival_window();
+    for (method, l) in [("E-MPS", &emps), ("ISPH", &isph)] {
+        println!(
+            "{method}: the front at the deck's gauge at {:.3} s (a wave at √(g(d + H)): {:.3} s, at √(g d): {:.3} s)",
+            l.arrival, window.0, window.1
+        );
+        assert!(
+            l.arrival >= window.0 - 0.005 && l.arrival <= window.1 + 0.005,
+            "{method}: the front at {} s, outside [{}, {}] s",
+            l.arrival,
+            window.0,
+            window.1
+        );
+    }
 
     // Peak horizontal force, E-MPS over ISPH: reported, not bounded. The methods disagree by
     // a factor of 1.85 at d/8 while E-MPS moves by 5.6 % from d/8 to d/16, and ISPH does not

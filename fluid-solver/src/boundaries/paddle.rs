@@ -70,16 +70,18 @@ impl Paddle {
         }
     }
 
-    /// A flap's particle ids and its angle θ(`t`) (`None`: at rest, θ = 0, before the first
-    /// step), for ISPH's wall geometry (module doc); `None` for a piston.
+    /// The paddle's particle ids and its angle θ(`t`) (`None`: at rest, θ = 0, before the first
+    /// step; a piston never turns, θ = 0), for ISPH's wall geometry (module doc): the fixed walls'
+    /// geometry leaves the paddle out, whichever way it moves past them.
     pub fn turned_solids(&self, t: Option<f64>) -> Option<TurnedSolids> {
-        match self.motion.as_ref() {
-            WaveMakerMotion::Piston(_) => None,
-            WaveMakerMotion::Flap(m) => Some(TurnedSolids {
-                ids: self.first..self.first + self.rest_x.len() as u32,
-                angle: t.map_or(0.0, |t| m.angle(t)),
-            }),
-        }
+        let angle = match self.motion.as_ref() {
+            WaveMakerMotion::Piston(_) => 0.0,
+            WaveMakerMotion::Flap(m) => t.map_or(0.0, |t| m.angle(t)),
+        };
+        Some(TurnedSolids {
+            ids: self.first..self.first + self.rest_x.len() as u32,
+            angle,
+        })
     }
 
     /// The index into the rest positions of particle `id`, if it is a paddle particle.

@@ -231,8 +231,10 @@ fn geometry(
 /// scale computing normals and depths took 9 ms of a 270 ms step. A wave maker's paddle is kept
 /// too: it moves rigidly, which leaves depths and convexity as they are; a piston's normals too,
 /// a flap's turn with it ([`TurnedSolids`]: they are kept as at rest). A fixed solid's geometry
-/// leaves a flap's particles out: the flap moves past it, and the side walls and floor beside
-/// it are the same walls wherever it stands (a side-wall particle that first met water with the
+/// leaves the paddle's particles out, a piston's as a flap's: the paddle moves past it, and the
+/// side walls and floor beside it are the same walls wherever it stands (with a piston's
+/// particles in, water got behind a piston at H/d = 0.4 beside a side wall at Δs = d/16,
+/// `cases/bridge-deck-solitary` with ISPH at 0.844 s) (a side-wall particle that first met water with the
 /// flap leaning back over it kept a normal tilted by the flap's particles, and at Δs = d/16 the
 /// pressure beside it reached 8 MPa and the PPE diverged at t = 1.7 s of regular waves; found
 /// afresh every step with the flap in, they let 18 particles slip between the side walls and the
