@@ -287,7 +287,7 @@ fn a_solitary_wave_loads_the_held_deck_near_its_hydrostatic_uplift_by_both_metho
         measure: "peak of the 20 ms mean horizontal force, E-MPS / ISPH".into(),
         value: ratio,
         bound: None,
-        bound_source: "not met: the methods disagree (1.85 at d/8); reported, not asserted".into(),
+        bound_source: "not met: the methods disagree (docs/notes/case-bridge-deck-solitary.md)".into(),
         unit: "".into(),
         source: "tests/tests/bridge_deck.rs::a_solitary_wave_loads_the_held_deck_near_its_hydrostatic_uplift_by_both_methods".into(),
         run_time_s: emps_run.seconds + isph_run.seconds,
