@@ -185,7 +185,7 @@ impl FluidSolver {
             }
         };
         if let Some(paddle) = &paddle {
-            method.turn_solids(paddle.turned_solids(None)); // at rest
+            method.turn_solids(Some(paddle.turned_solids(None))); // at rest
         }
         method.refresh_pressure(&mut particles, &mut grid, &mut method_state);
         let mut solver = FluidSolver {
@@ -435,7 +435,8 @@ impl FluidSolver {
         }
         if let Some(paddle) = &self.paddle {
             paddle.place(&mut st.particles, st.time, dt);
-            self.method.turn_solids(paddle.turned_solids(Some(st.time + dt)));
+            self.method
+                .turn_solids(Some(paddle.turned_solids(Some(st.time + dt))));
         }
         let balance = st.open_boundaries.balance();
         let open = st.open_boundaries.is_active() || self.paddle.is_some();

@@ -135,6 +135,18 @@ pub fn csv_rows(path: &Path) -> Vec<Vec<f64>> {
         .collect()
 }
 
+/// The column names of a CSV file's header line (none when the file cannot be read).
+pub fn csv_header(path: &Path) -> Vec<String> {
+    std::fs::read_to_string(path)
+        .unwrap_or_default()
+        .lines()
+        .next()
+        .unwrap_or_default()
+        .split(',')
+        .map(str::to_string)
+        .collect()
+}
+
 /// `cases/NAME/case.toml` with the first `key = …` line of each key replaced, written to `dir/case.toml`.
 pub fn case_from(name: &str, dir: &Path, replace: &[(&str, &str)]) -> PathBuf {
     let source = workspace().join("cases").join(name).join("case.toml");

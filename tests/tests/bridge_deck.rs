@@ -7,8 +7,9 @@
 //! method brings the wave between the times of the solitary and the linear long-wave speeds; the peak uplift against the hydrostatic uplift under
 //! the crest. The two methods' peak horizontal forces are reported: they disagree by 1.85. Numbers: docs/notes/case-bridge-deck-solitary.md.
 
-use schemas::validation::{record, Record};
-use stack_tests::{coupler_run, out_dir, stderr, workspace};
+use schemas::validation::{largest, record, Record};
+use schemas::wave_motion::GoringSolitary;
+use stack_tests::{case_from, coupler_run, csv_header, csv_rows, out_dir, stderr, workspace};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -44,26 +45,24 @@ struct Run {
     seconds: f64,
 }
 
-/// The named columns of a CSV file with a header line (NaN for a field that is no number).
+/// The named columns of each row of a CSV file with a header line (NaN for a field that is no
+/// number).
 fn columns(path: &Path, names: &[&str]) -> Vec<Vec<f64>> {
-    let text =
-        std::fs::read_to_string(path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
-    let mut lines = text.lines();
-    let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
+    let header = csv_header(path);
     let at: Vec<usize> = names
         .iter()
         .map(|n| {
             header
                 .iter()
                 .position(|h| h == n)
-                .unwrap_or_else(|| panic!("{}: no column {n}", path.display()))
+                .unwrap_or_else(|| panic!("{}: no column {n} in {header:?}", path.display()))
         })
         .collect();
-    lines
-        .map(|l| {
-            let v: Vec<&str> = l.split(',').collect();
+    csv_rows(path)
+        .iter()
+        .map(|row| {
             at.iter()
-                .map(|&i| v.get(i).and_then(|x| x.parse().ok()).unwrap_or(f64::NAN))
+                .map(|&i| row.get(i).copied().unwrap_or(f64::NAN))
                 .collect()
         })
         .collect()
@@ -72,34 +71,24 @@ fn columns(path: &Path, names: &[&str]) -> Vec<Vec<f64>> {
 /// The case file at d/8 for `method` (`"emps"`, as shipped, or `"isph"` with Lind's shifting),
 /// written with its mesh into `dir`.
 fn ci_twin(dir: &Path, method: &str) -> PathBuf {
-    let folder = workspace().join("cases/bridge-deck-solitary");
-    let text = std::fs::read_to_string(folder.join("case.toml")).unwrap_or_else(|e| panic!("{e}"));
     // E-MPS: c Δt/Δs = 0.8 as shipped; ISPH: u_max Δt/Δs = 0.32 (its limit is 0.4).
-    let (method_line, time_step) = match method {
-        "emps" => ("method = \"emps\"", "1.25e-3"),
-        _ => ("method = \"isph\"\nisph = { shifting = \"lind\" }", "2.5e-3"),
+    let (method, time_step) = match method {
+        "emps" => ("\"emps\"", "1.25e-3"),
+        _ => ("\"isph\"\nisph = { shifting = \"lind\" }", "2.5e-3"),
     };
-    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
-    for (key, value) in [
-        ("method", method_line),
-        ("spacing", "0.0125"),
-        ("time_step", time_step),
-        ("end_time", "1.15"),
-        ("output_interval", "1.15"),
-    ] {
-        let line = lines
-            .iter_mut()
-            .find(|l| l.starts_with(&format!("{key} =")))
-            .unwrap_or_else(|| panic!("no `{key} =` line in the case"));
-        *line = if key == "method" {
-            value.to_string()
-        } else {
-            format!("{key} = {value}")
-        };
-    }
-    std::fs::copy(folder.join("deck.stl"), dir.join("deck.stl")).unwrap_or_else(|e| panic!("{e}"));
-    let case = dir.join("case.toml");
-    std::fs::write(&case, lines.join("\n")).unwrap_or_else(|e| panic!("{e}"));
+    let case = case_from(
+        "bridge-deck-solitary",
+        dir,
+        &[
+            ("method", method),
+            ("spacing", "0.0125"),
+            ("time_step", time_step),
+            ("end_time", "1.15"),
+            ("output_interval", "1.15"),
+        ],
+    );
+    let mesh = workspace().join("cases/bridge-deck-solitary/deck.stl");
+    std::fs::copy(&mesh, dir.join("deck.stl")).unwrap_or_else(|e| panic!("{}: {e}", mesh.display()));
     case
 }
 
@@ -129,9 +118,11 @@ fn run(method: &str) -> Run {
 
 /// The largest running mean over [`MEAN_WINDOWS`] samples.
 fn peak_mean(v: &[f64]) -> f64 {
-    v.windows(MEAN_WINDOWS)
-        .map(|w| w.iter().sum::<f64>() / MEAN_WINDOWS as f64)
-        .fold(f64::NEG_INFINITY, f64::max)
+    largest(
+        v.windows(MEAN_WINDOWS)
+            .map(|w| w.iter().sum::<f64>() / MEAN_WINDOWS as f64),
+        f64::NEG_INFINITY,
+    )
 }
 
 /// What one run shows.
@@ -160,9 +151,9 @@ fn loads(method: &str, r: &Run) -> Loads {
         .find(|g| g.1 > DEPTH + 0.25 * HEIGHT)
         .map(|g| g.0)
         .unwrap_or_else(|| panic!("{method}: the wave never reaches the deck's gauge"));
-    let crest = r.gauge.iter().map(|g| g.1).fold(f64::NEG_INFINITY, f64::max) - DEPTH;
+    let crest = largest(r.gauge.iter().map(|g| g.1), f64::NEG_INFINITY) - DEPTH;
     let magnitude = |&(_, fx, fz): &(f64, f64, f64)| fx.hypot(fz);
-    let peak = r.forces.iter().map(magnitude).fold(0.0, f64::max);
+    let peak = largest(r.forces.iter().map(magnitude), 0.0);
     let quiet: Vec<f64> = r
         .forces
         .iter()
@@ -176,7 +167,7 @@ fn loads(method: &str, r: &Run) -> Loads {
         .map(magnitude)
         .collect();
     let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
-    let quiet_max = quiet.iter().copied().fold(0.0, f64::max);
+    let quiet_max = largest(quiet.iter().copied(), 0.0);
     let peak_at = r
         .forces
         .iter()
@@ -232,13 +223,14 @@ fn hydrostatic_uplift(crest: f64) -> f64 {
 
 /// The times the front η = H/4 of the first-order solitary wave Goring's paddle makes reaches
 /// the deck's gauge, 0.4 m from the paddle's face at rest, travelling at √(g(d + H)) and at
-/// √(g d). Goring's motion starts with the crest a = 3.8/k behind the paddle, moving at
-/// c = √(g(d + H)); the front, arcosh 2 / k ahead of the crest, leaves the paddle's face at
-/// (a − arcosh 2)/(k c).
+/// √(g d). The paddle's target wave has its crest at x₀ < 0 (behind the paddle) at t = 0 and
+/// moves at c = √(g(d + H)); its front, arcosh 2 / k ahead of the crest, leaves the paddle's face
+/// at (−x₀ − arcosh 2 / k) / c.
 fn arrival_window() -> (f64, f64) {
-    let k = (3.0 * HEIGHT / (4.0 * DEPTH.powi(3))).sqrt();
-    let (solitary, linear) = ((G * (DEPTH + HEIGHT)).sqrt(), (G * DEPTH).sqrt());
-    let leaves = (3.8 - 2.0f64.acosh()) / (k * solitary);
+    let goring = GoringSolitary::new(HEIGHT, DEPTH, G).unwrap_or_else(|e| panic!("{e}"));
+    let wave = goring.target_wave();
+    let (solitary, linear) = (wave.celerity(), (G * DEPTH).sqrt());
+    let leaves = (-wave.crest_x0() - 2.0f64.acosh() / wave.wavenumber()) / solitary;
     let distance = 0.45 - 0.05;
     (leaves + distance / solitary, leaves + distance / linear)
 }

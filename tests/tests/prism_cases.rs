@@ -3,7 +3,7 @@
 //! `cases/prism-dam-break/sweep.py --spacing 0.02` does), run through the real processes.
 
 use schemas::validation::{largest_abs, record, Record};
-use stack_tests::{coupler_run, csv_rows, out_dir, stderr, workspace};
+use stack_tests::{coupler_run, csv_header, csv_rows, out_dir, stderr, workspace};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -30,15 +30,7 @@ fn run(case: &Path, out: &Path) -> (Vec<Vec<f64>>, Vec<String>, String) {
     let log = stderr(&run);
     assert!(run.status.success(), "{}: coupler failed:\n{log}", case.display());
     let ledger = out.join("ledger.csv");
-    let header = std::fs::read_to_string(&ledger)
-        .unwrap_or_default()
-        .lines()
-        .next()
-        .unwrap_or_default()
-        .split(',')
-        .map(str::to_string)
-        .collect();
-    (csv_rows(&ledger), header, log)
+    (csv_rows(&ledger), csv_header(&ledger), log)
 }
 
 fn column(header: &[String], name: &str) -> usize {

@@ -24,8 +24,9 @@
 //! last in the layout, so their ids are one contiguous range. ISPH keeps each wall particle's
 //! normal, depth and edge flag once found ([`crate::isph::walls`]). A rigid motion leaves depths
 //! and edge flags as they are, and a piston's normals: it only translates. A flap's normals turn
-//! with it: [`Paddle::turned_solids`] tells ISPH its ids and angle, and ISPH keeps their normals
-//! as at rest and turns them by θ, and leaves the flap out of the fixed walls' geometry.
+//! with it. [`Paddle::turned_solids`] tells ISPH the paddle's ids and angle (0 for a piston):
+//! ISPH keeps their normals as at rest and turns them by θ, and leaves the paddle out of the
+//! fixed walls' geometry.
 
 use crate::isph::walls::TurnedSolids;
 use crate::particles::layout::PaddleParticles;
@@ -73,15 +74,15 @@ impl Paddle {
     /// The paddle's particle ids and its angle θ(`t`) (`None`: at rest, θ = 0, before the first
     /// step; a piston never turns, θ = 0), for ISPH's wall geometry (module doc): the fixed walls'
     /// geometry leaves the paddle out, whichever way it moves past them.
-    pub fn turned_solids(&self, t: Option<f64>) -> Option<TurnedSolids> {
+    pub fn turned_solids(&self, t: Option<f64>) -> TurnedSolids {
         let angle = match self.motion.as_ref() {
             WaveMakerMotion::Piston(_) => 0.0,
             WaveMakerMotion::Flap(m) => t.map_or(0.0, |t| m.angle(t)),
         };
-        Some(TurnedSolids {
+        TurnedSolids {
             ids: self.first..self.first + self.rest_x.len() as u32,
             angle,
-        })
+        }
     }
 
     /// The index into the rest positions of particle `id`, if it is a paddle particle.

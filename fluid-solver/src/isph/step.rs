@@ -603,10 +603,8 @@ impl IsphStep {
     /// (Δt = 6e-4 s) for such growth at t = 0.22 s. Where nothing is clamped the projection is the
     /// PPE's unchanged (`tests/isph_divergence.rs` checks its divergence identity to 1e-9).
     fn solve_ppe(&mut self, p: &mut Particles) -> Result<PpeReport, PpeFailure> {
+        self.warm_start(p);
         let ppe = &self.ppe;
-        self.solution.clear();
-        self.solution
-            .extend(ppe.particle.iter().map(|&i| p.pressure[i as usize]));
         let s = &self.settings;
         let report = if s.pressure_gradient == PressureGradient::Conservative {
             exact_projection::solve(
@@ -649,6 +647,13 @@ impl IsphStep {
         Ok(report)
     }
 
+    /// The PPE's warm start: each unknown's pressure of the last step.
+    fn warm_start(&mut self, p: &Particles) {
+        self.solution.clear();
+        self.solution
+            .extend(self.ppe.particle.iter().map(|&i| p.pressure[i as usize]));
+    }
+
     /// After a failed solve: when the water holds pockets enclosed by solids
     /// ([`PpeSystem::enclosed_pockets`]), ties each to its last pressure ([`PpeSystem::tie`]) and
     /// solves again from the warm start; otherwise (or when that fails too) the failure stands.
@@ -673,9 +678,7 @@ impl IsphStep {
             );
         }
         self.pockets_tied += rows.len() as u64;
-        self.solution.clear();
-        self.solution
-            .extend(self.ppe.particle.iter().map(|&i| p.pressure[i as usize]));
+        self.warm_start(p);
         let s = &self.settings;
         self.ppe.solve(
             s.ppe_solver,

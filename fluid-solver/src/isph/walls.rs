@@ -247,9 +247,9 @@ struct FixedSolids {
     known: Vec<bool>,
 }
 
-/// Solid particles turned rigidly about an axis along y from where they were at rest (a flap
-/// paddle, [`crate::boundaries::paddle`]): the ids `ids`, turned by `angle` θ (rad), positive
-/// turning +z towards +x. Their kept normals are their normals at rest, turned by θ as their
+/// Solid particles moved rigidly from where they were at rest and turned about an axis along y
+/// (a wave maker's paddle, [`crate::boundaries::paddle`]; a piston's angle is 0): the ids `ids`,
+/// turned by `angle` θ (rad), positive turning +z towards +x. Their kept normals are their normals at rest, turned by θ as their
 /// positions are:
 ///
 ///   n = (n₀ₓ cos θ + n₀_z sin θ, n₀_y, −n₀ₓ sin θ + n₀_z cos θ).
@@ -273,7 +273,7 @@ pub struct WallFields {
     pub surface: Vec<u8>,
     pub depth: Vec<f64>,
     pub convex: Vec<u8>,
-    /// The solids turned from rest at the present positions (a flap paddle), if any.
+    /// The solids moved from rest at the present positions (a wave maker's paddle), if any.
     pub turned: Option<TurnedSolids>,
     fixed: FixedSolids,
 }

@@ -95,9 +95,10 @@ pub fn build(cfg: &FluidConfig) -> Layout {
     let in_paddle = |p: [f64; 3]| paddle_box.is_some_and(|b| b.contains_point(p));
     let mut paddle_sites = Vec::new();
     let wave = cfg.initial_wave.as_ref().map(|w| {
-        let g = cfg.gravity.iter().map(|c| c * c).sum::<f64>().sqrt();
         let sign = w.sign().expect("the initial wave's direction was validated");
-        let wave = w.wave(g).expect("the initial wave was validated");
+        let wave = w
+            .wave(cfg.gravity_magnitude())
+            .expect("the initial wave was validated");
         (wave, sign)
     });
     let solids = SolidSites::build(cfg, n);

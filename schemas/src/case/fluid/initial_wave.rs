@@ -86,8 +86,8 @@ impl FluidConfig {
                 ),
             ));
         }
-        let g = self.gravity.iter().map(|c| c * c).sum::<f64>().sqrt();
-        w.wave(g).map_err(|e| FieldError::new(wk.clone(), e))?;
+        w.wave(self.gravity_magnitude())
+            .map_err(|e| FieldError::new(wk.clone(), e))?;
         let tank = self.tank.inner();
         let still = tank.min[2] + w.depth;
         if still + w.height > tank.max[2] {
