@@ -331,6 +331,11 @@ impl StabilityMonitor {
         self
     }
 
+    /// The mesh solids' and terrains' sites fluid is checked against.
+    pub fn solid_sites(&self) -> &SolidSites {
+        &self.solid_sites
+    }
+
     /// Whether `r` lies inside a body at its present pose; the message says which and where.
     fn inside_body(&self, r: [f64; 3], body_pose: &[f64]) -> Option<String> {
         self.bodies.iter().enumerate().find_map(|(b, half)| {

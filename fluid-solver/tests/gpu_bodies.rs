@@ -13,8 +13,8 @@ use schemas::case::fluid::{Aabb, FluidConfig};
 use schemas::validation::{record, Record};
 use std::time::Instant;
 
-/// Records the worst load differences of the test `test` on the box `scene`.
-fn record_loads(test: &str, tag: &str, scene: &str, (force, moment): (f64, f64)) {
+/// Records the worst load differences of the test `test` (`file.rs::name`) on the box `scene`.
+pub(crate) fn record_loads(test: &str, tag: &str, scene: &str, (force, moment): (f64, f64)) {
     let machine = gpu_common::device()
         .map(|d| format!("{}; {}", d.description(), schemas::validation::machine()))
         .unwrap_or_default();
@@ -41,7 +41,7 @@ fn record_loads(test: &str, tag: &str, scene: &str, (force, moment): (f64, f64))
             bound: Some(LOAD_BOUND),
             bound_source: "f32 rounding through the equation of state and the pair sums, margin about 14 (gpu_bodies.rs)"
                 .into(),
-            source: format!("fluid-solver/tests/gpu_bodies.rs::{test}"),
+            source: format!("fluid-solver/tests/{test}"),
             machine: machine.clone(),
             ..Default::default()
         });
@@ -69,7 +69,7 @@ fn scene() -> (FluidConfig, f64) {
 /// to ρgV and moment relative to ρgV × the half width 0.06 m, each step handed `pose`,
 /// `velocity` and `lead` (the participant hands them before every step; an implicit window
 /// leads by the step so the body ends it at `pose`).
-fn worst_difference(
+pub(crate) fn worst_difference(
     cfg: &FluidConfig,
     buoyancy: f64,
     steps: usize,
@@ -142,7 +142,7 @@ fn worst_difference(
 ///   moves the near-wall pressures by δn/n0 ≈ 2 · 1e-3 · δx/Δs: far less over the 10 steps here.
 ///
 /// ρgV = 16.9 N, so 1.2e-3 N is 7e-5 of it; 1e-3 of ρgV leaves a margin of about 14.
-const LOAD_BOUND: f64 = 1.0e-3;
+pub(crate) const LOAD_BOUND: f64 = 1.0e-3;
 
 /// The bound on |reaction + loads| of the GPU path relative to ρgV (forces; moments relative to
 /// ρgV × 0.06 m): the two are the same pair forces, evaluated once by the body particle's gather
@@ -176,7 +176,7 @@ fn gpu_body_loads_match_cpu_on_a_fixed_box_in_a_settling_tank() {
         return;
     };
     record_loads(
-        "gpu_body_loads_match_cpu_on_a_fixed_box_in_a_settling_tank",
+        "gpu_bodies.rs::gpu_body_loads_match_cpu_on_a_fixed_box_in_a_settling_tank",
         "fixed-box",
         "held fixed in the settling tank",
         (force, moment),
@@ -201,7 +201,7 @@ fn gpu_body_loads_match_cpu_on_a_moving_turned_box_with_viscosity() {
         return;
     };
     record_loads(
-        "gpu_body_loads_match_cpu_on_a_moving_turned_box_with_viscosity",
+        "gpu_bodies.rs::gpu_body_loads_match_cpu_on_a_moving_turned_box_with_viscosity",
         "moving-turned-box",
         "turned by 5°, moving and spinning, viscous",
         (force, moment),

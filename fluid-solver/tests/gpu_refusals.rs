@@ -1,9 +1,13 @@
 //! What the GPU path refuses: cases with features it does not run yet (by the case key or the
-//! command-line flag), and no adapter at all (exit code 2 with how to get one).
+//! command-line flag), and no adapter at all (exit code 2 with how to get one); and what it
+//! accepts since issue 38 (damping zones, the artificial viscosity, mesh solids, terrains and
+//! bodies from meshes).
 
 use crate::gpu_common;
 
-use schemas::case::Case;
+use schemas::case::fluid::PaddleKind;
+use schemas::case::{Case, FluidConfig};
+use schemas::geometry::{write_binary_stl, TriangleMesh};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -48,14 +52,6 @@ fn gpu_backend_refuses_what_it_does_not_run_naming_the_feature() {
     let body = "\n[[fluid.water.body]]\nname = \"box\"\nmin = [0.14, 0.0, 0.0]\nmax = [0.18, 0.06, 0.04]\n";
     Case::parse(Path::new("cases/small/case.toml"), format!("{GOOD}{body}"))
         .unwrap_or_else(|e| panic!("{e}"));
-    let e = error_of(&GOOD.replace(
-        "backend = \"gpu\"",
-        "backend = \"gpu\"\nartificial_viscosity = 0.05",
-    ));
-    assert!(
-        e.contains("`fluid.water.backend`") && e.contains("artificial viscosity"),
-        "{e}"
-    );
     let probe = "\n[[fluid.water.probe]]\nname = \"p\"\nkind = \"wall-pressure\"\nposition = [0.2, 0.03, 0.04]\nnormal = \"-x\"\ndiameter = 0.04\nwindow = 0.01\n";
     let e = error_of(&format!("{GOOD}{probe}"));
     assert!(
@@ -78,6 +74,66 @@ fn gpu_backend_refuses_what_it_does_not_run_naming_the_feature() {
         e.contains("`fluid.water.backend`") && e.contains("f32") && e.contains("move the tank"),
         "{e}"
     );
+}
+
+/// The refusal of `case` (a case file of `cases/`) edited by `edit` and checked for the GPU.
+fn gpu_refusal_of(case: &str, edit: impl Fn(&mut FluidConfig)) -> String {
+    let (_, mut cfg) = crate::common::load_case(case);
+    edit(&mut cfg);
+    match cfg.gpu_support("fluid.x") {
+        Ok(()) => panic!("{case} should have been refused on the GPU"),
+        Err(e) => format!("`{}`: {}", e.key, e.message),
+    }
+}
+
+/// Open boundaries and wave makers are still refused, each by name (the case files that have
+/// them, put on the GPU).
+#[test]
+fn gpu_backend_refuses_open_boundaries_and_wave_makers_by_name() {
+    let e = gpu_refusal_of("bridge-washout-small", |_| {});
+    assert!(
+        e.contains("`fluid.x.backend`") && e.contains("an inflow boundary"),
+        "{e}"
+    );
+    let e = gpu_refusal_of("bridge-washout-small", |c| c.inflow = None);
+    assert!(e.contains("an outflow boundary"), "{e}");
+    let e = gpu_refusal_of("bridge-deck-solitary", |_| {});
+    assert!(e.contains("a wave maker"), "{e}");
+    let e = gpu_refusal_of("bridge-deck-solitary", |c| {
+        if let Some(w) = &mut c.wave_maker {
+            w.kind = PaddleKind::Flap;
+        }
+    });
+    assert!(e.contains("a flap wave maker"), "{e}");
+}
+
+/// What issue 38 put on the device is accepted with `backend = "gpu"`, each alone: a damping
+/// zone, the artificial viscosity, a solid from an STL, a terrain plane and a body from the same
+/// STL (their GPU-against-CPU tests: `gpu_damping.rs`, `gpu_artificial_viscosity.rs`,
+/// `gpu_scene_walls.rs`, `gpu_mesh_bodies.rs`).
+#[test]
+fn gpu_backend_accepts_damping_viscosity_solids_terrains_and_mesh_bodies() {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu_accepts");
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+    let half = [0.02; 3];
+    write_binary_stl(
+        &dir.join("cube.stl"),
+        &TriangleMesh::cuboid(half.map(|h| -h), half),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    for (settings, tables) in [
+        ("", "\n[[fluid.water.damping]]\nmin = [0.1, 0.0, 0.0]\nmax = [0.2, 0.06, 0.3]\nrate = 10.0\n"),
+        ("\nartificial_viscosity = 0.05", ""),
+        ("", "\n[[fluid.water.solid]]\nmesh = \"cube.stl\"\ntranslate = [0.15, 0.03, 0.03]\n"),
+        ("", "\n[[fluid.water.terrain]]\nplane = { point = [0.1, 0.0, 0.0], normal = [-1.0, 0.0, 4.0] }\n"),
+        ("", "\n[[fluid.water.body]]\nname = \"cube\"\nmesh = { file = \"cube.stl\", translate = [0.15, 0.03, 0.2] }\n"),
+    ] {
+        let text = format!(
+            "{}{tables}",
+            GOOD.replace("backend = \"gpu\"", &format!("backend = \"gpu\"{settings}"))
+        );
+        Case::parse(&dir.join("case.toml"), text).unwrap_or_else(|e| panic!("{settings}{tables}: {e}"));
+    }
 }
 
 fn write_case(dir: &str, text: &str) -> PathBuf {

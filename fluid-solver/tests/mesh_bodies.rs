@@ -1,7 +1,7 @@
 //! Bodies from meshes (issue 37): a body from an STL cube is the box body of the same extent
 //! particle for particle, and its loads after a short run next to a water column are the box
-//! body's; a mesh body with `min`/`max` too, an open mesh, a missing file and a mesh body on the
-//! GPU are refused naming the key and the file.
+//! body's; a mesh body with `min`/`max` too, an open mesh and a missing file are refused naming
+//! the key and the file (a mesh body on the GPU: `gpu_mesh_bodies.rs`).
 
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::{Case, CaseError, FluidConfig};
@@ -193,21 +193,4 @@ fn a_mesh_body_outside_the_tank_or_over_a_wall_box_is_refused() {
     );
     assert_eq!(e.key, "fluid.tank.body[0].mesh");
     assert!(e.message.contains("fluid.tank.wall[0]"), "{}", e.message);
-}
-
-#[test]
-fn a_mesh_body_on_the_gpu_is_refused_by_name() {
-    let dir = folder("gpu");
-    write_cube(&dir, "cube.stl", &TriangleMesh::cuboid(CUBE.0, CUBE.1));
-    let e = refusal_with(
-        &dir,
-        "backend = \"gpu\"",
-        "\n[[fluid.tank.body]]\nname = \"cube\"\nmesh = { file = \"cube.stl\" }\n",
-    );
-    assert_eq!(e.key, "fluid.tank.backend");
-    assert!(
-        e.message.contains("a body from a mesh") && e.message.contains("`cube`"),
-        "{}",
-        e.message
-    );
 }

@@ -13,6 +13,8 @@
 //! its three sums (loads, the fluid-side reaction, the walls' contact; f32, 3 × 32 B) and three
 //! partials per reduction group (f32, 3 × 32 B). A body particle's load of one exchange lives in
 //! its `acc` slot and the walls' share in its `wallf` slot, so bodies add nothing per particle.
+//! Damping zones take 48 B each (`shaders/damping.wgsl`); mesh solids and terrains one bit per
+//! site of the tank's lattice (`shaders/solids.wgsl`).
 
 use super::device::GpuDevice;
 use super::reduce::Partial;
@@ -24,7 +26,7 @@ use std::sync::mpsc;
 /// reaction summed by fluid particle, the walls' contact.
 pub const SUMS: u64 = 3;
 
-/// Every storage buffer of the step, in binding order 1 … 20 (0 is the uniform block).
+/// Every storage buffer of the step, in binding order 1 … 22 (0 is the uniform block).
 pub struct Buffers {
     pub params: wgpu::Buffer,
     pub storage: Vec<wgpu::Buffer>,
@@ -49,10 +51,13 @@ pub const PARTIALS: usize = 15;
 pub const MEMBERS: usize = 16;
 pub const BODY_KIN: usize = 17;
 pub const BODY_LOADS: usize = 19;
+pub const DAMPING: usize = 21;
+pub const SOLID_BITS: usize = 22;
 
 impl Buffers {
     /// Buffers for `n` particles, `cells` cells, `boxes` wall blocks, `groups` reduction groups,
-    /// `bodies` bodies and `members` body particles.
+    /// `bodies` bodies and `members` body particles, `zones` damping zones and `solid_words`
+    /// words of solid sites.
     pub fn new(
         dev: &GpuDevice,
         n: usize,
@@ -60,6 +65,7 @@ impl Buffers {
         boxes: usize,
         groups: usize,
         (bodies, members): (usize, usize),
+        (zones, solid_words): (usize, usize),
     ) -> Buffers {
         let n = n.max(1) as u64;
         let block_sums = super::cell_sort::block_sum_entries(cells as u32);
@@ -69,7 +75,7 @@ impl Buffers {
         // and the bodies' partials per reduction group
         let body_groups = if bodies > 0 { groups.max(1) as u64 } else { 1 };
         let (bodies, members) = (bodies.max(1) as u64, members.max(1) as u64);
-        let sizes: [u64; 20] = [
+        let sizes: [u64; 22] = [
             16 * n,                                                  // 1 pos
             16 * n,                                                  // 2 vel
             4 * n,                                                   // 3 id
@@ -90,6 +96,8 @@ impl Buffers {
             32 * SUMS * bodies * body_groups,                        // 18 body_partials
             32 * SUMS * bodies,                                      // 19 body_loads
             4 * body_cells,                                          // 20 body_cells
+            48 * zones.max(1) as u64,                                // 21 damping
+            4 * solid_words.max(1) as u64,                           // 22 solid_bits
         ];
         let storage = sizes
             .iter()

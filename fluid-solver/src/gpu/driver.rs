@@ -4,6 +4,7 @@
 //! diagnostic needs them ([`FluidSolver::sync_host`]).
 
 use super::device::{GpuDevice, NoAdapter};
+use super::solids::SolidBits;
 use super::step::{GpuEmps, GpuSetup};
 use crate::method::StepTotals;
 use crate::solver::FluidSolver;
@@ -57,6 +58,15 @@ impl FluidSolver {
             members: self.bodies.members().to_vec(),
             body_pose: self.state.body_pose.clone(),
             body_velocity: self.state.body_velocity.clone(),
+            solids: self
+                .monitor
+                .solid_sites()
+                .solid()
+                .map(SolidBits::of)
+                .transpose()
+                .map_err(GpuStartError::Unsupported)?,
+            damping: cfg.damping.clone(),
+            artificial_viscosity: cfg.artificial_viscosity,
         };
         let step = GpuEmps::new(dev, &setup, &self.state.grid, &self.state.particles)
             .map_err(GpuStartError::Unsupported)?;

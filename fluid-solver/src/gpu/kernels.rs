@@ -1,15 +1,18 @@
 //! The WGSL kernels (`shaders/`) as compute pipelines sharing one bind group layout: binding 0
-//! the uniform block, 1 … 20 the storage buffers of [`super::buffers`]; and their dispatch,
+//! the uniform block, 1 … 22 the storage buffers of [`super::buffers`]; and their dispatch,
 //! in rows when a dispatch has more workgroups than the device allows per dimension.
 
 use super::buffers::Buffers;
 use super::device::GpuDevice;
 
 /// The WGSL sources, joined into one module (the bindings are declared once in `common.wgsl`).
-const SOURCES: [&str; 6] = [
+const SOURCES: [&str; 9] = [
     include_str!("shaders/common.wgsl"),
     include_str!("shaders/cell_sort.wgsl"),
     include_str!("shaders/emps.wgsl"),
+    include_str!("shaders/artificial_viscosity.wgsl"),
+    include_str!("shaders/damping.wgsl"),
+    include_str!("shaders/solids.wgsl"),
     include_str!("shaders/reduce.wgsl"),
     include_str!("shaders/bodies.wgsl"),
     include_str!("shaders/reaction.wgsl"),
@@ -34,9 +37,11 @@ pub struct Kernels {
     pub predict: wgpu::ComputePipeline,
     pub density: wgpu::ComputePipeline,
     pub gradient: wgpu::ComputePipeline,
+    pub artificial_viscosity: wgpu::ComputePipeline,
     pub correct: wgpu::ComputePipeline,
     pub collide: wgpu::ComputePipeline,
     pub apply_collisions: wgpu::ComputePipeline,
+    pub relax_damping: wgpu::ComputePipeline,
     pub reduce_step: wgpu::ComputePipeline,
     pub place_bodies: wgpu::ComputePipeline,
     pub clear_body_loads: wgpu::ComputePipeline,
@@ -129,9 +134,11 @@ impl Kernels {
             predict: make("predict"),
             density: make("density"),
             gradient: make("gradient"),
+            artificial_viscosity: make("artificial_viscosity"),
             correct: make("correct"),
             collide: make("collide"),
             apply_collisions: make("apply_collisions"),
+            relax_damping: make("relax_damping"),
             reduce_step: make("reduce_step"),
             place_bodies: make("place_bodies"),
             clear_body_loads: make("clear_body_loads"),

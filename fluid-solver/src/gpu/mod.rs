@@ -10,17 +10,21 @@
 //! - [`cell_sort`]: counting sort and prefix sum by cell;
 //! - [`step`]: the E-MPS stages of [`crate::emps::step`] in the same order;
 //! - [`bodies`]: resolved rigid bodies: placed from the host's pose, loads reduced on the device;
+//! - [`solids`]: mesh solids and terrains: their sites for the detector;
+//! - [`damping`]: damping zones, relaxed after each step;
 //! - [`reduce`]: the instability detector's scan and the step's totals, reduced on the device;
 //! - [`driver`]: the solver's step on the device (escapes, detector, host copies).
 
 pub mod bodies;
 pub mod buffers;
 pub mod cell_sort;
+pub mod damping;
 pub mod device;
 pub mod driver;
 pub mod kernels;
 pub mod params;
 pub mod reduce;
+pub mod solids;
 pub mod step;
 
 pub use device::{GpuDevice, NoAdapter};

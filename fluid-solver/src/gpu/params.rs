@@ -47,6 +47,18 @@ pub struct Params {
     /// (CONTACT_PERIOD_STEPS Δt) ([`crate::bodies::body_wall_contact`]); set with each step's Δt.
     pub contact_k: f32,
     pub contact_c: f32,
+    /// The mesh solids' and terrains' lattice ([`super::solids`]): origin, 1/Δs, sites per axis,
+    /// and 1 when there are solid sites.
+    pub solid_lo: [f32; 3],
+    pub solid_inv_ds: f32,
+    pub solid_n: [u32; 3],
+    pub solids: u32,
+    /// Damping zones ([`super::damping`]); the artificial viscosity's −α ρ0 c h and 0.01 h²
+    /// ([`crate::emps::artificial_viscosity`]; `av_scale` 0: off).
+    pub n_damping: u32,
+    pub av_scale: f32,
+    pub av_eta2: f32,
+    pub unused: u32,
 }
 
 /// Converts to the device's f32.

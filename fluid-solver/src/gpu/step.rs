@@ -1,18 +1,23 @@
 //! One E-MPS step on the device, the stages of [`crate::emps::step`] in the same order: (when the
 //! viscous term is on) cell sort at r^k and S1-4, then S1-10/S1-11, cell sort at r*, S1-15 with
-//! S1-14, S1-3, S1-12/S1-13, the collision pass and its update, and the device reduction of the
-//! detector and the totals. Only the 32 B per 256 particles of that reduction come back per step,
-//! and with resolved bodies 96 B per body (their loads, the fluid's reaction summed from the
-//! fluid's side and the walls' contact, each a force and a moment reduced on the device after
-//! each exchange: [`super::bodies`]).
+//! S1-14, S1-3 (with the artificial viscosity when on), S1-12/S1-13, the collision pass and its
+//! update, the damping zones (as [`crate::solver`] relaxes them after the method's step), and the
+//! device reduction of the detector and the totals. Only the 32 B per 256 particles of that
+//! reduction come back per step, and with resolved bodies 96 B per body (their loads, the fluid's
+//! reaction summed from the fluid's side and the walls' contact, each a force and a moment reduced
+//! on the device after each exchange: [`super::bodies`]).
 
 use super::bodies::{self, BodyLoad};
-use super::buffers::{map_read, Buffers, BODY_KIN, BODY_LOADS, BOXES, MEMBERS, PARTIALS, SUMS};
+use super::buffers::{
+    map_read, Buffers, BODY_KIN, BODY_LOADS, BOXES, DAMPING, MEMBERS, PARTIALS, SOLID_BITS, SUMS,
+};
 use super::cell_sort;
+use super::damping;
 use super::device::GpuDevice;
 use super::kernels::{dispatch, dispatch_layers, Kernels, WG, WIDE_WG};
 use super::params::{f32x3, Params};
 use super::reduce::{self, Partial, StepReport};
+use super::solids::SolidBits;
 use crate::bodies::body_wall_contact::CONTACT_PERIOD_STEPS;
 use crate::boundaries::escape::OpenTop;
 use crate::emps::kernel::Kernel;
@@ -22,7 +27,7 @@ use crate::particles::layout::Domain;
 use crate::particles::Particles;
 use crate::physics::Physics;
 use crate::stage_timer::StageTimes;
-use schemas::case::fluid::Aabb;
+use schemas::case::fluid::{Aabb, DampingConfig};
 use std::fmt;
 
 /// What the device step needs to know of the case: the operators, the physics, the grid and the
@@ -41,6 +46,12 @@ pub struct GpuSetup {
     /// Each body's pose (7) and velocity (6) at the start.
     pub body_pose: Vec<f64>,
     pub body_velocity: Vec<f64>,
+    /// The mesh solids' and terrains' sites the detector checks against (`None` without any).
+    pub solids: Option<SolidBits>,
+    /// The damping zones, relaxed after each step.
+    pub damping: Vec<DampingConfig>,
+    /// α of the E-MPS artificial viscosity (0: off).
+    pub artificial_viscosity: f64,
 }
 
 /// The E-MPS step on a GPU: the device, its buffers and kernels.
@@ -105,8 +116,18 @@ impl GpuEmps {
                 [[lo[0], lo[1], lo[2], 0.0], [hi[0], hi[1], hi[2], 0.0]]
             })
             .collect();
+        let solid_words = setup.solids.as_ref().map_or(0, |s| s.words.len());
+        if 4 * solid_words as u64 > largest {
+            return Err(format!(
+                "the GPU binds at most {largest} B per array, the mesh solids' and terrains' sites need {} B (one bit per site of the tank's lattice); use a coarser spacing or backend = \"cpu\"",
+                4 * solid_words as u64
+            ));
+        }
+        let zones = damping::zones(&setup.damping);
         let viscous = ph.viscous();
         let n_bodies = setup.body_pose.len() / 7;
+        // artificial_viscosity.rs: q_ij = −α ρ0 c h (u_ij · r_ij) / (r² + 0.01 h²), h = r_e,grad / 2
+        let h_av = 0.5 * k.re_grad;
         let params = Params {
             origin: f32x3(origin),
             inv_cell: (1.0 / cell) as f32,
@@ -146,12 +167,25 @@ impl GpuEmps {
             reach_contact: grid.reach(k.spacing) as u32,
             contact_k: 0.0,
             contact_c: 0.0,
+            solid_lo: f32x3(setup.solids.as_ref().map_or([0.0; 3], |s| s.origin)),
+            solid_inv_ds: setup.solids.as_ref().map_or(0.0, |s| (1.0 / s.spacing) as f32),
+            solid_n: setup.solids.as_ref().map_or([0; 3], |s| s.n),
+            solids: u32::from(setup.solids.is_some()),
+            n_damping: zones.len() as u32,
+            av_scale: (-setup.artificial_viscosity * ph.density * ph.sound_speed * h_av) as f32,
+            av_eta2: (0.01 * h_av * h_av) as f32,
+            unused: 0,
         };
         let groups = n.div_ceil(WIDE_WG as usize);
         let sizes = (n_bodies, setup.members.len());
-        let mut buffers = Buffers::new(&dev, n, cells, boxes.len() / 2, groups, sizes);
+        let scene = (zones.len(), solid_words);
+        let mut buffers = Buffers::new(&dev, n, cells, boxes.len() / 2, groups, sizes, scene);
         let kernels = Kernels::new(&dev, &buffers);
         buffers.write(&dev, BOXES, &boxes);
+        buffers.write(&dev, DAMPING, &zones);
+        if let Some(s) = &setup.solids {
+            buffers.write(&dev, SOLID_BITS, &s.words);
+        }
         buffers.write(&dev, MEMBERS, &bodies::members(&setup.members));
         let kin = bodies::kinematics(&setup.body_pose, &setup.body_velocity, 0.0);
         buffers.write(&dev, BODY_KIN, &kin);
@@ -271,6 +305,7 @@ impl GpuEmps {
         let (n, cells) = (self.n as u32, self.params.cells);
         let groups = self.n.div_ceil(WIDE_WG as usize).max(1);
         let (bodies, place) = (self.bodies as u32, self.place_pending);
+        let (av, damped) = (self.params.av_scale != 0.0, self.params.n_damping > 0);
         self.place_pending = false;
         // after an exchange's pass: each body particle's force summed per body, and the reaction
         // summed from the fluid particles' side (`react`), on the device
@@ -304,6 +339,9 @@ impl GpuEmps {
         rec.passes("density and pressure", |p, k| dispatch(p, k, &k.density, n, WG));
         rec.passes("pressure gradient", |p, k| {
             dispatch(p, k, &k.gradient, n, WG);
+            if av {
+                dispatch(p, k, &k.artificial_viscosity, n, WG);
+            }
             if bodies > 0 {
                 dispatch(p, k, &k.body_pressure, n, WG);
                 reduce_bodies(p, k, &k.react_pressure);
@@ -318,6 +356,9 @@ impl GpuEmps {
             }
             dispatch(p, k, &k.apply_collisions, n, WG);
         });
+        if damped {
+            rec.passes("damping", |p, k| dispatch(p, k, &k.relax_damping, n, WG));
+        }
         rec.passes("detector and totals", |p, k| {
             dispatch(p, k, &k.reduce_step, n, WIDE_WG)
         });

@@ -49,6 +49,11 @@ impl SolidSites {
         self.sets.as_ref().is_some_and(|(_, skin)| at(skin, idx))
     }
 
+    /// The solid sites, skin and buried (`None` without solids or terrains).
+    pub fn solid(&self) -> Option<&SiteSet> {
+        self.sets.as_ref().map(|(solid, _)| solid)
+    }
+
     /// Whether site `idx` is solid but deeper than the skin: no particle.
     pub fn buries(&self, idx: [i64; 3]) -> bool {
         self.sets

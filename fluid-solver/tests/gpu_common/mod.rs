@@ -3,6 +3,8 @@
 //! does not capture (`gpu_skips.rs`), unless `REQUIRE_GPU=1`: then it fails, so that CI cannot
 //! pass green without running the GPU code.
 
+pub mod compare;
+
 use fluid_solver::gpu::GpuDevice;
 use std::io::Write;
 

@@ -17,6 +17,9 @@ struct Params {
     tank_hi: vec3<f32>, n_boxes: u32,
     mass: f32, volume: f32, scan_blocks: u32, n_bodies: u32,
     n_members: u32, reach_contact: u32, contact_k: f32, contact_c: f32,
+    solid_lo: vec3<f32>, solid_inv_ds: f32,
+    solid_n: vec3<u32>, solids: u32,
+    n_damping: u32, av_scale: f32, av_eta2: f32, unused: u32,
 };
 
 // Kind codes (src/particles/kind.rs).
@@ -78,6 +81,11 @@ const FLUID_CELL: u32 = 0x80000000u;
 // Per cell: bit b % 32 set when a particle of body b lies within reach_react cells of it (the
 // reaction's skip test, reaction.wgsl; filled by the cell sort). One entry without bodies.
 @group(0) @binding(20) var<storage, read_write> body_cells: array<atomic<u32>>;
+// The damping zones (damping.wgsl); one entry without zones.
+@group(0) @binding(21) var<storage, read_write> damping: array<DampingZone>;
+// One bit per site of the mesh solids' and terrains' lattice, set for a solid site (solids.wgsl);
+// one word without solids.
+@group(0) @binding(22) var<storage, read_write> solid_bits: array<u32>;
 
 // A body particle's offset from its body's initial centre (f32), its id and its body.
 struct Member {
@@ -97,6 +105,14 @@ const SUMS: u32 = 3u;
 const LOADS: u32 = 0u;
 const REACTION: u32 = 1u;
 const WALLS: u32 = 2u;
+
+// A damping zone (src/boundaries/damping.rs): its box, the axis (0 x, 1 y) and the sign (±1) of
+// the direction the damping grows along, and its rate at the far face [1/s].
+struct DampingZone {
+    lo: vec3<f32>, axis: u32,
+    hi: vec3<f32>, sign: f32,
+    rate: f32, _p0: u32, _p1: u32, _p2: u32,
+};
 
 // Force and moment about the body's centre (xyz of each; f32).
 struct BodyLoad {

@@ -53,6 +53,9 @@ fn finding(i: u32, left: ptr<function, bool>) -> u32 {
     if out_tank && below_top {
         return F_INSIDE_WALL;
     }
+    if deep_in_solid(p) {
+        return F_INSIDE_WALL;
+    }
     for (var b = 0u; b < prm.n_boxes; b = b + 1u) {
         if all(p >= boxes[2u * b].xyz) && all(p <= boxes[2u * b + 1u].xyz) {
             return F_INSIDE_WALL;

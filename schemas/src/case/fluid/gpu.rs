@@ -22,9 +22,6 @@ impl FluidConfig {
         if self.method != FluidMethodName::Emps {
             return refuse("method = \"isph\" (only E-MPS is on the GPU)");
         }
-        if self.artificial_viscosity != 0.0 {
-            return refuse("the E-MPS artificial viscosity (artificial_viscosity > 0)");
-        }
         if let Some(inflow) = &self.inflow {
             return refuse(if inflow.series.is_some() {
                 "an inflow boundary ([inflow], here driven by a time series: `series`)"
@@ -42,15 +39,6 @@ impl FluidConfig {
                     "a flap wave maker ([wave_maker] with kind = \"flap\": a paddle turning about its hinge)"
                 }
             });
-        }
-        if !self.damping.is_empty() {
-            return refuse("damping zones ([[damping]])");
-        }
-        if !self.solid.is_empty() || !self.terrain.is_empty() {
-            return refuse("solids from meshes or terrains ([[solid]], [[terrain]])");
-        }
-        if let Some(b) = self.body.iter().find(|b| b.mesh.is_some()) {
-            return refuse(&format!("a body from a mesh (body `{}` has `mesh`)", b.name));
         }
         if let Some(p) = self.probe.iter().find(|p| p.window.is_some()) {
             return refuse(&format!(

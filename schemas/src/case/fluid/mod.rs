@@ -154,7 +154,7 @@ pub struct FluidConfig {
     /// velocity). Range: > 0.
     #[serde(default)]
     pub max_velocity: Option<f64>,
-    /// E-MPS on the CPU only: α of Monaghan's artificial viscosity between fluid particles [–]
+    /// E-MPS only: α of Monaghan's artificial viscosity between fluid particles [–]
     /// (against pressure noise at wall sensors); 0 is off, WCSPH codes use 0.01 … 0.1. See
     /// `fluid-solver/src/emps/artificial_viscosity.rs`. Range: [0, 1].
     #[serde(default)]
