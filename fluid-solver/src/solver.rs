@@ -136,13 +136,12 @@ impl FluidSolver {
                 [c[0], c[1], c[2], 1.0, 0.0, 0.0, 0.0]
             })
             .collect();
-        let body_boxes: Vec<Option<Aabb>> = cfg.body.iter().map(|b| b.box_bounds()).collect();
         let mut monitor = StabilityMonitor::new(
             layout.domain,
             open_top,
             layout.tank,
             &cfg.wall,
-            &body_boxes,
+            layout.body_sites.interiors(&centres, cfg.spacing),
             cfg.spacing,
             cfg.gravity,
         )

@@ -4,12 +4,14 @@
 //! mechanical energy growing without a source (checked until a body moves: moving bodies are a
 //! source). Each finding names the step, the particle and the quantity.
 //!
-//! A body is checked in its own frame at its present pose: a fluid particle is inside when
-//! `R(q)ᵀ (r − c)` lies within the body's box shrunk by half a spacing (i.e. behind the centres
-//! of its outer particle layer).
+//! A body, from a box or a mesh, is checked in its own frame at its present pose
+//! ([`BodyInterior`]): a fluid particle is inside a box body when `R(q)ᵀ (r − c)` lies within the
+//! box shrunk by half a spacing (behind the centres of its outer particle layer), inside a mesh
+//! body when, taken to the body's initial placement, it is more than about half a spacing inside
+//! the body's lattice sites (the rule of the mesh solids, [`SolidSites::deep_inside`]).
 
-use crate::bodies::rotate;
 use crate::boundaries::escape::OpenTop;
+use crate::particles::body_interior::{body_frame, BodyInterior};
 use crate::particles::kind::{Kind, FLUID};
 use crate::particles::layout::Domain;
 use crate::particles::solid_sites::SolidSites;
@@ -65,10 +67,8 @@ pub struct StabilityMonitor {
     solids: Vec<Aabb>,
     /// The mesh solids' and terrains' sites ([`SolidSites::deep_inside`]).
     solid_sites: Arc<SolidSites>,
-    /// Each box body's half extents less half a spacing, about its centre (checked at the pose
-    /// given to [`StabilityMonitor::check`]); `None` for a mesh body, whose bounding box may
-    /// hold water (under a deck's arch), so it is not checked.
-    bodies: Vec<Option<[f64; 3]>>,
+    /// Each body's inside, checked at the pose given to [`StabilityMonitor::check`].
+    bodies: Vec<BodyInterior>,
     spacing: f64,
     gravity: [f64; 3],
     /// Mechanical energy per unit particle mass at the start, and the allowed growth.
@@ -82,23 +82,19 @@ pub struct StabilityMonitor {
 type Finding = (u32, &'static str, String);
 
 impl StabilityMonitor {
-    /// A monitor for a tank with fixed `walls` and rigid `bodies` (boxes at their initial
-    /// placement; `None` for a mesh body, not checked), particles of `spacing`; fluid leaving
-    /// through `open_top` is not a finding.
+    /// A monitor for a tank with fixed `walls` and rigid `bodies` (their insides about their
+    /// initial centres), particles of `spacing`; fluid leaving through `open_top` is not a
+    /// finding.
     pub fn new(
         domain: Domain,
         open_top: OpenTop,
         tank: Aabb,
         walls: &[Aabb],
-        bodies: &[Option<Aabb>],
+        bodies: Vec<BodyInterior>,
         spacing: f64,
         gravity: [f64; 3],
     ) -> Self {
         let h = 0.5 * spacing;
-        let bodies = bodies
-            .iter()
-            .map(|b| b.map(|b| std::array::from_fn(|a| 0.5 * (b.max[a] - b.min[a]) - h)))
-            .collect();
         let solids = walls
             .iter()
             .map(|b| Aabb {
@@ -336,18 +332,27 @@ impl StabilityMonitor {
         &self.solid_sites
     }
 
+    /// The wall blocks fluid is checked against: the case's (on the lattice) less half a spacing.
+    pub fn wall_boxes(&self) -> &[Aabb] {
+        &self.solids
+    }
+
+    /// The bodies' insides fluid is checked against, in the order of the bodies.
+    pub fn body_interiors(&self) -> &[BodyInterior] {
+        &self.bodies
+    }
+
     /// Whether `r` lies inside a body at its present pose; the message says which and where.
     fn inside_body(&self, r: [f64; 3], body_pose: &[f64]) -> Option<String> {
-        self.bodies.iter().enumerate().find_map(|(b, half)| {
-            let half = half.as_ref()?;
-            let pose = body_pose.get(7 * b..7 * b + 7)?;
-            let c = [pose[0], pose[1], pose[2]];
-            let inverse = [pose[3], -pose[4], -pose[5], -pose[6]];
-            let local = rotate(inverse, [r[0] - c[0], r[1] - c[1], r[2] - c[2]]);
-            (0..3).all(|a| local[a].abs() < half[a]).then(|| {
+        self.bodies.iter().enumerate().find_map(|(b, inside)| {
+            let pose: [f64; 7] = body_pose.get(7 * b..7 * b + 7)?.try_into().ok()?;
+            let local = body_frame(r, pose);
+            inside.holds(local).then(|| {
                 format!(
-                    "inside body {b} (centre {c:?}, quaternion {:?}): r = {r:?} is at {local:?} in the body's frame, within its half extents {half:?} less half a spacing",
-                    &pose[3..]
+                    "inside body {b} (centre {:?}, quaternion {:?}): r = {r:?} is at {local:?} in the body's frame, {}",
+                    &pose[..3],
+                    &pose[3..],
+                    inside.rule()
                 )
             })
         })

@@ -22,6 +22,7 @@ mod dam_break;
 mod dam_break_obstacle;
 mod gpu_artificial_viscosity;
 mod gpu_bodies;
+mod gpu_bodies_inside;
 mod gpu_dam_break;
 mod gpu_damping;
 mod gpu_detector;

@@ -1,6 +1,7 @@
 //! The instability detector on the GPU path (reduced on the device, explained by the host's
 //! detector on a copy): the same finding at the same step as on the CPU for a particle made too
-//! fast, a particle put inside a wall, a NaN, and energy fed in without a source.
+//! fast, a particle put inside a wall or a wall block (the block as moved onto the lattice), a
+//! NaN, and energy fed in without a source.
 
 use crate::gpu_common;
 
@@ -27,8 +28,16 @@ max = [0.1, 0.06, 0.2]
 /// Runs up to 6 steps on the CPU and on the GPU with `disturb` applied to the particles after
 /// the second step; returns both findings.
 fn findings(disturb: impl Fn(&mut fluid_solver::particles::Particles)) -> Option<(Instability, Instability)> {
+    findings_in(CASE, disturb)
+}
+
+/// As [`findings`], for the case `text`.
+fn findings_in(
+    text: &str,
+    disturb: impl Fn(&mut fluid_solver::particles::Particles),
+) -> Option<(Instability, Instability)> {
     let dev = gpu_common::device()?;
-    let case = Case::parse(Path::new("small.toml"), CASE.to_string()).unwrap_or_else(|e| panic!("{e}"));
+    let case = Case::parse(Path::new("small.toml"), text.to_string()).unwrap_or_else(|e| panic!("{e}"));
     let cfg = &case.fluid["water"];
     let mut cpu = FluidSolver::new(cfg);
     let mut gpu = FluidSolver::new(cfg);
@@ -89,6 +98,24 @@ fn a_particle_inside_a_wall_is_found_as_on_the_cpu() {
     };
     same(&a, &b);
     assert!(b.message.contains("inside a wall"), "{b}");
+}
+
+/// A wall block written from x = 0.148 m is built from x = 0.14 m (the nearest lattice face); the
+/// detector's box is that less half a spacing, from x = 0.15 m. A particle put at x = 0.153 m is
+/// inside it (and outside the written block less half a spacing, from 0.158 m): found by the
+/// device as by the CPU.
+#[test]
+fn a_particle_inside_a_wall_block_on_the_lattice_is_found_as_on_the_cpu() {
+    let text = format!("{CASE}\n[[fluid.water.wall]]\nmin = [0.148, 0.0, 0.0]\nmax = [0.2, 0.06, 0.05]\n");
+    let Some((a, b)) = findings_in(&text, |p| {
+        let i = first_fluid(p);
+        (p.x[i], p.y[i], p.z[i]) = (0.153, 0.025, 0.025);
+    }) else {
+        return;
+    };
+    same(&a, &b);
+    assert_eq!(b.step, 3, "{b}");
+    assert!(b.message.contains("inside a wall block [0.15"), "{b}");
 }
 
 #[test]

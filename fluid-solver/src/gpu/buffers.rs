@@ -14,7 +14,9 @@
 //! partials per reduction group (f32, 3 × 32 B). A body particle's load of one exchange lives in
 //! its `acc` slot and the walls' share in its `wallf` slot, so bodies add nothing per particle.
 //! Damping zones take 48 B each (`shaders/damping.wgsl`); mesh solids and terrains one bit per
-//! site of the tank's lattice (`shaders/solids.wgsl`).
+//! site of the tank's lattice (`shaders/solids.wgsl`), followed in the same buffer by the
+//! detector's 32 B per body and one bit per site of each mesh body's block of sites
+//! (`shaders/body_inside.wgsl`).
 
 use super::device::GpuDevice;
 use super::reduce::Partial;
@@ -57,7 +59,7 @@ pub const SOLID_BITS: usize = 22;
 impl Buffers {
     /// Buffers for `n` particles, `cells` cells, `boxes` wall blocks, `groups` reduction groups,
     /// `bodies` bodies and `members` body particles, `zones` damping zones and `solid_words`
-    /// words of solid sites.
+    /// words of solid sites and the bodies' table ([`super::body_inside`]).
     pub fn new(
         dev: &GpuDevice,
         n: usize,

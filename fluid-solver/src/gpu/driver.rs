@@ -54,7 +54,8 @@ impl FluidSolver {
             domain: self.domain,
             open_top: self.open_top,
             tank: self.tank,
-            walls: cfg.wall.clone(),
+            walls: self.monitor.wall_boxes().to_vec(),
+            bodies: self.monitor.body_interiors().to_vec(),
             members: self.bodies.members().to_vec(),
             body_pose: self.state.body_pose.clone(),
             body_velocity: self.state.body_velocity.clone(),
@@ -62,7 +63,7 @@ impl FluidSolver {
                 .monitor
                 .solid_sites()
                 .solid()
-                .map(SolidBits::of)
+                .map(|s| SolidBits::of(s, "the mesh solids' and terrains'"))
                 .transpose()
                 .map_err(GpuStartError::Unsupported)?,
             damping: cfg.damping.clone(),

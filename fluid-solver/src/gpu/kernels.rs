@@ -6,7 +6,7 @@ use super::buffers::Buffers;
 use super::device::GpuDevice;
 
 /// The WGSL sources, joined into one module (the bindings are declared once in `common.wgsl`).
-const SOURCES: [&str; 9] = [
+const SOURCES: [&str; 10] = [
     include_str!("shaders/common.wgsl"),
     include_str!("shaders/cell_sort.wgsl"),
     include_str!("shaders/emps.wgsl"),
@@ -15,6 +15,7 @@ const SOURCES: [&str; 9] = [
     include_str!("shaders/solids.wgsl"),
     include_str!("shaders/reduce.wgsl"),
     include_str!("shaders/bodies.wgsl"),
+    include_str!("shaders/body_inside.wgsl"),
     include_str!("shaders/reaction.wgsl"),
 ];
 

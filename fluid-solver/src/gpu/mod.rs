@@ -11,11 +11,13 @@
 //! - [`step`]: the E-MPS stages of [`crate::emps::step`] in the same order;
 //! - [`bodies`]: resolved rigid bodies: placed from the host's pose, loads reduced on the device;
 //! - [`solids`]: mesh solids and terrains: their sites for the detector;
+//! - [`body_inside`]: the detector's "inside a body" check, box and mesh bodies;
 //! - [`damping`]: damping zones, relaxed after each step;
 //! - [`reduce`]: the instability detector's scan and the step's totals, reduced on the device;
 //! - [`driver`]: the solver's step on the device (escapes, detector, host copies).
 
 pub mod bodies;
+pub mod body_inside;
 pub mod buffers;
 pub mod cell_sort;
 pub mod damping;

@@ -54,11 +54,12 @@ pub struct Params {
     pub solid_n: [u32; 3],
     pub solids: u32,
     /// Damping zones ([`super::damping`]); the artificial viscosity's −α ρ0 c h and 0.01 h²
-    /// ([`crate::emps::artificial_viscosity`]; `av_scale` 0: off).
+    /// ([`crate::emps::artificial_viscosity`]; `av_scale` 0: off); the word of the solid sites'
+    /// buffer where the bodies' table for the detector starts ([`super::body_inside`]).
     pub n_damping: u32,
     pub av_scale: f32,
     pub av_eta2: f32,
-    pub unused: u32,
+    pub body_table: u32,
 }
 
 /// Converts to the device's f32.

@@ -24,7 +24,8 @@ pub struct StepReport {
     pub energy: f64,
     pub candidates: u64,
     /// The particle with the smallest id that has a finding, and the finding's code
-    /// (`shaders/reduce.wgsl`: 1 not finite, 2 inside a wall, 3 left the domain, 4 too fast).
+    /// (`shaders/reduce.wgsl`: 1 not finite, 2 inside a wall, 3 left the domain, 4 too fast,
+    /// 5 inside a body).
     pub finding: Option<(u32, u32)>,
     /// Fluid particles that left through the open top (removed before the next step).
     pub escaped: u64,

@@ -2,7 +2,8 @@
 //! particles of the initial state, uploaded and stepped like the tank's walls; what the device
 //! adds is the instability detector's "inside a solid" check
 //! ([`crate::particles::solid_sites::SolidSites::deep_inside`]), which reads one bit per site of
-//! the tank's lattice (`shaders/solids.wgsl`).
+//! the tank's lattice (`shaders/solids.wgsl`). A mesh body's sites take the same form
+//! ([`super::body_inside`]).
 
 use schemas::geometry::SiteSet;
 
@@ -17,13 +18,13 @@ pub struct SolidBits {
 }
 
 impl SolidBits {
-    /// The device's bits of `solid` (skin and buried sites); an error when the lattice has more
-    /// sites than a u32 numbers.
-    pub fn of(solid: &SiteSet) -> Result<SolidBits, String> {
+    /// The device's bits of `solid` (skin and buried sites); an error naming `whose` sites
+    /// (e.g. "the mesh solids' and terrains'") when the lattice has more sites than a u32 numbers.
+    pub fn of(solid: &SiteSet, whose: &str) -> Result<SolidBits, String> {
         let l = solid.lattice();
         let too_many = || {
             format!(
-                "the mesh solids' and terrains' lattice of {} × {} × {} sites is more than the GPU path numbers (2³² sites); use a coarser spacing or backend = \"cpu\"",
+                "{whose} lattice of {} × {} × {} sites is more than the GPU path numbers (2³² sites); use a coarser spacing or backend = \"cpu\"",
                 l.n[0], l.n[1], l.n[2]
             )
         };

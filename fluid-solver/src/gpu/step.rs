@@ -8,6 +8,7 @@
 //! on the device after each exchange: [`super::bodies`]).
 
 use super::bodies::{self, BodyLoad};
+use super::body_inside;
 use super::buffers::{
     map_read, Buffers, BODY_KIN, BODY_LOADS, BOXES, DAMPING, MEMBERS, PARTIALS, SOLID_BITS, SUMS,
 };
@@ -23,6 +24,7 @@ use crate::boundaries::escape::OpenTop;
 use crate::emps::kernel::Kernel;
 use crate::neighbours::collision::{COLLISION_DISTANCE, RESTITUTION};
 use crate::neighbours::neighbour_search::{CellGrid, PAD};
+use crate::particles::body_interior::BodyInterior;
 use crate::particles::layout::Domain;
 use crate::particles::Particles;
 use crate::physics::Physics;
@@ -39,8 +41,11 @@ pub struct GpuSetup {
     pub domain: Domain,
     pub open_top: OpenTop,
     pub tank: Aabb,
-    /// Fixed wall blocks (the detector's boxes are these shrunk by half a spacing).
+    /// The detector's wall blocks: the case's on the lattice less half a spacing, those of the
+    /// CPU's detector ([`crate::stability::StabilityMonitor::wall_boxes`]).
     pub walls: Vec<Aabb>,
+    /// The detector's bodies ([`crate::stability::StabilityMonitor::body_interiors`]).
+    pub bodies: Vec<BodyInterior>,
     /// The bodies' particles: (id, body, offset from the body's initial centre), sorted by id.
     pub members: Vec<(u32, usize, [f64; 3])>,
     /// Each body's pose (7) and velocity (6) at the start.
@@ -105,22 +110,22 @@ impl GpuEmps {
         let k = &setup.kernel;
         let ph = &setup.physics;
         let mass = ph.density * k.spacing.powi(3);
-        let h = 0.5 * k.spacing;
         let boxes: Vec<[f32; 4]> = setup
             .walls
             .iter()
-            .map(|b| (b.min.map(|v| v + h), b.max.map(|v| v - h)))
-            .filter(|(lo, hi)| (0..3).all(|a| hi[a] > lo[a]))
-            .flat_map(|(lo, hi)| {
-                let (lo, hi) = (f32x3(lo), f32x3(hi));
+            .flat_map(|b| {
+                let (lo, hi) = (f32x3(b.min), f32x3(b.max));
                 [[lo[0], lo[1], lo[2], 0.0], [hi[0], hi[1], hi[2], 0.0]]
             })
             .collect();
-        let solid_words = setup.solids.as_ref().map_or(0, |s| s.words.len());
-        if 4 * solid_words as u64 > largest {
+        // the solids' sites, then the bodies' table and sites (`body_inside`)
+        let mut site_words = setup.solids.as_ref().map_or(Vec::new(), |s| s.words.clone());
+        let body_table = site_words.len();
+        site_words.extend(body_inside::words(&setup.bodies, body_table)?);
+        if 4 * site_words.len() as u64 > largest {
             return Err(format!(
-                "the GPU binds at most {largest} B per array, the mesh solids' and terrains' sites need {} B (one bit per site of the tank's lattice); use a coarser spacing or backend = \"cpu\"",
-                4 * solid_words as u64
+                "the GPU binds at most {largest} B per array, the mesh solids', terrains' and bodies' sites need {} B (one bit per site of the tank's lattice with solids, and of each mesh body's block of sites); use a coarser spacing or backend = \"cpu\"",
+                4 * site_words.len() as u64
             ));
         }
         let zones = damping::zones(&setup.damping);
@@ -174,18 +179,17 @@ impl GpuEmps {
             n_damping: zones.len() as u32,
             av_scale: (-setup.artificial_viscosity * ph.density * ph.sound_speed * h_av) as f32,
             av_eta2: (0.01 * h_av * h_av) as f32,
-            unused: 0,
+            // below 2²⁷: the solids' lattice numbers at most 2³² sites (`SolidBits::of`)
+            body_table: body_table as u32,
         };
         let groups = n.div_ceil(WIDE_WG as usize);
         let sizes = (n_bodies, setup.members.len());
-        let scene = (zones.len(), solid_words);
+        let scene = (zones.len(), site_words.len());
         let mut buffers = Buffers::new(&dev, n, cells, boxes.len() / 2, groups, sizes, scene);
         let kernels = Kernels::new(&dev, &buffers);
         buffers.write(&dev, BOXES, &boxes);
         buffers.write(&dev, DAMPING, &zones);
-        if let Some(s) = &setup.solids {
-            buffers.write(&dev, SOLID_BITS, &s.words);
-        }
+        buffers.write(&dev, SOLID_BITS, &site_words);
         buffers.write(&dev, MEMBERS, &bodies::members(&setup.members));
         let kin = bodies::kinematics(&setup.body_pose, &setup.body_velocity, 0.0);
         buffers.write(&dev, BODY_KIN, &kin);

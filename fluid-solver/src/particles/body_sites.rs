@@ -3,6 +3,7 @@
 //! ([`sites_inside_mesh`], the fill `[[solid]]`s use), all of them: a body is full of particles,
 //! not a skin, so its particles' centroid and count are those of its volume.
 
+use crate::particles::body_interior::BodyInterior;
 use schemas::case::fluid::{Aabb, FluidConfig};
 use schemas::geometry::{sites_inside_mesh, Lattice, SiteSet};
 
@@ -51,5 +52,28 @@ impl BodySites {
             }
             Shape::Empty => false,
         })
+    }
+
+    /// Each body's inside for the instability detector ([`BodyInterior`]): a box body's box
+    /// less half of `spacing`, a mesh body's sites about its initial centre (`centres`, in the
+    /// order of the bodies); a mesh body whose mesh was not read has no sites.
+    pub fn interiors(&self, centres: &[[f64; 3]], spacing: f64) -> Vec<BodyInterior> {
+        let h = 0.5 * spacing;
+        self.shapes
+            .iter()
+            .zip(centres)
+            .map(|(s, &centre)| match s {
+                Shape::Box(b) => BodyInterior::Box(std::array::from_fn(|a| 0.5 * (b.max[a] - b.min[a]) - h)),
+                Shape::Sites(set) => BodyInterior::of_sites(set, centre),
+                Shape::Empty => BodyInterior::Sites {
+                    sites: SiteSet::empty(&Lattice {
+                        origin: centre,
+                        spacing,
+                        n: [0; 3],
+                    }),
+                    centre,
+                },
+            })
+            .collect()
     }
 }

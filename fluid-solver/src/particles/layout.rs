@@ -67,6 +67,8 @@ pub struct Layout {
     pub paddle: Option<PaddleParticles>,
     /// The sites of the mesh solids and terrains.
     pub solid_sites: SolidSites,
+    /// Which sites each body took (a box's or a mesh's).
+    pub body_sites: BodySites,
     /// The case's section with the tank and every box on the lattice (what was built).
     pub config: FluidConfig,
     /// One message per box that was moved onto the lattice.
@@ -174,6 +176,7 @@ pub fn build(cfg: &FluidConfig) -> Layout {
         bodies,
         paddle,
         solid_sites: solids,
+        body_sites,
         notes,
         config,
     }

@@ -63,25 +63,35 @@ impl SolidSites {
 }
 
 impl SolidSites {
-    /// Whether `r` lies more than about half a spacing inside a solid: the site whose cube holds
-    /// it and that site's six face neighbours are all solid (the stability monitor's "through a
-    /// wall", as a wall box's is its box less half a spacing).
+    /// Whether `r` lies more than about half a spacing inside a solid ([`deep_inside_sites`];
+    /// beyond the lattice is the tank's wall: solid). The stability monitor's "through a wall",
+    /// as a wall box's is its box less half a spacing.
     pub fn deep_inside(&self, r: [f64; 3]) -> bool {
-        let Some((solid, _)) = &self.sets else {
-            return false;
-        };
-        let l = solid.lattice();
-        let idx: [i64; 3] = std::array::from_fn(|a| ((r[a] - l.origin[a]) / l.spacing).floor() as i64);
-        at(solid, idx)
-            && (0..3).all(|a| {
-                [-1, 1].iter().all(|d| {
-                    let mut n = idx;
-                    n[a] += d;
-                    // beyond the lattice is the tank's wall: solid too
-                    n[a] < 0 || n[a] >= l.n[a] as i64 || at(solid, n)
-                })
-            })
+        self.sets
+            .as_ref()
+            .is_some_and(|(solid, _)| deep_inside_sites(solid, r, true))
     }
+}
+
+/// Whether `r` lies more than about half a spacing inside the sites of `set`: the site whose
+/// cube holds it and that site's six face neighbours are all in `set` (a neighbour beyond the
+/// lattice counts as in it when `beyond_is_in`).
+pub fn deep_inside_sites(set: &SiteSet, r: [f64; 3], beyond_is_in: bool) -> bool {
+    let l = set.lattice();
+    let idx: [i64; 3] = std::array::from_fn(|a| ((r[a] - l.origin[a]) / l.spacing).floor() as i64);
+    at(set, idx)
+        && (0..3).all(|a| {
+            [-1, 1].iter().all(|d| {
+                let mut n = idx;
+                n[a] += d;
+                let beyond = n[a] < 0 || n[a] >= l.n[a] as i64;
+                if beyond {
+                    beyond_is_in
+                } else {
+                    at(set, n)
+                }
+            })
+        })
 }
 
 fn at(set: &SiteSet, idx: [i64; 3]) -> bool {

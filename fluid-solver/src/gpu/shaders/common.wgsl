@@ -19,7 +19,7 @@ struct Params {
     n_members: u32, reach_contact: u32, contact_k: f32, contact_c: f32,
     solid_lo: vec3<f32>, solid_inv_ds: f32,
     solid_n: vec3<u32>, solids: u32,
-    n_damping: u32, av_scale: f32, av_eta2: f32, unused: u32,
+    n_damping: u32, av_scale: f32, av_eta2: f32, body_table: u32,
 };
 
 // Kind codes (src/particles/kind.rs).
@@ -84,7 +84,8 @@ const FLUID_CELL: u32 = 0x80000000u;
 // The damping zones (damping.wgsl); one entry without zones.
 @group(0) @binding(21) var<storage, read_write> damping: array<DampingZone>;
 // One bit per site of the mesh solids' and terrains' lattice, set for a solid site (solids.wgsl);
-// one word without solids.
+// then, from word prm.body_table, the detector's table of the bodies and the mesh bodies' sites
+// (body_inside.wgsl); one word without either.
 @group(0) @binding(22) var<storage, read_write> solid_bits: array<u32>;
 
 // A body particle's offset from its body's initial centre (f32), its id and its body.

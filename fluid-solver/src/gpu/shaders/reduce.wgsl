@@ -10,6 +10,7 @@ const F_NOT_FINITE: u32 = 1u;
 const F_INSIDE_WALL: u32 = 2u;
 const F_LEFT_DOMAIN: u32 = 3u;
 const F_TOO_FAST: u32 = 4u;
+const F_INSIDE_BODY: u32 = 5u;
 
 var<workgroup> r_wall: array<vec3<f32>, 256>;
 var<workgroup> r_energy: array<f32, 256>;
@@ -71,6 +72,9 @@ fn finding(i: u32, left: ptr<function, bool>) -> u32 {
     }
     if out_domain {
         return F_LEFT_DOMAIN;
+    }
+    if inside_body(p) {
+        return F_INSIDE_BODY;
     }
     if length(u) * prm.dt > 0.5 * prm.spacing {
         return F_TOO_FAST;
