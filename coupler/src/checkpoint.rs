@@ -29,6 +29,7 @@
 use crate::error::CouplerError;
 use crate::out_folder::LOCK_FILE;
 use schemas::checkpoint::{self, FOLDER};
+use schemas::participant::DiscardProgress;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -88,7 +89,7 @@ const COUPLER: &str = "coupler";
 /// [`KEEP`].
 pub fn write_manifest(out: &Path, manifest: &Manifest) -> Result<(), CouplerError> {
     let path = checkpoint::file(out, COUPLER, manifest.window);
-    checkpoint::write(&path, manifest)
+    checkpoint::write(&path, manifest, &mut DiscardProgress)
         .map_err(|e| CouplerError::Io(format!("cannot write the checkpoint {}: {e}", path.display())))?;
     prune(out);
     Ok(())

@@ -93,7 +93,8 @@ fn main() {
             let mesh_cpu_ms = (1e3 * cpu_seconds() - cpu) / f64::from(reps);
             let file = out.join("surface.vtp");
             let start = Instant::now();
-            write_vtp(&file, &mesh).unwrap_or_else(|e| fail(format!("{}: {e}", file.display())));
+            write_vtp(&file, &mesh, &mut schemas::participant::DiscardProgress)
+                .unwrap_or_else(|e| fail(format!("{}: {e}", file.display())));
             let write_ms = 1e3 * start.elapsed().as_secs_f64();
             let (holes, non_manifold) = bad_edges(&mesh);
             println!(

@@ -148,7 +148,7 @@ impl FluidParticipant {
                         .surface_mesh
                         .then(|| SurfaceFrames::new(dir, name, cfg.spacing)),
                 };
-                f.write(0, 0.0, solver.particles())?;
+                f.write(0, 0.0, solver.particles(), &mut DiscardProgress)?;
                 Some(f)
             }
             None => None,
@@ -322,15 +322,16 @@ impl FluidParticipant {
         );
     }
 
-    /// Writes the frame and probe rows kept back from the last window: that window was accepted.
-    fn commit(&mut self) -> Result<(), String> {
+    /// Writes the frame and probe rows kept back from the last window (that window was accepted),
+    /// telling `progress` of the bytes written.
+    fn commit(&mut self, progress: &mut dyn ProgressSink) -> Result<(), String> {
         if let Some(p) = &mut self.probes {
             p.commit()?;
         }
         if let Some(f) = &mut self.frames {
             if let Some(p) = f.pending.take() {
                 let k = f.next;
-                f.write(k, f.pending_time, &p)?;
+                f.write(k, f.pending_time, &p, progress)?;
                 f.next += 1;
             }
         }
@@ -339,12 +340,18 @@ impl FluidParticipant {
 }
 
 impl Frames {
-    fn write(&mut self, k: u64, time: f64, p: &crate::particles::Particles) -> Result<(), String> {
+    fn write(
+        &mut self,
+        k: u64,
+        time: f64,
+        p: &crate::particles::Particles,
+        progress: &mut dyn ProgressSink,
+    ) -> Result<(), String> {
         let file = format!("{}_{k:05}.vtu", self.name);
         let path = self.dir.join(&file);
-        vtu::write_vtu(&path, p).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        vtu::write_vtu(&path, p, progress).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         if let Some(s) = &mut self.surfaces {
-            s.write(k, time, p)
+            s.write(k, time, p, progress)
                 .map_err(|(path, e)| format!("cannot write {}: {e}", path.display()))?;
         }
         self.series
@@ -421,7 +428,7 @@ impl Participant for FluidParticipant {
                 self.name
             ));
         }
-        self.commit()?;
+        self.commit(progress)?;
         let bodies = self.solver.body_names().len();
         let reactions = inputs.samples.iter().any(|s| !s.reaction.is_empty());
         let unapplied_before = self.solver.totals().unapplied_impulse;
@@ -486,11 +493,11 @@ impl Participant for FluidParticipant {
         Ok(outputs)
     }
 
-    fn write_checkpoint(&mut self, path: &Path) -> Result<u64, String> {
-        self.checkpoint_to(path)
+    fn write_checkpoint(&mut self, path: &Path, progress: &mut dyn ProgressSink) -> Result<u64, String> {
+        self.checkpoint_to(path, progress)
     }
 
-    fn finish(&mut self) -> Result<(), String> {
+    fn finish(&mut self, progress: &mut dyn ProgressSink) -> Result<(), String> {
         self.solver.sync_host();
         if self.solver.open_boundaries().is_active() {
             let (b, p) = (self.solver.open_boundaries().balance(), self.solver.particles());
@@ -508,7 +515,7 @@ impl Participant for FluidParticipant {
             );
         }
         self.report_momentum();
-        self.commit()?;
+        self.commit(progress)?;
         let s = &self.solver;
         let summary = RunSummary {
             time: s.time(),

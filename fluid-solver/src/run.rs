@@ -14,6 +14,7 @@ use crate::sensors::probes::{ProbeFile, ProbeSet};
 use crate::solver::FluidSolver;
 use crate::stability::Instability;
 use schemas::case::{Case, FluidConfig};
+use schemas::participant::DiscardProgress;
 use schemas::pvd::Collection;
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -110,11 +111,16 @@ pub fn run_case(case: &Case, out: &Path, terminal: bool) -> Result<RunSummary, R
     let mut write_frame = |solver: &FluidSolver, series: &mut Collection| -> Result<(), RunError> {
         let file = format!("{name}_{frames:05}.vtu");
         let path = out.join(&file);
-        vtu::write_vtu(&path, solver.particles()).map_err(io_err(&path))?;
+        vtu::write_vtu(&path, solver.particles(), &mut DiscardProgress).map_err(io_err(&path))?;
         series.add(solver.time(), &file).map_err(io_err(&pvd_path))?;
         if let Some(s) = &mut surfaces {
-            s.write(frames as u64, solver.time(), solver.particles())
-                .map_err(|(path, error)| RunError::Output { path, error })?;
+            s.write(
+                frames as u64,
+                solver.time(),
+                solver.particles(),
+                &mut DiscardProgress,
+            )
+            .map_err(|(path, error)| RunError::Output { path, error })?;
         }
         frames += 1;
         Ok(())

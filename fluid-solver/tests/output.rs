@@ -23,7 +23,7 @@ fn vtu_blocks_match_the_header() {
     p.push([2.0, 0.0, 0.0], Kind::Dummy); // dummies are left out of frames
     p.pressure[0] = 12.5;
     let path = scratch_dir("vtu").join("frame.vtu");
-    write_vtu(&path, &p).unwrap_or_else(|e| panic!("{e}"));
+    write_vtu(&path, &p, &mut schemas::participant::DiscardProgress).unwrap_or_else(|e| panic!("{e}"));
     let bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("{e}"));
     let split = bytes
         .windows(2)

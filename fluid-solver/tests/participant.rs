@@ -5,7 +5,7 @@
 use fluid_solver::participant::FluidParticipant;
 use schemas::case::Case;
 use schemas::message::{Fields, Waveform};
-use schemas::participant::{Participant, ProgressSink};
+use schemas::participant::{DiscardProgress, Participant, ProgressSink};
 use std::path::Path;
 
 /// A 4 × 4 × 4-particle box on the floor of a 0.2 × 0.2 m tank, water 0.3 m deep around it.
@@ -190,7 +190,9 @@ fn a_checkpoint_file_continues_the_run_bit_for_bit() {
         p.advance(&window(0.0, 0.008, 1))
             .unwrap_or_else(|e| panic!("{e}"));
         let file = std::env::temp_dir().join(format!("fluid-checkpoint-{method}-{}.bin", std::process::id()));
-        let bytes = p.write_checkpoint(&file).unwrap_or_else(|e| panic!("{e}"));
+        let bytes = p
+            .write_checkpoint(&file, &mut DiscardProgress)
+            .unwrap_or_else(|e| panic!("{e}"));
         assert!(bytes > 0);
         let mut q = FluidParticipant::resume(&case, "water", None, &file).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(q.time(), p.time());
@@ -225,16 +227,73 @@ fn a_checkpoint_file_continues_the_run_bit_for_bit() {
     }
 }
 
-/// Counts the steps reported to it and keeps the times.
+/// Counts the steps and bytes reported to it and keeps the times.
 #[derive(Default)]
 struct Reports {
     times: Vec<f64>,
+    bytes: u64,
 }
 
 impl ProgressSink for Reports {
     fn step_done(&mut self, time: f64) {
         self.times.push(time);
     }
+
+    fn bytes_written(&mut self, bytes: u64) {
+        self.bytes += bytes;
+    }
+}
+
+/// Writing is progress too (issue 41): the frame kept back from a window and the checkpoint are
+/// reported byte for byte as they are written, at the next window's start, at a checkpoint and at
+/// the end, so that a large frame or checkpoint that takes longer than `coupling.timeout` is not
+/// taken for a hang.
+#[test]
+fn the_bytes_of_frames_and_checkpoints_are_reported_as_they_are_written() {
+    let case =
+        Case::parse(Path::new("box-in-water.toml"), CASE.to_string()).unwrap_or_else(|e| panic!("{e}"));
+    let out = std::env::temp_dir().join(format!("fluid-write-progress-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    std::fs::create_dir_all(&out).unwrap_or_else(|e| panic!("{e}"));
+    let mut p = FluidParticipant::from_case(&case, "water", Some(&out)).unwrap_or_else(|e| panic!("{e}"));
+    let size = |name: &str| std::fs::metadata(out.join(name)).map_or(0, |m| m.len());
+    // the window reaching the frame at 0.1 s keeps it back; the next window's start writes it
+    p.advance(&window(0.0, 0.1, 1)).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(
+        size("water_00001.vtu"),
+        0,
+        "kept back until the window is accepted"
+    );
+    let mut reports = Reports::default();
+    p.advance_reporting(&window(0.1, 0.1008, 1), &mut reports)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let frame = size("water_00001.vtu");
+    assert!(
+        frame > 0 && reports.bytes == frame,
+        "frame {frame} B, reported {} B",
+        reports.bytes
+    );
+    // a checkpoint: every byte of its file
+    let file = out.join("water.bin");
+    let mut reports = Reports::default();
+    let written = p
+        .write_checkpoint(&file, &mut reports)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(reports.bytes, written);
+    assert_eq!(written, std::fs::metadata(&file).map_or(0, |m| m.len()));
+    // the end: the frame kept back from the last window
+    p.advance(&window(0.1008, 0.2, 1))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut reports = Reports::default();
+    p.finish(&mut reports).unwrap_or_else(|e| panic!("{e}"));
+    let last = size("water_00002.vtu");
+    assert!(
+        last > 0 && reports.bytes == last,
+        "last frame {last} B, reported {} B",
+        reports.bytes
+    );
+    assert!(reports.times.is_empty(), "no step at the end");
+    let _ = std::fs::remove_dir_all(&out);
 }
 
 /// The coupler takes a long window for a hang unless the fluid reports its steps as it goes.

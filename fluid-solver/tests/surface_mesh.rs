@@ -228,7 +228,7 @@ fn written_vtp_parses_back_to_the_mesh() {
     let p = lattice_sphere([0.5, 0.5, 0.5], 4.0 * SPACING);
     let mesh = fluid_surface(&p, SPACING);
     let path = scratch_dir("vtp").join("sphere.vtp");
-    write_vtp(&path, &mesh).unwrap_or_else(|e| panic!("{e}"));
+    write_vtp(&path, &mesh, &mut schemas::participant::DiscardProgress).unwrap_or_else(|e| panic!("{e}"));
     let back = read_vtp(&path);
     assert_eq!(back.points.len(), mesh.vertices.len());
     assert_eq!(back.triangles.len(), mesh.triangles.len());
@@ -247,10 +247,15 @@ fn empty_fluid_writes_an_empty_valid_file_and_series() {
     let dir = scratch_dir("empty");
     let mut frames = SurfaceFrames::new(&dir, "tank", SPACING);
     frames
-        .write(0, 0.0, &p)
+        .write(0, 0.0, &p, &mut schemas::participant::DiscardProgress)
         .unwrap_or_else(|(path, e)| panic!("{}: {e}", path.display()));
     frames
-        .write(1, 0.25, &Particles::default())
+        .write(
+            1,
+            0.25,
+            &Particles::default(),
+            &mut schemas::participant::DiscardProgress,
+        )
         .unwrap_or_else(|(path, e)| panic!("{}: {e}", path.display()));
     for k in 0..2 {
         let back = read_vtp(&dir.join(format!("tank_surface_{k:05}.vtp")));
@@ -265,7 +270,12 @@ fn empty_fluid_writes_an_empty_valid_file_and_series() {
 fn unwritable_folder_names_the_file() {
     let dir = scratch_dir("unwritable").join("missing-folder");
     let mut frames = SurfaceFrames::new(&dir, "tank", SPACING);
-    let err = frames.write(0, 0.0, &lattice_sphere([0.0; 3], 3.0 * SPACING));
+    let err = frames.write(
+        0,
+        0.0,
+        &lattice_sphere([0.0; 3], 3.0 * SPACING),
+        &mut schemas::participant::DiscardProgress,
+    );
     match err {
         Err((path, _)) => assert!(path.ends_with("tank_surface_00000.vtp"), "{}", path.display()),
         Ok(()) => panic!("wrote into a folder that does not exist"),

@@ -10,6 +10,7 @@
 //! A checkpoint of window `w` is complete when the coupler's manifest `coupler-<w>.bin` exists: the
 //! coupler writes it last, after every participant said its own file is written.
 
+use crate::participant::{ProgressSink, ReportingWriter};
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 use std::fs::{self, File, OpenOptions};
@@ -31,15 +32,19 @@ fn config() -> bincode::config::Configuration {
     bincode::config::standard()
 }
 
-/// Encodes `state` and writes it to `path` atomically and durably.
-pub fn write<T: Serialize>(path: &Path, state: &T) -> io::Result<u64> {
+/// Bytes handed to the file at a time, so that a long write reports its progress as it goes.
+const WRITE_CHUNK: usize = 8 << 20;
+
+/// Encodes `state` and writes it to `path` atomically and durably, telling `progress` of the
+/// bytes written.
+pub fn write<T: Serialize>(path: &Path, state: &T, progress: &mut dyn ProgressSink) -> io::Result<u64> {
     let payload = bincode::serde::encode_to_vec(state, config()).map_err(io::Error::other)?;
     let mut bytes = Vec::with_capacity(MAGIC.len() + 12 + payload.len());
     bytes.extend_from_slice(MAGIC);
     bytes.extend_from_slice(&(payload.len() as u64).to_le_bytes());
     bytes.extend_from_slice(&crc32c::crc32c(&payload).to_le_bytes());
     bytes.extend_from_slice(&payload);
-    write_durably(path, &bytes)?;
+    write_durably(path, &bytes, progress)?;
     Ok(bytes.len() as u64)
 }
 
@@ -74,13 +79,17 @@ pub fn read<T: DeserializeOwned>(path: &Path) -> Result<T, String> {
     Ok(state)
 }
 
-/// Writes `bytes` to `path.tmp`, syncs it, renames it over `path` and syncs the folder.
-pub fn write_durably(path: &Path, bytes: &[u8]) -> io::Result<()> {
+/// Writes `bytes` to `path.tmp` (in chunks, each reported to `progress`), syncs it, renames it
+/// over `path` and syncs the folder.
+pub fn write_durably(path: &Path, bytes: &[u8], progress: &mut dyn ProgressSink) -> io::Result<()> {
     let mut name = path.file_name().unwrap_or_default().to_os_string();
     name.push(".tmp");
     let tmp = path.with_file_name(name);
-    let written = File::create(&tmp).and_then(|mut f| {
-        f.write_all(bytes)?;
+    let written = File::create(&tmp).and_then(|f| {
+        let mut out = ReportingWriter::new(&f, progress);
+        for chunk in bytes.chunks(WRITE_CHUNK) {
+            out.write_all(chunk)?;
+        }
         f.sync_all()
     });
     if let Err(e) = written {
@@ -121,7 +130,7 @@ mod tests {
             values: vec![0.1 + 0.2, -0.0, f64::MIN_POSITIVE, 1e300],
             name: "tank".into(),
         };
-        write(&path, &state).unwrap_or_else(|e| panic!("{e}"));
+        write(&path, &state, &mut crate::participant::DiscardProgress).unwrap_or_else(|e| panic!("{e}"));
         let back: State = read(&path).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(back, state);
         assert!(back

@@ -14,7 +14,7 @@
 
 mod progress;
 
-pub use progress::{DiscardProgress, LinkProgress, ProgressSink};
+pub use progress::{DiscardProgress, LinkProgress, ProgressSink, ReportingWriter};
 
 use crate::link::{process_alive, Link, LinkError, Side};
 use crate::message::{
@@ -56,13 +56,15 @@ pub trait Participant {
         let _ = progress;
         self.advance(inputs)
     }
-    /// The run is over: write final output.
-    fn finish(&mut self) -> Result<(), String>;
+    /// The run is over: write final output, telling `progress` of the bytes written
+    /// ([`ReportingWriter`]), so that a long write is not taken for a hang.
+    fn finish(&mut self, progress: &mut dyn ProgressSink) -> Result<(), String>;
     /// Writes every output kept back from the accepted window, then the full state (solver, output
-    /// bookkeeping) to `path` with [`crate::checkpoint::write`]; returns its size in bytes. A
-    /// solver that cannot do this says so, and the run stops with that message.
-    fn write_checkpoint(&mut self, path: &Path) -> Result<u64, String> {
-        let _ = path;
+    /// bookkeeping) to `path` with [`crate::checkpoint::write`], telling `progress` of the bytes
+    /// written; returns the checkpoint's size in bytes. A solver that cannot do this says so, and
+    /// the run stops with that message.
+    fn write_checkpoint(&mut self, path: &Path, progress: &mut dyn ProgressSink) -> Result<u64, String> {
+        let _ = (path, progress);
         Err("this solver cannot write checkpoints".into())
     }
 }
@@ -219,6 +221,8 @@ fn serve_until_stopped<P: Participant>(
     let geometry = solver.geometry_update();
     link.send(&FromParticipant::Initial { outputs, geometry })?;
     let report_every = Duration::try_from_secs_f64(args.progress_interval).unwrap_or(Duration::MAX);
+    // the window of the last request to advance, which the progress of the final writes names
+    let mut last_window = 0;
     loop {
         if crate::signals::interrupted() {
             // A request may already be waiting, so the wait below would not look at the flag.
@@ -230,6 +234,7 @@ fn serve_until_stopped<P: Participant>(
                 checkpoint,
                 inputs,
             } => {
+                last_window = header.window;
                 let result = match checkpoint {
                     Checkpoint::None => Ok(()),
                     Checkpoint::Save => {
@@ -280,7 +285,14 @@ fn serve_until_stopped<P: Participant>(
                 }
             }
             ToParticipant::WriteCheckpoint { window, path } => {
-                match solver.write_checkpoint(Path::new(&path)) {
+                let request = Header {
+                    protocol,
+                    window,
+                    iteration: 0,
+                    time: solver.time(),
+                };
+                let mut progress = LinkProgress::new(&link, request, report_every);
+                match solver.write_checkpoint(Path::new(&path), &mut progress) {
                     Ok(bytes) => {
                         link.send(&FromParticipant::CheckpointWritten { window, bytes })?;
                     }
@@ -300,7 +312,14 @@ fn serve_until_stopped<P: Participant>(
                 }
             }
             ToParticipant::Finish => {
-                let done = solver.finish();
+                let request = Header {
+                    protocol,
+                    window: last_window,
+                    iteration: 0,
+                    time: solver.time(),
+                };
+                let mut progress = LinkProgress::new(&link, request, report_every);
+                let done = solver.finish(&mut progress);
                 link.send(&FromParticipant::Finished)?;
                 return done.map_err(ServeError::Solver);
             }

@@ -243,11 +243,13 @@ impl Participant for StructureParticipant {
         Ok(outputs)
     }
 
-    fn write_checkpoint(&mut self, path: &Path) -> Result<u64, String> {
-        self.checkpoint_to(path)
+    fn write_checkpoint(&mut self, path: &Path, progress: &mut dyn ProgressSink) -> Result<u64, String> {
+        self.checkpoint_to(path, progress)
     }
 
-    fn finish(&mut self) -> Result<(), String> {
+    /// Writes the last histories and tables: a few rows, written at once (`progress` hears
+    /// nothing; the frame's and bodies' histories are small next to a fluid's frames).
+    fn finish(&mut self, _progress: &mut dyn ProgressSink) -> Result<(), String> {
         self.commit()?;
         // the end of the run, when it is not a history time
         if let (Some(_), false, Some(o)) = (self.history, self.row_now, &mut self.output) {

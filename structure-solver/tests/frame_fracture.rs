@@ -257,7 +257,8 @@ fn a_frame_read_back_from_a_checkpoint_steps_bit_for_bit_like_the_one_that_wrote
         }
         frame.drop_caches().expect("caches dropped");
         let path = dir.join(format!("frame-checkpoint-{at}.bin"));
-        schemas::checkpoint::write(&path, &frame).expect("checkpoint written");
+        schemas::checkpoint::write(&path, &frame, &mut schemas::participant::DiscardProgress)
+            .expect("checkpoint written");
         let mut read: Frame = schemas::checkpoint::read(&path).expect("checkpoint read");
         assert_eq!(read.node_count(), frame.node_count());
         for n in at + 1..=1000 {

@@ -4,7 +4,7 @@
 use schemas::case::Case;
 use schemas::f64s::F64s;
 use schemas::message::{Fields, Waveform};
-use schemas::participant::Participant;
+use schemas::participant::{DiscardProgress, Participant};
 use schemas::validation::{largest_abs, record, Record};
 use std::f64::consts::PI;
 use std::path::Path;
@@ -183,7 +183,7 @@ fn histories_are_written_once_per_accepted_window() {
         p.restore_checkpoint().expect("saved");
         p.advance(&force_window(t0, t1, 2, |_| 1.0)).expect("stable");
     }
-    p.finish().expect("written");
+    p.finish(&mut DiscardProgress).expect("written");
     let text = std::fs::read_to_string(dir.join("point-m1.csv")).expect("history file");
     let times: Vec<f64> = text
         .lines()
@@ -295,7 +295,7 @@ inertia = { box = [1, 2, 3] }
     };
     p.advance(&force(0.0, 0.1)).expect("stable");
     let file = std::env::temp_dir().join(format!("structure-checkpoint-{}.bin", std::process::id()));
-    p.write_checkpoint(&file).expect("written");
+    p.write_checkpoint(&file, &mut DiscardProgress).expect("written");
     let mut q = StructureParticipant::resume(&case, "b", None, &file).expect("resumes");
     for k in 0..3 {
         let t0 = 0.1 + 0.1 * k as f64;
@@ -310,7 +310,8 @@ inertia = { box = [1, 2, 3] }
     let mut m = oscillator();
     m.advance(&force_window(0.0, 0.01, 2, |t| 3.0 * t))
         .expect("stable");
-    m.write_checkpoint(&file).expect("point masses write checkpoints");
+    m.write_checkpoint(&file, &mut DiscardProgress)
+        .expect("point masses write checkpoints");
     let mut n = StructureParticipant::resume(&oscillator_case(), "m", None, &file).expect("resumes");
     let w = force_window(0.01, 0.02, 2, |t| 1.0 - t);
     assert_eq!(m.advance(&w).expect("stable"), n.advance(&w).expect("stable"));

@@ -116,8 +116,8 @@ impl<P: Participant> Participant for Faulty<P> {
         }
         Ok(outputs)
     }
-    fn finish(&mut self) -> Result<(), String> {
-        self.inner.finish()
+    fn finish(&mut self, progress: &mut dyn ProgressSink) -> Result<(), String> {
+        self.inner.finish(progress)
     }
 }
 

@@ -2,6 +2,7 @@
 //! writers: an XML header whose `DataArray`s point at offsets in the appended block, then each
 //! array as `[u64 length][bytes]`. Files are written whole or not at all (`schemas::atomic_file`).
 
+use schemas::participant::{ProgressSink, ReportingWriter};
 use std::io::{self, Write};
 use std::path::Path;
 
@@ -69,8 +70,15 @@ impl<W: Write> Write for Counting<W> {
     }
 }
 
-/// Writes a `dataset` file (`UnstructuredGrid`, `PolyData`) with one piece.
-pub fn write(path: &Path, dataset: &str, piece: &str, sections: &[Section]) -> io::Result<()> {
+/// Writes a `dataset` file (`UnstructuredGrid`, `PolyData`) with one piece, telling `progress`
+/// of the bytes written.
+pub fn write(
+    path: &Path,
+    dataset: &str,
+    piece: &str,
+    sections: &[Section],
+    progress: &mut dyn ProgressSink,
+) -> io::Result<()> {
     let mut xml = format!(
         "<?xml version=\"1.0\"?>\n<VTKFile type=\"{dataset}\" version=\"1.0\" byte_order=\"LittleEndian\" \
          header_type=\"UInt64\">\n<{dataset}>\n<Piece {piece}>\n"
@@ -93,6 +101,7 @@ pub fn write(path: &Path, dataset: &str, piece: &str, sections: &[Section]) -> i
     ));
 
     schemas::atomic_file::write_with(path, |out| {
+        let out = &mut ReportingWriter::new(out, progress);
         out.write_all(xml.as_bytes())?;
         for a in sections.iter().flat_map(|s| &s.arrays) {
             out.write_all(&(a.bytes as u64).to_le_bytes())?;
@@ -142,7 +151,14 @@ mod tests {
             || values.iter().copied(),
             f64::to_le_bytes,
         )];
-        write(&path, "UnstructuredGrid", "", &section(arrays)).unwrap_or_else(|e| panic!("{e}"));
+        write(
+            &path,
+            "UnstructuredGrid",
+            "",
+            &section(arrays),
+            &mut schemas::participant::DiscardProgress,
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
         let bytes = fs::read(&path).unwrap_or_else(|e| panic!("{e}"));
         let marker = b"encoding=\"raw\">\n_";
         let data = bytes.windows(marker.len()).position(|w| w == marker).unwrap_or(0) + marker.len();
@@ -165,7 +181,14 @@ mod tests {
             || [1u8, 2].into_iter(),
             u8::to_le_bytes,
         )];
-        let err = write(&path, "UnstructuredGrid", "", &section(arrays)).expect_err("2 values for 3");
+        let err = write(
+            &path,
+            "UnstructuredGrid",
+            "",
+            &section(arrays),
+            &mut schemas::participant::DiscardProgress,
+        )
+        .expect_err("2 values for 3");
         assert_eq!(err.kind(), io::ErrorKind::InvalidData);
         assert!(
             err.to_string()

@@ -4,13 +4,14 @@
 use crate::output::surface_mesh::{fluid_surface, TriangleMesh};
 use crate::output::vtk_appended::{self, Array, Section};
 use crate::particles::Particles;
+use schemas::participant::ProgressSink;
 use schemas::pvd::Collection;
 use std::io;
 use std::path::{Path, PathBuf};
 
 /// Writes `mesh` to `path` as a VTP file (via a temporary file, so a frame is never half written):
-/// points, per-point `normals`, and the triangles as polys.
-pub fn write_vtp(path: &Path, mesh: &TriangleMesh) -> io::Result<()> {
+/// points, per-point `normals`, and the triangles as polys; `progress` is told of the bytes written.
+pub fn write_vtp(path: &Path, mesh: &TriangleMesh, progress: &mut dyn ProgressSink) -> io::Result<()> {
     let (n, m) = (mesh.vertices.len(), mesh.triangles.len());
     let sections = [
         Section {
@@ -63,7 +64,7 @@ pub fn write_vtp(path: &Path, mesh: &TriangleMesh) -> io::Result<()> {
     let piece = format!(
         "NumberOfPoints=\"{n}\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"{m}\""
     );
-    vtk_appended::write(path, "PolyData", &piece, &sections)
+    vtk_appended::write(path, "PolyData", &piece, &sections, progress)
 }
 
 /// The surface-mesh frames of one fluid participant: `NAME_surface_00000.vtp`, … in `dir` and
@@ -107,13 +108,19 @@ impl SurfaceFrames {
         })
     }
 
-    /// Meshes the fluid of `p`, writes it as frame `k` at `time` and adds it to the series; an
-    /// error names the file that could not be written.
-    pub fn write(&mut self, k: u64, time: f64, p: &Particles) -> Result<(), (PathBuf, io::Error)> {
+    /// Meshes the fluid of `p`, writes it as frame `k` at `time` (telling `progress` of the bytes
+    /// written) and adds it to the series; an error names the file that could not be written.
+    pub fn write(
+        &mut self,
+        k: u64,
+        time: f64,
+        p: &Particles,
+        progress: &mut dyn ProgressSink,
+    ) -> Result<(), (PathBuf, io::Error)> {
         let file = format!("{}_surface_{k:05}.vtp", self.name);
         let path = self.dir.join(&file);
         let mesh = fluid_surface(p, self.spacing);
-        write_vtp(&path, &mesh).map_err(|e| (path, e))?;
+        write_vtp(&path, &mesh, progress).map_err(|e| (path, e))?;
         let pvd = self.dir.join(format!("{}_surface.pvd", self.name));
         self.series.add(time, &file).map_err(|e| (pvd, e))
     }

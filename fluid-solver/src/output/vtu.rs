@@ -5,11 +5,13 @@
 use crate::output::vtk_appended::{self, Array, Section};
 use crate::particles::kind::DUMMY;
 use crate::particles::Particles;
+use schemas::participant::ProgressSink;
 use std::io;
 use std::path::Path;
 
-/// Writes `p` to `path` as a VTU file (via a temporary file, so a frame is never half written).
-pub fn write_vtu(path: &Path, p: &Particles) -> io::Result<()> {
+/// Writes `p` to `path` as a VTU file (via a temporary file, so a frame is never half written),
+/// telling `progress` of the bytes written.
+pub fn write_vtu(path: &Path, p: &Particles, progress: &mut dyn ProgressSink) -> io::Result<()> {
     let keep: Vec<u32> = (0..p.len() as u32)
         .filter(|&i| p.kind[i as usize] != DUMMY)
         .collect();
@@ -88,5 +90,6 @@ pub fn write_vtu(path: &Path, p: &Particles) -> io::Result<()> {
         "UnstructuredGrid",
         &format!("NumberOfPoints=\"{n}\" NumberOfCells=\"{n}\""),
         &sections,
+        progress,
     )
 }

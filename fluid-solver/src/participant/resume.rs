@@ -10,6 +10,7 @@ use crate::sensors::probes::{ProbeFile, ProbeSet};
 use crate::state::{FluidState, RunState};
 use schemas::case::Case;
 use schemas::f64s::F64s;
+use schemas::participant::ProgressSink;
 use schemas::pvd::Collection;
 use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
@@ -44,9 +45,14 @@ struct SavedProbes {
 }
 
 impl FluidParticipant {
-    /// Writes the rows and frame kept back from the accepted window, then the state to `path`.
-    pub(super) fn checkpoint_to(&mut self, path: &Path) -> Result<u64, String> {
-        self.commit()?;
+    /// Writes the rows and frame kept back from the accepted window, then the state to `path`,
+    /// telling `progress` of the bytes written.
+    pub(super) fn checkpoint_to(
+        &mut self,
+        path: &Path,
+        progress: &mut dyn ProgressSink,
+    ) -> Result<u64, String> {
+        self.commit(progress)?;
         self.solver.sync_host();
         let saved = Saved {
             name: self.name.clone(),
@@ -67,7 +73,7 @@ impl FluidParticipant {
                 windows: p.probes.windows().to_vec(),
             }),
         };
-        schemas::checkpoint::write(path, &saved).map_err(|e| {
+        schemas::checkpoint::write(path, &saved, progress).map_err(|e| {
             format!(
                 "fluid `{}`: cannot write the checkpoint {}: {e}",
                 self.name,

@@ -113,10 +113,10 @@ pub struct CouplingConfig {
     pub created_energy_limit: f64,
     /// Wall-clock time a participant may go without showing progress before it is taken as hung
     /// [s]: neither an answer nor a progress report comes for this long. A window may take longer
-    /// as long as its participant keeps reporting its steps (both solvers do, every quarter of
-    /// this timeout or every 5 s, whichever is shorter); it must exceed the longest single solver
-    /// step, and the longest whole answer of a participant that does not report its steps (one
-    /// writing a checkpoint).
+    /// as long as its participant keeps reporting its steps and the bytes it writes (both solvers
+    /// do, every quarter of this timeout or every 5 s, whichever is shorter, also while writing
+    /// frames, checkpoints and the last outputs); it must exceed the longest single solver step,
+    /// and the longest whole answer of a participant that does not report its progress.
     #[serde(default = "default_timeout")]
     pub timeout: f64,
     /// Simulated time between checkpoints [s] (a whole number of windows; none by default): at

@@ -9,6 +9,7 @@ use super::StructureParticipant;
 use crate::output::{Output, OutputState};
 use crate::structure::Structure;
 use schemas::case::Case;
+use schemas::participant::ProgressSink;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -28,7 +29,11 @@ struct Saved {
 
 impl StructureParticipant {
     /// Writes the history rows kept back from the accepted window, then the state to `path`.
-    pub(super) fn checkpoint_to(&mut self, path: &Path) -> Result<u64, String> {
+    pub(super) fn checkpoint_to(
+        &mut self,
+        path: &Path,
+        progress: &mut dyn ProgressSink,
+    ) -> Result<u64, String> {
         self.commit()?;
         // the resumed run starts without the frame's factorisation: so does this one from here
         self.structure
@@ -41,7 +46,7 @@ impl StructureParticipant {
             output: self.output.as_ref().map(Output::state),
             row_now: self.row_now,
         };
-        schemas::checkpoint::write(path, &saved).map_err(|e| {
+        schemas::checkpoint::write(path, &saved, progress).map_err(|e| {
             format!(
                 "structure `{}`: cannot write the checkpoint {}: {e}",
                 self.name,
