@@ -167,3 +167,80 @@ fn an_unknown_yield_function_is_named_in_the_error() {
         e.message
     );
 }
+
+/// Trial states beyond the squash load with small moments, as a member crushed axially meets them
+/// (the prism washout's lower member at 0.492 s: n = −1.44 with |m| ≈ 1e-4 after a step): the return
+/// lands inside or on the surface and is the closest point of the plastic set in the section's
+/// energy norm, `(σ_trial − σ)ᵀ D⁻¹ (y − σ) ≤ 0` for every admissible y (checked on points of the
+/// surface all round, from n = −1 to 1), the projection's own optimality condition, independent of
+/// how the return finds its point. At the surface's apex (|n| = 1, no moment) the normal is not
+/// unique, and trial states in the apex's cone of normals return to the apex itself.
+#[test]
+fn trial_states_beyond_the_squash_load_return_to_the_closest_admissible_state() {
+    for kind in ["rectangle", "i_section", "quadratic"] {
+        let s = section(Some(kind));
+        let [n0, my0, mz0] = s.plastic;
+        let d = [s.stiffness[0], s.stiffness[4], s.stiffness[5]];
+        for (n, my, mz) in [
+            (-1.44, 1e-4, -1e-4),
+            (1.2, -3e-4, 0.0),
+            (-1.05, 0.02, 0.01),
+            (1.3, 0.3, -0.2),
+            (-1.001, 0.0, 0.0),
+        ] {
+            let trial = [n * n0, 0.0, 0.0, 0.0, my * my0, mz * mz0];
+            let mut sigma = trial;
+            s.return_to_surface(&mut sigma);
+            let f = s.yield_function(sigma[0], sigma[4], sigma[5]);
+            assert!(f < 1e-10, "{kind} {trial:?}: f = {f} at {sigma:?}");
+            // the energy-norm inner product with every admissible direction is not positive
+            let w = [0, 4, 5]
+                .iter()
+                .zip(d)
+                .map(|(&i, d)| (trial[i] - sigma[i]) / d)
+                .collect::<Vec<_>>();
+            let scale: f64 = [0, 4, 5]
+                .iter()
+                .zip(d)
+                .map(|(&i, d)| (trial[i] - sigma[i]).powi(2) / d)
+                .sum::<f64>()
+                .sqrt();
+            let mut worst = f64::NEG_INFINITY;
+            // the apexes themselves (n = ±1, where the capacity is only round-off) left out
+            for i in 1..400 {
+                let nn = -1.0 + 2.0 * i as f64 / 400.0;
+                for k in 0..72 {
+                    let angle = k as f64 * std::f64::consts::PI / 36.0;
+                    let (cy, cz) = (angle.cos(), angle.sin());
+                    let (mut lo, mut hi) = (0.0, 2.0);
+                    for _ in 0..60 {
+                        let mid = 0.5 * (lo + hi);
+                        if s.yield_function(nn * n0, mid * cy * my0, mid * cz * mz0) <= 0.0 {
+                            lo = mid;
+                        } else {
+                            hi = mid;
+                        }
+                    }
+                    let y = [nn * n0, lo * cy * my0, lo * cz * mz0];
+                    let dot = w[0] * (y[0] - sigma[0]) + w[1] * (y[1] - sigma[4]) + w[2] * (y[2] - sigma[5]);
+                    let len = [0, 1, 2]
+                        .iter()
+                        .map(|&k| (y[k] - sigma[[0, 4, 5][k]]).powi(2) / d[k])
+                        .sum::<f64>()
+                        .sqrt();
+                    if len > 0.0 {
+                        worst = worst.max(dot / (scale * len));
+                    }
+                }
+            }
+            assert!(
+                worst < 1e-6,
+                "{kind} trial n {n} my {my} mz {mz}: returned to n {:.6} my {:.3e} mz {:.3e}, \
+                 an admissible state lies at cos {worst:.3e} towards the trial",
+                sigma[0] / n0,
+                sigma[4] / my0,
+                sigma[5] / mz0
+            );
+        }
+    }
+}

@@ -90,14 +90,18 @@ impl StressState {
     }
 
     /// Section stiffness relating resultant and strain increments: elastic D, or at a hinge the
-    /// normality-rule `D − D a aᵀ D / (aᵀ D a)` (docs/physics.md §5).
+    /// normality-rule `D − D a aᵀ D / (aᵀ D a)` (docs/physics.md §5); at the surface's apex (the
+    /// squash load, no moment) none in N, My and Mz, since the return keeps every nearby trial state
+    /// there ([`Section::at_apex`]).
     pub fn tangent(&self, section: &Section) -> [[f64; 6]; 6] {
         let d = section.stiffness;
         let mut t = [[0.0; 6]; 6];
         for (i, row) in t.iter_mut().enumerate() {
-            row[i] = d[i];
+            if !(self.hinge.is_some() && YIELDING.contains(&i) && section.at_apex(&self.sigma)) {
+                row[i] = d[i];
+            }
         }
-        if self.hinge.is_some() {
+        if self.hinge.is_some() && !section.at_apex(&self.sigma) {
             let a = section.yield_gradient(&self.sigma);
             let ada: f64 = YIELDING.iter().map(|&i| a[i] * d[i] * a[i]).sum();
             if ada > 0.0 {

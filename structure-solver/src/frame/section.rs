@@ -178,6 +178,12 @@ impl Section {
         let d = [0, 1, 2].map(|k| d[k] / (scale[k] * scale[k]));
         let d_max = d.iter().fold(0.0_f64, |m, x| m.max(*x));
         let d = d.map(|x| x / d_max);
+        if let Some(apex) = self.apex_return(&trial, &d) {
+            for (k, i) in YIELDING.into_iter().enumerate() {
+                sigma[i] = apex[k] * scale[k];
+            }
+            return;
+        }
         // start: the trial state scaled onto the surface (bisection along the ray from the origin,
         // inside every surface), with the Δλ that fits the flow there best
         let (mut inside, mut outside) = (0.0, 1.0);
@@ -248,6 +254,31 @@ impl Section {
         for (k, i) in YIELDING.into_iter().enumerate() {
             sigma[i] = x[k] * scale[k];
         }
+    }
+}
+
+impl Section {
+    /// The apex `(sign n, 0, 0)` (scaled) when it is the closest point of the plastic set to a
+    /// scaled trial state beyond the squash load (`d` the scaled stiffnesses of N, My, Mz): its
+    /// normal cone holds `w = D⁻¹ (trial − apex)` ([`YieldFunction::apex_support`]).
+    fn apex_return(&self, trial: &[f64; 3], d: &[f64; 3]) -> Option<[f64; 3]> {
+        if trial[0].abs() <= 1.0 {
+            return None;
+        }
+        let sign = trial[0].signum();
+        let outward = (trial[0] - sign) * sign / d[0];
+        let support = self.yield_kind.apex_support(trial[1] / d[1], trial[2] / d[2])?;
+        (support <= outward).then_some([sign, 0.0, 0.0])
+    }
+
+    /// Whether `sigma` sits at the apex of the surface (the squash load, no moment), where a
+    /// hinge carries no increment of N, My or Mz (the return keeps a trial state in the apex's
+    /// normal cone there): set exactly by [`Section::apex_return`].
+    pub fn at_apex(&self, sigma: &Resultants) -> bool {
+        self.yield_kind != YieldFunction::Quadratic
+            && sigma[4] == 0.0
+            && sigma[5] == 0.0
+            && sigma[0].abs() == self.plastic[0]
     }
 }
 

@@ -15,6 +15,13 @@ const RECTANGLE_BIAXIAL_EXPONENT: f64 = 1.7;
 /// truncation and round-off errors (both ~ε^(2/3) ≈ 4e-11) balance.
 const GRADIENT_STEP: f64 = 6e-6;
 
+/// Coefficients of the I section's capacities next to the squash load, per unit of t = 1 − |n|:
+/// strong axis `1.18 t`, weak axis `1.19 (1 − n²) → 2.38 t` (see [`YieldFunction::ISection`]).
+const I_SECTION_APEX_SLOPES: [f64; 2] = [1.18, 2.38];
+
+/// Golden-section steps of the I section's apex support (interval 0.618ⁿ: 1e-16 after 77).
+const APEX_SEARCH_STEPS: usize = 80;
+
 /// Which interaction a section yields by.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum YieldFunction {
@@ -50,14 +57,50 @@ impl YieldFunction {
                 (my.abs().powf(p) + mz.abs().powf(p)).powf(1.0 / p) + n * n - 1.0
             }
             YieldFunction::ISection => {
-                let n = n.abs().min(1.0);
+                let beyond = n.abs();
+                let n = beyond.min(1.0);
                 let strong = (1.18 * (1.0 - n)).min(1.0);
                 let weak = (1.19 * (1.0 - n * n)).min(1.0);
                 if strong <= 0.0 || weak <= 0.0 {
-                    // N = N0: no moment is left; f grows with the moments beyond the squash load
-                    return my * my + mz * mz + n;
+                    // |N| ≥ N0: no moment is left; zero at the apex, growing with the moments and
+                    // the axial force beyond the squash load
+                    return my * my + mz * mz + beyond - 1.0;
                 }
                 (my / strong).powi(2) + (mz.abs() / weak).powf((5.0 * n).max(1.0)) - 1.0
+            }
+        }
+    }
+
+    /// The surface's apex at the squash load (|n| = 1, no moment), where its normal is not unique:
+    /// the support function h(wy, wz) = max (wy my + wz mz) over the moments the section carries at
+    /// |n| = 1 − t, per unit of t, as t → 0. The apex is the closest point (in the energy norm) of a
+    /// trial state with `w = D⁻¹ (σ_trial − σ_apex)` iff `h(wy, wz) ≤ sign(n) wn` (w in the normal
+    /// cone: the polar of the surface's tangent cone there). `None` for [`YieldFunction::Quadratic`],
+    /// smooth at n = ±1.
+    /// - rectangle: `|m|_p ≤ 1 − n² → 2t`, so h = 2 ‖w‖_q, 1/p + 1/q = 1 (the dual norm);
+    /// - I section: `(my/1.18t)² + (|mz|/2.38t)⁵ ≤ 1`, so h = max over b ∈ [0, 1] of
+    ///   `1.18 |wy| √(1 − b⁵) + 2.38 |wz| b` (concave in b: a golden-section search).
+    pub fn apex_support(self, wy: f64, wz: f64) -> Option<f64> {
+        match self {
+            YieldFunction::Quadratic => None,
+            YieldFunction::Rectangle => {
+                let q = RECTANGLE_BIAXIAL_EXPONENT / (RECTANGLE_BIAXIAL_EXPONENT - 1.0);
+                Some(2.0 * (wy.abs().powf(q) + wz.abs().powf(q)).powf(1.0 / q))
+            }
+            YieldFunction::ISection => {
+                let [sy, sz] = I_SECTION_APEX_SLOPES;
+                let along = |b: f64| sy * wy.abs() * (1.0 - b.powi(5)).max(0.0).sqrt() + sz * wz.abs() * b;
+                let ratio = 0.5 * (5.0_f64.sqrt() - 1.0);
+                let (mut lo, mut hi) = (0.0, 1.0);
+                for _ in 0..APEX_SEARCH_STEPS {
+                    let (b1, b2) = (hi - ratio * (hi - lo), lo + ratio * (hi - lo));
+                    if along(b1) < along(b2) {
+                        lo = b1;
+                    } else {
+                        hi = b2;
+                    }
+                }
+                Some(along(0.5 * (lo + hi)).max(along(0.0)).max(along(1.0)))
             }
         }
     }
