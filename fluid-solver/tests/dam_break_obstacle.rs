@@ -126,8 +126,11 @@ fn run_twin(method: FluidMethodName) -> (Vec<String>, Vec<Vec<f64>>) {
         .iter()
         .filter(|r| r[t] < arrival - 0.05)
         .map(|r| r[p1].abs())
-        .fold(0.0, f64::max);
-    let peak = rows.iter().map(|r| r[p1]).fold(0.0, f64::max);
+        .fold(0.0, schemas::validation::max_or_nan);
+    let peak = rows
+        .iter()
+        .map(|r| r[p1])
+        .fold(0.0, schemas::validation::max_or_nan);
     println!(
         "P1: {before:.1} Pa before the water arrives, peak {peak:.0} Pa; H4 from {:.3} to {:.3} m",
         rows[0][h4],
@@ -149,7 +152,7 @@ fn run_twin(method: FluidMethodName) -> (Vec<String>, Vec<Vec<f64>>) {
         .collect();
     let steps = after.len().saturating_sub(1).max(1) as f64;
     let rms = (after.windows(2).map(|w| (w[1] - w[0]).powi(2)).sum::<f64>() / steps).sqrt();
-    let raw_peak = after.iter().copied().fold(0.0, f64::max);
+    let raw_peak = after.iter().copied().fold(0.0, schemas::validation::max_or_nan);
     println!(
         "P1-raw: step-to-step RMS change {rms:.0} Pa over {} steps after arrival, raw peak {raw_peak:.0} Pa (5 ms filter: {peak:.0} Pa)",
         after.len()
@@ -288,8 +291,11 @@ fn against_the_experiment(
         .iter()
         .filter(|r| r[0] < 0.8)
         .map(|r| r[1])
-        .fold(0.0, f64::max);
-    let peak = rows.iter().map(|r| r[col("P1")]).fold(0.0, f64::max);
+        .fold(0.0, schemas::validation::max_or_nan);
+    let peak = rows
+        .iter()
+        .map(|r| r[col("P1")])
+        .fold(0.0, schemas::validation::max_or_nan);
     println!(
         "P1, mean over 0.6–0.8 s: {computed:.0} Pa, experiment {measured:.0} Pa ({:+.1} %); 5 ms peak {peak:.0} Pa, experiment {peak_exp:.0} Pa (not bounded: E-MPS impact peaks run high)",
         100.0 * (computed / measured - 1.0)

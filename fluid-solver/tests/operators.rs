@@ -130,7 +130,7 @@ fn gradient_error(jitter: f64) -> f64 {
         .map(|i| {
             ((out.x[i] - a[0]).powi(2) + (out.y[i] - a[1]).powi(2) + (out.z[i] - a[2]).powi(2)).sqrt() / norm
         })
-        .fold(0.0, f64::max)
+        .fold(0.0, schemas::validation::max_or_nan)
 }
 
 /// Largest relative error of ⟨∇²u⟩ for u = (x², y², z² + xy) (exact ∇²u = (2, 2, 2)).
@@ -151,7 +151,7 @@ fn laplacian_error(jitter: f64) -> f64 {
             ((out.x[i] - 2.0).powi(2) + (out.y[i] - 2.0).powi(2) + (out.z[i] - 2.0).powi(2)).sqrt()
                 / 12f64.sqrt()
         })
-        .fold(0.0, f64::max)
+        .fold(0.0, schemas::validation::max_or_nan)
 }
 
 /// Records the largest relative error of an operator on the cube, lattice jittered by `jitter`.

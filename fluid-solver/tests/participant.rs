@@ -108,7 +108,7 @@ fn body_at_rest_carries_the_water_above_it() {
         top += (0..s.len())
             .filter(|&i| s.kind[i] == 0)
             .map(|i| s.z[i])
-            .fold(f64::MIN, f64::max)
+            .fold(f64::MIN, schemas::validation::max_or_nan)
             / f64::from(n);
     }
     // Hydrostatics: the box's top face (0.08 m², 0.08 m high) carries the column above it;

@@ -414,7 +414,7 @@ fn a_wide_members_reaction_is_spread_flat_over_its_footprint_and_sums_to_itself(
             })
             .collect();
         let flat: Vec<f64> = shares.iter().filter(|(r, _)| *r <= a).map(|s| s.1).collect();
-        let top = flat.iter().copied().fold(0.0, f64::max);
+        let top = flat.iter().copied().fold(0.0, schemas::validation::max_or_nan);
         println!(
             "{what}: {} particles in the flat part, share {top:.3e} each",
             flat.len()

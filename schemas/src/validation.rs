@@ -156,13 +156,16 @@ pub fn largest_abs(values: impl IntoIterator<Item = f64>) -> f64 {
 /// The largest of `values` and `floor`, NaN if any of them is NaN (unlike `f64::max`, which
 /// skips a NaN).
 pub fn largest(values: impl IntoIterator<Item = f64>, floor: f64) -> f64 {
-    values.into_iter().fold(floor, |m, v| {
-        if v.is_nan() || m.is_nan() {
-            f64::NAN
-        } else {
-            m.max(v)
-        }
-    })
+    values.into_iter().fold(floor, max_or_nan)
+}
+
+/// The larger of `a` and `b`, NaN if either is (for `fold`, where `f64::max` would skip a NaN).
+pub fn max_or_nan(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() {
+        f64::NAN
+    } else {
+        a.max(b)
+    }
 }
 
 /// The smallest of `values` and `ceiling`, NaN if any of them is NaN (unlike `f64::min`).

@@ -89,7 +89,7 @@ fn a_heavy_box_dropped_on_the_floor_rests_on_it_at_the_contact_springs_deflectio
     let deepest = rows
         .iter()
         .map(|r| TOUCHING_CENTRE_Z - r[3])
-        .fold(f64::MIN, f64::max);
+        .fold(f64::MIN, schemas::validation::max_or_nan);
     println!(
         "rest: sunk {:.4} mm into the floor's contact range (spring equilibrium {:.4} mm, {:+.3} %); \
          deepest {:.2} mm at impact; final speed {:.2e} m/s",

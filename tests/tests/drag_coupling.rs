@@ -95,7 +95,10 @@ fn run_case(scheme: &str, fluid: Fluid) {
     // window,time,iterations,residual,water_fx,water_fy,water_fz,water_work,column_fx,…,balance,status
     // (balance is column 15; a NaN balance fails the bound below)
     let worst = largest_abs(ledger.iter().map(|r| r[15]));
-    let peak = ledger.iter().map(|r| r[8]).fold(0.0, f64::max);
+    let peak = ledger
+        .iter()
+        .map(|r| r[8])
+        .fold(0.0, schemas::validation::max_or_nan);
     let window = 5.0e-4;
     let given: Vec<f64> = (0..3)
         .map(|c| ledger.iter().map(|r| r[4 + c] * window).sum())
@@ -250,9 +253,15 @@ fn accelerated(acceleration: &str) {
     let run = coupler_run(&case, &out);
     assert!(run.status.success(), "{acceleration}: {}", stderr(&run));
     let ledger = csv_rows(&out.join("ledger.csv"));
-    let sweeps = ledger.iter().map(|r| r[2]).fold(0.0, f64::max);
+    let sweeps = ledger
+        .iter()
+        .map(|r| r[2])
+        .fold(0.0, schemas::validation::max_or_nan);
     let wet = ledger.iter().filter(|r| r[8].abs() > 1e-6).count();
-    let peak = ledger.iter().map(|r| r[8]).fold(0.0, f64::max);
+    let peak = ledger
+        .iter()
+        .map(|r| r[8])
+        .fold(0.0, schemas::validation::max_or_nan);
     eprintln!(
         "{acceleration}: {} windows, {wet} with drag on the column (peak {peak:.3e} N), at most {sweeps} sweeps",
         ledger.len()
@@ -309,7 +318,10 @@ fn a_column_fractures_under_implicit_coupling_and_the_run_goes_on() {
     let after = open.first().map_or(f64::INFINITY, |r| r[1]);
     let later: Vec<&Vec<f64>> = ledger.iter().filter(|r| r[1] > after).collect();
     let dragged = later.iter().filter(|r| r[8].abs() > 1e-6).count();
-    let sweeps = later.iter().map(|r| r[2]).fold(0.0, f64::max);
+    let sweeps = later
+        .iter()
+        .map(|r| r[2])
+        .fold(0.0, schemas::validation::max_or_nan);
     eprintln!(
         "{} fractures (first {:?}); {} windows, {} ended by a topology change (first at t = {after} s), \
          {} after it: {dragged} with drag on the column, at most {sweeps} sweeps; worst balance {worst:.2e}",
@@ -364,8 +376,14 @@ fn a_column_standing_in_the_water_from_the_start_is_not_stopped_as_unstable() {
     assert!(run.status.success(), "{}", stderr(&run));
     // window,time,created,created_total,net_created,energy_scale,ratio,force_amplitude
     let energy = csv_rows(&out.join("interface_energy.csv"));
-    let worst = energy.iter().map(|r| r[6]).fold(0.0, f64::max);
-    let force = energy.iter().map(|r| r[7]).fold(0.0, f64::max);
+    let worst = energy
+        .iter()
+        .map(|r| r[6])
+        .fold(0.0, schemas::validation::max_or_nan);
+    let force = energy
+        .iter()
+        .map(|r| r[7])
+        .fold(0.0, schemas::validation::max_or_nan);
     eprintln!(
         "{} windows, largest C/S {worst:.3}, largest interface force {force:.3e} N",
         energy.len()

@@ -86,7 +86,10 @@ fn the_floating_box_runs_with_the_gpu_fluid_through_the_stack() {
         .filter_map(|r| r.rsplit(',').nth(1)?.parse().ok())
         .collect();
     assert_eq!(balances.len(), rows.len(), "a balance per window:\n{ledger}");
-    let worst = balances.iter().cloned().fold(0.0f64, f64::max);
+    let worst = balances
+        .iter()
+        .cloned()
+        .fold(0.0f64, schemas::validation::max_or_nan);
     let independent = balances.iter().filter(|&&b| b > 0.0).count();
     println!(
         "ledger: worst balance {worst:.3e}, {independent} of {} windows above 0",
@@ -110,7 +113,7 @@ fn the_floating_box_runs_with_the_gpu_fluid_through_the_stack() {
         .iter()
         .zip(&cpu)
         .map(|(g, c)| (g[3] - c[3]).abs())
-        .fold(0.0f64, f64::max);
+        .fold(0.0f64, schemas::validation::max_or_nan);
     let last = (gpu.last().cloned(), cpu.last().cloned());
     println!(
         "box centre z: GPU vs CPU differ by at most {worst:.3e} m over {} rows; last rows {last:?}",

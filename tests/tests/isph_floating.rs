@@ -229,7 +229,7 @@ fn the_isph_floating_box_converges_under_implicit_coupling() {
         .iter()
         .zip(implicit)
         .map(|(a, b)| (a[3] - b[3]).abs())
-        .fold(0.0, f64::max);
+        .fold(0.0, schemas::validation::max_or_nan);
     println!(
         "implicit: box centre z at 0.05 s {z_end:.4} m (start 0.2000); largest |z_implicit − z_explicit| {gap:.2e} m over {} rows; fluid advances: explicit {}, implicit {}",
         implicit.len(),

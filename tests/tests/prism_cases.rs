@@ -187,10 +187,12 @@ fn the_washout_prism_fractures_and_the_coupled_run_goes_on() {
     let snapshots = frame_snapshots(&out);
     let nodes = snapshots.iter().flatten();
     let lowest = nodes.clone().map(|p| p[2]).fold(f64::INFINITY, f64::min);
-    let highest = nodes.map(|p| p[2]).fold(f64::NEG_INFINITY, f64::max);
-    let downstream = snapshots
-        .last()
-        .map_or(0.0, |s| s.iter().map(|p| p[0]).fold(0.0, f64::max));
+    let highest = nodes
+        .map(|p| p[2])
+        .fold(f64::NEG_INFINITY, schemas::validation::max_or_nan);
+    let downstream = snapshots.last().map_or(0.0, |s| {
+        s.iter().map(|p| p[0]).fold(0.0, schemas::validation::max_or_nan)
+    });
     eprintln!(
         "{} snapshots: lowest node {lowest:.2e} m, highest {highest:.3} m, last farthest downstream x = {downstream:.3} m",
         snapshots.len()

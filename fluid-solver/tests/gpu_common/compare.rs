@@ -117,7 +117,7 @@ pub fn largest_fluid_distance(a: &Particles, b: &Particles) -> f64 {
             let (p, q) = (a.position(i), b.position(j));
             ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
         })
-        .fold(0.0, f64::max)
+        .fold(0.0, schemas::validation::max_or_nan)
 }
 
 /// The largest component of |impulse_gpu − impulse_cpu| of the walls on the fluid, relative to
@@ -125,7 +125,10 @@ pub fn largest_fluid_distance(a: &Particles, b: &Particles) -> f64 {
 pub fn wall_impulse_difference(runs: &Runs) -> f64 {
     let (c, g) = (runs.cpu.totals().wall_impulse, runs.gpu.totals().wall_impulse);
     let scale = c.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    (0..3).map(|a| (g[a] - c[a]).abs()).fold(0.0, f64::max) / scale
+    (0..3)
+        .map(|a| (g[a] - c[a]).abs())
+        .fold(0.0, schemas::validation::max_or_nan)
+        / scale
 }
 
 /// The walls' impulse on the fluid is a sum of f32 pair terms: relative rounding u √(terms) ≈
