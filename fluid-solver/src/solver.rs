@@ -76,8 +76,8 @@ pub struct FluidSolver {
     pub(crate) bodies: RigidBodies,
     /// Where fluid may leave (removed and counted), and the most that may leave.
     pub(crate) open_top: OpenTop,
-    /// The wave maker's paddle, placed before every step.
-    paddle: Option<Paddle>,
+    /// The wave maker's paddle, placed before every step (on the GPU path by the device).
+    pub(crate) paddle: Option<Paddle>,
     /// Zones whose fluid velocity is relaxed after every step.
     damping: Vec<DampingZone>,
     max_removed_fraction: f64,

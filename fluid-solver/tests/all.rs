@@ -35,6 +35,7 @@ mod gpu_refusals;
 mod gpu_run;
 mod gpu_scene_walls;
 mod gpu_skips;
+mod gpu_wave_maker;
 mod hydrostatic;
 mod inflow_outflow;
 mod isph;

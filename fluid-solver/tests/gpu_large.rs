@@ -135,6 +135,7 @@ fn gpu_run(dev: GpuDevice, cfg: &FluidConfig, grid: &CellGrid, steps: usize, row
         solids: None,
         damping: Vec::new(),
         artificial_viscosity: 0.0,
+        paddle: None,
     };
     let mut gpu = GpuEmps::new(dev, &setup, grid, solver.particles()).unwrap_or_else(|e| panic!("{e}"));
     if let Some(row) = row {

@@ -1,7 +1,7 @@
 //! What the GPU path refuses: cases with features it does not run yet (by the case key or the
 //! command-line flag), and no adapter at all (exit code 2 with how to get one); and what it
-//! accepts since issue 38 (damping zones, the artificial viscosity, mesh solids, terrains and
-//! bodies from meshes).
+//! accepts since issue 38 (damping zones, the artificial viscosity, mesh solids, terrains,
+//! bodies from meshes and wave makers).
 
 use crate::gpu_common;
 
@@ -86,10 +86,9 @@ fn gpu_refusal_of(case: &str, edit: impl Fn(&mut FluidConfig)) -> String {
     }
 }
 
-/// Open boundaries and wave makers are still refused, each by name (the case files that have
-/// them, put on the GPU).
+/// Open boundaries are still refused, each by name (the case file that has them, put on the GPU).
 #[test]
-fn gpu_backend_refuses_open_boundaries_and_wave_makers_by_name() {
+fn gpu_backend_refuses_open_boundaries_by_name() {
     let e = gpu_refusal_of("bridge-washout-small", |_| {});
     assert!(
         e.contains("`fluid.x.backend`") && e.contains("an inflow boundary"),
@@ -97,14 +96,21 @@ fn gpu_backend_refuses_open_boundaries_and_wave_makers_by_name() {
     );
     let e = gpu_refusal_of("bridge-washout-small", |c| c.inflow = None);
     assert!(e.contains("an outflow boundary"), "{e}");
-    let e = gpu_refusal_of("bridge-deck-solitary", |_| {});
-    assert!(e.contains("a wave maker"), "{e}");
-    let e = gpu_refusal_of("bridge-deck-solitary", |c| {
-        if let Some(w) = &mut c.wave_maker {
-            w.kind = PaddleKind::Flap;
+}
+
+/// Wave makers run on the GPU since issue 38 (`gpu_wave_maker.rs`): the case file with a piston,
+/// and the same with a flap, are accepted with `backend = "gpu"`.
+#[test]
+fn gpu_backend_accepts_wave_makers() {
+    for kind in [PaddleKind::Piston, PaddleKind::Flap] {
+        let (_, mut cfg) = crate::common::load_case("bridge-deck-solitary");
+        if let Some(w) = &mut cfg.wave_maker {
+            w.kind = kind;
         }
-    });
-    assert!(e.contains("a flap wave maker"), "{e}");
+        assert!(cfg.wave_maker.is_some(), "bridge-deck-solitary has a wave maker");
+        cfg.gpu_support("fluid.x")
+            .unwrap_or_else(|e| panic!("{kind:?}: `{}`: {}", e.key, e.message));
+    }
 }
 
 /// What issue 38 put on the device is accepted with `backend = "gpu"`, each alone: a damping

@@ -85,6 +85,26 @@ impl Paddle {
         }
     }
 
+    /// The paddle's particle ids (one contiguous range).
+    pub fn ids(&self) -> std::ops::Range<u32> {
+        self.first..self.first + self.rest_x.len() as u32
+    }
+
+    /// Each paddle particle's (x, z) at rest, by id − the first id.
+    pub fn rest(&self) -> impl Iterator<Item = [f64; 2]> + '_ {
+        self.rest_x.iter().zip(&self.rest_z).map(|(&x, &z)| [x, z])
+    }
+
+    /// The prescribed motion.
+    pub fn motion(&self) -> &WaveMakerMotion {
+        &self.motion
+    }
+
+    /// x of a flap's hinge: the paddle's front face at rest.
+    pub fn hinge_x(&self) -> f64 {
+        self.hinge_x
+    }
+
     /// The index into the rest positions of particle `id`, if it is a paddle particle.
     fn index(&self, id: u32) -> Option<usize> {
         id.checked_sub(self.first)

@@ -13,6 +13,8 @@
 //! its three sums (loads, the fluid-side reaction, the walls' contact; f32, 3 × 32 B) and three
 //! partials per reduction group (f32, 3 × 32 B). A body particle's load of one exchange lives in
 //! its `acc` slot and the walls' share in its `wallf` slot, so bodies add nothing per particle.
+//! The wave maker's paddle keeps each of its particles' rest position in a row of the members'
+//! buffer after the bodies' (32 B per paddle particle, `shaders/paddle.wgsl`).
 //! Damping zones take 48 B each (`shaders/damping.wgsl`); mesh solids and terrains one bit per
 //! site of the tank's lattice (`shaders/solids.wgsl`), followed in the same buffer by the
 //! detector's 32 B per body and one bit per site of each mesh body's block of sites
@@ -58,8 +60,8 @@ pub const SOLID_BITS: usize = 22;
 
 impl Buffers {
     /// Buffers for `n` particles, `cells` cells, `boxes` wall blocks, `groups` reduction groups,
-    /// `bodies` bodies and `members` body particles, `zones` damping zones and `solid_words`
-    /// words of solid sites and the bodies' table ([`super::body_inside`]).
+    /// `bodies` bodies and `members` rows of body and paddle particles, `zones` damping zones and
+    /// `solid_words` words of solid sites and the bodies' table ([`super::body_inside`]).
     pub fn new(
         dev: &GpuDevice,
         n: usize,

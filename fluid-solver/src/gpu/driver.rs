@@ -4,6 +4,7 @@
 //! diagnostic needs them ([`FluidSolver::sync_host`]).
 
 use super::device::{GpuDevice, NoAdapter};
+use super::paddle::{PaddlePlacement, PaddleSites};
 use super::solids::SolidBits;
 use super::step::{GpuEmps, GpuSetup};
 use crate::method::StepTotals;
@@ -68,6 +69,7 @@ impl FluidSolver {
                 .map_err(GpuStartError::Unsupported)?,
             damping: cfg.damping.clone(),
             artificial_viscosity: cfg.artificial_viscosity,
+            paddle: self.paddle.as_ref().map(PaddleSites::of),
         };
         let step = GpuEmps::new(dev, &setup, &self.state.grid, &self.state.particles)
             .map_err(GpuStartError::Unsupported)?;
@@ -119,6 +121,10 @@ impl FluidSolver {
         if self.host_dirty {
             dev.upload(&self.state.particles);
             self.host_dirty = false;
+        }
+        // the paddle where the CPU path places it before its step from t to t + dt
+        if let Some(paddle) = &self.paddle {
+            dev.set_paddle(&PaddlePlacement::of(paddle, self.state.time, dt));
         }
         let report = dev.advance(dt);
         let n = dev.len() as u64;

@@ -6,7 +6,7 @@ use super::buffers::Buffers;
 use super::device::GpuDevice;
 
 /// The WGSL sources, joined into one module (the bindings are declared once in `common.wgsl`).
-const SOURCES: [&str; 10] = [
+const SOURCES: [&str; 11] = [
     include_str!("shaders/common.wgsl"),
     include_str!("shaders/cell_sort.wgsl"),
     include_str!("shaders/emps.wgsl"),
@@ -17,6 +17,7 @@ const SOURCES: [&str; 10] = [
     include_str!("shaders/bodies.wgsl"),
     include_str!("shaders/body_inside.wgsl"),
     include_str!("shaders/reaction.wgsl"),
+    include_str!("shaders/paddle.wgsl"),
 ];
 
 /// One pipeline per kernel, and the bind group over the step's buffers.
@@ -54,6 +55,7 @@ pub struct Kernels {
     pub react_viscous: wgpu::ComputePipeline,
     pub react_pressure: wgpu::ComputePipeline,
     pub react_collision: wgpu::ComputePipeline,
+    pub place_paddle: wgpu::ComputePipeline,
     pub bind_group: wgpu::BindGroup,
     /// Workgroups per row of a dispatch: the device's limit per dimension (65 535 on most),
     /// or fewer to run the 2-D path at small sizes ([`super::GpuEmps::set_dispatch_row`]).
@@ -151,6 +153,7 @@ impl Kernels {
             react_viscous: make("react_viscous"),
             react_pressure: make("react_pressure"),
             react_collision: make("react_collision"),
+            place_paddle: make("place_paddle"),
             bind_group,
             row: device.limits().max_compute_workgroups_per_dimension,
         }

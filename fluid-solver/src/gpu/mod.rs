@@ -13,6 +13,7 @@
 //! - [`solids`]: mesh solids and terrains: their sites for the detector;
 //! - [`body_inside`]: the detector's "inside a body" check, box and mesh bodies;
 //! - [`damping`]: damping zones, relaxed after each step;
+//! - [`paddle`]: the wave maker's paddle, placed before each step by the prescribed motion;
 //! - [`reduce`]: the instability detector's scan and the step's totals, reduced on the device;
 //! - [`driver`]: the solver's step on the device (escapes, detector, host copies).
 
@@ -24,6 +25,7 @@ pub mod damping;
 pub mod device;
 pub mod driver;
 pub mod kernels;
+pub mod paddle;
 pub mod params;
 pub mod reduce;
 pub mod solids;

@@ -60,6 +60,22 @@ pub struct Params {
     pub av_scale: f32,
     pub av_eta2: f32,
     pub body_table: u32,
+    /// The wave maker's paddle ([`super::paddle`]): its first particle id and its particles
+    /// (0: none), the row of the members' buffer where its rest positions start, and this
+    /// step's placement (set with each step's Δt): a piston's shift and speed, a flap's
+    /// cos θ − 1, sin θ and their changes over the step / Δt, about the hinge (x, z).
+    pub paddle_first: u32,
+    pub paddle_count: u32,
+    pub paddle_row: u32,
+    pub paddle_shift: f32,
+    pub paddle_speed: f32,
+    pub paddle_cos_m1: f32,
+    pub paddle_sin: f32,
+    pub paddle_dcos: f32,
+    pub paddle_dsin: f32,
+    pub hinge_x: f32,
+    pub hinge_z: f32,
+    pub pad_paddle: u32,
 }
 
 /// Converts to the device's f32.

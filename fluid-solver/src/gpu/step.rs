@@ -1,11 +1,13 @@
-//! One E-MPS step on the device, the stages of [`crate::emps::step`] in the same order: (when the
-//! viscous term is on) cell sort at r^k and S1-4, then S1-10/S1-11, cell sort at r*, S1-15 with
-//! S1-14, S1-3 (with the artificial viscosity when on), S1-12/S1-13, the collision pass and its
-//! update, the damping zones (as [`crate::solver`] relaxes them after the method's step), and the
-//! device reduction of the detector and the totals. Only the 32 B per 256 particles of that
-//! reduction come back per step, and with resolved bodies 96 B per body (their loads, the fluid's
-//! reaction summed from the fluid's side and the walls' contact, each a force and a moment reduced
-//! on the device after each exchange: [`super::bodies`]).
+//! One E-MPS step on the device, the stages of [`crate::emps::step`] in the same order, after the
+//! wave maker's paddle and the bodies are placed (as [`crate::solver`] places them before the
+//! method's step; [`super::paddle`], [`super::bodies`]): (when the viscous term is on) cell sort
+//! at r^k and S1-4, then S1-10/S1-11, cell sort at r*, S1-15 with S1-14, S1-3 (with the artificial
+//! viscosity when on), S1-12/S1-13, the collision pass and its update, the damping zones (as
+//! [`crate::solver`] relaxes them after the method's step), and the device reduction of the
+//! detector and the totals. Only the 32 B per 256 particles of that reduction come back per step,
+//! and with resolved bodies 96 B per body (their loads, the fluid's reaction summed from the
+//! fluid's side and the walls' contact, each a force and a moment reduced on the device after each
+//! exchange: [`super::bodies`]).
 
 use super::bodies::{self, BodyLoad};
 use super::body_inside;
@@ -16,6 +18,7 @@ use super::cell_sort;
 use super::damping;
 use super::device::GpuDevice;
 use super::kernels::{dispatch, dispatch_layers, Kernels, WG, WIDE_WG};
+use super::paddle::{PaddlePlacement, PaddleSites};
 use super::params::{f32x3, Params};
 use super::reduce::{self, Partial, StepReport};
 use super::solids::SolidBits;
@@ -57,6 +60,9 @@ pub struct GpuSetup {
     pub damping: Vec<DampingConfig>,
     /// α of the E-MPS artificial viscosity (0: off).
     pub artificial_viscosity: f64,
+    /// The wave maker's paddle (`None` without one), placed before each step by
+    /// [`GpuEmps::set_paddle`]'s placement.
+    pub paddle: Option<PaddleSites>,
 }
 
 /// The E-MPS step on a GPU: the device, its buffers and kernels.
@@ -131,6 +137,12 @@ impl GpuEmps {
         let zones = damping::zones(&setup.damping);
         let viscous = ph.viscous();
         let n_bodies = setup.body_pose.len() / 7;
+        // the paddle's rest positions follow the bodies' members in their buffer
+        let mut member_rows = bodies::members(&setup.members);
+        let paddle_row = member_rows.len();
+        let paddle = setup.paddle.as_ref();
+        member_rows.extend(paddle.map_or(Vec::new(), PaddleSites::rows));
+        let paddle_count = member_rows.len() - paddle_row;
         // artificial_viscosity.rs: q_ij = −α ρ0 c h (u_ij · r_ij) / (r² + 0.01 h²), h = r_e,grad / 2
         let h_av = 0.5 * k.re_grad;
         let params = Params {
@@ -181,16 +193,28 @@ impl GpuEmps {
             av_eta2: (0.01 * h_av * h_av) as f32,
             // below 2²⁷: the solids' lattice numbers at most 2³² sites (`SolidBits::of`)
             body_table: body_table as u32,
+            paddle_first: paddle.map_or(0, |p| p.first),
+            paddle_count: paddle_count as u32,
+            paddle_row: paddle_row as u32,
+            paddle_shift: 0.0,
+            paddle_speed: 0.0,
+            paddle_cos_m1: 0.0,
+            paddle_sin: 0.0,
+            paddle_dcos: 0.0,
+            paddle_dsin: 0.0,
+            hinge_x: paddle.map_or(0.0, |p| p.hinge[0] as f32),
+            hinge_z: paddle.map_or(0.0, |p| p.hinge[1] as f32),
+            pad_paddle: 0,
         };
         let groups = n.div_ceil(WIDE_WG as usize);
-        let sizes = (n_bodies, setup.members.len());
+        let sizes = (n_bodies, member_rows.len());
         let scene = (zones.len(), site_words.len());
         let mut buffers = Buffers::new(&dev, n, cells, boxes.len() / 2, groups, sizes, scene);
         let kernels = Kernels::new(&dev, &buffers);
         buffers.write(&dev, BOXES, &boxes);
         buffers.write(&dev, DAMPING, &zones);
         buffers.write(&dev, SOLID_BITS, &site_words);
-        buffers.write(&dev, MEMBERS, &bodies::members(&setup.members));
+        buffers.write(&dev, MEMBERS, &member_rows);
         let kin = bodies::kinematics(&setup.body_pose, &setup.body_velocity, 0.0);
         buffers.write(&dev, BODY_KIN, &kin);
         let staging = dev.device.create_buffer(&wgpu::BufferDescriptor {
@@ -254,6 +278,20 @@ impl GpuEmps {
         self.place_pending = true;
     }
 
+    /// Hands over the wave maker's paddle's placement for the next step (from t to t + Δt, as
+    /// [`crate::boundaries::paddle::Paddle::place`] places it on the CPU); the step places the
+    /// paddle particles by it first. Call it before every step of a case with a paddle.
+    pub fn set_paddle(&mut self, p: &PaddlePlacement) {
+        let f = |x: f64| x as f32;
+        let prm = &mut self.params;
+        prm.paddle_shift = f(p.shift);
+        prm.paddle_speed = f(p.speed);
+        prm.paddle_cos_m1 = f(p.cos_m1);
+        prm.paddle_sin = f(p.sin);
+        prm.paddle_dcos = f(p.dcos);
+        prm.paddle_dsin = f(p.dsin);
+    }
+
     /// Force and moment of the fluid's pair terms and the walls' contact on each body in the
     /// last step (6 per body, about the centres handed over for it).
     pub fn body_loads(&self) -> &[f64] {
@@ -310,6 +348,7 @@ impl GpuEmps {
         let groups = self.n.div_ceil(WIDE_WG as usize).max(1);
         let (bodies, place) = (self.bodies as u32, self.place_pending);
         let (av, damped) = (self.params.av_scale != 0.0, self.params.n_damping > 0);
+        let paddle = self.params.paddle_count > 0;
         self.place_pending = false;
         // after an exchange's pass: each body particle's force summed per body, and the reaction
         // summed from the fluid particles' side (`react`), on the device
@@ -326,6 +365,9 @@ impl GpuEmps {
             }
             if place {
                 dispatch(p, k, &k.place_bodies, n, WG);
+            }
+            if paddle {
+                dispatch(p, k, &k.place_paddle, n, WG);
             }
         });
         if rec.step.viscous {

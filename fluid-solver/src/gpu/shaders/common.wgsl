@@ -20,6 +20,9 @@ struct Params {
     solid_lo: vec3<f32>, solid_inv_ds: f32,
     solid_n: vec3<u32>, solids: u32,
     n_damping: u32, av_scale: f32, av_eta2: f32, body_table: u32,
+    paddle_first: u32, paddle_count: u32, paddle_row: u32, paddle_shift: f32,
+    paddle_speed: f32, paddle_cos_m1: f32, paddle_sin: f32, paddle_dcos: f32,
+    paddle_dsin: f32, hinge_x: f32, hinge_z: f32, pad_paddle: u32,
 };
 
 // Kind codes (src/particles/kind.rs).
@@ -69,7 +72,8 @@ const FLUID_CELL: u32 = 0x80000000u;
 @group(0) @binding(14) var<storage, read_write> boxes: array<vec4<f32>>;
 // One partial per workgroup of the reduction (see reduce.wgsl).
 @group(0) @binding(15) var<storage, read_write> partials: array<Partial>;
-// The bodies' particles, sorted by id (bodies.wgsl).
+// The bodies' particles, sorted by id (bodies.wgsl); then, from row prm.paddle_row, the wave
+// maker's paddle particles' rest positions by id − prm.paddle_first (paddle.wgsl).
 @group(0) @binding(16) var<storage, read_write> members: array<Member>;
 // Each body's pose and velocity, from the host each step it is given one.
 @group(0) @binding(17) var<storage, read_write> body_kin: array<BodyKin>;

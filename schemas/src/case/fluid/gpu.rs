@@ -1,6 +1,6 @@
 //! `backend = "gpu"`: what the GPU path of a fluid section refuses.
 
-use super::{FluidConfig, FluidMethodName, PaddleKind};
+use super::{FluidConfig, FluidMethodName};
 use crate::case::FieldError;
 
 /// The largest f32 rounding of a position the GPU path accepts, in spacings: 1e-3 Δs is 5 % of
@@ -32,14 +32,8 @@ impl FluidConfig {
         if self.outflow.is_some() {
             return refuse("an outflow boundary ([outflow])");
         }
-        if let Some(w) = &self.wave_maker {
-            return refuse(match w.kind {
-                PaddleKind::Piston => "a wave maker ([wave_maker]: a paddle moving by a prescribed stroke)",
-                PaddleKind::Flap => {
-                    "a flap wave maker ([wave_maker] with kind = \"flap\": a paddle turning about its hinge)"
-                }
-            });
-        }
+        // a wave maker's paddle (piston or flap) is placed on the device by the motion the host
+        // evaluates each step (fluid-solver's gpu/paddle.rs)
         if let Some(p) = self.probe.iter().find(|p| p.window.is_some()) {
             return refuse(&format!(
                 "filtered probes (probe `{}` has a window; probes are read from a copy at each probe row, not every step)",

@@ -193,7 +193,7 @@ pub struct FluidConfig {
     /// Sea beds and beaches: the ground below a height grid or a plane, made of wall particles.
     #[serde(default)]
     pub terrain: Vec<TerrainConfig>,
-    /// CPU only: a piston or flap wave maker.
+    /// A piston or flap wave maker.
     #[serde(default)]
     pub wave_maker: Option<WaveMakerConfig>,
     /// A solitary wave in the tank at t = 0 (as NTHMP benchmark 1 starts), instead of a paddle
