@@ -30,6 +30,7 @@ mod gpu_front;
 mod gpu_hydrostatic;
 mod gpu_large;
 mod gpu_mesh_bodies;
+mod gpu_open_boundaries;
 mod gpu_pressure_stages;
 mod gpu_refusals;
 mod gpu_run;

@@ -136,6 +136,7 @@ fn gpu_run(dev: GpuDevice, cfg: &FluidConfig, grid: &CellGrid, steps: usize, row
         damping: Vec::new(),
         artificial_viscosity: 0.0,
         paddle: None,
+        headroom: 0,
     };
     let mut gpu = GpuEmps::new(dev, &setup, grid, solver.particles()).unwrap_or_else(|e| panic!("{e}"));
     if let Some(row) = row {

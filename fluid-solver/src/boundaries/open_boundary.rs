@@ -225,6 +225,18 @@ impl OpenBoundaries {
         self.balance
     }
 
+    /// x of the outflow plane, when there is one.
+    pub fn outflow_plane(&self) -> Option<f64> {
+        self.outflow
+    }
+
+    /// Adds fluid particles removed behind the outflow plane elsewhere (the GPU path removes
+    /// them on the device and runs [`OpenBoundaries::apply`] on its host copy of the strip
+    /// only: `crate::gpu::open_boundary`).
+    pub(crate) fn add_removed(&mut self, removed: u64) {
+        self.balance.removed += removed;
+    }
+
     /// The boundaries' part of a step from `t` to `t + dt`, done before the E-MPS stages: strip
     /// particles past the inflow plane become fluid, the rest of the strip moves by
     /// u(t + dt/2)·dt and gets its new back layers and the rows of h(t + dt) (added or

@@ -5,8 +5,9 @@
 //! the force from non-fluid neighbours `vec4<f32>` (16 B), candidates `u32` (4 B), cell before and
 //! after the sort and the permutation 3 × `u32` (12 B): 92 B (the sort gathers through the pair
 //! pass's result and the permutation, free while it runs, so it needs no spare copies). Per
-//! cell: start and count `u32` (8 B; the count's top bit flags a cell with fluid), and 4 B per
-//! 4096 cells of the scan's block totals; with resolved bodies also the mask of bodies near it
+//! cell: start and count `u32` (8 B; the count's top bit flags a cell with fluid; after the
+//! counts 16 B of the open boundaries' counters), and 4 B per 4096 cells of the scan's block
+//! totals; with resolved bodies also the mask of bodies near it
 //! (`u32`, 4 B: 12 B). Per 256 particles one reduction partial (32 B). Resolved bodies
 //! (`shaders/bodies.wgsl`, `shaders/reaction.wgsl`): per body particle its offset from the
 //! body's initial centre (f32), id and body (32 B); per body its pose and velocity (f32, 64 B),
@@ -15,6 +16,8 @@
 //! its `acc` slot and the walls' share in its `wallf` slot, so bodies add nothing per particle.
 //! The wave maker's paddle keeps each of its particles' rest position in a row of the members'
 //! buffer after the bodies' (32 B per paddle particle, `shaders/paddle.wgsl`).
+//! With an inflow the particle arrays hold room for more particles than the start's
+//! ([`super::open_boundary`]), and are regrown when the strip has added more.
 //! Damping zones take 48 B each (`shaders/damping.wgsl`); mesh solids and terrains one bit per
 //! site of the tank's lattice (`shaders/solids.wgsl`), followed in the same buffer by the
 //! detector's 32 B per body and one bit per site of each mesh body's block of sites
@@ -47,9 +50,9 @@ pub const VEL: usize = 2;
 pub const ID: usize = 3;
 pub const DENS: usize = 4;
 pub const ACC: usize = 5;
+pub const CELL_COUNT: usize = 11;
 pub const PERM: usize = 9;
 pub const CELL_START: usize = 10;
-pub const CELL_COUNT: usize = 11;
 pub const BOXES: usize = 14;
 pub const PARTIALS: usize = 15;
 pub const MEMBERS: usize = 16;
@@ -57,6 +60,9 @@ pub const BODY_KIN: usize = 17;
 pub const BODY_LOADS: usize = 19;
 pub const DAMPING: usize = 21;
 pub const SOLID_BITS: usize = 22;
+
+/// Words after the cells' counts: the open boundaries' counters (`shaders/open_boundary.wgsl`).
+pub const OPEN_COUNTERS: u64 = 4;
 
 impl Buffers {
     /// Buffers for `n` particles, `cells` cells, `boxes` wall blocks, `groups` reduction groups,
@@ -90,7 +96,7 @@ impl Buffers {
             4 * n,                                                   // 8 cell_of
             4 * n,                                                   // 9 perm
             4 * (cells + 1),                                         // 10 cell_start
-            4 * cells,                                               // 11 cell_count
+            4 * (cells + OPEN_COUNTERS),                             // 11 cell_count
             4 * block_sums,                                          // 12 block sums
             4 * n,                                                   // 13 cell_sorted
             32 * boxes.max(1) as u64,                                // 14 boxes
@@ -144,9 +150,15 @@ impl Buffers {
 
     /// Writes `data` at the start of binding `b`'s buffer.
     pub fn write<T: Pod>(&mut self, dev: &GpuDevice, b: usize, data: &[T]) {
+        self.write_at(dev, b, 0, data);
+    }
+
+    /// Writes `data` into binding `b`'s buffer from its element `first` on.
+    pub fn write_at<T: Pod>(&mut self, dev: &GpuDevice, b: usize, first: usize, data: &[T]) {
         let bytes: &[u8] = bytemuck::cast_slice(data);
         if !bytes.is_empty() {
-            dev.queue.write_buffer(self.at(b), 0, bytes);
+            let offset = (first * std::mem::size_of::<T>()) as u64;
+            dev.queue.write_buffer(self.at(b), offset, bytes);
             self.uploaded += bytes.len() as u64;
         }
     }
@@ -159,6 +171,11 @@ impl Buffers {
 
     /// Copies the particles to the device (positions, velocities and pressures in f32).
     pub fn upload(&mut self, dev: &GpuDevice, p: &Particles) {
+        self.upload_at(dev, p, 0);
+    }
+
+    /// Copies the particles to the device's slots `first` … `first + p.len()`.
+    pub fn upload_at(&mut self, dev: &GpuDevice, p: &Particles, first: usize) {
         let n = p.len();
         let pos: Vec<[f32; 4]> = (0..n)
             .map(|i| [p.x[i] as f32, p.y[i] as f32, p.z[i] as f32, f32::from(p.kind[i])])
@@ -169,10 +186,10 @@ impl Buffers {
         let dens: Vec<[f32; 2]> = (0..n)
             .map(|i| [p.number_density[i] as f32, p.pressure[i] as f32])
             .collect();
-        self.write(dev, POS, &pos);
-        self.write(dev, VEL, &vel);
-        self.write(dev, ID, &p.id);
-        self.write(dev, DENS, &dens);
+        self.write_at(dev, POS, first, &pos);
+        self.write_at(dev, VEL, first, &vel);
+        self.write_at(dev, ID, first, &p.id);
+        self.write_at(dev, DENS, first, &dens);
     }
 
     /// Copies the first `n` particles back into `p` (its arrays are replaced; kinds from the

@@ -70,12 +70,22 @@ impl FluidSolver {
             damping: cfg.damping.clone(),
             artificial_viscosity: cfg.artificial_viscosity,
             paddle: self.paddle.as_ref().map(PaddleSites::of),
+            headroom: self.inflow_headroom(),
         };
         let step = GpuEmps::new(dev, &setup, &self.state.grid, &self.state.particles)
             .map_err(GpuStartError::Unsupported)?;
         self.device = Some(Box::new(step));
         self.host_stale = false;
         Ok(())
+    }
+
+    /// Room the device's arrays keep for particles an inflow adds: a quarter of the start's
+    /// count and at least 4096 (regrown by half when full).
+    fn inflow_headroom(&self) -> usize {
+        match self.state.open_boundaries.has_inflow() {
+            true => (self.state.particles.len() / 4).max(4096),
+            false => 0,
+        }
     }
 
     /// The device step, when the solver runs on a GPU.
@@ -118,9 +128,38 @@ impl FluidSolver {
         let Some(dev) = self.device.as_deref_mut() else {
             unreachable!("step_on_device is called with a device")
         };
+        let device_error = |time: f64, steps: u64, quantity: &'static str, message: String| Instability {
+            step: steps + 1,
+            time,
+            particle: None,
+            quantity,
+            message,
+        };
         if self.host_dirty {
-            dev.upload(&self.state.particles);
+            dev.upload(&self.state.particles)
+                .map_err(|m| device_error(self.state.time, self.state.steps, "GPU arrays", m))?;
             self.host_dirty = false;
+        }
+        // the open boundaries before the step, as on the CPU: the host's copy of the strip runs
+        // the CPU's rule, the device converts, moves and removes by it (`gpu/open_boundary.rs`)
+        if self.state.open_boundaries.is_active() {
+            let st = &mut self.state;
+            let plan = dev.strip.plan(&mut st.open_boundaries, st.time, dt);
+            let [entered, removed, withdrawn] = dev
+                .open_boundaries(&plan.pass, &plan.rows)
+                .map_err(|m| device_error(st.time, st.steps, "GPU arrays", m))?;
+            if entered != plan.entered || withdrawn != plan.withdrawn {
+                return Err(device_error(
+                    st.time,
+                    st.steps,
+                    "inflow strip",
+                    format!(
+                        "the GPU's inflow strip parted from the host's: {entered} particles entered and {withdrawn} were withdrawn on the device, {} and {} on the host; use backend = \"cpu\"",
+                        plan.entered, plan.withdrawn
+                    ),
+                ));
+            }
+            st.open_boundaries.add_removed(removed);
         }
         // the paddle where the CPU path places it before its step from t to t + dt
         if let Some(paddle) = &self.paddle {

@@ -6,7 +6,7 @@ use super::buffers::Buffers;
 use super::device::GpuDevice;
 
 /// The WGSL sources, joined into one module (the bindings are declared once in `common.wgsl`).
-const SOURCES: [&str; 11] = [
+const SOURCES: [&str; 12] = [
     include_str!("shaders/common.wgsl"),
     include_str!("shaders/cell_sort.wgsl"),
     include_str!("shaders/emps.wgsl"),
@@ -18,6 +18,7 @@ const SOURCES: [&str; 11] = [
     include_str!("shaders/body_inside.wgsl"),
     include_str!("shaders/reaction.wgsl"),
     include_str!("shaders/paddle.wgsl"),
+    include_str!("shaders/open_boundary.wgsl"),
 ];
 
 /// One pipeline per kernel, and the bind group over the step's buffers.
@@ -56,6 +57,7 @@ pub struct Kernels {
     pub react_pressure: wgpu::ComputePipeline,
     pub react_collision: wgpu::ComputePipeline,
     pub place_paddle: wgpu::ComputePipeline,
+    pub open_boundaries: wgpu::ComputePipeline,
     pub bind_group: wgpu::BindGroup,
     /// Workgroups per row of a dispatch: the device's limit per dimension (65 535 on most),
     /// or fewer to run the 2-D path at small sizes ([`super::GpuEmps::set_dispatch_row`]).
@@ -154,6 +156,7 @@ impl Kernels {
             react_pressure: make("react_pressure"),
             react_collision: make("react_collision"),
             place_paddle: make("place_paddle"),
+            open_boundaries: make("open_boundaries"),
             bind_group,
             row: device.limits().max_compute_workgroups_per_dimension,
         }

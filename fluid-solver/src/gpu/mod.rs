@@ -14,6 +14,8 @@
 //! - [`body_inside`]: the detector's "inside a body" check, box and mesh bodies;
 //! - [`damping`]: damping zones, relaxed after each step;
 //! - [`paddle`]: the wave maker's paddle, placed before each step by the prescribed motion;
+//! - [`open_boundary`]: inflow and outflow: the strip's new rows appended, particles removed and
+//!   the arrays compacted on the device;
 //! - [`reduce`]: the instability detector's scan and the step's totals, reduced on the device;
 //! - [`driver`]: the solver's step on the device (escapes, detector, host copies).
 
@@ -25,6 +27,7 @@ pub mod damping;
 pub mod device;
 pub mod driver;
 pub mod kernels;
+pub mod open_boundary;
 pub mod paddle;
 pub mod params;
 pub mod reduce;

@@ -76,6 +76,17 @@ pub struct Params {
     pub hinge_x: f32,
     pub hinge_z: f32,
     pub pad_paddle: u32,
+    /// The open boundaries' pass ([`super::open_boundary`], set before each step of a case
+    /// with an inflow or an outflow): the strip's velocity u(t + Δt/2) and travel u Δt, the x
+    /// from which a strip particle becomes fluid and the z above which one is withdrawn (each
+    /// half-way between the host's strip particles that do and those that do not; +∞: none),
+    /// and the outflow plane (+∞: none).
+    pub inflow_u: f32,
+    pub inflow_dx: f32,
+    pub inflow_enter: f32,
+    pub inflow_cut: f32,
+    pub outflow_x: f32,
+    pub pad_open: [u32; 3],
 }
 
 /// Converts to the device's f32.

@@ -12,12 +12,14 @@
 use super::bodies::{self, BodyLoad};
 use super::body_inside;
 use super::buffers::{
-    map_read, Buffers, BODY_KIN, BODY_LOADS, BOXES, DAMPING, MEMBERS, PARTIALS, SOLID_BITS, SUMS,
+    map_read, Buffers, BODY_KIN, BODY_LOADS, BOXES, CELL_COUNT, DAMPING, MEMBERS, OPEN_COUNTERS, PARTIALS,
+    SOLID_BITS, SUMS,
 };
 use super::cell_sort;
 use super::damping;
 use super::device::GpuDevice;
 use super::kernels::{dispatch, dispatch_layers, Kernels, WG, WIDE_WG};
+use super::open_boundary::{OpenPass, StripCopy};
 use super::paddle::{PaddlePlacement, PaddleSites};
 use super::params::{f32x3, Params};
 use super::reduce::{self, Partial, StepReport};
@@ -63,6 +65,20 @@ pub struct GpuSetup {
     /// The wave maker's paddle (`None` without one), placed before each step by
     /// [`GpuEmps::set_paddle`]'s placement.
     pub paddle: Option<PaddleSites>,
+    /// Room for this many particles more than the start's (an inflow adds particles; the
+    /// arrays are regrown when they are full: [`GpuEmps::open_boundaries`]).
+    pub headroom: usize,
+}
+
+/// What the buffers were made for, besides the particles (to regrow them).
+#[derive(Debug, Clone, Copy)]
+struct Shape {
+    cells: usize,
+    boxes: usize,
+    bodies: (usize, usize),
+    scene: (usize, usize),
+    /// The largest binding the device allows [B].
+    largest: u64,
 }
 
 /// The E-MPS step on a GPU: the device, its buffers and kernels.
@@ -84,6 +100,11 @@ pub struct GpuEmps {
     /// Submit and wait after each stage to time it (the benchmark); off in runs.
     profile: bool,
     times: StageTimes,
+    shape: Shape,
+    /// Where the open boundaries' counts are read back.
+    open_staging: wgpu::Buffer,
+    /// The host's copy of the inflow strip (empty without an inflow).
+    pub strip: StripCopy,
 }
 
 impl fmt::Debug for GpuEmps {
@@ -96,14 +117,15 @@ impl GpuEmps {
     /// Uploads `p` (sorted by `grid`, whose geometry the device copies) to `dev`.
     pub fn new(dev: GpuDevice, setup: &GpuSetup, grid: &CellGrid, p: &Particles) -> Result<GpuEmps, String> {
         let n = p.len();
+        let capacity = n + setup.headroom;
         let (origin, cell, dims) = grid.geometry();
         let cells = dims[0] * dims[1] * dims[2];
         let limits = dev.device.limits();
         let largest = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size);
-        if 16 * n as u64 > largest {
+        if 16 * capacity as u64 > largest {
             return Err(format!(
-                "the GPU binds at most {largest} B per array, {n} particles need {} B; use backend = \"cpu\"",
-                16 * n as u64
+                "the GPU binds at most {largest} B per array, {capacity} particles need {} B; use backend = \"cpu\"",
+                16 * capacity as u64
             ));
         }
         let starts = 4 * (cells as u64 + 1);
@@ -205,11 +227,24 @@ impl GpuEmps {
             hinge_x: paddle.map_or(0.0, |p| p.hinge[0] as f32),
             hinge_z: paddle.map_or(0.0, |p| p.hinge[1] as f32),
             pad_paddle: 0,
+            inflow_u: 0.0,
+            inflow_dx: 0.0,
+            inflow_enter: f32::INFINITY,
+            inflow_cut: f32::INFINITY,
+            outflow_x: f32::INFINITY,
+            pad_open: [0; 3],
         };
-        let groups = n.div_ceil(WIDE_WG as usize);
+        let groups = capacity.div_ceil(WIDE_WG as usize);
         let sizes = (n_bodies, member_rows.len());
         let scene = (zones.len(), site_words.len());
-        let mut buffers = Buffers::new(&dev, n, cells, boxes.len() / 2, groups, sizes, scene);
+        let shape = Shape {
+            cells,
+            boxes: boxes.len() / 2,
+            bodies: sizes,
+            scene,
+            largest,
+        };
+        let mut buffers = Buffers::new(&dev, capacity, cells, shape.boxes, groups, sizes, scene);
         let kernels = Kernels::new(&dev, &buffers);
         buffers.write(&dev, BOXES, &boxes);
         buffers.write(&dev, DAMPING, &zones);
@@ -217,13 +252,8 @@ impl GpuEmps {
         buffers.write(&dev, MEMBERS, &member_rows);
         let kin = bodies::kinematics(&setup.body_pose, &setup.body_velocity, 0.0);
         buffers.write(&dev, BODY_KIN, &kin);
-        let staging = dev.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("partials"),
-            size: (groups.max(1) * std::mem::size_of::<Partial>()
-                + SUMS as usize * n_bodies * std::mem::size_of::<BodyLoad>()) as u64,
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let staging = staging_buffer(&dev, "partials", groups, n_bodies);
+        let open_staging = staging_buffer(&dev, "open boundaries", 0, 0);
         let mut step = GpuEmps {
             staging,
             bodies: n_bodies,
@@ -238,8 +268,11 @@ impl GpuEmps {
             viscous,
             profile: false,
             times: StageTimes::default(),
+            shape,
+            open_staging,
+            strip: StripCopy::of(p, k.spacing),
         };
-        step.upload(p);
+        step.upload(p)?;
         Ok(step)
     }
 
@@ -253,20 +286,116 @@ impl GpuEmps {
         self.n == 0
     }
 
-    /// Replaces the device's particles by `p` (at most as many as at the start).
-    pub fn upload(&mut self, p: &Particles) {
-        assert!(
-            p.len() <= self.buffers.capacity,
-            "the GPU buffers were sized for fewer particles"
-        );
+    /// Replaces the device's particles by `p` (the arrays regrown when they hold fewer); an error
+    /// when the device cannot hold them.
+    pub fn upload(&mut self, p: &Particles) -> Result<(), String> {
+        if p.len() > self.buffers.capacity {
+            self.regrow(p.len())?;
+        }
         self.n = p.len();
         self.params.n = self.n as u32;
         self.buffers.upload(&self.dev, p);
+        Ok(())
     }
 
     /// Copies the device's particles into `p` (in the device's cell order).
     pub fn download(&mut self, p: &mut Particles) {
         self.buffers.download(&self.dev, self.n, p);
+    }
+
+    /// The open boundaries' part of the step about to run ([`super::open_boundary`]): the pass
+    /// over the device's particles, the sort that drops those it removed (when any), then the
+    /// strip's new `rows` appended (the arrays regrown when full). Returns the device's counts:
+    /// strip particles entered, fluid removed, strip particles withdrawn; an error when the
+    /// device cannot hold the particles.
+    pub fn open_boundaries(&mut self, pass: &OpenPass, rows: &Particles) -> Result<[u64; 3], String> {
+        let f = |x: f64| x as f32;
+        let prm = &mut self.params;
+        (prm.inflow_u, prm.inflow_dx) = (f(pass.u), f(pass.dx));
+        (prm.inflow_enter, prm.inflow_cut) = (f(pass.enter), f(pass.cut));
+        prm.outflow_x = f(pass.outflow);
+        prm.n = self.n as u32;
+        let (n, cells) = (prm.n, prm.cells);
+        self.buffers.write_params(&self.dev, &self.params);
+        let counters = 4 * u64::from(cells);
+        let zeros = [0u32; OPEN_COUNTERS as usize];
+        self.buffers
+            .write_at(&self.dev, CELL_COUNT, cells as usize, &zeros);
+        let mut enc = self.encoder("open boundaries");
+        {
+            let mut p = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("open boundaries"),
+                timestamp_writes: None,
+            });
+            dispatch(&mut p, &self.kernels, &self.kernels.open_boundaries, n, WG);
+        }
+        let cell_count = self.buffers.at(CELL_COUNT);
+        enc.copy_buffer_to_buffer(cell_count, counters + 4, &self.open_staging, 0, 12);
+        self.dev.queue.submit([enc.finish()]);
+        let read: Vec<u32> = map_read(&self.dev, &self.open_staging.slice(..12));
+        self.buffers.downloaded += 12;
+        let [entered, removed, withdrawn] = [0, 1, 2].map(|k| u64::from(read[k]));
+        let gone = (removed + withdrawn) as usize;
+        if gone > 0 {
+            // the sort with the count before the pass drops the removed particles past the rest
+            let mut enc = self.encoder("compaction");
+            cell_sort::encode(&mut enc, &self.kernels, &self.buffers, n, cells);
+            self.dev.queue.submit([enc.finish()]);
+            self.n -= gone;
+        }
+        if !rows.is_empty() {
+            let need = self.n + rows.len();
+            if need > self.buffers.capacity {
+                let most = (self.shape.largest / 16) as usize;
+                self.regrow((need + need / 2).min(most).max(need))?;
+            }
+            self.buffers.upload_at(&self.dev, rows, self.n);
+            self.n = need;
+        }
+        self.params.n = self.n as u32;
+        Ok([entered, removed, withdrawn])
+    }
+
+    /// Particles the arrays hold room for.
+    pub fn capacity(&self) -> usize {
+        self.buffers.capacity
+    }
+
+    /// Makes the arrays hold room for `capacity` particles (no fewer than the device has),
+    /// keeping every buffer's contents; an error when that is more than the device's largest
+    /// binding allows.
+    pub fn regrow(&mut self, capacity: usize) -> Result<(), String> {
+        let sh = self.shape;
+        let capacity = capacity.max(self.n);
+        if 16 * capacity as u64 > sh.largest {
+            return Err(format!(
+                "the GPU binds at most {} B per array, {capacity} particles need {} B (the inflow has added too many for this device); use backend = \"cpu\"",
+                sh.largest,
+                16 * capacity as u64
+            ));
+        }
+        let groups = capacity.div_ceil(WIDE_WG as usize);
+        let mut fresh = Buffers::new(
+            &self.dev, capacity, sh.cells, sh.boxes, groups, sh.bodies, sh.scene,
+        );
+        let mut enc = self.encoder("regrow");
+        for (old, new) in self.buffers.storage.iter().zip(&fresh.storage) {
+            enc.copy_buffer_to_buffer(old, 0, new, 0, old.size().min(new.size()));
+        }
+        self.dev.queue.submit([enc.finish()]);
+        (fresh.uploaded, fresh.downloaded) = (self.buffers.uploaded, self.buffers.downloaded);
+        self.buffers = fresh;
+        let row = self.kernels.row;
+        self.kernels = Kernels::new(&self.dev, &self.buffers);
+        self.kernels.row = row;
+        self.staging = staging_buffer(&self.dev, "partials", groups, self.bodies);
+        Ok(())
+    }
+
+    fn encoder(&self, label: &str) -> wgpu::CommandEncoder {
+        self.dev
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) })
     }
 
     /// Hands over each body's pose (7 per body: centre, quaternion w x y z), velocity (6 per
@@ -430,6 +559,19 @@ impl GpuEmps {
         }
         reduce::sum(&partials)
     }
+}
+
+/// A buffer the host maps to read `groups` reduction partials and the sums of `bodies` bodies
+/// (at least 16 B).
+fn staging_buffer(dev: &GpuDevice, label: &str, groups: usize, bodies: usize) -> wgpu::Buffer {
+    let size = groups.max(1) * std::mem::size_of::<Partial>()
+        + SUMS as usize * bodies * std::mem::size_of::<BodyLoad>();
+    dev.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: size.max(16) as u64,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
 }
 
 /// Records the step's passes into one command encoder, or (profiling) submits and times each.

@@ -2,7 +2,8 @@
 // that hold fluid; with bodies, mark the cells near each body in body_cells, which the gather
 // leaves alone), exclusive prefix sum of the counts, scatter, then each cell's slots ordered by
 // previous index so the order is the same every run, then the particle arrays gathered into the
-// new order.
+// new order. Particles the open boundaries removed (kind REMOVED) are counted in no cell and
+// scattered past the others, so the sort also closes their gaps (shaders/open_boundary.wgsl).
 
 @compute @workgroup_size(64)
 fn clear_cells(v: Invocation) {
@@ -19,6 +20,10 @@ fn clear_cells(v: Invocation) {
 fn count_cells(v: Invocation) {
     let i = item_index(v, WG);
     if i >= prm.n {
+        return;
+    }
+    if kind_of(i) == REMOVED {
+        cell_of[i] = NONE;
         return;
     }
     let c = cell_index(pos[i].xyz);
@@ -181,6 +186,12 @@ fn scatter(v: Invocation) {
         return;
     }
     let c = cell_of[i];
+    if c == NONE {
+        // removed by the open boundaries: past the kept particles (cell_start[cells]), in any
+        // order, as the host then drops them
+        perm[cell_start[prm.cells] + atomicAdd(&cell_count[prm.cells], 1u)] = i;
+        return;
+    }
     let slot = cell_start[c] + (atomicSub(&cell_count[c], 1u) & ~FLUID_CELL) - 1u;
     perm[slot] = i;
 }

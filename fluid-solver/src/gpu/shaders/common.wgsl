@@ -23,6 +23,8 @@ struct Params {
     paddle_first: u32, paddle_count: u32, paddle_row: u32, paddle_shift: f32,
     paddle_speed: f32, paddle_cos_m1: f32, paddle_sin: f32, paddle_dcos: f32,
     paddle_dsin: f32, hinge_x: f32, hinge_z: f32, pad_paddle: u32,
+    inflow_u: f32, inflow_dx: f32, inflow_enter: f32, inflow_cut: f32,
+    outflow_x: f32, pad_open0: u32, pad_open1: u32, pad_open2: u32,
 };
 
 // Kind codes (src/particles/kind.rs).
@@ -30,6 +32,10 @@ const FLUID: u32 = 0u;
 const WALL: u32 = 1u;
 const DUMMY: u32 = 2u;
 const BODY: u32 = 3u;
+const INFLOW: u32 = 5u;
+// A particle the open boundaries removed (shaders/open_boundary.wgsl): the next cell sort puts
+// it past the particles it keeps.
+const REMOVED: u32 = 255u;
 
 const WG: u32 = 64u;
 const SCAN_WG: u32 = 256u;
@@ -62,7 +68,9 @@ const FLUID_CELL: u32 = 0x80000000u;
 // Particles of cell c are cell_start[c] .. cell_start[c + 1] (cells + 1 entries).
 @group(0) @binding(10) var<storage, read_write> cell_start: array<u32>;
 // Bits 0–30: particles per cell (count pass), then counted down to 0 by the scatter; bit 31
-// (FLUID_CELL): the cell holds fluid, kept after the scatter for fluid_near.
+// (FLUID_CELL): the cell holds fluid, kept after the scatter for fluid_near. Then (cells + 0 …
+// cells + 3) the open boundaries' counters (shaders/open_boundary.wgsl): the removed particles
+// the sort has placed, and the step's particles entered, removed and withdrawn.
 @group(0) @binding(11) var<storage, read_write> cell_count: array<atomic<u32>>;
 // Totals of the scan's blocks (then their exclusive prefix), then of their groups.
 @group(0) @binding(12) var<storage, read_write> block_sums: array<u32>;

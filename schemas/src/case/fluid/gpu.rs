@@ -22,16 +22,8 @@ impl FluidConfig {
         if self.method != FluidMethodName::Emps {
             return refuse("method = \"isph\" (only E-MPS is on the GPU)");
         }
-        if let Some(inflow) = &self.inflow {
-            return refuse(if inflow.series.is_some() {
-                "an inflow boundary ([inflow], here driven by a time series: `series`)"
-            } else {
-                "an inflow boundary ([inflow])"
-            });
-        }
-        if self.outflow.is_some() {
-            return refuse("an outflow boundary ([outflow])");
-        }
+        // inflow and outflow boundaries run on the device, the strip's rule on the host's copy
+        // of it (fluid-solver's gpu/open_boundary.rs)
         // a wave maker's paddle (piston or flap) is placed on the device by the motion the host
         // evaluates each step (fluid-solver's gpu/paddle.rs)
         if let Some(p) = self.probe.iter().find(|p| p.window.is_some()) {

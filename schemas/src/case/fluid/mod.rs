@@ -206,10 +206,10 @@ pub struct FluidConfig {
     /// Probes, one column each of the probe CSV.
     #[serde(default)]
     pub probe: Vec<ProbeConfig>,
-    /// CPU only: an inflow boundary, water fed in along +x.
+    /// An inflow boundary, water fed in along +x.
     #[serde(default)]
     pub inflow: Option<InflowConfig>,
-    /// CPU only: an outflow boundary, water beyond a plane is removed.
+    /// An outflow boundary, water beyond a plane is removed.
     #[serde(default)]
     pub outflow: Option<OutflowConfig>,
     // Run control (issue 15): particles leaving through the open top, progress lines.
