@@ -8,7 +8,7 @@ use crate::gpu_common;
 use fluid_solver::probes;
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{FluidConfig, ProbeConfig, ProbeKind};
-use schemas::validation::{largest_abs, record, Record};
+use schemas::validation::{largest_abs, Record};
 use std::collections::HashMap;
 use std::time::Instant;
 
@@ -139,42 +139,36 @@ fn check(cfg: &FluidConfig, steps: usize, (test, tag, scene): (&str, &str, &str)
         machine: format!("{}; {}", c.device, schemas::validation::machine()),
         ..Default::default()
     };
-    for (what, measure, value, bound, bound_source, unit) in [
-        (
-            "positions",
-            "largest |r_gpu − r_cpu| over the fluid particles",
-            worst,
-            POSITION_BOUND,
-            "f32 rounding carried through the equation of state over the steps (gpu_dam_break.rs)",
-            "m",
-        ),
-        (
-            "front",
-            "|front_gpu − front_cpu| / front_cpu",
-            (fg - fc).abs() / fc,
-            FRONT_BOUND,
-            "the issue's bound on the surge front",
-            "",
-        ),
-        (
-            "wall-impulse",
-            "largest |impulse_gpu − impulse_cpu| of the walls / the largest component",
-            impulse / scale,
-            IMPULSE_BOUND,
-            "f32 rounding of the pair sums, with a margin of about 10 (gpu_dam_break.rs)",
-            "",
-        ),
-    ] {
-        record(Record {
-            id: format!("gpu-dam-break-vs-cpu-{what}-{tag}"),
-            measure: measure.into(),
-            value,
-            bound: Some(bound),
-            bound_source: bound_source.into(),
-            unit: unit.into(),
-            ..row.clone()
-        });
-    }
+    gpu_common::compare::record_measures(
+        &row,
+        |what| format!("gpu-dam-break-vs-cpu-{what}-{tag}"),
+        &[
+            (
+                "positions",
+                "largest |r_gpu − r_cpu| over the fluid particles",
+                worst,
+                POSITION_BOUND,
+                "f32 rounding carried through the equation of state over the steps (gpu_dam_break.rs)",
+                "m",
+            ),
+            (
+                "front",
+                "|front_gpu − front_cpu| / front_cpu",
+                (fg - fc).abs() / fc,
+                FRONT_BOUND,
+                "the issue's bound on the surge front",
+                "",
+            ),
+            (
+                "wall-impulse",
+                "largest |impulse_gpu − impulse_cpu| of the walls / the largest component",
+                impulse / scale,
+                IMPULSE_BOUND,
+                "f32 rounding of the pair sums, with a margin of about 10 (gpu_dam_break.rs)",
+                "",
+            ),
+        ],
+    );
     assert!(
         worst < POSITION_BOUND,
         "a fluid particle is {worst:.3e} m from its CPU position (bound {POSITION_BOUND:e} m)"

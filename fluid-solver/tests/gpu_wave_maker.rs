@@ -21,7 +21,7 @@ use gpu_common::compare;
 use fluid_solver::state::FluidState;
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::{Case, FluidConfig};
-use schemas::validation::{largest_abs, record, Record};
+use schemas::validation::{largest_abs, Record};
 use std::collections::HashMap;
 use std::path::Path;
 use std::time::Instant;
@@ -223,42 +223,36 @@ fn check(
         machine: format!("{device}; {}", schemas::validation::machine()),
         ..Default::default()
     };
-    for (what, measure, value, bound, bound_source, unit) in [
-        (
-            "positions",
-            "largest |r_gpu − r_cpu| over the fluid particles",
-            worst,
-            POSITION_BOUND,
-            "f32 rounding carried through the equation of state over the steps (gpu_wave_maker.rs)",
-            "m",
-        ),
-        (
-            "paddle",
-            "largest component of |r_gpu − r_cpu| over the paddle's particles",
-            dr,
-            PADDLE_POSITION_BOUND,
-            "f32 rounding of the paddle's placement (gpu_wave_maker.rs)",
-            "m",
-        ),
-        (
-            "wall-impulse",
-            "largest |impulse_gpu − impulse_cpu| of the walls over the steps / its largest component",
-            impulse,
-            IMPULSE_BOUND,
-            "f32 rounding of the pair sums, with a margin of about 10 (gpu_common/compare.rs)",
-            "",
-        ),
-    ] {
-        record(Record {
-            id: format!("gpu-{tag}-vs-cpu-{what}"),
-            measure: measure.into(),
-            value,
-            bound: Some(bound),
-            bound_source: bound_source.into(),
-            unit: unit.into(),
-            ..row.clone()
-        });
-    }
+    compare::record_measures(
+        &row,
+        |what| format!("gpu-{tag}-vs-cpu-{what}"),
+        &[
+            (
+                "positions",
+                "largest |r_gpu − r_cpu| over the fluid particles",
+                worst,
+                POSITION_BOUND,
+                "f32 rounding carried through the equation of state over the steps (gpu_wave_maker.rs)",
+                "m",
+            ),
+            (
+                "paddle",
+                "largest component of |r_gpu − r_cpu| over the paddle's particles",
+                dr,
+                PADDLE_POSITION_BOUND,
+                "f32 rounding of the paddle's placement (gpu_wave_maker.rs)",
+                "m",
+            ),
+            (
+                "wall-impulse",
+                "largest |impulse_gpu − impulse_cpu| of the walls over the steps / its largest component",
+                impulse,
+                IMPULSE_BOUND,
+                "f32 rounding of the pair sums, with a margin of about 10 (gpu_common/compare.rs)",
+                "",
+            ),
+        ],
+    );
     assert!(
         seen > 0 && seen == paddle.len(),
         "{seen} paddle particles of {}",

@@ -158,34 +158,28 @@ pub fn check_and_record(runs: &Runs, (tag, capability, scene, source): (&str, &s
         machine: format!("{}; {}", runs.device, schemas::validation::machine()),
         ..Default::default()
     };
-    for (what, measure, value, bound, bound_source, unit) in [
-        (
-            "positions",
-            "largest |r_gpu − r_cpu| over the fluid particles",
-            worst,
-            POSITION_BOUND,
-            "f32 rounding carried through the equation of state over the steps (gpu_common/compare.rs)",
-            "m",
-        ),
-        (
-            "wall-impulse",
-            "largest |impulse_gpu − impulse_cpu| of the walls / the largest component",
-            impulse,
-            IMPULSE_BOUND,
-            "f32 rounding of the pair sums, with a margin of about 10 (gpu_common/compare.rs)",
-            "",
-        ),
-    ] {
-        record(Record {
-            id: format!("gpu-{tag}-vs-cpu-{what}"),
-            measure: measure.into(),
-            value,
-            bound: Some(bound),
-            bound_source: bound_source.into(),
-            unit: unit.into(),
-            ..row.clone()
-        });
-    }
+    record_measures(
+        &row,
+        |what| format!("gpu-{tag}-vs-cpu-{what}"),
+        &[
+            (
+                "positions",
+                "largest |r_gpu − r_cpu| over the fluid particles",
+                worst,
+                POSITION_BOUND,
+                "f32 rounding carried through the equation of state over the steps (gpu_common/compare.rs)",
+                "m",
+            ),
+            (
+                "wall-impulse",
+                "largest |impulse_gpu − impulse_cpu| of the walls / the largest component",
+                impulse,
+                IMPULSE_BOUND,
+                "f32 rounding of the pair sums, with a margin of about 10 (gpu_common/compare.rs)",
+                "",
+            ),
+        ],
+    );
     assert!(
         worst < POSITION_BOUND,
         "a fluid particle is {worst:.3e} m from its CPU position (bound {POSITION_BOUND:e} m)"
@@ -206,4 +200,23 @@ pub fn assert_visible(feature: &str, with: &FluidSolver, without: &FluidSolver) 
         moved > VISIBLE * POSITION_BOUND,
         "{feature} moved the fluid by only {moved:.3e} m: the comparison could not see it"
     );
+}
+
+/// One measure of a GPU run against the CPU's: what (the id's part), measure, value, bound, the
+/// bound's source, unit.
+pub type Measure<'a> = (&'a str, &'a str, f64, f64, &'a str, &'a str);
+
+/// Records each of `measures` as a row like `row`, with the id `id` makes of its `what`.
+pub fn record_measures(row: &Record, id: impl Fn(&str) -> String, measures: &[Measure]) {
+    for &(what, measure, value, bound, bound_source, unit) in measures {
+        record(Record {
+            id: id(what),
+            measure: measure.into(),
+            value,
+            bound: Some(bound),
+            bound_source: bound_source.into(),
+            unit: unit.into(),
+            ..row.clone()
+        });
+    }
 }
