@@ -8,6 +8,7 @@ use super::paddle::{PaddlePlacement, PaddleSites};
 use super::solids::SolidBits;
 use super::step::{GpuEmps, GpuSetup};
 use crate::method::StepTotals;
+use crate::particles::Particles;
 use crate::solver::FluidSolver;
 use crate::stability::Instability;
 use schemas::case::fluid::{FluidBackend, FluidConfig};
@@ -107,6 +108,16 @@ impl FluidSolver {
             dev.download(&mut st.particles);
             st.grid.sort(&mut st.particles, &mut Vec::new());
             self.host_stale = false;
+        }
+    }
+
+    /// The particles in the box `lo`–`hi` (and some around it) when they are on the device ahead
+    /// of the host's copy, gathered without copying the rest ([`super::gather`]); `None` when the
+    /// host's particles are current (the CPU path, or right after [`FluidSolver::sync_host`]).
+    pub fn device_particles_in(&self, lo: [f64; 3], hi: [f64; 3]) -> Option<Particles> {
+        match (self.device.as_deref(), self.host_stale) {
+            (Some(dev), true) => Some(dev.particles_in(lo, hi)),
+            _ => None,
         }
     }
 

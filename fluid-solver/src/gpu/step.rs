@@ -36,6 +36,7 @@ use crate::physics::Physics;
 use crate::stage_timer::StageTimes;
 use schemas::case::fluid::{Aabb, DampingConfig};
 use std::fmt;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// What the device step needs to know of the case: the operators, the physics, the grid and the
 /// detector's geometry.
@@ -84,9 +85,9 @@ struct Shape {
 /// The E-MPS step on a GPU: the device, its buffers and kernels.
 pub struct GpuEmps {
     pub dev: GpuDevice,
-    buffers: Buffers,
+    pub(super) buffers: Buffers,
     kernels: Kernels,
-    params: Params,
+    pub(super) params: Params,
     n: usize,
     viscous: bool,
     /// Where the reduction's partials and the bodies' loads are read back (reused every step).
@@ -105,6 +106,8 @@ pub struct GpuEmps {
     open_staging: wgpu::Buffer,
     /// The host's copy of the inflow strip (empty without an inflow).
     pub strip: StripCopy,
+    /// Bytes the filtered sensors' gathers copied back ([`super::gather`]).
+    pub(super) gathered: AtomicU64,
 }
 
 impl fmt::Debug for GpuEmps {
@@ -271,6 +274,7 @@ impl GpuEmps {
             shape,
             open_staging,
             strip: StripCopy::of(p, k.spacing),
+            gathered: AtomicU64::new(0),
         };
         step.upload(p)?;
         Ok(step)
@@ -442,7 +446,8 @@ impl GpuEmps {
 
     /// Bytes copied host → device and device → host since the start.
     pub fn bytes_moved(&self) -> (u64, u64) {
-        (self.buffers.uploaded, self.buffers.downloaded)
+        let gathered = self.gathered.load(Ordering::Relaxed);
+        (self.buffers.uploaded, self.buffers.downloaded + gathered)
     }
 
     /// Dispatches in rows of at most `groups` workgroups (the device's limit per dimension by

@@ -10,6 +10,7 @@
 //! so a drop against the lid, or spray above the column, is not read as water depth.
 
 use crate::emps::kernel::{weight, Kernel};
+use crate::emps::pair_laws;
 use crate::particles::kind::{Kind, FLUID};
 use crate::particles::Particles;
 use crate::sensors::wall_sensor::Disc;
@@ -233,16 +234,21 @@ impl ProbeSet {
     }
 }
 
-/// The instantaneous reading of one probe (`disc`: a wall-pressure sensor's, as placed).
+/// The instantaneous reading of one probe (`disc`: a wall-pressure sensor's, as placed). On the
+/// GPU path between probe rows (a filtered sensor's step) the sensor reads the device's particles
+/// around its disc, gathered without the rest, by the same rule and E-MPS pair law.
 fn read(probe: &ProbeConfig, disc: &Option<Disc>, solver: &FluidSolver) -> f64 {
+    let ds = solver.kernel().spacing;
     match disc {
-        Some(disc) => disc
-            .pressure(
-                solver.particles(),
-                &solver.pressure_law(),
-                solver.kernel().spacing,
-            )
-            .unwrap_or(f64::NAN),
+        Some(disc) => {
+            let (lo, hi) = disc.bounds(solver.kernel().re_grad, ds);
+            match solver.device_particles_in(lo, hi) {
+                // the GPU path is E-MPS only (`FluidConfig::gpu_support`)
+                Some(near) => disc.pressure(&near, &pair_laws::pressure(solver.kernel(), &near), ds),
+                None => disc.pressure(solver.particles(), &solver.pressure_law(), ds),
+            }
+            .unwrap_or(f64::NAN)
+        }
         None => sample(probe, solver.particles(), solver.kernel(), &solver.tank()),
     }
 }

@@ -55,6 +55,22 @@ impl Disc {
         (along, lateral2.sqrt())
     }
 
+    /// A box holding every particle [`Disc::pressure`] reads with a law of reach `reach`: the
+    /// wall layers behind the disc and the fluid within `reach` in front of it, out to the
+    /// radius plus `reach` (where the GPU path gathers them from, [`crate::gpu::gather`]).
+    pub fn bounds(&self, reach: f64, spacing: f64) -> ([f64; 3], [f64; 3]) {
+        let side = self.radius + reach;
+        let mut lo = self.centre.map(|c| c - side);
+        let mut hi = self.centre.map(|c| c + side);
+        let (behind, front) = (LAYERS_REACHED * spacing, reach);
+        let a = self.axis;
+        (lo[a], hi[a]) = match self.sign > 0.0 {
+            true => (self.centre[a] - behind, self.centre[a] + front),
+            false => (self.centre[a] - front, self.centre[a] + behind),
+        };
+        (lo, hi)
+    }
+
     /// The wall and body particles behind the disc, and how many of them form its first layer.
     pub fn wall_particles(&self, p: &Particles, spacing: f64) -> (Vec<usize>, usize) {
         let mut set = Vec::new();

@@ -26,12 +26,8 @@ impl FluidConfig {
         // of it (fluid-solver's gpu/open_boundary.rs)
         // a wave maker's paddle (piston or flap) is placed on the device by the motion the host
         // evaluates each step (fluid-solver's gpu/paddle.rs)
-        if let Some(p) = self.probe.iter().find(|p| p.window.is_some()) {
-            return refuse(&format!(
-                "filtered probes (probe `{}` has a window; probes are read from a copy at each probe row, not every step)",
-                p.name
-            ));
-        }
+        // filtered wall-pressure sensors read, after every step in their window, the device's
+        // particles around their disc, gathered without the rest (fluid-solver's gpu/gather.rs)
         self.gpu_position_rounding(key)
     }
 

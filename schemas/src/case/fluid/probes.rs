@@ -61,7 +61,7 @@ pub struct ProbeConfig {
     /// Wall-pressure only: diameter of the sensor's disc [m]. Required there. Range: ≥ spacing.
     #[serde(default)]
     pub diameter: Option<f64>,
-    /// Wall-pressure on the CPU only: box filter [s]: the reading is the mean over every step
+    /// Wall-pressure only: box filter [s]: the reading is the mean over every step
     /// of the last `window` seconds (an experiment's sensor rate / anti-alias filter); default:
     /// the instantaneous reading. Range: > 0.
     #[serde(default)]

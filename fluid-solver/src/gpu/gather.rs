@@ -1,0 +1,121 @@
+//! The device's particles in a box, copied back without the rest: what a filtered wall-pressure
+//! sensor reads after every step on the GPU path ([`crate::sensors::probes::ProbeSet::observe`]),
+//! where the whole copy ([`crate::FluidSolver::sync_host`]) comes only at a probe row.
+//!
+//! The device keeps its particles in the order of the step's last cell sort (at r*): the
+//! particles of cell c are the slots `cell_start[c] .. cell_start[c + 1]`, and a row of cells
+//! along x is one run of slots. The box's cells, widened by [`MARGIN_CELLS`] cells each way for
+//! what the particles moved after that sort (the correction and the collisions, well under a
+//! cell in a step the detector lets pass), are such runs, one per row of cells: their two ends
+//! come back first (8 B per row), then the runs' positions with their kinds and their number
+//! densities and pressures (24 B per particle, f32 as the whole copy has them). What comes back
+//! is a superset of the particles in the box, in the device's order; the caller picks from it by
+//! its own rule (the CPU's sensor: [`crate::sensors::wall_sensor::Disc::pressure`]).
+
+use super::buffers::{map_read, CELL_START, DENS, POS};
+use super::step::GpuEmps;
+use crate::particles::Particles;
+use std::sync::atomic::Ordering;
+
+/// Cells (1.05 Δs each) the box is widened by each way: a particle moves far less than 2.1 Δs
+/// between the sort at r* and the step's end.
+pub const MARGIN_CELLS: i64 = 2;
+
+impl GpuEmps {
+    /// The device's particles whose cell at the last sort lies within [`MARGIN_CELLS`] cells of
+    /// the box `lo`–`hi` (velocities and ids are not copied: 0).
+    pub fn particles_in(&self, lo: [f64; 3], hi: [f64; 3]) -> Particles {
+        let prm = &self.params;
+        let pad = i64::from(prm.pad);
+        let cell = |v: f64, a: usize, shift: i64| {
+            let c = ((v - f64::from(prm.origin[a])) * f64::from(prm.inv_cell)).floor() as i64 + shift;
+            c.clamp(pad, i64::from(prm.dims[a]) - pad - 1) as u64
+        };
+        let c_lo: [u64; 3] = std::array::from_fn(|a| cell(lo[a], a, -MARGIN_CELLS));
+        let c_hi: [u64; 3] = std::array::from_fn(|a| cell(hi[a], a, MARGIN_CELLS));
+        let (nx, ny) = (u64::from(prm.dims[0]), u64::from(prm.dims[1]));
+        let rows: Vec<u64> = (c_lo[2]..=c_hi[2])
+            .flat_map(|z| (c_lo[1]..=c_hi[1]).map(move |y| c_lo[0] + nx * (y + ny * z)))
+            .collect();
+        let run = c_hi[0] - c_lo[0] + 1;
+        // the runs' ends: cell_start of each row's first cell and of the cell past its last
+        let ends_staging = self.staging_of(8 * rows.len() as u64);
+        let starts = self.buffers.at(CELL_START);
+        let mut enc = self.gather_encoder();
+        for (r, &first) in rows.iter().enumerate() {
+            let at = 8 * r as u64;
+            enc.copy_buffer_to_buffer(starts, 4 * first, &ends_staging, at, 4);
+            enc.copy_buffer_to_buffer(starts, 4 * (first + run), &ends_staging, at + 4, 4);
+        }
+        self.dev.queue.submit([enc.finish()]);
+        let ends: Vec<u32> = map_read(&self.dev, &ends_staging.slice(..));
+        // the runs, joined where one ends where the next begins
+        let n = self.len() as u64;
+        let mut runs: Vec<(u64, u64)> = Vec::new();
+        for e in ends.chunks_exact(2) {
+            let (s, e) = (u64::from(e[0]).min(n), u64::from(e[1]).min(n));
+            if e <= s {
+                continue;
+            }
+            match runs.last_mut() {
+                Some(last) if last.1 == s => last.1 = e,
+                _ => runs.push((s, e)),
+            }
+        }
+        let count: u64 = runs.iter().map(|r| r.1 - r.0).sum();
+        let mut p = Particles::default();
+        if count == 0 {
+            self.gathered.fetch_add(8 * rows.len() as u64, Ordering::Relaxed);
+            return p;
+        }
+        let staging = self.staging_of(24 * count);
+        let mut enc = self.gather_encoder();
+        let mut k = 0;
+        for &(s, e) in &runs {
+            let len = e - s;
+            enc.copy_buffer_to_buffer(self.buffers.at(POS), 16 * s, &staging, 16 * k, 16 * len);
+            enc.copy_buffer_to_buffer(
+                self.buffers.at(DENS),
+                8 * s,
+                &staging,
+                16 * count + 8 * k,
+                8 * len,
+            );
+            k += len;
+        }
+        self.dev.queue.submit([enc.finish()]);
+        let bytes: Vec<u8> = map_read(&self.dev, &staging.slice(..));
+        self.gathered
+            .fetch_add(8 * rows.len() as u64 + 24 * count, Ordering::Relaxed);
+        let (pos, dens) = bytes.split_at(16 * count as usize);
+        let pos: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(pos);
+        let dens: Vec<[f32; 2]> = bytemuck::pod_collect_to_vec(dens);
+        let m = pos.len();
+        let col = |a: usize| pos.iter().map(|e| f64::from(e[a])).collect::<Vec<f64>>();
+        (p.x, p.y, p.z) = (col(0), col(1), col(2));
+        p.kind = pos.iter().map(|e| e[3] as u8).collect();
+        (p.vx, p.vy, p.vz) = (vec![0.0; m], vec![0.0; m], vec![0.0; m]);
+        p.number_density = dens.iter().map(|e| f64::from(e[0])).collect();
+        p.pressure = dens.iter().map(|e| f64::from(e[1])).collect();
+        p.id = vec![0; m];
+        p
+    }
+
+    /// A buffer the host maps to read `size` bytes (at least 8).
+    fn staging_of(&self, size: u64) -> wgpu::Buffer {
+        self.dev.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("sensor gather"),
+            size: size.max(8),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        })
+    }
+
+    fn gather_encoder(&self) -> wgpu::CommandEncoder {
+        self.dev
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("sensor gather"),
+            })
+    }
+}
