@@ -94,28 +94,21 @@ fn run_from(
     state: &FluidState,
     dev: Option<fluid_solver::gpu::GpuDevice>,
 ) -> (FluidSolver, f64) {
-    let t = Instant::now();
-    let mut s = FluidSolver::new(cfg);
-    s.restore_state(state);
-    if let Some(dev) = dev {
-        s.to_device(cfg, dev).unwrap_or_else(|e| panic!("{e}"));
-        // no headroom: the strip's first new rows regrow the device's arrays
+    let no_headroom = |s: &mut FluidSolver| {
+        // the strip's first new rows regrow the device's arrays
         if let Some(d) = s.device_mut() {
             d.regrow(0).unwrap_or_else(|e| panic!("{e}"));
             assert_eq!(d.capacity(), d.len());
         }
-    }
-    for _ in 0..STEPS {
-        s.step(cfg.time_step).unwrap_or_else(|e| panic!("{e}"));
-    }
+    };
+    let (s, t) = compare::run_from(cfg, state, dev, STEPS, no_headroom);
     if let Some(d) = s.device() {
         assert!(
             d.capacity() > state.particles.len(),
             "the arrays were not regrown"
         );
     }
-    s.sync_host();
-    (s, t.elapsed().as_secs_f64())
+    (s, t)
 }
 
 /// The ids of the particles of `kind` in `s`.

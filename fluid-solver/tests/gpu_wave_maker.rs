@@ -18,7 +18,6 @@
 use crate::gpu_common;
 use gpu_common::compare;
 
-use fluid_solver::state::FluidState;
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::{Case, FluidConfig};
 use schemas::validation::{largest_abs, Record};
@@ -121,26 +120,6 @@ fn frozen(dir: &Path, cfg: &FluidConfig, t0: f64, paddle_x: f64, rest: &str) -> 
     )
 }
 
-/// A solver of `cfg` from `state` (the GPU's when `dev` is given), run for [`STEPS`] steps; and
-/// its wall time [s].
-fn run_from(
-    cfg: &FluidConfig,
-    state: &FluidState,
-    dev: Option<fluid_solver::gpu::GpuDevice>,
-) -> (FluidSolver, f64) {
-    let t = Instant::now();
-    let mut s = FluidSolver::new(cfg);
-    s.restore_state(state);
-    if let Some(dev) = dev {
-        s.to_device(cfg, dev).unwrap_or_else(|e| panic!("{e}"));
-    }
-    for _ in 0..STEPS {
-        s.step(cfg.time_step).unwrap_or_else(|e| panic!("{e}"));
-    }
-    s.sync_host();
-    (s, t.elapsed().as_secs_f64())
-}
-
 /// The largest differences of the paddle's particles between `cpu` and `gpu` (position [m],
 /// velocity [m/s], largest component), over the particles whose id is in `paddle`, and how many
 /// there were.
@@ -195,9 +174,9 @@ fn check(
     }
     let state = before.save_state();
     let t_before = t.elapsed().as_secs_f64();
-    let (cpu, t_cpu) = run_from(cfg, &state, None);
-    let (gpu, t_gpu) = run_from(cfg, &state, Some(dev));
-    let (held, _) = run_from(still, &state, None);
+    let (cpu, t_cpu) = compare::run_from(cfg, &state, None, STEPS, |_| ());
+    let (gpu, t_gpu) = compare::run_from(cfg, &state, Some(dev), STEPS, |_| ());
+    let (held, _) = compare::run_from(still, &state, None, STEPS, |_| ());
     println!(
         "{} particles: {BEFORE} steps on the CPU to t0 = {:.3} s in {t_before:.2} s, then {STEPS} steps: CPU {t_cpu:.2} s, GPU {t_gpu:.2} s",
         cpu.particle_count(),

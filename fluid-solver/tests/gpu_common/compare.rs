@@ -220,3 +220,27 @@ pub fn record_measures(row: &Record, id: impl Fn(&str) -> String, measures: &[Me
         });
     }
 }
+
+/// A solver of `cfg` from the saved `state`, moved to `dev` when one is given (then `on_device`
+/// sees it first), run for `steps` steps of the case's Δt, with its host copy brought up to date;
+/// and its wall time [s]. For comparisons that start mid-run, where a scene amplifies rounding.
+pub fn run_from(
+    cfg: &FluidConfig,
+    state: &fluid_solver::FluidState,
+    dev: Option<fluid_solver::gpu::GpuDevice>,
+    steps: usize,
+    on_device: impl FnOnce(&mut FluidSolver),
+) -> (FluidSolver, f64) {
+    let t = Instant::now();
+    let mut s = FluidSolver::new(cfg);
+    s.restore_state(state);
+    if let Some(dev) = dev {
+        s.to_device(cfg, dev).unwrap_or_else(|e| panic!("{e}"));
+        on_device(&mut s);
+    }
+    for _ in 0..steps {
+        s.step(cfg.time_step).unwrap_or_else(|e| panic!("{e}"));
+    }
+    s.sync_host();
+    (s, t.elapsed().as_secs_f64())
+}
