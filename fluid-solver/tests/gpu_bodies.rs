@@ -13,8 +13,9 @@ use schemas::case::fluid::{Aabb, FluidConfig};
 use schemas::validation::{record, Record};
 use std::time::Instant;
 
-/// Records the worst load differences of the test `test` (`file.rs::name`) on the box `scene`.
-pub(crate) fn record_loads(test: &str, tag: &str, scene: &str, (force, moment): (f64, f64)) {
+/// Records the worst load differences of the test `test` (`file.rs::name`) on the box `scene`
+/// and asserts each within [`LOAD_BOUND`].
+pub(crate) fn check_and_record_loads(test: &str, tag: &str, scene: &str, (force, moment): (f64, f64)) {
     let machine = gpu_common::device()
         .map(|d| format!("{}; {}", d.description(), schemas::validation::machine()))
         .unwrap_or_default();
@@ -46,6 +47,14 @@ pub(crate) fn record_loads(test: &str, tag: &str, scene: &str, (force, moment): 
             ..Default::default()
         });
     }
+    assert!(
+        force < LOAD_BOUND,
+        "force differs by {force:e} of ρgV (bound {LOAD_BOUND:e})"
+    );
+    assert!(
+        moment < LOAD_BOUND,
+        "moment differs by {moment:e} of ρgV · 0.06 m (bound {LOAD_BOUND:e})"
+    );
 }
 
 /// The CPU buoyancy test's scene: Δs = 0.02 m, a 0.28 × 0.28 m tank with water 0.3 m deep, a
@@ -175,19 +184,11 @@ fn gpu_body_loads_match_cpu_on_a_fixed_box_in_a_settling_tank() {
     let Some((force, moment)) = worst_difference(&cfg, buoyancy, 10, &pose, &[0.0; 6], 0.0) else {
         return;
     };
-    record_loads(
+    check_and_record_loads(
         "gpu_bodies.rs::gpu_body_loads_match_cpu_on_a_fixed_box_in_a_settling_tank",
         "fixed-box",
         "held fixed in the settling tank",
         (force, moment),
-    );
-    assert!(
-        force < LOAD_BOUND,
-        "force differs by {force:e} of ρgV (bound {LOAD_BOUND:e})"
-    );
-    assert!(
-        moment < LOAD_BOUND,
-        "moment differs by {moment:e} of ρgV · 0.06 m (bound {LOAD_BOUND:e})"
     );
 }
 
@@ -200,19 +201,11 @@ fn gpu_body_loads_match_cpu_on_a_moving_turned_box_with_viscosity() {
     let Some((force, moment)) = worst_difference(&cfg, buoyancy, 10, &pose, &velocity, cfg.time_step) else {
         return;
     };
-    record_loads(
+    check_and_record_loads(
         "gpu_bodies.rs::gpu_body_loads_match_cpu_on_a_moving_turned_box_with_viscosity",
         "moving-turned-box",
         "turned by 5°, moving and spinning, viscous",
         (force, moment),
-    );
-    assert!(
-        force < LOAD_BOUND,
-        "force differs by {force:e} of ρgV (bound {LOAD_BOUND:e})"
-    );
-    assert!(
-        moment < LOAD_BOUND,
-        "moment differs by {moment:e} of ρgV · 0.06 m (bound {LOAD_BOUND:e})"
     );
 }
 

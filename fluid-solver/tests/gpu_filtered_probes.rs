@@ -145,8 +145,8 @@ fn gpu_filtered_wall_pressure_sensors_match_the_cpu() {
             let (c, g) = (cpu_rows.at(r, name), gpu_rows.at(r, name));
             let raw = cpu_rows.at(r, &format!("{name}_raw"));
             println!("row {r} {name}: CPU {c:.3} Pa, GPU {g:.3} Pa, CPU unfiltered {raw:.3} Pa");
-            worst = worst.max((g - c).abs());
-            moved = moved.max((c - raw).abs());
+            worst = schemas::validation::max_or_nan(worst, (g - c).abs());
+            moved = schemas::validation::max_or_nan(moved, (c - raw).abs());
         }
         least_filter = least_filter.min(moved);
     }
@@ -155,7 +155,7 @@ fn gpu_filtered_wall_pressure_sensors_match_the_cpu() {
         .iter()
         .zip(&whole)
         .map(|(a, b)| (a - b).abs() / b.abs().max(1.0))
-        .fold(0.0, f64::max);
+        .fold(0.0, schemas::validation::max_or_nan);
     println!(
         "filtered sensors: largest |GPU − CPU| {worst:.3e} Pa (bound {BOUND} Pa); the filter moves each sensor's CPU reading by up to {least_filter:.1} Pa or more; gathered {gathered:?} against the whole copy {whole:?} Pa ({gather_diff:.1e}); {run_time_s:.2} s"
     );

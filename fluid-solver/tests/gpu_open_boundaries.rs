@@ -158,8 +158,10 @@ fn gpu_inflow_and_outflow_match_cpu() {
     );
     let (fluid_c, fluid_g) = (ids(&cpu, Kind::Fluid), ids(&gpu, Kind::Fluid));
     let (strip_c, strip_g) = (ids(&cpu, Kind::Inflow), ids(&gpu, Kind::Inflow));
-    let worst = compare::largest_fluid_distance(cpu.particles(), gpu.particles())
-        .max(compare::largest_fluid_distance(gpu.particles(), cpu.particles()));
+    let worst = schemas::validation::max_or_nan(
+        compare::largest_fluid_distance(cpu.particles(), gpu.particles()),
+        compare::largest_fluid_distance(gpu.particles(), cpu.particles()),
+    );
     println!(
         "fluid: CPU {}, GPU {}; strip: CPU {}, GPU {}; all: CPU {}, GPU {}; largest fluid position difference {worst:.3e} m (bound {POSITION_BOUND:e} m)",
         fluid_c.len(),

@@ -133,8 +133,8 @@ fn paddle_difference(cpu: &FluidSolver, gpu: &FluidSolver, paddle: &[u32]) -> (f
         let (a, b) = (c.position(i), g.position(j));
         let (u, w) = (c.velocity(i), g.velocity(j));
         for k in 0..3 {
-            dr = dr.max((a[k] - b[k]).abs());
-            dv = dv.max((u[k] - w[k]).abs());
+            dr = schemas::validation::max_or_nan(dr, (a[k] - b[k]).abs());
+            dv = schemas::validation::max_or_nan(dv, (u[k] - w[k]).abs());
         }
         seen += 1;
     }

@@ -229,7 +229,7 @@ fn trial_states_beyond_the_squash_load_return_to_the_closest_admissible_state() 
                         .sum::<f64>()
                         .sqrt();
                     if len > 0.0 {
-                        worst = worst.max(dot / (scale * len));
+                        worst = schemas::validation::max_or_nan(worst, dot / (scale * len));
                     }
                 }
             }

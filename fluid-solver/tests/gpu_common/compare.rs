@@ -124,7 +124,7 @@ pub fn largest_fluid_distance(a: &Particles, b: &Particles) -> f64 {
 /// the largest component of the CPU's.
 pub fn wall_impulse_difference(runs: &Runs) -> f64 {
     let (c, g) = (runs.cpu.totals().wall_impulse, runs.gpu.totals().wall_impulse);
-    let scale = c.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let scale = schemas::validation::largest_abs(c);
     (0..3)
         .map(|a| (g[a] - c[a]).abs())
         .fold(0.0, schemas::validation::max_or_nan)

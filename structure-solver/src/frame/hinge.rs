@@ -96,12 +96,13 @@ impl StressState {
     pub fn tangent(&self, section: &Section) -> [[f64; 6]; 6] {
         let d = section.stiffness;
         let mut t = [[0.0; 6]; 6];
+        let apex = self.hinge.is_some() && section.at_apex(&self.sigma);
         for (i, row) in t.iter_mut().enumerate() {
-            if !(self.hinge.is_some() && YIELDING.contains(&i) && section.at_apex(&self.sigma)) {
+            if !(apex && YIELDING.contains(&i)) {
                 row[i] = d[i];
             }
         }
-        if self.hinge.is_some() && !section.at_apex(&self.sigma) {
+        if self.hinge.is_some() && !apex {
             let a = section.yield_gradient(&self.sigma);
             let ada: f64 = YIELDING.iter().map(|&i| a[i] * d[i] * a[i]).sum();
             if ada > 0.0 {
