@@ -86,7 +86,7 @@ pub struct FluidSolver {
     /// [`FluidSolver::warnings`].
     warnings: Vec<String>,
     /// Reactions of the unresolved coupling, applied at every step until replaced.
-    point_reactions: PointReactions,
+    pub(crate) point_reactions: PointReactions,
     /// Bumped whenever the particles may have moved, been added or removed, or been replaced
     /// ([`FluidSolver::moved`]): the shares below are used only at the version they were found at.
     pub(crate) positions_version: u64,
@@ -614,6 +614,9 @@ impl FluidSolver {
         reactions: &[f64],
         widths: &[f64],
     ) -> (Vec<f64>, Vec<f64>) {
+        if let Some(dev) = self.device_ahead() {
+            return dev.sample_points(points);
+        }
         let (samples, shares) = unresolved::sampling::sample_with_shares(
             self.particles(),
             &self.state.grid,
@@ -642,6 +645,9 @@ impl FluidSolver {
 
     /// Velocity and λ_min at `points` (3 per point) for the unresolved coupling (3 and 1 per point).
     pub fn sample_points(&self, points: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        if let Some(dev) = self.device_ahead() {
+            return dev.sample_points(points);
+        }
         let samples =
             unresolved::sampling::sample(self.particles(), &self.state.grid, self.kernel.spacing, points);
         (

@@ -26,6 +26,7 @@ mod gpu_bodies_inside;
 mod gpu_dam_break;
 mod gpu_damping;
 mod gpu_detector;
+mod gpu_drag;
 mod gpu_filtered_probes;
 mod gpu_front;
 mod gpu_hydrostatic;

@@ -20,7 +20,7 @@ use std::time::Instant;
 const MASS: f64 = 1.0;
 
 /// The `momentum budget` line of the fluid's log: change, gravity, walls, reactions, not applied.
-fn momentum_budget(log: &Path) -> [[f64; 3]; 5] {
+pub(crate) fn momentum_budget(log: &Path) -> [[f64; 3]; 5] {
     let text = std::fs::read_to_string(log).unwrap_or_else(|e| panic!("cannot read {}: {e}", log.display()));
     let line = text
         .lines()

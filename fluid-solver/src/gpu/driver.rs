@@ -4,6 +4,7 @@
 //! diagnostic needs them ([`FluidSolver::sync_host`]).
 
 use super::device::{GpuDevice, NoAdapter};
+use super::drag::{NOT_APPLIED, SPREAD_AT_CENTROID, SPREAD_AT_SAMPLE_POINT};
 use super::paddle::{PaddlePlacement, PaddleSites};
 use super::solids::SolidBits;
 use super::step::{GpuEmps, GpuSetup};
@@ -33,6 +34,22 @@ impl fmt::Display for GpuStartError {
 }
 
 impl std::error::Error for GpuStartError {}
+
+/// Books the step's point reactions (6 each: centroid, force) by the states the device found
+/// for them ([`crate::gpu::drag`]): the impulse of those it spread as handed to the fluid, of
+/// those with no fluid near as not applied (as [`FluidSolver`]'s CPU step books them).
+fn book_reactions(totals: &mut crate::solver::RunTotals, reactions: &[f64], states: &[u32], dt: f64) {
+    for (r, &state) in reactions.chunks_exact(6).zip(states) {
+        let booked = match state {
+            SPREAD_AT_CENTROID | SPREAD_AT_SAMPLE_POINT => &mut totals.reaction_impulse,
+            NOT_APPLIED => &mut totals.unapplied_impulse,
+            _ => continue,
+        };
+        for c in 0..3 {
+            booked[c] += r[3 + c] * dt;
+        }
+    }
+}
 
 impl FluidSolver {
     /// Builds the solver of a validated section on the backend it names (`backend = "gpu"`: the
@@ -111,14 +128,17 @@ impl FluidSolver {
         }
     }
 
+    /// The device step when its particles are ahead of the host's copy (`None` on the CPU path
+    /// and right after [`FluidSolver::sync_host`]).
+    pub(crate) fn device_ahead(&self) -> Option<&GpuEmps> {
+        self.device.as_deref().filter(|_| self.host_stale)
+    }
+
     /// The particles in the box `lo`–`hi` (and some around it) when they are on the device ahead
     /// of the host's copy, gathered without copying the rest ([`super::gather`]); `None` when the
     /// host's particles are current (the CPU path, or right after [`FluidSolver::sync_host`]).
     pub fn device_particles_in(&self, lo: [f64; 3], hi: [f64; 3]) -> Option<Particles> {
-        match (self.device.as_deref(), self.host_stale) {
-            (Some(dev), true) => Some(dev.particles_in(lo, hi)),
-            _ => None,
-        }
+        self.device_ahead().map(|dev| dev.particles_in(lo, hi))
     }
 
     /// One step on the device (see the module doc): removals through the open top found by the
@@ -176,10 +196,16 @@ impl FluidSolver {
         if let Some(paddle) = &self.paddle {
             dev.set_paddle(&PaddlePlacement::of(paddle, self.state.time, dt));
         }
+        // the drag coupling's reactions, spread by the device at the step's start
+        let r = &self.point_reactions;
+        if !r.reactions.is_empty() || dev.spreads_reactions() {
+            dev.set_point_reactions(&r.reactions, &r.sample_points, &r.widths);
+        }
         let report = dev.advance(dt);
         let n = dev.len() as u64;
         self.host_stale = true;
         let st = &mut self.state;
+        book_reactions(&mut st.totals, &r.reactions, &dev.reaction_states(), dt);
         st.steps += 1;
         st.time += dt;
         for a in 0..3 {

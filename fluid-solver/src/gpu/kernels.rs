@@ -1,12 +1,13 @@
 //! The WGSL kernels (`shaders/`) as compute pipelines sharing one bind group layout: binding 0
-//! the uniform block, 1 … 22 the storage buffers of [`super::buffers`]; and their dispatch,
-//! in rows when a dispatch has more workgroups than the device allows per dimension.
+//! the uniform block, 1 … 22 the storage buffers of [`super::buffers`] (the drag coupling's
+//! kernels bind a second group, [`super::drag`]); and their dispatch, in rows when a dispatch
+//! has more workgroups than the device allows per dimension.
 
 use super::buffers::Buffers;
 use super::device::GpuDevice;
 
 /// The WGSL sources, joined into one module (the bindings are declared once in `common.wgsl`).
-const SOURCES: [&str; 12] = [
+const SOURCES: [&str; 13] = [
     include_str!("shaders/common.wgsl"),
     include_str!("shaders/cell_sort.wgsl"),
     include_str!("shaders/emps.wgsl"),
@@ -19,6 +20,7 @@ const SOURCES: [&str; 12] = [
     include_str!("shaders/reaction.wgsl"),
     include_str!("shaders/paddle.wgsl"),
     include_str!("shaders/open_boundary.wgsl"),
+    include_str!("shaders/drag.wgsl"),
 ];
 
 /// One pipeline per kernel, and the bind group over the step's buffers.
@@ -58,7 +60,12 @@ pub struct Kernels {
     pub react_collision: wgpu::ComputePipeline,
     pub place_paddle: wgpu::ComputePipeline,
     pub open_boundaries: wgpu::ComputePipeline,
+    pub sample_flow: wgpu::ComputePipeline,
+    pub reaction_sums: wgpu::ComputePipeline,
+    pub spread_reactions: wgpu::ComputePipeline,
     pub bind_group: wgpu::BindGroup,
+    /// The layout of the drag coupling's group 1: its uniform block and two storage buffers.
+    pub drag_layout: wgpu::BindGroupLayout,
     /// Workgroups per row of a dispatch: the device's limit per dimension (65 535 on most),
     /// or fewer to run the 2-D path at small sizes ([`super::GpuEmps::set_dispatch_row`]).
     pub row: u32,
@@ -111,16 +118,31 @@ impl Kernels {
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
-        let make = |name: &str| {
+        let drag_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("drag"),
+            entries: &[
+                entry(0, wgpu::BufferBindingType::Uniform),
+                entry(1, wgpu::BufferBindingType::Storage { read_only: false }),
+                entry(2, wgpu::BufferBindingType::Storage { read_only: false }),
+            ],
+        });
+        let drag_pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("drag"),
+            bind_group_layouts: &[Some(&layout), Some(&drag_layout)],
+            immediate_size: 0,
+        });
+        let make_in = |name: &str, pipeline_layout: &wgpu::PipelineLayout| {
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(name),
-                layout: Some(&pipeline_layout),
+                layout: Some(pipeline_layout),
                 module: &module,
                 entry_point: Some(name),
                 compilation_options: Default::default(),
                 cache: None,
             })
         };
+        let make = |name: &str| make_in(name, &pipeline_layout);
+        let make_drag = |name: &str| make_in(name, &drag_pipeline_layout);
         Kernels {
             clear_cells: make("clear_cells"),
             count_cells: make("count_cells"),
@@ -157,7 +179,11 @@ impl Kernels {
             react_collision: make("react_collision"),
             place_paddle: make("place_paddle"),
             open_boundaries: make("open_boundaries"),
+            sample_flow: make_drag("sample_flow"),
+            reaction_sums: make_drag("reaction_sums"),
+            spread_reactions: make_drag("spread_reactions"),
             bind_group,
+            drag_layout,
             row: device.limits().max_compute_workgroups_per_dimension,
         }
     }
@@ -180,6 +206,22 @@ pub fn dispatch(
     group: u32,
 ) {
     dispatch_layers(pass, k, pipeline, items, group, 1);
+}
+
+/// Records the drag coupling's `pipeline` ([`super::drag`]) over `items` threads of [`WG`] per
+/// workgroup, as [`dispatch`] does, with the drag's bind group `drag` as group 1.
+pub fn dispatch_drag(
+    pass: &mut wgpu::ComputePass<'_>,
+    k: &Kernels,
+    pipeline: &wgpu::ComputePipeline,
+    drag: &wgpu::BindGroup,
+    items: u32,
+) {
+    pass.set_pipeline(pipeline);
+    pass.set_bind_group(0, &k.bind_group, &[]);
+    pass.set_bind_group(1, drag, &[]);
+    let (x, y) = grid_of(items.div_ceil(WG).max(1), k.row);
+    pass.dispatch_workgroups(x, y, 1);
 }
 
 /// Records `pipeline` over `items` threads of `group` per workgroup, as [`dispatch`] does, in

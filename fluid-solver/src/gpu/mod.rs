@@ -16,6 +16,8 @@
 //! - [`paddle`]: the wave maker's paddle, placed before each step by the prescribed motion;
 //! - [`open_boundary`]: inflow and outflow: the strip's new rows appended, particles removed and
 //!   the arrays compacted on the device;
+//! - [`drag`]: the unresolved drag coupling: the flow sampled at the coupler's points and the
+//!   point reactions spread over the fluid;
 //! - [`gather`]: the particles around a filtered wall-pressure sensor, copied back after each step;
 //! - [`reduce`]: the instability detector's scan and the step's totals, reduced on the device;
 //! - [`driver`]: the solver's step on the device (escapes, detector, host copies).
@@ -26,6 +28,7 @@ pub mod buffers;
 pub mod cell_sort;
 pub mod damping;
 pub mod device;
+pub mod drag;
 pub mod driver;
 pub mod gather;
 pub mod kernels;

@@ -1,7 +1,8 @@
 //! One E-MPS step on the device, the stages of [`crate::emps::step`] in the same order, after the
 //! wave maker's paddle and the bodies are placed (as [`crate::solver`] places them before the
-//! method's step; [`super::paddle`], [`super::bodies`]): (when the viscous term is on) cell sort
-//! at r^k and S1-4, then S1-10/S1-11, cell sort at r*, S1-15 with S1-14, S1-3 (with the artificial
+//! method's step; [`super::paddle`], [`super::bodies`]): (when the viscous term is on or the drag
+//! coupling's reactions are spread) cell sort at r^k, the reactions spread ([`super::drag`]) and
+//! (viscous) S1-4, then S1-10/S1-11, cell sort at r*, S1-15 with S1-14, S1-3 (with the artificial
 //! viscosity when on), S1-12/S1-13, the collision pass and its update, the damping zones (as
 //! [`crate::solver`] relaxes them after the method's step), and the device reduction of the
 //! detector and the totals. Only the 32 B per 256 particles of that reduction come back per step,
@@ -18,6 +19,7 @@ use super::buffers::{
 use super::cell_sort;
 use super::damping;
 use super::device::GpuDevice;
+use super::drag::DragState;
 use super::kernels::{dispatch, dispatch_layers, Kernels, WG, WIDE_WG};
 use super::open_boundary::{OpenPass, StripCopy};
 use super::paddle::{PaddlePlacement, PaddleSites};
@@ -37,6 +39,7 @@ use crate::stage_timer::StageTimes;
 use schemas::case::fluid::{Aabb, DampingConfig};
 use std::fmt;
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Mutex;
 
 /// What the device step needs to know of the case: the operators, the physics, the grid and the
 /// detector's geometry.
@@ -86,7 +89,7 @@ struct Shape {
 pub struct GpuEmps {
     pub dev: GpuDevice,
     pub(super) buffers: Buffers,
-    kernels: Kernels,
+    pub(super) kernels: Kernels,
     pub(super) params: Params,
     n: usize,
     viscous: bool,
@@ -108,6 +111,8 @@ pub struct GpuEmps {
     pub strip: StripCopy,
     /// Bytes the filtered sensors' gathers copied back ([`super::gather`]).
     pub(super) gathered: AtomicU64,
+    /// The drag coupling's buffers, made when it is first used ([`super::drag`]).
+    pub(super) drag: Mutex<Option<DragState>>,
 }
 
 impl fmt::Debug for GpuEmps {
@@ -275,6 +280,7 @@ impl GpuEmps {
             open_staging,
             strip: StripCopy::of(p, k.spacing),
             gathered: AtomicU64::new(0),
+            drag: Mutex::new(None),
         };
         step.upload(p)?;
         Ok(step)
@@ -392,6 +398,7 @@ impl GpuEmps {
         let row = self.kernels.row;
         self.kernels = Kernels::new(&self.dev, &self.buffers);
         self.kernels.row = row;
+        self.rebind_drag();
         self.staging = staging_buffer(&self.dev, "partials", groups, self.bodies);
         Ok(())
     }
@@ -447,7 +454,11 @@ impl GpuEmps {
     /// Bytes copied host → device and device → host since the start.
     pub fn bytes_moved(&self) -> (u64, u64) {
         let gathered = self.gathered.load(Ordering::Relaxed);
-        (self.buffers.uploaded, self.buffers.downloaded + gathered)
+        let (drag_up, drag_down) = self.drag_bytes();
+        (
+            self.buffers.uploaded + drag_up,
+            self.buffers.downloaded + gathered + drag_down,
+        )
     }
 
     /// Dispatches in rows of at most `groups` workgroups (the device's limit per dimension by
@@ -483,6 +494,7 @@ impl GpuEmps {
         let (bodies, place) = (self.bodies as u32, self.place_pending);
         let (av, damped) = (self.params.av_scale != 0.0, self.params.n_damping > 0);
         let paddle = self.params.paddle_count > 0;
+        let spreads = self.spreads_reactions();
         self.place_pending = false;
         // after an exchange's pass: each body particle's force summed per body, and the reaction
         // summed from the fluid particles' side (`react`), on the device
@@ -504,8 +516,15 @@ impl GpuEmps {
                 dispatch(p, k, &k.place_paddle, n, WG);
             }
         });
-        if rec.step.viscous {
+        // the drag's reactions spread at the step's start positions with a cell list sorted
+        // for them, before the viscous term (where the CPU kicks the velocities)
+        if rec.step.viscous || spreads {
             rec.sort("neighbour search", n, cells);
+        }
+        if spreads {
+            rec.spread();
+        }
+        if rec.step.viscous {
             rec.passes("viscous", |p, k| {
                 dispatch(p, k, &k.laplacian, n, WG);
                 if bodies > 0 {
@@ -559,6 +578,9 @@ impl GpuEmps {
         let partials: Vec<Partial> = bytemuck::pod_collect_to_vec(head);
         let sums = bytemuck::pod_collect_to_vec::<u8, BodyLoad>(tail);
         (self.body_loads, self.body_reactions) = bodies::loads_and_reactions(&sums);
+        if spreads {
+            self.read_reaction_states();
+        }
         if !self.profile {
             self.times.lap(t0, "step");
         }
@@ -611,6 +633,12 @@ impl<'a> Recorder<'a> {
             f(&mut pass, &self.step.kernels);
         }
         self.lap(name);
+    }
+
+    /// Records the drag's spreading ([`GpuEmps::encode_spreading`]), as stage "drag spreading".
+    fn spread(&mut self) {
+        self.step.encode_spreading(&mut self.enc);
+        self.lap("drag spreading");
     }
 
     /// Records a cell sort, as stage `name`.

@@ -285,23 +285,6 @@ impl Case {
             cfg.validate(&format!("structure.{name}"))?;
         }
         self.check_files()?;
-        let dragged: Vec<&str> = self
-            .coupling
-            .iter()
-            .flat_map(|c| &c.drag)
-            .map(|d| d.fluid.as_str())
-            .collect();
-        if let Some(name) = self
-            .fluid
-            .iter()
-            .find(|(n, c)| c.backend == fluid::FluidBackend::Gpu && dragged.contains(&n.as_str()))
-            .map(|(n, _)| n)
-        {
-            return Err(FieldError::new(
-                format!("fluid.{name}.backend"),
-                "the GPU path does not run the unresolved drag coupling ([[coupling.drag]]: sampling the flow and spreading the reactions) yet; use backend = \"cpu\" (the default) for this case",
-            ));
-        }
         match (&self.coupling, names.len()) {
             (None, n) if n > 1 => {
                 return Err(FieldError::new(
