@@ -15,6 +15,7 @@ mod every_case_checks;
 mod faults;
 mod floating_at_rest;
 mod floating_box;
+mod gpu_bridge_washout;
 mod gpu_drag_column;
 mod gpu_floating;
 mod help;
