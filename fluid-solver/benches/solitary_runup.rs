@@ -1,0 +1,90 @@
+//! Time to solution of `cases/solitary-runup` (a solitary wave, H/d = 0.2, running up a 1:3
+//! beach; ISPH with Lind's shifting) on this machine's CPU threads: the run-up R the probe reads
+//! against Synolakis' (1987) law R/d = 2.831 √(cot β) (H/d)^{5/4}, the wall time, and
+//! particle-steps per second, in a table.
+//!
+//! `cargo bench -p fluid-solver --bench solitary_runup` runs the shipped resolution (d/16,
+//! about 3.5 min on 2 cores); `… -- 16 24` runs d/16 and d/24 (Δt scaled with Δs, as the case's
+//! c Δt/Δs); `… -- 8` a quick d/8 to check the bench itself.
+
+use fluid_solver::probes::ProbeSet;
+use fluid_solver::FluidSolver;
+use schemas::case::fluid::FluidConfig;
+use schemas::case::Case;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Still-water depth d and wave height H of the case [m]; the beach's slope cot β.
+const DEPTH: f64 = 0.1;
+const HEIGHT: f64 = 0.02;
+const COT_BETA: f64 = 3.0;
+
+/// One run at Δs = d/`n`: (R [m], wall time [s], particles, steps).
+fn run(base: &FluidConfig, n: f64) -> Result<(f64, f64, usize, u64), String> {
+    let mut cfg = base.clone();
+    let scale = (DEPTH / n) / base.spacing;
+    cfg.spacing = DEPTH / n;
+    cfg.time_step = base.time_step * scale;
+    cfg.validate("fluid.flume").map_err(|e| format!("{e:?}"))?;
+    let started = Instant::now();
+    let mut solver = FluidSolver::new(&cfg);
+    let mut probes = ProbeSet::new(&cfg.probe, &solver)?;
+    let column = probes
+        .names()
+        .iter()
+        .position(|&p| p == "run-up")
+        .ok_or("the case has no `run-up` probe")?;
+    let mut highest = f64::MIN;
+    let end = 1.3;
+    let interval = cfg.probe_interval.unwrap_or(cfg.time_step);
+    let mut t = 0.0;
+    while t < end - 1e-9 {
+        t = (t + interval).min(end);
+        solver.advance_to(t).map_err(|e| e.to_string())?;
+        highest = highest.max(probes.row(&solver)[column]);
+    }
+    Ok((
+        highest - DEPTH,
+        started.elapsed().as_secs_f64(),
+        solver.particle_count(),
+        solver.steps(),
+    ))
+}
+
+fn main() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../cases/solitary-runup/case.toml");
+    let case = match Case::load(&path) {
+        Ok(c) => c,
+        Err(e) => {
+            println!("error: {e}");
+            return;
+        }
+    };
+    let Some(base) = case.fluid.get("flume").cloned() else {
+        println!("error: the case has no fluid section `flume`");
+        return;
+    };
+    let mut sizes: Vec<f64> = std::env::args().skip(1).filter_map(|a| a.parse().ok()).collect();
+    if sizes.is_empty() {
+        sizes.push(16.0);
+    }
+    let law = DEPTH * 2.831 * COT_BETA.sqrt() * (HEIGHT / DEPTH).powf(1.25);
+    println!(
+        "solitary-runup, ISPH + Lind shifting, to t = 1.3 s on {} threads; Synolakis' law R = {:.1} mm",
+        rayon::current_num_threads(),
+        1e3 * law
+    );
+    println!("| Δs | particles | steps | R [mm] | R / law | wall time [s] | particle-steps/s |");
+    println!("|---|---|---|---|---|---|---|");
+    for n in sizes {
+        match run(&base, n) {
+            Ok((r, wall, particles, steps)) => println!(
+                "| d/{n} | {particles} | {steps} | {:.1} | {:.2} | {wall:.1} | {:.3e} |",
+                1e3 * r,
+                r / law,
+                (particles as f64 * steps as f64) / wall
+            ),
+            Err(e) => println!("| d/{n} | error: {e} |"),
+        }
+    }
+}
