@@ -18,6 +18,7 @@ mod floating_box;
 mod gpu_bridge_washout;
 mod gpu_drag_column;
 mod gpu_floating;
+mod gpu_prism;
 mod help;
 mod isph_floating;
 mod oscillator;

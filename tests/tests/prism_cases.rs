@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// `cases/NAME/FILE` at particle size 0.02 m (Δt 8e-4 s) ending at `end`, written into `dir`.
-fn coarse_case(name: &str, file: &str, dir: &Path, end: f64) -> PathBuf {
+pub(crate) fn coarse_case(name: &str, file: &str, dir: &Path, end: f64) -> PathBuf {
     let source = workspace().join("cases").join(name).join(file);
     let text =
         std::fs::read_to_string(&source).unwrap_or_else(|e| panic!("cannot read {}: {e}", source.display()));
@@ -33,7 +33,7 @@ fn run(case: &Path, out: &Path) -> (Vec<Vec<f64>>, Vec<String>, String) {
     (csv_rows(&ledger), csv_header(&ledger), log)
 }
 
-fn column(header: &[String], name: &str) -> usize {
+pub(crate) fn column(header: &[String], name: &str) -> usize {
     header
         .iter()
         .position(|h| h == name)
@@ -41,7 +41,7 @@ fn column(header: &[String], name: &str) -> usize {
 }
 
 /// ∫ F_x dt over the run [N s].
-fn impulse_x(rows: &[Vec<f64>], fx: usize) -> f64 {
+pub(crate) fn impulse_x(rows: &[Vec<f64>], fx: usize) -> f64 {
     rows.windows(2)
         .map(|w| 0.5 * (w[0][fx] + w[1][fx]) * (w[1][1] - w[0][1]))
         .sum()
