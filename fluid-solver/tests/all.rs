@@ -27,6 +27,7 @@ mod gpu_dam_break;
 mod gpu_damping;
 mod gpu_detector;
 mod gpu_drag;
+mod gpu_far_from_origin;
 mod gpu_filtered_probes;
 mod gpu_front;
 mod gpu_hydrostatic;

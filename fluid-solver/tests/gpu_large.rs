@@ -9,6 +9,7 @@ use crate::gpu_common;
 use bytemuck::Zeroable;
 use fluid_solver::escape::OpenTop;
 use fluid_solver::gpu::buffers::{Buffers, CELL_COUNT, CELL_START};
+use fluid_solver::gpu::frame::Frame;
 use fluid_solver::gpu::kernels::Kernels;
 use fluid_solver::gpu::params::Params;
 use fluid_solver::gpu::step::GpuSetup;
@@ -137,6 +138,9 @@ fn gpu_run(dev: GpuDevice, cfg: &FluidConfig, grid: &CellGrid, steps: usize, row
         artificial_viscosity: 0.0,
         paddle: None,
         headroom: 0,
+        frame: Frame {
+            origin: cfg.gpu_frame_origin(),
+        },
     };
     let mut gpu = GpuEmps::new(dev, &setup, grid, solver.particles()).unwrap_or_else(|e| panic!("{e}"));
     if let Some(row) = row {

@@ -2,7 +2,7 @@
 //! command-line flag), and no adapter at all (exit code 2 with how to get one); and what it
 //! accepts since issue 38 (damping zones, the artificial viscosity, mesh solids, terrains,
 //! bodies from meshes, wave makers, inflow and outflow boundaries, filtered wall-pressure
-//! sensors).
+//! sensors, tanks far from the origin).
 
 use crate::gpu_common;
 
@@ -58,7 +58,8 @@ fn gpu_backend_refuses_what_it_does_not_run_naming_the_feature() {
     Case::parse(Path::new("cases/small/case.toml"), format!("{GOOD}{probe}"))
         .unwrap_or_else(|e| panic!("{e}"));
 
-    // A tank 2 km from the origin: positions would round by 1.2e-4 m = 6e-3 Δs in f32.
+    // A tank 2 km from the origin runs since the device keeps positions from the tank's corner
+    // (tests/gpu_far_from_origin.rs)
     let far = GOOD
         .replace(
             "min = [0.0, 0.0, 0.0], max = [0.2,",
@@ -68,9 +69,15 @@ fn gpu_backend_refuses_what_it_does_not_run_naming_the_feature() {
             "min = [0.0, 0.0, 0.0]\nmax = [0.1,",
             "min = [2000.0, 0.0, 0.0]\nmax = [2000.1,",
         );
-    let e = error_of(&far);
+    assert!(far.contains("2000.2") && far.contains("2000.1"));
+    Case::parse(Path::new("cases/small/case.toml"), far).unwrap_or_else(|e| panic!("{e}"));
+    // A tank 700 m long at Δs = 0.02 m (35 000 spacings): at its far end, positions would round
+    // by 4.2e-5 m = 2.1e-3 Δs in f32.
+    let long = GOOD.replace("max = [0.2, 0.06, 0.3], lid", "max = [700.0, 0.06, 0.3], lid");
+    assert!(long.contains("700.0"));
+    let e = error_of(&long);
     assert!(
-        e.contains("`fluid.water.backend`") && e.contains("f32") && e.contains("move the tank"),
+        e.contains("`fluid.water.backend`") && e.contains("f32") && e.contains("16777 spacings"),
         "{e}"
     );
 }

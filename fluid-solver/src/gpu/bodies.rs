@@ -7,6 +7,7 @@
 //! come back per step.
 
 use super::buffers::SUMS;
+use super::frame::Frame;
 use bytemuck::{Pod, Zeroable};
 
 /// Mirror of `Member` in `shaders/common.wgsl`: a body particle's offset from its body's initial
@@ -54,14 +55,16 @@ pub fn members(table: &[(u32, usize, [f64; 3])]) -> Vec<Member> {
 }
 
 /// The device's kinematics of each body from `pose` (7 per body: centre, quaternion w x y z),
-/// `velocity` (6 per body: V, ω) and the `lead` of [`crate::bodies::RigidBodies::set_kinematics`].
-pub fn kinematics(pose: &[f64], velocity: &[f64], lead: f64) -> Vec<BodyKin> {
+/// `velocity` (6 per body: V, ω) and the `lead` of [`crate::bodies::RigidBodies::set_kinematics`],
+/// the centres in the device's `frame`.
+pub fn kinematics(pose: &[f64], velocity: &[f64], lead: f64, frame: &Frame) -> Vec<BodyKin> {
     pose.chunks_exact(7)
         .zip(velocity.chunks_exact(6))
         .map(|(p, v)| {
             let f = |x: f64| x as f32;
+            let [cx, cy, cz] = frame.point([p[0], p[1], p[2]]);
             BodyKin {
-                centre: [f(p[0]), f(p[1]), f(p[2]), f(lead)],
+                centre: [cx, cy, cz, f(lead)],
                 quat: [f(p[3]), f(p[4]), f(p[5]), f(p[6])],
                 vel: [f(v[0]), f(v[1]), f(v[2]), 0.0],
                 omega: [f(v[3]), f(v[4]), f(v[5]), 0.0],

@@ -24,6 +24,7 @@
 //! (`shaders/body_inside.wgsl`).
 
 use super::device::GpuDevice;
+use super::frame::Frame;
 use super::reduce::Partial;
 use crate::particles::Particles;
 use bytemuck::{Pod, Zeroable};
@@ -169,16 +170,20 @@ impl Buffers {
         self.uploaded += std::mem::size_of_val(p) as u64;
     }
 
-    /// Copies the particles to the device (positions, velocities and pressures in f32).
-    pub fn upload(&mut self, dev: &GpuDevice, p: &Particles) {
-        self.upload_at(dev, p, 0);
+    /// Copies the particles to the device (positions in `frame`, velocities and pressures in
+    /// f32).
+    pub fn upload(&mut self, dev: &GpuDevice, p: &Particles, frame: &Frame) {
+        self.upload_at(dev, p, 0, frame);
     }
 
     /// Copies the particles to the device's slots `first` … `first + p.len()`.
-    pub fn upload_at(&mut self, dev: &GpuDevice, p: &Particles, first: usize) {
+    pub fn upload_at(&mut self, dev: &GpuDevice, p: &Particles, first: usize, frame: &Frame) {
         let n = p.len();
         let pos: Vec<[f32; 4]> = (0..n)
-            .map(|i| [p.x[i] as f32, p.y[i] as f32, p.z[i] as f32, f32::from(p.kind[i])])
+            .map(|i| {
+                let [x, y, z] = frame.point(p.position(i));
+                [x, y, z, f32::from(p.kind[i])]
+            })
             .collect();
         let vel: Vec<[f32; 4]> = (0..n)
             .map(|i| [p.vx[i] as f32, p.vy[i] as f32, p.vz[i] as f32, 0.0])
@@ -193,16 +198,17 @@ impl Buffers {
     }
 
     /// Copies the first `n` particles back into `p` (its arrays are replaced; kinds from the
-    /// position's w).
-    pub fn download(&mut self, dev: &GpuDevice, n: usize, p: &mut Particles) {
+    /// position's w; positions from `frame`).
+    pub fn download(&mut self, dev: &GpuDevice, n: usize, p: &mut Particles, frame: &Frame) {
         let pos: Vec<[f32; 4]> = self.read(dev, POS, n);
         let vel: Vec<[f32; 4]> = self.read(dev, VEL, n);
         let id: Vec<u32> = self.read(dev, ID, n);
         let dens: Vec<[f32; 2]> = self.read(dev, DENS, n);
         let col = |v: &[[f32; 4]], a: usize| v.iter().map(|e| f64::from(e[a])).collect::<Vec<f64>>();
-        p.x = col(&pos, 0);
-        p.y = col(&pos, 1);
-        p.z = col(&pos, 2);
+        let back = |a: usize| pos.iter().map(|e| frame.back(a, e[a])).collect::<Vec<f64>>();
+        p.x = back(0);
+        p.y = back(1);
+        p.z = back(2);
         p.kind = pos.iter().map(|e| e[3] as u8).collect();
         p.vx = col(&vel, 0);
         p.vy = col(&vel, 1);

@@ -2,6 +2,7 @@
 //! [`crate::boundaries::damping`], u ← u exp(−rate s² Δt) for the fluid in a zone after each
 //! step, s rising from 0 at the zone's near face to 1 at its far one.
 
+use super::frame::Frame;
 use bytemuck::{Pod, Zeroable};
 use schemas::case::fluid::DampingConfig;
 
@@ -20,16 +21,16 @@ pub struct Zone {
 
 /// The device's zones of the `[[damping]]` tables, as [`crate::solver`] parses them (a table
 /// whose axis validation refuses has none).
-pub fn zones(tables: &[DampingConfig]) -> Vec<Zone> {
+pub fn zones(tables: &[DampingConfig], frame: &Frame) -> Vec<Zone> {
     tables
         .iter()
         .filter_map(|d| {
             let (axis, sign) = d.direction()?;
             let zone = d.zone();
             Some(Zone {
-                lo: zone.min.map(|v| v as f32),
+                lo: frame.point(zone.min),
                 axis: axis as u32,
-                hi: zone.max.map(|v| v as f32),
+                hi: frame.point(zone.max),
                 sign: sign as f32,
                 rate: d.rate as f32,
                 pad: [0; 3],

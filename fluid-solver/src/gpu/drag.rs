@@ -21,6 +21,7 @@
 
 use super::buffers::map_read;
 use super::device::GpuDevice;
+use super::frame::Frame;
 use super::gather::MARGIN_CELLS;
 use super::kernels::{dispatch_drag, Kernels};
 use super::step::GpuEmps;
@@ -249,7 +250,7 @@ impl DragState {
         &mut self,
         dev: &GpuDevice,
         kernels: &Kernels,
-        spacing: f64,
+        (spacing, frame): (f64, &Frame),
         (reactions, sample_points, widths): (&[f64], &[f64], &[f64]),
     ) {
         let count = reactions.len() / 6;
@@ -277,29 +278,30 @@ impl DragState {
             .enumerate()
             .flat_map(|(k, r)| {
                 let f = |x: f64| x as f32;
+                let at = |p: &[f64]| frame.point([p[0], p[1], p[2]]);
                 let s = match paired {
-                    true => [
-                        f(sample_points[3 * k]),
-                        f(sample_points[3 * k + 1]),
-                        f(sample_points[3 * k + 2]),
-                        1.0,
-                    ],
+                    true => {
+                        let [x, y, z] = at(&sample_points[3 * k..3 * k + 3]);
+                        [x, y, z, 1.0]
+                    }
                     false => [0.0; 4],
                 };
+                let [cx, cy, cz] = at(r);
                 [
-                    [f(r[0]), f(r[1]), f(r[2]), f(half_widths[k])],
+                    [cx, cy, cz, f(half_widths[k])],
                     [f(r[3]), f(r[4]), f(r[5]), 0.0],
                     s,
                 ]
             })
             .collect();
         let grid = (!same_centres).then(|| {
+            // in the device's frame, where the particles are
+            let at = |p: &[f64]| -> [f64; 3] { std::array::from_fn(|a| p[a] - frame.origin[a]) };
             let mut centres: Vec<([f64; 3], u32)> = Vec::with_capacity(2 * count);
             for (k, r) in reactions.chunks_exact(6).enumerate() {
-                centres.push(([r[0], r[1], r[2]], 2 * k as u32));
+                centres.push((at(r), 2 * k as u32));
                 if paired {
-                    let s = &sample_points[3 * k..3 * k + 3];
-                    centres.push(([s[0], s[1], s[2]], 2 * k as u32 + 1));
+                    centres.push((at(&sample_points[3 * k..3 * k + 3]), 2 * k as u32 + 1));
                 }
             }
             let widest = half_widths.iter().copied().fold(0.0, f64::max);
@@ -384,12 +386,13 @@ impl GpuEmps {
     /// the next step on, as [`crate::FluidSolver::set_point_reactions`] on the CPU.
     pub fn set_point_reactions(&mut self, reactions: &[f64], sample_points: &[f64], widths: &[f64]) {
         let spacing = f64::from(self.params.spacing);
+        let frame = self.frame;
         let mut guard = self.drag_state();
         if let Some(d) = guard.as_mut() {
             d.set_reactions(
                 &self.dev,
                 &self.kernels,
-                spacing,
+                (spacing, &frame),
                 (reactions, sample_points, widths),
             );
         }
@@ -437,7 +440,10 @@ impl GpuEmps {
         );
         let rows: Vec<[f32; 4]> = points
             .chunks_exact(3)
-            .map(|p| [p[0] as f32, p[1] as f32, p[2] as f32, 0.0])
+            .map(|p| {
+                let [x, y, z] = self.frame.point([p[0], p[1], p[2]]);
+                [x, y, z, 0.0]
+            })
             .collect();
         let f = d.floats.clone();
         d.write(&self.dev, &f, 16 * first, &rows);

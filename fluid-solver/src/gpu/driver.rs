@@ -5,6 +5,7 @@
 
 use super::device::{GpuDevice, NoAdapter};
 use super::drag::{NOT_APPLIED, SPREAD_AT_CENTROID, SPREAD_AT_SAMPLE_POINT};
+use super::frame::Frame;
 use super::paddle::{PaddlePlacement, PaddleSites};
 use super::solids::SolidBits;
 use super::step::{GpuEmps, GpuSetup};
@@ -89,6 +90,9 @@ impl FluidSolver {
             artificial_viscosity: cfg.artificial_viscosity,
             paddle: self.paddle.as_ref().map(PaddleSites::of),
             headroom: self.inflow_headroom(),
+            frame: Frame {
+                origin: cfg.gpu_frame_origin(),
+            },
         };
         let step = GpuEmps::new(dev, &setup, &self.state.grid, &self.state.particles)
             .map_err(GpuStartError::Unsupported)?;

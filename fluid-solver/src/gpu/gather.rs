@@ -27,7 +27,9 @@ impl GpuEmps {
     pub fn particles_in(&self, lo: [f64; 3], hi: [f64; 3]) -> Particles {
         let prm = &self.params;
         let pad = i64::from(prm.pad);
+        let frame = self.frame;
         let cell = |v: f64, a: usize, shift: i64| {
+            let v = v - frame.origin[a];
             let c = ((v - f64::from(prm.origin[a])) * f64::from(prm.inv_cell)).floor() as i64 + shift;
             c.clamp(pad, i64::from(prm.dims[a]) - pad - 1) as u64
         };
@@ -91,7 +93,7 @@ impl GpuEmps {
         let pos: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(pos);
         let dens: Vec<[f32; 2]> = bytemuck::pod_collect_to_vec(dens);
         let m = pos.len();
-        let col = |a: usize| pos.iter().map(|e| f64::from(e[a])).collect::<Vec<f64>>();
+        let col = |a: usize| pos.iter().map(|e| frame.back(a, e[a])).collect::<Vec<f64>>();
         (p.x, p.y, p.z) = (col(0), col(1), col(2));
         p.kind = pos.iter().map(|e| e[3] as u8).collect();
         (p.vx, p.vy, p.vz) = (vec![0.0; m], vec![0.0; m], vec![0.0; m]);

@@ -5,6 +5,7 @@
 //!
 //! - [`device`]: adapter selection (Vulkan only) and the error when there is none;
 //! - [`params`]: the constants every kernel reads (one uniform block);
+//! - [`frame`]: positions on the device are kept from the tank's lower corner;
 //! - [`buffers`]: the device arrays, their precision, upload and download;
 //! - [`kernels`]: the WGSL modules (`shaders/`) as compute pipelines on one bind group;
 //! - [`cell_sort`]: counting sort and prefix sum by cell;
@@ -30,6 +31,7 @@ pub mod damping;
 pub mod device;
 pub mod drag;
 pub mod driver;
+pub mod frame;
 pub mod gather;
 pub mod kernels;
 pub mod open_boundary;

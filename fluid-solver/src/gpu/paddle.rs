@@ -19,6 +19,7 @@
 //! |r| Δθ rounds as itself, not as the difference of two positions).
 
 use super::bodies::Member;
+use super::frame::Frame;
 use crate::boundaries::paddle::Paddle;
 use schemas::wave_motion::WaveMakerMotion;
 
@@ -46,12 +47,12 @@ impl PaddleSites {
     }
 
     /// The device's rows of the paddle in the members' buffer, after the bodies' (offset: the
-    /// rest position (x, 0, z); id; body: none).
-    pub fn rows(&self) -> Vec<Member> {
+    /// rest position (x, 0, z) in the device's `frame`; id; body: none).
+    pub fn rows(&self, frame: &Frame) -> Vec<Member> {
         (self.first..)
             .zip(&self.rest)
             .map(|(id, r)| Member {
-                offset: [r[0] as f32, 0.0, r[1] as f32],
+                offset: [frame.along(0, r[0]), 0.0, frame.along(2, r[1])],
                 id,
                 body: u32::MAX,
                 pad: [0; 3],

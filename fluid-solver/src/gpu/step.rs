@@ -20,6 +20,7 @@ use super::cell_sort;
 use super::damping;
 use super::device::GpuDevice;
 use super::drag::DragState;
+use super::frame::Frame;
 use super::kernels::{dispatch, dispatch_layers, Kernels, WG, WIDE_WG};
 use super::open_boundary::{OpenPass, StripCopy};
 use super::paddle::{PaddlePlacement, PaddleSites};
@@ -72,6 +73,8 @@ pub struct GpuSetup {
     /// Room for this many particles more than the start's (an inflow adds particles; the
     /// arrays are regrown when they are full: [`GpuEmps::open_boundaries`]).
     pub headroom: usize,
+    /// Where the device measures positions from ([`super::frame`]).
+    pub frame: Frame,
 }
 
 /// What the buffers were made for, besides the particles (to regrow them).
@@ -113,6 +116,8 @@ pub struct GpuEmps {
     pub(super) gathered: AtomicU64,
     /// The drag coupling's buffers, made when it is first used ([`super::drag`]).
     pub(super) drag: Mutex<Option<DragState>>,
+    /// Where the device measures positions from ([`super::frame`]).
+    pub(super) frame: Frame,
 }
 
 impl fmt::Debug for GpuEmps {
@@ -145,12 +150,13 @@ impl GpuEmps {
         }
         let k = &setup.kernel;
         let ph = &setup.physics;
+        let frame = setup.frame;
         let mass = ph.density * k.spacing.powi(3);
         let boxes: Vec<[f32; 4]> = setup
             .walls
             .iter()
             .flat_map(|b| {
-                let (lo, hi) = (f32x3(b.min), f32x3(b.max));
+                let (lo, hi) = (frame.point(b.min), frame.point(b.max));
                 [[lo[0], lo[1], lo[2], 0.0], [hi[0], hi[1], hi[2], 0.0]]
             })
             .collect();
@@ -164,19 +170,19 @@ impl GpuEmps {
                 4 * site_words.len() as u64
             ));
         }
-        let zones = damping::zones(&setup.damping);
+        let zones = damping::zones(&setup.damping, &frame);
         let viscous = ph.viscous();
         let n_bodies = setup.body_pose.len() / 7;
         // the paddle's rest positions follow the bodies' members in their buffer
         let mut member_rows = bodies::members(&setup.members);
         let paddle_row = member_rows.len();
         let paddle = setup.paddle.as_ref();
-        member_rows.extend(paddle.map_or(Vec::new(), PaddleSites::rows));
+        member_rows.extend(paddle.map_or(Vec::new(), |p| p.rows(&frame)));
         let paddle_count = member_rows.len() - paddle_row;
         // artificial_viscosity.rs: q_ij = −α ρ0 c h (u_ij · r_ij) / (r² + 0.01 h²), h = r_e,grad / 2
         let h_av = 0.5 * k.re_grad;
         let params = Params {
-            origin: f32x3(origin),
+            origin: frame.point(origin),
             inv_cell: (1.0 / cell) as f32,
             dims: dims.map(|d| d as u32),
             n: n as u32,
@@ -198,13 +204,13 @@ impl GpuEmps {
             cells: cells as u32,
             pad: PAD as u32,
             viscous: u32::from(viscous),
-            domain_lo: f32x3(setup.domain.lo),
+            domain_lo: frame.point(setup.domain.lo),
             spacing: k.spacing as f32,
-            domain_hi: f32x3(setup.domain.hi),
-            wall_top: setup.open_top.wall_top as f32,
-            tank_lo: f32x3(setup.tank.min),
+            domain_hi: frame.point(setup.domain.hi),
+            wall_top: frame.along(2, setup.open_top.wall_top),
+            tank_lo: frame.point(setup.tank.min),
             open_top: u32::from(setup.open_top.open),
-            tank_hi: f32x3(setup.tank.max),
+            tank_hi: frame.point(setup.tank.max),
             n_boxes: (boxes.len() / 2) as u32,
             mass: mass as f32,
             volume: (mass / ph.density) as f32,
@@ -214,7 +220,7 @@ impl GpuEmps {
             reach_contact: grid.reach(k.spacing) as u32,
             contact_k: 0.0,
             contact_c: 0.0,
-            solid_lo: f32x3(setup.solids.as_ref().map_or([0.0; 3], |s| s.origin)),
+            solid_lo: frame.point(setup.solids.as_ref().map_or(frame.origin, |s| s.origin)),
             solid_inv_ds: setup.solids.as_ref().map_or(0.0, |s| (1.0 / s.spacing) as f32),
             solid_n: setup.solids.as_ref().map_or([0; 3], |s| s.n),
             solids: u32::from(setup.solids.is_some()),
@@ -232,8 +238,8 @@ impl GpuEmps {
             paddle_sin: 0.0,
             paddle_dcos: 0.0,
             paddle_dsin: 0.0,
-            hinge_x: paddle.map_or(0.0, |p| p.hinge[0] as f32),
-            hinge_z: paddle.map_or(0.0, |p| p.hinge[1] as f32),
+            hinge_x: paddle.map_or(0.0, |p| frame.along(0, p.hinge[0])),
+            hinge_z: paddle.map_or(0.0, |p| frame.along(2, p.hinge[1])),
             pad_paddle: 0,
             inflow_u: 0.0,
             inflow_dx: 0.0,
@@ -258,7 +264,7 @@ impl GpuEmps {
         buffers.write(&dev, DAMPING, &zones);
         buffers.write(&dev, SOLID_BITS, &site_words);
         buffers.write(&dev, MEMBERS, &member_rows);
-        let kin = bodies::kinematics(&setup.body_pose, &setup.body_velocity, 0.0);
+        let kin = bodies::kinematics(&setup.body_pose, &setup.body_velocity, 0.0, &frame);
         buffers.write(&dev, BODY_KIN, &kin);
         let staging = staging_buffer(&dev, "partials", groups, n_bodies);
         let open_staging = staging_buffer(&dev, "open boundaries", 0, 0);
@@ -281,6 +287,7 @@ impl GpuEmps {
             strip: StripCopy::of(p, k.spacing),
             gathered: AtomicU64::new(0),
             drag: Mutex::new(None),
+            frame,
         };
         step.upload(p)?;
         Ok(step)
@@ -304,13 +311,13 @@ impl GpuEmps {
         }
         self.n = p.len();
         self.params.n = self.n as u32;
-        self.buffers.upload(&self.dev, p);
+        self.buffers.upload(&self.dev, p, &self.frame);
         Ok(())
     }
 
     /// Copies the device's particles into `p` (in the device's cell order).
     pub fn download(&mut self, p: &mut Particles) {
-        self.buffers.download(&self.dev, self.n, p);
+        self.buffers.download(&self.dev, self.n, p, &self.frame);
     }
 
     /// The open boundaries' part of the step about to run ([`super::open_boundary`]): the pass
@@ -320,10 +327,12 @@ impl GpuEmps {
     /// device cannot hold the particles.
     pub fn open_boundaries(&mut self, pass: &OpenPass, rows: &Particles) -> Result<[u64; 3], String> {
         let f = |x: f64| x as f32;
+        let frame = self.frame;
         let prm = &mut self.params;
         (prm.inflow_u, prm.inflow_dx) = (f(pass.u), f(pass.dx));
-        (prm.inflow_enter, prm.inflow_cut) = (f(pass.enter), f(pass.cut));
-        prm.outflow_x = f(pass.outflow);
+        // planes (±∞ where there is none) in the device's frame
+        (prm.inflow_enter, prm.inflow_cut) = (frame.along(0, pass.enter), frame.along(2, pass.cut));
+        prm.outflow_x = frame.along(0, pass.outflow);
         prm.n = self.n as u32;
         let (n, cells) = (prm.n, prm.cells);
         self.buffers.write_params(&self.dev, &self.params);
@@ -359,7 +368,7 @@ impl GpuEmps {
                 let most = (self.shape.largest / 16) as usize;
                 self.regrow((need + need / 2).min(most).max(need))?;
             }
-            self.buffers.upload_at(&self.dev, rows, self.n);
+            self.buffers.upload_at(&self.dev, rows, self.n, &self.frame);
             self.n = need;
         }
         self.params.n = self.n as u32;
@@ -413,7 +422,7 @@ impl GpuEmps {
     /// body: V, ω) and lead; the next step first places the body particles by them (as
     /// [`crate::bodies::RigidBodies::set_kinematics`]) and takes moments about these centres.
     pub fn set_body_motion(&mut self, pose: &[f64], velocity: &[f64], lead: f64) {
-        let kin = bodies::kinematics(pose, velocity, lead);
+        let kin = bodies::kinematics(pose, velocity, lead, &self.frame);
         self.buffers.write(&self.dev, BODY_KIN, &kin);
         self.place_pending = true;
     }
@@ -584,7 +593,12 @@ impl GpuEmps {
         if !self.profile {
             self.times.lap(t0, "step");
         }
-        reduce::sum(&partials)
+        let mut report = reduce::sum(&partials);
+        // Σ (½|u|² − g·(r − origin)) on the device: the potential back from the case's origin
+        let g = self.params.gravity.map(f64::from);
+        let lift: f64 = (0..3).map(|a| g[a] * self.frame.origin[a]).sum();
+        report.energy -= report.fluid as f64 * lift;
+        report
     }
 }
 

@@ -5,7 +5,8 @@ use crate::case::FieldError;
 
 /// The largest f32 rounding of a position the GPU path accepts, in spacings: 1e-3 Δs is 5 % of
 /// a step's largest move at c Δt/Δs ≈ 0.5 and u ≤ c/10 (S1-16), and allows tanks up to
-/// 16 777 spacings from the origin (16.7 km at Δs = 1 m).
+/// 16 777 spacings long anywhere (positions are kept from the tank's lower corner: 16.7 km at
+/// Δs = 1 m).
 pub const GPU_MAX_ROUNDING: f64 = 1e-3;
 
 impl FluidConfig {
@@ -31,28 +32,40 @@ impl FluidConfig {
         self.gpu_position_rounding(key)
     }
 
-    /// The GPU path keeps absolute positions in f32 (24-bit significand): a coordinate x rounds
-    /// by up to |x|·2⁻²⁴. Refused when that exceeds [`GPU_MAX_ROUNDING`] Δs anywhere in the
-    /// tank or its headroom above an open top (one tank height): a slow particle far from the
-    /// origin would then move by steps of the rounding instead of its velocity (cell index +
-    /// f32 offset positions are not on the GPU yet).
-    fn gpu_position_rounding(&self, key: &str) -> Result<(), FieldError> {
+    /// The point the GPU path measures positions from: the tank's lower corner. The device keeps
+    /// `x − origin` in f32, so a tank anywhere (georeferenced coordinates included) rounds as one
+    /// at the origin.
+    pub fn gpu_frame_origin(&self) -> [f64; 3] {
+        self.gpu_extent().0
+    }
+
+    /// The box the GPU path's positions stay in: the tank, and one tank height above an open
+    /// top.
+    fn gpu_extent(&self) -> ([f64; 3], [f64; 3]) {
         let t = &self.tank;
         let headroom = if t.lid { 0.0 } else { t.max[2] - t.min[2] };
-        let far = (0..3)
-            .map(|a| {
-                t.min[a]
-                    .abs()
-                    .max(t.max[a].abs() + if a == 2 { headroom } else { 0.0 })
-            })
-            .fold(0.0, f64::max);
+        let mut hi = t.max;
+        hi[2] += headroom;
+        (t.min, hi)
+    }
+
+    /// The GPU path keeps positions relative to [`FluidConfig::gpu_frame_origin`] in f32
+    /// (24-bit significand): a coordinate d from it rounds by up to |d|·2⁻²⁴. Refused when that
+    /// exceeds [`GPU_MAX_ROUNDING`] Δs anywhere in the tank or its headroom, i.e. for a tank
+    /// longer than 16 777 spacings along an axis: a slow particle at its far end would then move
+    /// by steps of the rounding instead of its velocity (cell index + f32 offset positions, which
+    /// would lift this, are not on the GPU yet).
+    fn gpu_position_rounding(&self, key: &str) -> Result<(), FieldError> {
+        let (lo, hi) = self.gpu_extent();
+        let far = (0..3).map(|a| hi[a] - lo[a]).fold(0.0, f64::max);
         let rounding = far * f64::from(f32::EPSILON) / 2.0;
         if rounding > GPU_MAX_ROUNDING * self.spacing {
             return Err(FieldError::new(
                 format!("{key}.backend"),
                 format!(
-                    "the GPU path keeps positions in f32: {far} m from the origin they round by {rounding:.2e} m = {:.1e} Δs, more than the {GPU_MAX_ROUNDING:e} Δs it allows; move the tank next to the origin (coordinates are free: shift every position of the case) or use backend = \"cpu\"",
-                    rounding / self.spacing
+                    "the GPU path keeps positions in f32 from the tank's lower corner: {far} m from it (the tank's largest extent, with one tank height above an open top) they round by {rounding:.2e} m = {:.1e} Δs, more than the {GPU_MAX_ROUNDING:e} Δs it allows; use a coarser spacing, a smaller tank (at most {:.0} spacings along an axis), or backend = \"cpu\"",
+                    rounding / self.spacing,
+                    GPU_MAX_ROUNDING / (f64::from(f32::EPSILON) / 2.0)
                 ),
             ));
         }
