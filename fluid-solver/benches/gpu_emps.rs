@@ -1,4 +1,5 @@
-//! Speed of the GPU path (src/gpu) on the seed's dam-break tank: particle-steps per second, time
+//! Speed of the GPU path (src/gpu) on the seed's dam-break tank: particle-steps per second, pair
+//! candidates examined per second (the GPIPS-like count, with the pairs beyond the kernel's reach), time
 //! per stage (each stage submitted and waited for, so the sum is above the plain step) and the
 //! bytes crossing between host and device per step and per probe window (0.01 s).
 //!
@@ -46,6 +47,7 @@ fn run(base: &FluidConfig, ds: f64, depth: f64, steps: u64) {
     let setup = setup.elapsed().as_secs_f64();
     let n = solver.particle_count() as u64;
     let dt = cfg.time_step;
+    let before = solver.totals().candidates;
     let start = Instant::now();
     for _ in 0..steps {
         if let Err(e) = solver.step(dt) {
@@ -54,6 +56,7 @@ fn run(base: &FluidConfig, ds: f64, depth: f64, steps: u64) {
         }
     }
     let plain = start.elapsed().as_secs_f64();
+    let candidates = solver.totals().candidates - before;
     let Some(d) = solver.device_mut() else { return };
     let (up0, down0) = d.bytes_moved();
     d.set_profile(true);
@@ -69,9 +72,10 @@ fn run(base: &FluidConfig, ds: f64, depth: f64, steps: u64) {
     let per_step = (up1 - up0 + down1 - down0) as f64 / profiled as f64;
     let window = (0.01 / dt).round();
     println!(
-        "Δs = {ds} m, {n} particles, {steps} steps: {:.3e} particle-steps/s ({:.2} ms/step)",
+        "Δs = {ds} m, {n} particles, {steps} steps: {:.3e} particle-steps/s ({:.2} ms/step); {:.3} G pair candidates/s (every pair examined in the step's passes, those beyond the kernel's reach included: the GPIPS peers print counts pairs of interacting particles, at most this)",
         (n * steps) as f64 / plain,
-        1e3 * plain / steps as f64
+        1e3 * plain / steps as f64,
+        candidates as f64 / plain / 1e9
     );
     println!(
         "  set-up (particles placed on the host, uploaded) {setup:.2} s; {steps} steps = {:.3} s of flow in {:.2} s wall; device memory {:.1} MB, {:.0} B per particle ({} cells of the grid included)",
