@@ -14,8 +14,6 @@
 use gpu_common::compare::{self, POSITION_BOUND};
 
 use crate::gpu_common;
-use schemas::case::{Case, FluidConfig};
-use std::path::Path;
 
 /// Steps of the runs (see the module doc).
 const STEPS: usize = 150;
@@ -23,38 +21,10 @@ const STEPS: usize = 150;
 /// Where the slab is moved to [m].
 const AWAY: [f64; 3] = [3.0e5, -4.0e4, 1.2e3];
 
-/// The slab of `compare::slab` with every position moved by [`AWAY`].
-fn moved_slab(dir: &Path) -> FluidConfig {
-    let at = |p: [f64; 3]| format!("[{}, {}, {}]", p[0] + AWAY[0], p[1] + AWAY[1], p[2] + AWAY[2]);
-    let text = format!(
-        r#"[case]
-name = "slab-far"
-end_time = 0.1
-
-[fluid.water]
-spacing = 0.02
-time_step = 5.0e-4
-sound_speed = 12.1
-output_interval = 0.05
-tank = {{ min = {}, max = {}, lid = true }}
-
-[[fluid.water.block]]
-min = {}
-max = {}
-"#,
-        at([0.0, 0.0, 0.0]),
-        at([0.4, 0.06, 0.3]),
-        at([0.0, 0.0, 0.0]),
-        at([0.16, 0.06, 0.24])
-    );
-    let case = Case::parse(&dir.join("case.toml"), text).unwrap_or_else(|e| panic!("{e}"));
-    case.fluid["water"].clone()
-}
-
 #[test]
 fn a_tank_300_km_from_the_origin_runs_on_the_gpu_as_one_at_the_origin() {
     let dir = compare::folder("far-from-origin");
-    let cfg = moved_slab(&dir);
+    let cfg = compare::slab_at(&dir, "", AWAY);
     cfg.gpu_support("fluid.water")
         .unwrap_or_else(|e| panic!("`{}`: {}", e.key, e.message));
     let Some(runs) = compare::run_both(&cfg, STEPS) else {

@@ -83,6 +83,23 @@ pub fn coupler_run(case: &Path, out: &Path) -> Output {
     ])
 }
 
+/// Runs `coupler run CASE --out OUT` for a case whose fluid may run on the GPU (`backend`, for
+/// the messages): `None` when it failed for want of a GPU adapter and `REQUIRE_GPU` is not `1`
+/// (the test skips, saying so on stderr); otherwise the run must succeed.
+pub fn gpu_coupler_run(case: &Path, out: &Path, backend: &str) -> Option<Output> {
+    let run = coupler_run(case, out);
+    let err = stderr(&run);
+    if !run.status.success()
+        && err.contains("no GPU for backend")
+        && std::env::var("REQUIRE_GPU").as_deref() != Ok("1")
+    {
+        eprintln!("skipped (set REQUIRE_GPU=1 to fail instead): no GPU adapter");
+        return None;
+    }
+    assert!(run.status.success(), "{backend}: {err}");
+    Some(run)
+}
+
 /// Runs `coupler ARGS…` to completion.
 pub fn coupler(args: &[&str]) -> Output {
     Command::new(binary("coupler"))

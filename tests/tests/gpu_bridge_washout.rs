@@ -15,7 +15,7 @@
 
 use schemas::case::coupling::GPU_BALANCE_TOLERANCE;
 use schemas::validation::{largest_abs, max_or_nan};
-use stack_tests::{case_from, coupler_run, csv_header, csv_rows, out_dir, stderr};
+use stack_tests::{case_from, csv_header, csv_rows, gpu_coupler_run, out_dir};
 use std::path::PathBuf;
 
 /// Runs the case to 5.0 s on `backend`: its output folder; `None` when there is no GPU and
@@ -31,16 +31,7 @@ fn run(backend: &str) -> Option<PathBuf> {
         ],
     );
     let out = dir.join("out");
-    let run = coupler_run(&case, &out);
-    let err = stderr(&run);
-    if !run.status.success()
-        && err.contains("no GPU for backend")
-        && std::env::var("REQUIRE_GPU").as_deref() != Ok("1")
-    {
-        eprintln!("skipped (set REQUIRE_GPU=1 to fail instead): no GPU adapter");
-        return None;
-    }
-    assert!(run.status.success(), "{backend}: {err}");
+    gpu_coupler_run(&case, &out, backend)?;
     Some(out)
 }
 

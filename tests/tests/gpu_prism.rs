@@ -14,7 +14,7 @@
 use crate::drag_coupling::momentum_budget;
 use crate::prism_cases::{coarse_case, column, impulse_x};
 use schemas::validation::{largest_abs, record, Record};
-use stack_tests::{coupler_run, csv_header, csv_rows, out_dir, stderr};
+use stack_tests::{csv_header, csv_rows, gpu_coupler_run, out_dir};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -59,16 +59,7 @@ fn twin(dir: &Path, backend: &str) -> PathBuf {
 fn run(dir: &Path, backend: &str) -> Option<PathBuf> {
     let case = twin(dir, backend);
     let out = dir.join(backend).join("out");
-    let run = coupler_run(&case, &out);
-    let err = stderr(&run);
-    if !run.status.success()
-        && err.contains("no GPU for backend")
-        && std::env::var("REQUIRE_GPU").as_deref() != Ok("1")
-    {
-        eprintln!("skipped (set REQUIRE_GPU=1 to fail instead): no GPU adapter");
-        return None;
-    }
-    assert!(run.status.success(), "{backend}: {err}");
+    gpu_coupler_run(&case, &out, backend)?;
     Some(out)
 }
 

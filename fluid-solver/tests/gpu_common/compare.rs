@@ -39,6 +39,12 @@ pub fn folder(name: &str) -> PathBuf {
 /// all), c = 12.1 m/s (the seed's), Δt = 5e-4 s; `extra` is appended to the section (its files
 /// are in `dir`).
 pub fn slab(dir: &Path, extra: &str) -> FluidConfig {
+    slab_at(dir, extra, [0.0; 3])
+}
+
+/// The [`slab`] with every position moved by `away` [m].
+pub fn slab_at(dir: &Path, extra: &str, away: [f64; 3]) -> FluidConfig {
+    let at = |p: [f64; 3]| format!("[{}, {}, {}]", p[0] + away[0], p[1] + away[1], p[2] + away[2]);
     let text = format!(
         r#"[case]
 name = "slab"
@@ -49,12 +55,16 @@ spacing = 0.02
 time_step = 5.0e-4
 sound_speed = 12.1
 output_interval = 0.05
-tank = {{ min = [0.0, 0.0, 0.0], max = [0.4, 0.06, 0.3], lid = true }}
+tank = {{ min = {}, max = {}, lid = true }}
 
 [[fluid.water.block]]
-min = [0.0, 0.0, 0.0]
-max = [0.16, 0.06, 0.24]
-{extra}"#
+min = {}
+max = {}
+{extra}"#,
+        at([0.0, 0.0, 0.0]),
+        at([0.4, 0.06, 0.3]),
+        at([0.0, 0.0, 0.0]),
+        at([0.16, 0.06, 0.24])
     );
     let case = Case::parse(&dir.join("case.toml"), text).unwrap_or_else(|e| panic!("{e}"));
     case.fluid["water"].clone()
