@@ -46,12 +46,17 @@ impl MeshPlacement {
     /// closed solid ([`TriangleMesh::check_solid`]) and returns it placed. Errors are at
     /// `{key}.file` and name the file.
     pub fn load(&self, dir: &Path, key: &str) -> Result<TriangleMesh, FieldError> {
-        let fk = format!("{key}.file");
+        self.load_as(dir, &format!("{key}.file"))
+    }
+
+    /// As [`MeshPlacement::load`], with the errors at `file_key` (a table whose file key has
+    /// another name: `[[fluid.NAME.solid]]`'s `mesh`).
+    pub fn load_as(&self, dir: &Path, file_key: &str) -> Result<TriangleMesh, FieldError> {
         // an absolute path replaces `dir` (`Path::join`)
         let path = dir.join(&self.file);
-        let mesh = read_mesh(&path).map_err(|e| FieldError::new(&fk, e.to_string()))?;
+        let mesh = read_mesh(&path).map_err(|e| FieldError::new(file_key, e.to_string()))?;
         mesh.check_solid()
-            .map_err(|e| FieldError::new(&fk, e.in_file(&path).to_string()))?;
+            .map_err(|e| FieldError::new(file_key, e.in_file(&path).to_string()))?;
         Ok(mesh.transformed([self.scale; 3], self.rotate, self.translate))
     }
 

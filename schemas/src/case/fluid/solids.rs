@@ -24,8 +24,9 @@
 
 use super::{Aabb, FluidConfig};
 use crate::case::error::check;
+use crate::case::mesh_placement::MeshPlacement;
 use crate::case::FieldError;
-use crate::geometry::{read_geotiff, read_height_grid, read_mesh, HeightGrid, TriangleMesh};
+use crate::geometry::{read_geotiff, read_height_grid, HeightGrid, TriangleMesh};
 use schemars::JsonSchema;
 use serde::Deserialize;
 use std::fmt;
@@ -86,6 +87,19 @@ pub struct SolidConfig {
     #[serde(skip)]
     #[schemars(skip)]
     pub placed: Loaded<TriangleMesh>,
+}
+
+impl SolidConfig {
+    /// The mesh's file and placement, checked and read as every mesh of a case is
+    /// ([`MeshPlacement`]).
+    pub fn placement(&self) -> MeshPlacement {
+        MeshPlacement {
+            file: self.mesh.clone(),
+            scale: self.scale,
+            rotate: self.rotate,
+            translate: self.translate,
+        }
+    }
 }
 
 /// `plane = { point, normal }`: the solid below an inclined plane.
@@ -166,10 +180,7 @@ impl FluidConfig {
     /// [`FluidConfig::load_files`]).
     pub(super) fn validate_solids(&self, key: &str) -> Result<(), FieldError> {
         for (i, s) in self.solid.iter().enumerate() {
-            let sk = format!("{key}.solid[{i}]");
-            check::positive(&format!("{sk}.scale"), s.scale)?;
-            check::finite(&format!("{sk}.rotate"), &s.rotate)?;
-            check::finite(&format!("{sk}.translate"), &s.translate)?;
+            s.placement().validate(&format!("{key}.solid[{i}]"))?;
         }
         for (i, t) in self.terrain.iter().enumerate() {
             let tk = format!("{key}.terrain[{i}]");
@@ -220,10 +231,7 @@ impl FluidConfig {
         for (i, s) in self.solid.iter_mut().enumerate() {
             let sk = format!("{key}.solid[{i}].mesh");
             let path = resolve(&s.mesh);
-            let mesh = read_mesh(&path).map_err(|e| FieldError::new(&sk, e.to_string()))?;
-            mesh.check_solid()
-                .map_err(|e| FieldError::new(&sk, e.in_file(&path).to_string()))?;
-            let placed = mesh.transformed([s.scale; 3], s.rotate, s.translate);
+            let placed = s.placement().load_as(dir, &sk)?;
             let (lo, hi) = placed.aabb();
             for a in 0..3 {
                 let (extent, room) = (hi[a] - lo[a], tank.max[a] - tank.min[a]);
