@@ -225,3 +225,50 @@ fn gpu_inflow_and_outflow_match_cpu() {
         "a fluid particle is {worst:.3e} m from its CPU position (bound {POSITION_BOUND:e} m)"
     );
 }
+
+/// The small bridge's strip (`cases/bridge-washout-small`: u = 10 m/s, Δs = 4 m, Δt = 0.024 s)
+/// brings a layer exactly onto the inflow plane at t = 3.0 s, the 125th step's end. Its 170
+/// particles share the layer's x only up to f64 rounding (rows added when the level rose started
+/// at the layer's x, the others travelled there), so the CPU once let 68 of them enter at the
+/// next step and the rest one step later, while the device, whose f32 positions cannot tell them
+/// apart, let all 170 enter and stopped ("the GPU's inflow strip parted from the host's"). A
+/// particle within `PLANE_SLACK` spacings short of the plane now counts as across it on both
+/// paths: the whole layer enters in one step, and the two runs stepped past t = 3.0 s keep the
+/// same balance.
+#[test]
+fn a_layer_landing_on_the_inflow_plane_enters_whole_on_both_paths() {
+    let (_, cfg) = crate::common::load_case("bridge-washout-small");
+    let Some(dev) = gpu_common::device() else {
+        return;
+    };
+    let mut cpu = FluidSolver::new(&cfg);
+    let mut gpu = FluidSolver::new(&cfg);
+    gpu.to_device(&cfg, dev).unwrap_or_else(|e| panic!("{e}"));
+    let mut entered_at_126 = 0;
+    for step in 1..=127 {
+        let before = cpu.open_boundaries().balance().entered;
+        cpu.step(cfg.time_step)
+            .unwrap_or_else(|e| panic!("CPU, step {step}: {e}"));
+        gpu.step(cfg.time_step)
+            .unwrap_or_else(|e| panic!("GPU, step {step}: {e}"));
+        if step == 126 {
+            entered_at_126 = cpu.open_boundaries().balance().entered - before;
+        }
+    }
+    let (c, g) = (cpu.open_boundaries().balance(), gpu.open_boundaries().balance());
+    println!("step 126 entered {entered_at_126}; balance CPU {c:?}, GPU {g:?}");
+    assert_eq!(
+        entered_at_126 % 170,
+        0,
+        "a layer of 170 particles was split: {entered_at_126} entered"
+    );
+    assert!(
+        entered_at_126 > 0,
+        "no layer reached the plane at t = 3.0 s: the scene changed"
+    );
+    assert_eq!(
+        [c.inserted, c.entered, c.withdrawn],
+        [g.inserted, g.entered, g.withdrawn],
+        "the strip's balance"
+    );
+}

@@ -8,7 +8,8 @@
 //! few numbers ([`OpenPass`]): the strip's velocity and travel, the x from which a strip particle
 //! becomes fluid and the z above which one is withdrawn (each half-way between the copy's strip
 //! particles that do and those that do not, so the device's f32 positions decide as the f64
-//! ones do: the strip's layers are a spacing apart, its rows too), and the outflow plane. The
+//! ones do: the strip's layers are a spacing apart, its rows too; a layer that lands on the
+//! plane enters whole, [`crate::boundaries::open_boundary::PLANE_SLACK`]), and the outflow plane. The
 //! device's pass converts, withdraws, moves the strip and marks the fluid past the outflow plane,
 //! counting each; only these three counts come back (12 B). When it removed any, a cell sort
 //! closes the gaps (`shaders/cell_sort.wgsl`: removed particles are counted in no cell and land
