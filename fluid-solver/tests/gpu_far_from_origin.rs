@@ -50,7 +50,7 @@ fn a_tank_300_km_from_the_origin_runs_on_the_gpu_as_one_at_the_origin() {
         translated < POSITION_BOUND,
         "the GPU run far away ends {translated:e} m from the one at the origin"
     );
-    let absolute = AWAY.iter().map(|v| v.abs()).fold(0.0, f64::max) * f64::from(f32::EPSILON) / 2.0;
+    let absolute = schemas::validation::largest_abs(AWAY) * f64::from(f32::EPSILON) / 2.0;
     println!("absolute f32 positions here would round by {absolute:.2e} m");
     assert!(
         absolute > 100.0 * POSITION_BOUND,

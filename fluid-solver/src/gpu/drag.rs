@@ -304,17 +304,12 @@ impl DragState {
                     centres.push((at(&sample_points[3 * k..3 * k + 3]), 2 * k as u32 + 1));
                 }
             }
-            let widest = half_widths.iter().copied().fold(0.0, f64::max);
+            let widest = schemas::validation::largest(half_widths.iter().copied(), 0.0);
             ReactionGrid::of(&centres, widest + f64::from(self.dp.radius))
         });
-        let (floats, mut ints) = (4 * count as u64, count as u64);
-        if let Some(g) = &grid {
-            ints += (g.starts.len() + g.entries.len()) as u64;
-        } else {
-            let dims = self.dp.dims.map(u64::from);
-            ints += dims[0] * dims[1] * dims[2] + 1 + 2 * count as u64;
-        }
-        self.reserve(dev, kernels, floats, ints, 4 * count as u64);
+        // the states, and a new grid after them (an unchanged one is in place already)
+        let ints = count + grid.as_ref().map_or(0, |g| g.starts.len() + g.entries.len());
+        self.reserve(dev, kernels, 4 * count as u64, ints as u64, 4 * count as u64);
         let f = self.floats.clone();
         self.write(dev, &f, 0, &rows);
         if let Some(g) = grid {
@@ -430,12 +425,11 @@ impl GpuEmps {
             unreachable!("drag_state makes the state")
         };
         let first = 4 * u64::from(d.dp.reactions);
-        let ints = u64::from(d.dp.reactions) + 1;
         d.reserve(
             &self.dev,
             &self.kernels,
             first + 2 * count as u64,
-            ints,
+            0,
             16 * count as u64,
         );
         let rows: Vec<[f32; 4]> = points
@@ -485,19 +479,17 @@ impl GpuEmps {
         guard.as_ref().is_some_and(|d| d.loaded)
     }
 
-    /// Records the spreading of the reactions handed over, when some has a force, into `enc`
-    /// (the particles' cell list sorted for their present positions) with the copy of their
-    /// states; true when it did. [`GpuEmps::read_reaction_states`] reads them after the submit.
-    pub(super) fn encode_spreading(&self, enc: &mut wgpu::CommandEncoder) -> bool {
+    /// Records the spreading of the reactions handed over into `enc` (the particles' cell list
+    /// sorted for their present positions) with the copy of their states; for a step
+    /// [`GpuEmps::spreads_reactions`] said yes to. [`GpuEmps::take_reaction_states`] reads the
+    /// states after the submit.
+    pub(super) fn encode_spreading(&self, enc: &mut wgpu::CommandEncoder) {
         let mut guard = self
             .drag
             .lock()
             .unwrap_or_else(std::sync::PoisonError::into_inner);
-        let Some(d) = guard.as_mut().filter(|d| d.loaded) else {
-            if let Some(d) = guard.as_mut() {
-                d.states.clear();
-            }
-            return false;
+        let Some(d) = guard.as_mut() else {
+            return;
         };
         d.write_params(&self.dev);
         let reactions = d.dp.reactions;
@@ -511,17 +503,17 @@ impl GpuEmps {
             dispatch_drag(&mut pass, k, &k.spread_reactions, &d.bind_group, self.params.n);
         }
         enc.copy_buffer_to_buffer(&d.ints, 0, &d.staging, 0, 4 * u64::from(reactions));
-        true
     }
 
-    /// Reads the reactions' states the step's spreading copied ([`GpuEmps::encode_spreading`]).
-    pub(super) fn read_reaction_states(&self) {
+    /// After the step's submit: the reactions' states its spreading copied
+    /// ([`GpuEmps::encode_spreading`]) when it `spread` them, else none.
+    pub(super) fn take_reaction_states(&self, spread: bool) {
         let mut guard = self
             .drag
             .lock()
             .unwrap_or_else(std::sync::PoisonError::into_inner);
         if let Some(d) = guard.as_mut() {
-            let size = 4 * u64::from(d.dp.reactions);
+            let size = if spread { 4 * u64::from(d.dp.reactions) } else { 0 };
             d.states = match size {
                 0 => Vec::new(),
                 _ => map_read(&self.dev, &d.staging.slice(..size)),

@@ -587,9 +587,7 @@ impl GpuEmps {
         let partials: Vec<Partial> = bytemuck::pod_collect_to_vec(head);
         let sums = bytemuck::pod_collect_to_vec::<u8, BodyLoad>(tail);
         (self.body_loads, self.body_reactions) = bodies::loads_and_reactions(&sums);
-        if spreads {
-            self.read_reaction_states();
-        }
+        self.take_reaction_states(spreads);
         if !self.profile {
             self.times.lap(t0, "step");
         }

@@ -57,7 +57,7 @@ impl FluidConfig {
     /// would lift this, are not on the GPU yet).
     fn gpu_position_rounding(&self, key: &str) -> Result<(), FieldError> {
         let (lo, hi) = self.gpu_extent();
-        let far = (0..3).map(|a| hi[a] - lo[a]).fold(0.0, f64::max);
+        let far = crate::validation::largest((0..3).map(|a| hi[a] - lo[a]), 0.0);
         let rounding = far * f64::from(f32::EPSILON) / 2.0;
         if rounding > GPU_MAX_ROUNDING * self.spacing {
             return Err(FieldError::new(
