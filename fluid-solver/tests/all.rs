@@ -40,6 +40,7 @@ mod gpu_run;
 mod gpu_scene_walls;
 mod gpu_skips;
 mod gpu_wave_maker;
+mod gpu_wide_positions;
 mod hydrostatic;
 mod inflow_outflow;
 mod isph;

@@ -6,6 +6,7 @@
 
 use crate::bodies_common;
 use crate::gpu_common;
+use gpu_common::compare::{self, DeviceFrame};
 
 use bodies_common::tank_with_body;
 use fluid_solver::FluidSolver;
@@ -77,9 +78,9 @@ fn scene() -> (FluidConfig, f64) {
 /// The largest difference of the GPU's loads from the CPU's over `steps` steps, force relative
 /// to ρgV and moment relative to ρgV × the half width 0.06 m, each step handed `pose`,
 /// `velocity` and `lead` (the participant hands them before every step; an implicit window
-/// leads by the step so the body ends it at `pose`).
+/// leads by the step so the body ends it at `pose`); the device measures positions from `frame`.
 pub(crate) fn worst_difference(
-    cfg: &FluidConfig,
+    (cfg, frame): (&FluidConfig, DeviceFrame),
     buoyancy: f64,
     steps: usize,
     pose: &[f64],
@@ -89,7 +90,7 @@ pub(crate) fn worst_difference(
     let dev = gpu_common::device()?;
     let mut cpu = FluidSolver::new(cfg);
     let mut gpu = FluidSolver::new(cfg);
-    gpu.to_device(cfg, dev).unwrap_or_else(|e| panic!("{e}"));
+    compare::to_device(&mut gpu, cfg, dev, frame);
     let (mut force, mut moment) = (0.0f64, 0.0f64);
     let (mut balance, mut balance_moment) = (0.0f64, 0.0f64);
     let dt = cfg.time_step;
@@ -181,7 +182,9 @@ fn moving_turned_box() -> (FluidConfig, f64, [f64; 7], [f64; 6]) {
 fn gpu_body_loads_match_cpu_on_a_fixed_box_in_a_settling_tank() {
     let (cfg, buoyancy) = scene();
     let pose = [0.14, 0.14, 0.14, 1.0, 0.0, 0.0, 0.0];
-    let Some((force, moment)) = worst_difference(&cfg, buoyancy, 10, &pose, &[0.0; 6], 0.0) else {
+    let Some((force, moment)) =
+        worst_difference((&cfg, DeviceFrame::Corner), buoyancy, 10, &pose, &[0.0; 6], 0.0)
+    else {
         return;
     };
     check_and_record_loads(
@@ -198,13 +201,32 @@ fn gpu_body_loads_match_cpu_on_a_fixed_box_in_a_settling_tank() {
 #[test]
 fn gpu_body_loads_match_cpu_on_a_moving_turned_box_with_viscosity() {
     let (cfg, buoyancy, pose, velocity) = moving_turned_box();
-    let Some((force, moment)) = worst_difference(&cfg, buoyancy, 10, &pose, &velocity, cfg.time_step) else {
+    let frame = (&cfg, DeviceFrame::Corner);
+    let Some((force, moment)) = worst_difference(frame, buoyancy, 10, &pose, &velocity, cfg.time_step) else {
         return;
     };
     check_and_record_loads(
         "gpu_bodies.rs::gpu_body_loads_match_cpu_on_a_moving_turned_box_with_viscosity",
         "moving-turned-box",
         "turned by 5°, moving and spinning, viscous",
+        (force, moment),
+    );
+}
+
+/// The moving, turned box with the device measuring positions from 10⁵ spacings away (wide
+/// positions, `gpu_wide_positions.rs`): the body particles placed by the low part of the centre,
+/// the moments taken about it in both parts; the same bounds.
+#[test]
+fn gpu_body_loads_match_cpu_on_a_moving_turned_box_in_wide_positions() {
+    let (cfg, buoyancy, pose, velocity) = moving_turned_box();
+    let frame = (&cfg, DeviceFrame::Far);
+    let Some((force, moment)) = worst_difference(frame, buoyancy, 10, &pose, &velocity, cfg.time_step) else {
+        return;
+    };
+    check_and_record_loads(
+        "gpu_bodies.rs::gpu_body_loads_match_cpu_on_a_moving_turned_box_in_wide_positions",
+        "moving-turned-box-wide",
+        "turned by 5°, moving and spinning, viscous, the device measuring positions from 2 km away",
         (force, moment),
     );
 }

@@ -7,9 +7,11 @@
 //! applied equal to the CPU's (the same reactions took the same path every step), and the flow
 //! sampled at the end at points inside the water, at its surface and in the air within bounds
 //! derived from the positions' and velocities' f32 differences. The reactions move the water far
-//! more than the bound on the CPU.
+//! more than the bound on the CPU. The same again with the device measuring positions from 10⁵
+//! spacings away (wide positions, `gpu_wide_positions.rs`): points, centroids and particles in
+//! two parts.
 
-use gpu_common::compare::{self, POSITION_BOUND, STEPS};
+use gpu_common::compare::{self, DeviceFrame, POSITION_BOUND, STEPS};
 
 use crate::gpu_common;
 use fluid_solver::FluidSolver;
@@ -81,7 +83,16 @@ fn run(mut solver: FluidSolver, dt: f64) -> FluidSolver {
 
 #[test]
 fn gpu_drag_spreading_and_sampling_match_cpu() {
-    let dir = compare::folder("drag");
+    drag_spreading_and_sampling(DeviceFrame::Corner);
+}
+
+#[test]
+fn gpu_drag_spreading_and_sampling_match_cpu_in_wide_positions() {
+    drag_spreading_and_sampling(DeviceFrame::Far);
+}
+
+fn drag_spreading_and_sampling(frame: DeviceFrame) {
+    let dir = compare::folder(&format!("drag-{frame:?}"));
     let cfg = compare::slab(&dir, "");
     let Some(dev) = gpu_common::device() else {
         return;
@@ -90,7 +101,7 @@ fn gpu_drag_spreading_and_sampling_match_cpu() {
     let started = std::time::Instant::now();
     let cpu = run(FluidSolver::new(&cfg), cfg.time_step);
     let mut gpu = FluidSolver::new(&cfg);
-    gpu.to_device(&cfg, dev).unwrap_or_else(|e| panic!("{e}"));
+    compare::to_device(&mut gpu, &cfg, dev, frame);
     let gpu = run(gpu, cfg.time_step);
     // sampled on the device, before its particles come back
     let (gpu_u, gpu_lambda) = gpu.sample_points(&SAMPLE_POINTS);
@@ -121,19 +132,27 @@ fn gpu_drag_spreading_and_sampling_match_cpu() {
         "positions {worst:.3e} m; samples: velocity {du:.3e} m/s, λ_min {dl:.3e}; reactions' impulse CPU {:?} GPU {:?}, not applied CPU {:?} GPU {:?}",
         c.reaction_impulse, g.reaction_impulse, c.unapplied_impulse, g.unapplied_impulse
     );
+    let (tag, wide, test) = match frame {
+        DeviceFrame::Corner => ("drag", "", "gpu_drag_spreading_and_sampling_match_cpu"),
+        DeviceFrame::Far => (
+            "drag-wide",
+            " in wide positions 10⁵ spacings from the frame's origin",
+            "gpu_drag_spreading_and_sampling_match_cpu_in_wide_positions",
+        ),
+    };
     let row = Record {
-        capability: "Unresolved drag coupling, the fluid's side, on the GPU (f32)".into(),
+        capability: format!("Unresolved drag coupling, the fluid's side, on the GPU (f32){wide}"),
         reference: "the CPU's f64 step from the same start".into(),
         case: "the slab's column (0.4 × 0.06 × 0.3 m tank) collapsing through a member's 8 reactions (points, a 0.06 m footprint, one around its sample point, one not applied, one without force), 200 steps of 5e-4 s; the flow sampled at 4 points at the end".into(),
         resolution: "E-MPS, Δs = 0.02 m".into(),
-        source: "fluid-solver/tests/gpu_drag.rs::gpu_drag_spreading_and_sampling_match_cpu".into(),
+        source: format!("fluid-solver/tests/gpu_drag.rs::{test}"),
         run_time_s,
         machine: format!("{device}; {}", schemas::validation::machine()),
         ..Default::default()
     };
     compare::record_measures(
         &row,
-        |what| format!("gpu-drag-vs-cpu-{what}"),
+        |what| format!("gpu-{tag}-vs-cpu-{what}"),
         &[
             (
                 "positions",

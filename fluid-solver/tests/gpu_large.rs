@@ -38,7 +38,7 @@ fn random_counts(cells: usize) -> Vec<u32> {
 /// most `row` workgroups.
 fn device_scan(dev: &GpuDevice, counts: &[u32], row: u32) -> Vec<u32> {
     let cells = counts.len();
-    let mut buffers = Buffers::new(dev, 1, cells, 0, 1, (0, 0), (0, 0));
+    let mut buffers = Buffers::new(dev, (1, false), cells, 0, 1, (0, 0), (0, 0));
     let mut kernels = Kernels::new(dev, &buffers);
     kernels.row = row;
     let mut params = Params::zeroed();
@@ -140,6 +140,7 @@ fn gpu_run(dev: GpuDevice, cfg: &FluidConfig, grid: &CellGrid, steps: usize, row
         headroom: 0,
         frame: Frame {
             origin: cfg.gpu_frame_origin(),
+            quantum: cfg.gpu_quantum(),
         },
     };
     let mut gpu = GpuEmps::new(dev, &setup, grid, solver.particles()).unwrap_or_else(|e| panic!("{e}"));

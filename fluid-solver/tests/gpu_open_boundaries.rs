@@ -9,7 +9,7 @@
 //! boundaries could not pass.
 
 use crate::gpu_common;
-use gpu_common::compare;
+use gpu_common::compare::{self, DeviceFrame};
 
 use fluid_solver::open_boundary::ParticleBalance;
 use fluid_solver::state::FluidState;
@@ -92,7 +92,7 @@ max = [0.6, 0.04, 0.06]
 fn run_from(
     cfg: &FluidConfig,
     state: &FluidState,
-    dev: Option<fluid_solver::gpu::GpuDevice>,
+    dev: Option<(fluid_solver::gpu::GpuDevice, DeviceFrame)>,
 ) -> (FluidSolver, f64) {
     let no_headroom = |s: &mut FluidSolver| {
         // the strip's first new rows regrow the device's arrays
@@ -132,11 +132,23 @@ fn since(a: ParticleBalance, b: ParticleBalance) -> [u64; 4] {
 
 #[test]
 fn gpu_inflow_and_outflow_match_cpu() {
+    inflow_and_outflow(DeviceFrame::Corner);
+}
+
+/// The channel of [`gpu_inflow_and_outflow_match_cpu`] with the device measuring positions from
+/// 10⁵ spacings away (wide positions, `gpu_wide_positions.rs`): the strip travels by its low
+/// parts, its new rows arrive split in two; the same counts and bounds.
+#[test]
+fn gpu_inflow_and_outflow_match_cpu_in_wide_positions() {
+    inflow_and_outflow(DeviceFrame::Far);
+}
+
+fn inflow_and_outflow(frame: DeviceFrame) {
     let Some(dev) = gpu_common::device() else {
         return;
     };
     let device = dev.description();
-    let dir = compare::folder("open-boundaries");
+    let dir = compare::folder(&format!("open-boundaries-{frame:?}"));
     let cfg = channel(&dir);
     let t = Instant::now();
     let mut before = FluidSolver::new(&cfg);
@@ -146,7 +158,7 @@ fn gpu_inflow_and_outflow_match_cpu() {
     let state = before.save_state();
     let t_before = t.elapsed().as_secs_f64();
     let (cpu, t_cpu) = run_from(&cfg, &state, None);
-    let (gpu, t_gpu) = run_from(&cfg, &state, Some(dev));
+    let (gpu, t_gpu) = run_from(&cfg, &state, Some((dev, frame)));
     let start = state.open_boundaries.balance();
     let (bc, bg) = (cpu.open_boundaries().balance(), gpu.open_boundaries().balance());
     println!(
@@ -171,18 +183,30 @@ fn gpu_inflow_and_outflow_match_cpu() {
         cpu.particle_count(),
         gpu.particle_count()
     );
+    let (tag, capability, test) = match frame {
+        DeviceFrame::Corner => (
+            "open-boundaries",
+            "E-MPS with an inflow (series) and an outflow on the GPU (f32)",
+            "gpu_inflow_and_outflow_match_cpu",
+        ),
+        DeviceFrame::Far => (
+            "open-boundaries-wide",
+            "E-MPS with an inflow (series) and an outflow on the GPU (f32) in wide positions 10⁵ spacings from the frame's origin",
+            "gpu_inflow_and_outflow_match_cpu_in_wide_positions",
+        ),
+    };
     let row = Record {
-        capability: "E-MPS with an inflow (series) and an outflow on the GPU (f32)".into(),
+        capability: capability.into(),
         reference: "the CPU's f64 step from the same state".into(),
         case: "a 0.6 × 0.04 m channel, a strip at 0.3 m/s whose level rises 0.06 → 0.10 m then falls to 0.04 m, 0.06 m of water drained behind x = 0.56 m: 100 steps of 1.6e-3 s on the CPU, then 80 on both".into(),
         resolution: "E-MPS, Δs = 0.02 m".into(),
-        source: "fluid-solver/tests/gpu_open_boundaries.rs::gpu_inflow_and_outflow_match_cpu".into(),
+        source: format!("fluid-solver/tests/gpu_open_boundaries.rs::{test}"),
         run_time_s: t.elapsed().as_secs_f64(),
         machine: format!("{device}; {}", schemas::validation::machine()),
         ..Default::default()
     };
     record(Record {
-        id: "gpu-open-boundaries-vs-cpu-positions".into(),
+        id: format!("gpu-{tag}-vs-cpu-positions"),
         measure: "largest |r_gpu − r_cpu| over the fluid particles, matched by id".into(),
         value: worst,
         bound: Some(POSITION_BOUND),
@@ -196,7 +220,7 @@ fn gpu_inflow_and_outflow_match_cpu() {
         .map(|(&c, g)| c.abs_diff(g))
         .sum::<u64>();
     record(Record {
-        id: "gpu-open-boundaries-vs-cpu-balance".into(),
+        id: format!("gpu-{tag}-vs-cpu-balance"),
         measure: "Σ |count_gpu − count_cpu| of inserted, entered, removed and withdrawn over the steps"
             .into(),
         value: off as f64,

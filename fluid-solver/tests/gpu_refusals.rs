@@ -71,13 +71,24 @@ fn gpu_backend_refuses_what_it_does_not_run_naming_the_feature() {
         );
     assert!(far.contains("2000.2") && far.contains("2000.1"));
     Case::parse(Path::new("cases/small/case.toml"), far).unwrap_or_else(|e| panic!("{e}"));
-    // A tank 700 m long at Δs = 0.02 m (35 000 spacings): at its far end, positions would round
-    // by 4.2e-5 m = 2.1e-3 Δs in f32.
+    // A tank 700 m long at Δs = 0.02 m (35 000 spacings): at its far end plain f32 positions
+    // would round by 4.2e-5 m = 2.1e-3 Δs, so the device keeps them wide (hi + lo, tests/
+    // gpu_wide_positions.rs), their high parts on a grid of 2⁻¹³ m (rounding 6.1e-5 m =
+    // 3.1e-3 Δs, for plane and cell tests only).
     let long = GOOD.replace("max = [0.2, 0.06, 0.3], lid", "max = [700.0, 0.06, 0.3], lid");
     assert!(long.contains("700.0"));
-    let e = error_of(&long);
+    let case = Case::parse(Path::new("cases/small/case.toml"), long).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(case.fluid["water"].gpu_quantum(), Some(2f64.powi(-13)));
+    // 20 km at Δs = 0.06 m (333 000 spacings): past 16 384 m the high parts need a quantum of
+    // 2⁻⁸ m and round by 2.0e-3 m = 0.033 Δs, more than the 0.02 Δs the wide positions allow
+    // (at most 273 066 spacings at this Δs)
+    let longer = GOOD
+        .replace("spacing = 0.02", "spacing = 0.06")
+        .replace("max = [0.2, 0.06, 0.3], lid", "max = [20000.0, 0.06, 0.3], lid");
+    assert!(longer.contains("20000.0") && longer.contains("0.06\n"));
+    let e = error_of(&longer);
     assert!(
-        e.contains("`fluid.water.backend`") && e.contains("f32") && e.contains("16777 spacings"),
+        e.contains("`fluid.water.backend`") && e.contains("two f32 parts") && e.contains("273066 spacings"),
         "{e}"
     );
 }

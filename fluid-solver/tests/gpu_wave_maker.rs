@@ -13,10 +13,12 @@
 //! 80 steps from a common state they stay in the rounding's random walk.) On the CPU alone each
 //! paddle moves the water by far more than the bound over those steps, against the same paddle
 //! frozen where it stood at t0 (a table of its stroke then), so a GPU that ignored the paddle
-//! could not pass.
+//! could not pass. The flap runs again with the device measuring positions from 10⁵ spacings
+//! away (wide positions, `gpu_wide_positions.rs`): its paddle is placed by the low parts of its
+//! rest positions.
 
 use crate::gpu_common;
-use gpu_common::compare;
+use gpu_common::compare::{self, DeviceFrame};
 
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::{Case, FluidConfig};
@@ -154,13 +156,14 @@ fn paddle_ids(cfg: &FluidConfig, paddle_x: f64) -> Vec<u32> {
         .collect()
 }
 
-/// Runs `cfg` on the CPU to t0, then on both paths for [`STEPS`] steps; checks the fluid, the
-/// paddle and the walls' impulse against their bounds, and on the CPU that the paddle moved the
-/// water (against `still`, the paddle frozen at t0); records the rows `gpu-<tag>-vs-cpu-…`.
+/// Runs `cfg` on the CPU to t0, then on both paths for [`STEPS`] steps (the device in `frame`);
+/// checks the fluid, the paddle and the walls' impulse against their bounds, and on the CPU that
+/// the paddle moved the water (against `still`, the paddle frozen at t0); records the rows
+/// `gpu-<tag>-vs-cpu-…`.
 fn check(
     cfg: &FluidConfig,
     still: &FluidConfig,
-    paddle_x: f64,
+    (paddle_x, frame): (f64, DeviceFrame),
     (tag, capability, scene, source): (&str, &str, &str, &str),
 ) {
     let Some(dev) = gpu_common::device() else {
@@ -175,7 +178,7 @@ fn check(
     let state = before.save_state();
     let t_before = t.elapsed().as_secs_f64();
     let (cpu, t_cpu) = compare::run_from(cfg, &state, None, STEPS, |_| ());
-    let (gpu, t_gpu) = compare::run_from(cfg, &state, Some(dev), STEPS, |_| ());
+    let (gpu, t_gpu) = compare::run_from(cfg, &state, Some((dev, frame)), STEPS, |_| ());
     let (held, _) = compare::run_from(still, &state, None, STEPS, |_| ());
     println!(
         "{} particles: {BEFORE} steps on the CPU to t0 = {:.3} s in {t_before:.2} s, then {STEPS} steps: CPU {t_cpu:.2} s, GPU {t_gpu:.2} s",
@@ -265,7 +268,7 @@ fn gpu_piston_solitary_wave_matches_cpu() {
     check(
         &cfg,
         &still,
-        0.0,
+        (0.0, DeviceFrame::Corner),
         (
             "piston",
             "E-MPS with a piston wave maker",
@@ -280,7 +283,18 @@ fn gpu_piston_solitary_wave_matches_cpu() {
 /// forward through its upright position.
 #[test]
 fn gpu_flap_regular_waves_match_cpu() {
-    let dir = compare::folder("wave-maker-flap");
+    flap_regular_waves(DeviceFrame::Corner);
+}
+
+/// The flap of [`gpu_flap_regular_waves_match_cpu`] with the device measuring positions from
+/// 10⁵ spacings away (wide positions): the same bounds.
+#[test]
+fn gpu_flap_regular_waves_match_cpu_in_wide_positions() {
+    flap_regular_waves(DeviceFrame::Far);
+}
+
+fn flap_regular_waves(frame: DeviceFrame) {
+    let dir = compare::folder(&format!("wave-maker-flap-{frame:?}"));
     let flap = "kind = \"flap\"\nhinge_z = 0.0\n";
     let cfg = flume(
         &dir,
@@ -288,15 +302,27 @@ fn gpu_flap_regular_waves_match_cpu() {
         &format!("{flap}motion = \"regular\"\nwave_height = 0.03\nperiod = 0.6\nramp = 0.15"),
     );
     let still = frozen(&dir, &cfg, 0.48, 0.1, flap);
+    let (tag, capability, source) = match frame {
+        DeviceFrame::Corner => (
+            "flap",
+            "E-MPS with a flap wave maker",
+            "gpu_wave_maker.rs::gpu_flap_regular_waves_match_cpu",
+        ),
+        DeviceFrame::Far => (
+            "flap-wide",
+            "E-MPS with a flap wave maker in wide positions 10⁵ spacings from the frame's origin",
+            "gpu_wave_maker.rs::gpu_flap_regular_waves_match_cpu_in_wide_positions",
+        ),
+    };
     check(
         &cfg,
         &still,
-        0.1,
+        (0.1, frame),
         (
-            "flap",
-            "E-MPS with a flap wave maker",
+            tag,
+            capability,
             "a 0.8 × 0.04 m flume, 0.1 m of water, a flap hinged at the floor making regular waves H = 0.03 m, T = 0.6 s (ramp 0.15 s): 300 steps of 1.6e-3 s on the CPU, then 80 on both",
-            "gpu_wave_maker.rs::gpu_flap_regular_waves_match_cpu",
+            source,
         ),
     );
 }

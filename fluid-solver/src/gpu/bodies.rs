@@ -11,7 +11,8 @@ use super::frame::Frame;
 use bytemuck::{Pod, Zeroable};
 
 /// Mirror of `Member` in `shaders/common.wgsl`: a body particle's offset from its body's initial
-/// centre, its id and its body.
+/// centre, its id and its body (a paddle particle's row keeps the low parts of its rest position
+/// in `pad`: [`super::paddle`]).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Pod, Zeroable)]
 pub struct Member {
@@ -22,7 +23,8 @@ pub struct Member {
 }
 
 /// Mirror of `BodyKin`: centre (its w: the lead of `set_kinematics`), quaternion (w, x, y, z), V
-/// and ω of one body (their w unused).
+/// and ω of one body (their w unused), and the low part of the centre with wide positions
+/// ([`super::frame`]).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Pod, Zeroable)]
 pub struct BodyKin {
@@ -30,6 +32,7 @@ pub struct BodyKin {
     pub quat: [f32; 4],
     pub vel: [f32; 4],
     pub omega: [f32; 4],
+    pub low: [f32; 4],
 }
 
 /// Mirror of `BodyLoad`: force and moment (w unused).
@@ -62,12 +65,13 @@ pub fn kinematics(pose: &[f64], velocity: &[f64], lead: f64, frame: &Frame) -> V
         .zip(velocity.chunks_exact(6))
         .map(|(p, v)| {
             let f = |x: f64| x as f32;
-            let [cx, cy, cz] = frame.point([p[0], p[1], p[2]]);
+            let ([cx, cy, cz], [lx, ly, lz]) = frame.split([p[0], p[1], p[2]]);
             BodyKin {
                 centre: [cx, cy, cz, f(lead)],
                 quat: [f(p[3]), f(p[4]), f(p[5]), f(p[6])],
                 vel: [f(v[0]), f(v[1]), f(v[2]), 0.0],
                 omega: [f(v[3]), f(v[4]), f(v[5]), 0.0],
+                low: [lx, ly, lz, 0.0],
             }
         })
         .collect()

@@ -21,7 +21,9 @@
 //! Damping zones take 48 B each (`shaders/damping.wgsl`); mesh solids and terrains one bit per
 //! site of the tank's lattice (`shaders/solids.wgsl`), followed in the same buffer by the
 //! detector's 32 B per body and one bit per site of each mesh body's block of sites
-//! (`shaders/body_inside.wgsl`).
+//! (`shaders/body_inside.wgsl`). With wide positions ([`super::frame`]) each particle's position
+//! has a low part too (`vec4<f32>`, 16 B: 108 B per particle), gathered by the sort through the
+//! pair pass's result like the rest.
 
 use super::device::GpuDevice;
 use super::frame::Frame;
@@ -34,10 +36,12 @@ use std::sync::mpsc;
 /// reaction summed by fluid particle, the walls' contact.
 pub const SUMS: u64 = 3;
 
-/// Every storage buffer of the step, in binding order 1 … 22 (0 is the uniform block).
+/// Every storage buffer of the step, in binding order 1 … 23 (0 is the uniform block).
 pub struct Buffers {
     pub params: wgpu::Buffer,
     pub storage: Vec<wgpu::Buffer>,
+    /// Whether positions are wide (a low part per particle in [`POS_LO`]; [`super::frame`]).
+    pub wide: bool,
     /// Particles the buffers hold room for.
     pub capacity: usize,
     /// Bytes copied host → device and device → host since the start.
@@ -61,17 +65,18 @@ pub const BODY_KIN: usize = 17;
 pub const BODY_LOADS: usize = 19;
 pub const DAMPING: usize = 21;
 pub const SOLID_BITS: usize = 22;
+pub const POS_LO: usize = 23;
 
 /// Words after the cells' counts: the open boundaries' counters (`shaders/open_boundary.wgsl`).
 pub const OPEN_COUNTERS: u64 = 4;
 
 impl Buffers {
-    /// Buffers for `n` particles, `cells` cells, `boxes` wall blocks, `groups` reduction groups,
+    /// Buffers for `n` particles (with low parts when `wide`), `cells` cells, `boxes` wall blocks, `groups` reduction groups,
     /// `bodies` bodies and `members` rows of body and paddle particles, `zones` damping zones and
     /// `solid_words` words of solid sites and the bodies' table ([`super::body_inside`]).
     pub fn new(
         dev: &GpuDevice,
-        n: usize,
+        (n, wide): (usize, bool),
         cells: usize,
         boxes: usize,
         groups: usize,
@@ -86,7 +91,7 @@ impl Buffers {
         // and the bodies' partials per reduction group
         let body_groups = if bodies > 0 { groups.max(1) as u64 } else { 1 };
         let (bodies, members) = (bodies.max(1) as u64, members.max(1) as u64);
-        let sizes: [u64; 22] = [
+        let sizes: [u64; 23] = [
             16 * n,                                                  // 1 pos
             16 * n,                                                  // 2 vel
             4 * n,                                                   // 3 id
@@ -103,12 +108,13 @@ impl Buffers {
             32 * boxes.max(1) as u64,                                // 14 boxes
             (std::mem::size_of::<Partial>() * groups.max(1)) as u64, // 15 partials
             32 * members,                                            // 16 members
-            64 * bodies,                                             // 17 body_kin
+            80 * bodies,                                             // 17 body_kin
             32 * SUMS * bodies * body_groups,                        // 18 body_partials
             32 * SUMS * bodies,                                      // 19 body_loads
             4 * body_cells,                                          // 20 body_cells
             48 * zones.max(1) as u64,                                // 21 damping
             4 * solid_words.max(1) as u64,                           // 22 solid_bits
+            if wide { 16 * n } else { 16 },                          // 23 pos_lo
         ];
         let storage = sizes
             .iter()
@@ -133,6 +139,7 @@ impl Buffers {
         Buffers {
             params,
             storage,
+            wide,
             capacity: n as usize,
             uploaded: 0,
             downloaded: 0,
@@ -179,12 +186,17 @@ impl Buffers {
     /// Copies the particles to the device's slots `first` … `first + p.len()`.
     pub fn upload_at(&mut self, dev: &GpuDevice, p: &Particles, first: usize, frame: &Frame) {
         let n = p.len();
+        let parts: Vec<([f32; 3], [f32; 3])> = (0..n).map(|i| frame.split(p.position(i))).collect();
         let pos: Vec<[f32; 4]> = (0..n)
             .map(|i| {
-                let [x, y, z] = frame.point(p.position(i));
+                let [x, y, z] = parts[i].0;
                 [x, y, z, f32::from(p.kind[i])]
             })
             .collect();
+        if self.wide {
+            let lo: Vec<[f32; 4]> = parts.iter().map(|(_, [x, y, z])| [*x, *y, *z, 0.0]).collect();
+            self.write_at(dev, POS_LO, first, &lo);
+        }
         let vel: Vec<[f32; 4]> = (0..n)
             .map(|i| [p.vx[i] as f32, p.vy[i] as f32, p.vz[i] as f32, 0.0])
             .collect();
@@ -201,11 +213,20 @@ impl Buffers {
     /// position's w; positions from `frame`).
     pub fn download(&mut self, dev: &GpuDevice, n: usize, p: &mut Particles, frame: &Frame) {
         let pos: Vec<[f32; 4]> = self.read(dev, POS, n);
+        let lo: Vec<[f32; 4]> = match self.wide {
+            true => self.read(dev, POS_LO, n),
+            false => vec![[0.0; 4]; n],
+        };
         let vel: Vec<[f32; 4]> = self.read(dev, VEL, n);
         let id: Vec<u32> = self.read(dev, ID, n);
         let dens: Vec<[f32; 2]> = self.read(dev, DENS, n);
         let col = |v: &[[f32; 4]], a: usize| v.iter().map(|e| f64::from(e[a])).collect::<Vec<f64>>();
-        let back = |a: usize| pos.iter().map(|e| frame.back(a, e[a])).collect::<Vec<f64>>();
+        let back = |a: usize| {
+            pos.iter()
+                .zip(&lo)
+                .map(|(e, l)| frame.back(a, e[a], l[a]))
+                .collect::<Vec<f64>>()
+        };
         p.x = back(0);
         p.y = back(1);
         p.z = back(2);

@@ -1,10 +1,10 @@
 //! Counting sort and prefix sum by cell on the device (the CPU's [`crate::neighbours::neighbour_search`]):
 //! count per cell, exclusive scan in three levels (blocks of 4096 cells, groups of 256 blocks,
 //! and the groups' totals: any cell count a buffer holds), scatter, order each cell's slots by
-//! previous index (so a run is repeatable), gather positions, velocities and ids into the new
-//! order through arrays that are free during the sort.
+//! previous index (so a run is repeatable), gather positions (and their low parts when wide),
+//! velocities and ids into the new order through arrays that are free during the sort.
 
-use super::buffers::{Buffers, ACC, ID, PERM, POS, VEL};
+use super::buffers::{Buffers, ACC, ID, PERM, POS, POS_LO, VEL};
 use super::kernels::{dispatch, Kernels, WG, WIDE_WG};
 
 /// Records the sort of `n` particles into `cells` cells.
@@ -20,6 +20,12 @@ pub fn encode(enc: &mut wgpu::CommandEncoder, k: &Kernels, b: &Buffers, n: u32, 
     // the gathers go through acc and perm, free during the sort (`shaders/cell_sort.wgsl`)
     let bytes = |size: u64| size * u64::from(n);
     enc.copy_buffer_to_buffer(b.at(ACC), 0, b.at(POS), 0, bytes(16));
+    if b.wide {
+        pass(enc, "gather low parts", |pass| {
+            dispatch(pass, k, &k.gather_lows, n, WG)
+        });
+        enc.copy_buffer_to_buffer(b.at(ACC), 0, b.at(POS_LO), 0, bytes(16));
+    }
     pass(enc, "gather velocities", |pass| {
         dispatch(pass, k, &k.gather_velocities, n, WG)
     });

@@ -4,7 +4,7 @@
 use std::fmt;
 
 /// Storage buffers the kernels bind at once ([`super::buffers`]).
-pub const STORAGE_BUFFERS: u32 = 22;
+pub const STORAGE_BUFFERS: u32 = 23;
 
 /// A wgpu device and queue on a Vulkan adapter.
 pub struct GpuDevice {

@@ -16,8 +16,9 @@
 //!   not applied) comes back with the step's reduction (4 B per reaction), from which the host
 //!   books the impulse handed to the fluid and the impulse not applied, in f64 as the CPU does.
 //!
-//! The reactions, their sample points and widths are uploaded only when they change (48 B per
-//! reaction); the grid is rebuilt only when their centres or widths change.
+//! The reactions, their sample points and widths are uploaded only when they change (80 B per
+//! reaction: with wide positions the centres' low parts too, [`super::frame`]); the grid is
+//! rebuilt only when their centres or widths change.
 
 use super::buffers::map_read;
 use super::device::GpuDevice;
@@ -47,6 +48,11 @@ pub struct DragParams {
 pub const SPREAD_AT_CENTROID: u32 = 0;
 pub const SPREAD_AT_SAMPLE_POINT: u32 = 1;
 pub const NOT_APPLIED: u32 = 2;
+
+/// Rows of 4 floats per reaction in the floats' buffer (`REACTION_ROWS` in `shaders/drag.wgsl`):
+/// centroid and half-width, force, paired sample point and flag, the low parts of the centroid
+/// and of the sample point; the sums follow, one row per reaction, then the sample points.
+const REACTION_ROWS: u64 = 5;
 
 /// At most this many cells in the reactions' grid (4 MiB of starts): wider cells beyond.
 const MOST_GRID_CELLS: u64 = 1 << 20;
@@ -278,19 +284,21 @@ impl DragState {
             .enumerate()
             .flat_map(|(k, r)| {
                 let f = |x: f64| x as f32;
-                let at = |p: &[f64]| frame.point([p[0], p[1], p[2]]);
-                let s = match paired {
+                let at = |p: &[f64]| frame.split([p[0], p[1], p[2]]);
+                let (s, s_low) = match paired {
                     true => {
-                        let [x, y, z] = at(&sample_points[3 * k..3 * k + 3]);
-                        [x, y, z, 1.0]
+                        let ([x, y, z], [lx, ly, lz]) = at(&sample_points[3 * k..3 * k + 3]);
+                        ([x, y, z, 1.0], [lx, ly, lz, 0.0])
                     }
-                    false => [0.0; 4],
+                    false => ([0.0; 4], [0.0; 4]),
                 };
-                let [cx, cy, cz] = at(r);
+                let ([cx, cy, cz], [lx, ly, lz]) = at(r);
                 [
                     [cx, cy, cz, f(half_widths[k])],
                     [f(r[3]), f(r[4]), f(r[5]), 0.0],
                     s,
+                    [lx, ly, lz, 0.0],
+                    s_low,
                 ]
             })
             .collect();
@@ -305,11 +313,15 @@ impl DragState {
                 }
             }
             let widest = schemas::validation::largest(half_widths.iter().copied(), 0.0);
-            ReactionGrid::of(&centres, widest + f64::from(self.dp.radius))
+            // a particle's cell is found from its high part, within half a quantum: cells a
+            // quantum wider keep every particle within a footprint in the 27 cells it reads
+            let slack = frame.quantum.unwrap_or(0.0);
+            ReactionGrid::of(&centres, widest + f64::from(self.dp.radius) + slack)
         });
         // the states, and a new grid after them (an unchanged one is in place already)
         let ints = count + grid.as_ref().map_or(0, |g| g.starts.len() + g.entries.len());
-        self.reserve(dev, kernels, 4 * count as u64, ints as u64, 4 * count as u64);
+        let floats = (REACTION_ROWS + 1) * count as u64;
+        self.reserve(dev, kernels, floats, ints as u64, 4 * count as u64);
         let f = self.floats.clone();
         self.write(dev, &f, 0, &rows);
         if let Some(g) = grid {
@@ -424,23 +436,18 @@ impl GpuEmps {
         let Some(d) = guard.as_mut() else {
             unreachable!("drag_state makes the state")
         };
-        let first = 4 * u64::from(d.dp.reactions);
-        d.reserve(
-            &self.dev,
-            &self.kernels,
-            first + 2 * count as u64,
-            0,
-            16 * count as u64,
-        );
-        let rows: Vec<[f32; 4]> = points
+        let first = (REACTION_ROWS + 1) * u64::from(d.dp.reactions);
+        let n = count as u64;
+        d.reserve(&self.dev, &self.kernels, first + 3 * n, 0, 16 * n);
+        let parts: Vec<([f32; 3], [f32; 3])> = points
             .chunks_exact(3)
-            .map(|p| {
-                let [x, y, z] = self.frame.point([p[0], p[1], p[2]]);
-                [x, y, z, 0.0]
-            })
+            .map(|p| self.frame.split([p[0], p[1], p[2]]))
             .collect();
+        let rows: Vec<[f32; 4]> = parts.iter().map(|([x, y, z], _)| [*x, *y, *z, 0.0]).collect();
+        let lows: Vec<[f32; 4]> = parts.iter().map(|(_, [x, y, z])| [*x, *y, *z, 0.0]).collect();
         let f = d.floats.clone();
         d.write(&self.dev, &f, 16 * first, &rows);
+        d.write(&self.dev, &f, 16 * (first + 2 * n), &lows);
         d.dp.points = count as u32;
         d.write_params(&self.dev);
         let mut enc = self

@@ -67,7 +67,55 @@ impl FluidSolver {
     pub fn to_device(&mut self, cfg: &FluidConfig, dev: GpuDevice) -> Result<(), GpuStartError> {
         cfg.gpu_support("fluid")
             .map_err(|e| GpuStartError::Unsupported(format!("`{}`: {}", e.key, e.message)))?;
+        self.start_device(cfg, dev, cfg.gpu_frame_origin(), cfg.gpu_quantum())
+    }
+
+    /// [`FluidSolver::to_device`] with the device measuring positions from `origin` instead of
+    /// the tank's lower corner, in wide positions when the tank's far corners lie further from
+    /// it than plain f32 keeps ([`schemas::case::fluid::gpu_wide_quantum`]): the device's
+    /// numbers are then those of a tank as far from its frame's origin, which is how the wide
+    /// positions are checked without a tank of 10⁵ spacings.
+    pub fn to_device_from(
+        &mut self,
+        cfg: &FluidConfig,
+        dev: GpuDevice,
+        origin: [f64; 3],
+    ) -> Result<(), GpuStartError> {
+        cfg.gpu_support("fluid")
+            .map_err(|e| GpuStartError::Unsupported(format!("`{}`: {}", e.key, e.message)))?;
+        let (lo, hi) = (self.domain.lo, self.domain.hi);
+        let far = schemas::validation::largest(
+            (0..3).flat_map(|a| [(lo[a] - origin[a]).abs(), (hi[a] - origin[a]).abs()]),
+            0.0,
+        );
+        let quantum = schemas::case::fluid::gpu_wide_quantum(far, cfg.spacing);
+        let most = schemas::case::fluid::GPU_MAX_WIDE_ROUNDING * cfg.spacing;
+        if let Some(q) = quantum.filter(|&q| 0.5 * q > most) {
+            return Err(GpuStartError::Unsupported(format!(
+                "{far} m from the device's frame origin wide positions would round by {:.2e} m, more than {most:.2e} m (0.02 Δs)",
+                0.5 * q
+            )));
+        }
+        self.start_device(cfg, dev, origin, quantum)
+    }
+
+    /// Moves the particles to `dev` with the device's frame at `origin` and wide positions of
+    /// `quantum` (none: plain f32).
+    fn start_device(
+        &mut self,
+        cfg: &FluidConfig,
+        dev: GpuDevice,
+        origin: [f64; 3],
+        quantum: Option<f64>,
+    ) -> Result<(), GpuStartError> {
         self.remove_gates();
+        if let Some(q) = quantum {
+            // wide positions test cells by their high part, within half a quantum: cells a
+            // quantum wider keep every pair within the cells searched (gpu/frame.rs)
+            let st = &mut self.state;
+            st.grid = st.grid.widened(q);
+            st.grid.sort(&mut st.particles, &mut Vec::new());
+        }
         let setup = GpuSetup {
             kernel: self.kernel,
             physics: self.physics,
@@ -90,9 +138,7 @@ impl FluidSolver {
             artificial_viscosity: cfg.artificial_viscosity,
             paddle: self.paddle.as_ref().map(PaddleSites::of),
             headroom: self.inflow_headroom(),
-            frame: Frame {
-                origin: cfg.gpu_frame_origin(),
-            },
+            frame: Frame { origin, quantum },
         };
         let step = GpuEmps::new(dev, &setup, &self.state.grid, &self.state.particles)
             .map_err(GpuStartError::Unsupported)?;

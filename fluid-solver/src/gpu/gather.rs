@@ -8,11 +8,12 @@
 //! what the particles moved after that sort (the correction and the collisions, well under a
 //! cell in a step the detector lets pass), are such runs, one per row of cells: their two ends
 //! come back first (8 B per row), then the runs' positions with their kinds and their number
-//! densities and pressures (24 B per particle, f32 as the whole copy has them). What comes back
+//! densities and pressures (24 B per particle, f32 as the whole copy has them; 40 B with wide
+//! positions' low parts, [`super::frame`]). What comes back
 //! is a superset of the particles in the box, in the device's order; the caller picks from it by
 //! its own rule (the CPU's sensor: [`crate::sensors::wall_sensor::Disc::pressure`]).
 
-use super::buffers::{map_read, CELL_START, DENS, POS};
+use super::buffers::{map_read, CELL_START, DENS, POS, POS_LO};
 use super::step::GpuEmps;
 use crate::particles::Particles;
 use std::sync::atomic::Ordering;
@@ -70,7 +71,11 @@ impl GpuEmps {
             self.gathered.fetch_add(8 * rows.len() as u64, Ordering::Relaxed);
             return p;
         }
-        let staging = self.staging_of(24 * count);
+        // per particle: position and kind, number density and pressure, and with wide positions
+        // the position's low part
+        let lows = if self.buffers.wide { 16 } else { 0 };
+        let per = 24 + lows;
+        let staging = self.staging_of(per * count);
         let mut enc = self.gather_encoder();
         let mut k = 0;
         for &(s, e) in &runs {
@@ -83,17 +88,36 @@ impl GpuEmps {
                 16 * count + 8 * k,
                 8 * len,
             );
+            if self.buffers.wide {
+                enc.copy_buffer_to_buffer(
+                    self.buffers.at(POS_LO),
+                    16 * s,
+                    &staging,
+                    24 * count + 16 * k,
+                    16 * len,
+                );
+            }
             k += len;
         }
         self.dev.queue.submit([enc.finish()]);
         let bytes: Vec<u8> = map_read(&self.dev, &staging.slice(..));
         self.gathered
-            .fetch_add(8 * rows.len() as u64 + 24 * count, Ordering::Relaxed);
-        let (pos, dens) = bytes.split_at(16 * count as usize);
+            .fetch_add(8 * rows.len() as u64 + per * count, Ordering::Relaxed);
+        let (pos, rest) = bytes.split_at(16 * count as usize);
+        let (dens, lo) = rest.split_at(8 * count as usize);
         let pos: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(pos);
         let dens: Vec<[f32; 2]> = bytemuck::pod_collect_to_vec(dens);
         let m = pos.len();
-        let col = |a: usize| pos.iter().map(|e| frame.back(a, e[a])).collect::<Vec<f64>>();
+        let lo: Vec<[f32; 4]> = match self.buffers.wide {
+            true => bytemuck::pod_collect_to_vec(lo),
+            false => vec![[0.0; 4]; m],
+        };
+        let col = |a: usize| {
+            pos.iter()
+                .zip(&lo)
+                .map(|(e, l)| frame.back(a, e[a], l[a]))
+                .collect::<Vec<f64>>()
+        };
         (p.x, p.y, p.z) = (col(0), col(1), col(2));
         p.kind = pos.iter().map(|e| e[3] as u8).collect();
         (p.vx, p.vy, p.vz) = (vec![0.0; m], vec![0.0; m], vec![0.0; m]);

@@ -1,5 +1,5 @@
 //! The WGSL kernels (`shaders/`) as compute pipelines sharing one bind group layout: binding 0
-//! the uniform block, 1 … 22 the storage buffers of [`super::buffers`] (the drag coupling's
+//! the uniform block, 1 … 23 the storage buffers of [`super::buffers`] (the drag coupling's
 //! kernels bind a second group, [`super::drag`]); and their dispatch, in rows when a dispatch
 //! has more workgroups than the device allows per dimension.
 
@@ -35,6 +35,7 @@ pub struct Kernels {
     pub scatter: wgpu::ComputePipeline,
     pub order_cells: wgpu::ComputePipeline,
     pub gather_positions: wgpu::ComputePipeline,
+    pub gather_lows: wgpu::ComputePipeline,
     pub gather_velocities: wgpu::ComputePipeline,
     pub gather_ids: wgpu::ComputePipeline,
     pub clear_sums: wgpu::ComputePipeline,
@@ -72,7 +73,8 @@ pub struct Kernels {
 }
 
 impl Kernels {
-    /// Compiles the kernels and binds `buffers`.
+    /// Compiles the kernels (with wide positions when `buffers` are: the override `WIDE`) and
+    /// binds `buffers`.
     pub fn new(dev: &GpuDevice, buffers: &Buffers) -> Kernels {
         let device = &dev.device;
         let source = SOURCES.join("\n");
@@ -131,13 +133,17 @@ impl Kernels {
             bind_group_layouts: &[Some(&layout), Some(&drag_layout)],
             immediate_size: 0,
         });
+        let constants = [("WIDE", if buffers.wide { 1.0 } else { 0.0 })];
         let make_in = |name: &str, pipeline_layout: &wgpu::PipelineLayout| {
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(name),
                 layout: Some(pipeline_layout),
                 module: &module,
                 entry_point: Some(name),
-                compilation_options: Default::default(),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants: &constants,
+                    ..Default::default()
+                },
                 cache: None,
             })
         };
@@ -154,6 +160,7 @@ impl Kernels {
             scatter: make("scatter"),
             order_cells: make("order_cells"),
             gather_positions: make("gather_positions"),
+            gather_lows: make("gather_lows"),
             gather_velocities: make("gather_velocities"),
             gather_ids: make("gather_ids"),
             clear_sums: make("clear_sums"),

@@ -47,15 +47,19 @@ impl PaddleSites {
     }
 
     /// The device's rows of the paddle in the members' buffer, after the bodies' (offset: the
-    /// rest position (x, 0, z) in the device's `frame`; id; body: none).
+    /// rest position (x, 0, z) in the device's `frame`, with wide positions its high parts and
+    /// the low parts of x and z in the padding; id; body: none).
     pub fn rows(&self, frame: &Frame) -> Vec<Member> {
         (self.first..)
             .zip(&self.rest)
-            .map(|(id, r)| Member {
-                offset: [frame.along(0, r[0]), 0.0, frame.along(2, r[1])],
-                id,
-                body: u32::MAX,
-                pad: [0; 3],
+            .map(|(id, r)| {
+                let ((x, low_x), (z, low_z)) = (frame.split_along(0, r[0]), frame.split_along(2, r[1]));
+                Member {
+                    offset: [x, 0.0, z],
+                    id,
+                    body: u32::MAX,
+                    pad: [low_x.to_bits(), low_z.to_bits(), 0],
+                }
             })
             .collect()
     }

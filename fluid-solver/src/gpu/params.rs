@@ -75,7 +75,8 @@ pub struct Params {
     pub paddle_dsin: f32,
     pub hinge_x: f32,
     pub hinge_z: f32,
-    pub pad_paddle: u32,
+    /// The quantum of wide positions' high parts (0: plain f32 positions; [`super::frame`]).
+    pub quantum: f32,
     /// The open boundaries' pass ([`super::open_boundary`], set before each step of a case
     /// with an inflow or an outflow): the strip's velocity u(t + Δt/2) and travel u Δt, the x
     /// from which a strip particle becomes fluid and the z above which one is withdrawn (each
@@ -86,7 +87,11 @@ pub struct Params {
     pub inflow_enter: f32,
     pub inflow_cut: f32,
     pub outflow_x: f32,
-    pub pad_open: [u32; 3],
+    /// With wide positions ([`super::frame`]) the low parts of the outflow plane and of the
+    /// paddle's hinge (0 otherwise): the outflow decides on both parts, as the CPU's f64 does.
+    pub outflow_low: f32,
+    pub hinge_low_x: f32,
+    pub hinge_low_z: f32,
 }
 
 /// Converts to the device's f32.

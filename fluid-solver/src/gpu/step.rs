@@ -181,6 +181,8 @@ impl GpuEmps {
         let paddle_count = member_rows.len() - paddle_row;
         // artificial_viscosity.rs: q_ij = −α ρ0 c h (u_ij · r_ij) / (r² + 0.01 h²), h = r_e,grad / 2
         let h_av = 0.5 * k.re_grad;
+        let hinge_x = paddle.map_or((0.0, 0.0), |p| frame.split_along(0, p.hinge[0]));
+        let hinge_z = paddle.map_or((0.0, 0.0), |p| frame.split_along(2, p.hinge[1]));
         let params = Params {
             origin: frame.point(origin),
             inv_cell: (1.0 / cell) as f32,
@@ -238,15 +240,17 @@ impl GpuEmps {
             paddle_sin: 0.0,
             paddle_dcos: 0.0,
             paddle_dsin: 0.0,
-            hinge_x: paddle.map_or(0.0, |p| frame.along(0, p.hinge[0])),
-            hinge_z: paddle.map_or(0.0, |p| frame.along(2, p.hinge[1])),
-            pad_paddle: 0,
+            hinge_x: hinge_x.0,
+            hinge_z: hinge_z.0,
+            quantum: frame.quantum.map_or(0.0, |q| q as f32),
             inflow_u: 0.0,
             inflow_dx: 0.0,
             inflow_enter: f32::INFINITY,
             inflow_cut: f32::INFINITY,
             outflow_x: f32::INFINITY,
-            pad_open: [0; 3],
+            outflow_low: 0.0,
+            hinge_low_x: hinge_x.1,
+            hinge_low_z: hinge_z.1,
         };
         let groups = capacity.div_ceil(WIDE_WG as usize);
         let sizes = (n_bodies, member_rows.len());
@@ -258,7 +262,15 @@ impl GpuEmps {
             scene,
             largest,
         };
-        let mut buffers = Buffers::new(&dev, capacity, cells, shape.boxes, groups, sizes, scene);
+        let mut buffers = Buffers::new(
+            &dev,
+            (capacity, frame.wide()),
+            cells,
+            shape.boxes,
+            groups,
+            sizes,
+            scene,
+        );
         let kernels = Kernels::new(&dev, &buffers);
         buffers.write(&dev, BOXES, &boxes);
         buffers.write(&dev, DAMPING, &zones);
@@ -291,6 +303,11 @@ impl GpuEmps {
         };
         step.upload(p)?;
         Ok(step)
+    }
+
+    /// Where the device measures positions from, and whether they are wide.
+    pub fn frame(&self) -> Frame {
+        self.frame
     }
 
     /// Particles on the device.
@@ -332,7 +349,7 @@ impl GpuEmps {
         (prm.inflow_u, prm.inflow_dx) = (f(pass.u), f(pass.dx));
         // planes (±∞ where there is none) in the device's frame
         (prm.inflow_enter, prm.inflow_cut) = (frame.along(0, pass.enter), frame.along(2, pass.cut));
-        prm.outflow_x = frame.along(0, pass.outflow);
+        (prm.outflow_x, prm.outflow_low) = frame.split_along(0, pass.outflow);
         prm.n = self.n as u32;
         let (n, cells) = (prm.n, prm.cells);
         self.buffers.write_params(&self.dev, &self.params);
@@ -395,7 +412,13 @@ impl GpuEmps {
         }
         let groups = capacity.div_ceil(WIDE_WG as usize);
         let mut fresh = Buffers::new(
-            &self.dev, capacity, sh.cells, sh.boxes, groups, sh.bodies, sh.scene,
+            &self.dev,
+            (capacity, self.frame.wide()),
+            sh.cells,
+            sh.boxes,
+            groups,
+            sh.bodies,
+            sh.scene,
         );
         let mut enc = self.encoder("regrow");
         for (old, new) in self.buffers.storage.iter().zip(&fresh.storage) {

@@ -65,6 +65,14 @@ impl CellGrid {
         }
     }
 
+    /// The same box with cells `extra` wider (the GPU's wide positions: gpu/frame.rs); the
+    /// particles must be sorted again.
+    pub fn widened(&self, extra: f64) -> CellGrid {
+        let lo = self.origin.map(|o| o + PAD as f64 * self.cell);
+        let hi: [f64; 3] = std::array::from_fn(|a| lo[a] + (self.dims[a] - 2 * PAD) as f64 * self.cell);
+        CellGrid::with_cell(lo, hi, self.cell + extra)
+    }
+
     /// The grid's origin (corner of its first cell, padding included), cell edge and cells per
     /// axis (x fastest): what the GPU's cell sort copies.
     pub fn geometry(&self) -> ([f64; 3], f64, [usize; 3]) {

@@ -231,21 +231,59 @@ pub fn record_measures(row: &Record, id: impl Fn(&str) -> String, measures: &[Me
     }
 }
 
-/// A solver of `cfg` from the saved `state`, moved to `dev` when one is given (then `on_device`
-/// sees it first), run for `steps` steps of the case's Δt, with its host copy brought up to date;
-/// and its wall time [s]. For comparisons that start mid-run, where a scene amplifies rounding.
+/// Where a GPU run's device measures positions from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum DeviceFrame {
+    /// The tank's lower corner, as a case gets it.
+    Corner,
+    /// [`FAR`] m before the tank's lower corner along x: the device keeps wide positions and
+    /// holds the numbers a tank of 10⁵ spacings holds at its far end (`gpu_wide_positions.rs`).
+    Far,
+}
+
+/// How far [`DeviceFrame::Far`] lies from the tank [m]: 10⁵ spacings at Δs = 0.02 m, where
+/// plain f32 positions would round by 1.2e-4 m, six times [`POSITION_BOUND`].
+pub const FAR: f64 = 2000.0;
+
+/// Moves `s` (of `cfg`) to `dev`, measuring positions from `frame`.
+pub fn to_device(
+    s: &mut FluidSolver,
+    cfg: &FluidConfig,
+    dev: fluid_solver::gpu::GpuDevice,
+    frame: DeviceFrame,
+) {
+    let started = match frame {
+        DeviceFrame::Corner => s.to_device(cfg, dev),
+        DeviceFrame::Far => {
+            let origin = [cfg.tank.min[0] - FAR, cfg.tank.min[1], cfg.tank.min[2]];
+            s.to_device_from(cfg, dev, origin)
+        }
+    };
+    started.unwrap_or_else(|e| panic!("{e}"));
+    let wide = s.device().is_some_and(|d| d.frame().wide());
+    assert_eq!(
+        wide,
+        frame == DeviceFrame::Far,
+        "the device's positions are wide only when measured from far away"
+    );
+}
+
+/// A solver of `cfg` from the saved `state`, moved to `dev` in its frame when one is given
+/// (then `on_device` sees it first), run for `steps` steps of the case's Δt, with its host copy
+/// brought up to date; and its wall time [s]. For comparisons that start mid-run, where a scene
+/// amplifies rounding.
 pub fn run_from(
     cfg: &FluidConfig,
     state: &fluid_solver::FluidState,
-    dev: Option<fluid_solver::gpu::GpuDevice>,
+    dev: Option<(fluid_solver::gpu::GpuDevice, DeviceFrame)>,
     steps: usize,
     on_device: impl FnOnce(&mut FluidSolver),
 ) -> (FluidSolver, f64) {
     let t = Instant::now();
     let mut s = FluidSolver::new(cfg);
     s.restore_state(state);
-    if let Some(dev) = dev {
-        s.to_device(cfg, dev).unwrap_or_else(|e| panic!("{e}"));
+    if let Some((dev, frame)) = dev {
+        to_device(&mut s, cfg, dev, frame);
         on_device(&mut s);
     }
     for _ in 0..steps {

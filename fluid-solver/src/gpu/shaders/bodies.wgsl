@@ -47,8 +47,21 @@ fn place_bodies(v: Invocation) {
     let k = body_kin[members[m].body];
     let arm = rotate(k.quat, members[m].offset);
     let u = k.vel.xyz + cross(k.omega.xyz, arm);
-    pos[i] = vec4<f32>(k.centre.xyz + arm - u * k.centre.w, pos[i].w);
+    if WIDE {
+        place(i, k.centre.xyz, k.low.xyz + arm - u * k.centre.w);
+    } else {
+        pos[i] = vec4<f32>(k.centre.xyz + arm - u * k.centre.w, pos[i].w);
+    }
     vel[i] = vec4<f32>(u, 0.0);
+}
+
+// r_i − c_b: body particle i's arm about its body's centre (with wide positions, of both parts).
+fn arm_of(i: u32, b: u32) -> vec3<f32> {
+    let k = body_kin[b];
+    if WIDE {
+        return (pos[i].xyz - k.centre.xyz) + (pos_lo[i].xyz - k.low.xyz);
+    }
+    return pos[i].xyz - k.centre.xyz;
 }
 
 @compute @workgroup_size(64)
@@ -75,6 +88,7 @@ fn body_viscous(v: Invocation) {
     let re = prm.re;
     let re2 = re * re;
     let xi = pos[i].xyz;
+    let li = low(i);
     let ui = vel[i].xyz;
     let c = cell_sorted[i];
     var f = vec3<f32>(0.0);
@@ -84,7 +98,7 @@ fn body_viscous(v: Invocation) {
             let range = row_range(c, r, dy, dz);
             for (var j = range.x; j < range.y; j = j + 1u) {
                 let pj = pos[j];
-                let d = xi - pj.xyz;
+                let d = -apart(pj.xyz, j, xi, li);
                 let r2 = dot(d, d);
                 if u32(pj.w) == FLUID && r2 < re2 && r2 > 0.0 {
                     let rr = sqrt(r2);
@@ -108,6 +122,7 @@ fn body_pressure(v: Invocation) {
     let re = prm.re_grad;
     let re2 = re * re;
     let xi = pos[i].xyz;
+    let li = low(i);
     let pi = dens[i].y;
     let c = cell_sorted[i];
     var f = vec3<f32>(0.0);
@@ -117,7 +132,7 @@ fn body_pressure(v: Invocation) {
             let range = row_range(c, r, dy, dz);
             for (var j = range.x; j < range.y; j = j + 1u) {
                 let pj = pos[j];
-                let d = xi - pj.xyz;
+                let d = -apart(pj.xyz, j, xi, li);
                 let r2 = dot(d, d);
                 if u32(pj.w) == FLUID && r2 < re2 && r2 > 0.0 {
                     let rr = sqrt(r2);
@@ -143,6 +158,7 @@ fn body_collision(v: Invocation) {
     let d2 = prm.coll_dist * prm.coll_dist;
     let s2 = prm.spacing * prm.spacing;
     let xi = pos[i].xyz;
+    let li = low(i);
     let ui = vel[i].xyz;
     let c = cell_sorted[i];
     var fluid = vec3<f32>(0.0);
@@ -154,7 +170,7 @@ fn body_collision(v: Invocation) {
             for (var j = range.x; j < range.y; j = j + 1u) {
                 let pj = pos[j];
                 let kj = u32(pj.w);
-                let d = xi - pj.xyz;
+                let d = -apart(pj.xyz, j, xi, li);
                 let r2 = dot(d, d);
                 if !(r2 > 0.0) {
                     continue;
@@ -221,7 +237,7 @@ fn reduce_bodies(v: Invocation) {
             b = members[k].body;
             f = acc[i].xyz;
             fw = wallf[i].xyz;
-            arm = pos[i].xyz - body_kin[b].centre.xyz;
+            arm = arm_of(i, b);
         }
     }
     for (var body = 0u; body < prm.n_bodies; body = body + 1u) {

@@ -228,6 +228,15 @@ fn gather_positions(v: Invocation) {
     }
 }
 
+// With wide positions, their low parts (after the velocities' pass).
+@compute @workgroup_size(64)
+fn gather_lows(v: Invocation) {
+    let k = item_index(v, WG);
+    if k < prm.n {
+        acc[k] = pos_lo[perm[k]];
+    }
+}
+
 @compute @workgroup_size(64)
 fn gather_velocities(v: Invocation) {
     let k = item_index(v, WG);

@@ -22,9 +22,9 @@ struct Params {
     n_damping: u32, av_scale: f32, av_eta2: f32, body_table: u32,
     paddle_first: u32, paddle_count: u32, paddle_row: u32, paddle_shift: f32,
     paddle_speed: f32, paddle_cos_m1: f32, paddle_sin: f32, paddle_dcos: f32,
-    paddle_dsin: f32, hinge_x: f32, hinge_z: f32, pad_paddle: u32,
+    paddle_dsin: f32, hinge_x: f32, hinge_z: f32, quantum: f32,
     inflow_u: f32, inflow_dx: f32, inflow_enter: f32, inflow_cut: f32,
-    outflow_x: f32, pad_open0: u32, pad_open1: u32, pad_open2: u32,
+    outflow_x: f32, outflow_low: f32, hinge_low_x: f32, hinge_low_z: f32,
 };
 
 // Kind codes (src/particles/kind.rs).
@@ -100,15 +100,22 @@ const FLUID_CELL: u32 = 0x80000000u;
 // (body_inside.wgsl); one word without either.
 @group(0) @binding(22) var<storage, read_write> solid_bits: array<u32>;
 
-// A body particle's offset from its body's initial centre (f32), its id and its body.
+// Wide positions only (src/gpu/frame.rs): the low part of each particle's position, within half
+// a quantum of 0 (xyz; w unused); one entry otherwise.
+@group(0) @binding(23) var<storage, read_write> pos_lo: array<vec4<f32>>;
+
+// A body particle's offset from its body's initial centre (f32), its id and its body; a paddle
+// particle's rest position (x, 0, z; with wide positions its high parts, and the low parts in
+// low_x, low_z).
 struct Member {
     offset: vec3<f32>, id: u32,
-    body: u32, _p0: u32, _p1: u32, _p2: u32,
+    body: u32, low_x: f32, low_z: f32, _p2: u32,
 };
 
-// A body's pose and velocity for the step (f32): centre, quaternion (w, x, y, z), V, ω.
+// A body's pose and velocity for the step (f32): centre (its w: the lead), quaternion
+// (w, x, y, z), V, ω, and the low part of the centre with wide positions (xyz).
 struct BodyKin {
-    centre: vec4<f32>, quat: vec4<f32>, vel: vec4<f32>, omega: vec4<f32>,
+    centre: vec4<f32>, quat: vec4<f32>, vel: vec4<f32>, omega: vec4<f32>, low: vec4<f32>,
 };
 
 // The sums kept per body: the loads on the body summed by body particle (LOADS), the reaction
@@ -153,6 +160,46 @@ fn group_index(v: Invocation) -> u32 {
 // Linear index of the invocation in a dispatch of workgroups of `size` threads.
 fn item_index(v: Invocation, size: u32) -> u32 {
     return group_index(v) * size + v.local;
+}
+
+// Wide positions (src/gpu/frame.rs): set when the tank is longer than 16 777 spacings. Each
+// position is then hi + lo, hi (pos.xyz) a multiple of prm.quantum, lo (pos_lo) within half of
+// it; off, the helpers below are plain f32 arithmetic on pos.
+override WIDE: bool = false;
+
+// The low part of particle i's position (0 with plain positions).
+fn low(i: u32) -> vec3<f32> {
+    if WIDE {
+        return pos_lo[i].xyz;
+    }
+    return vec3<f32>(0.0);
+}
+
+// r_j − r_i of particle j (high part pj) from a point of high part xi and low part li.
+fn apart(pj: vec3<f32>, j: u32, xi: vec3<f32>, li: vec3<f32>) -> vec3<f32> {
+    if WIDE {
+        return (pj - xi) + (pos_lo[j].xyz - li);
+    }
+    return pj - xi;
+}
+
+// With wide positions only: puts particle i (kind kept) at hi + lo, hi a multiple of the
+// quantum, lo's whole quanta carried into hi (exact: both are multiples of it, and hi stays
+// below 2²⁴ quanta).
+fn place(i: u32, hi: vec3<f32>, lo: vec3<f32>) {
+    let q = prm.quantum;
+    let carry = round(lo / q) * q;
+    pos[i] = vec4<f32>(hi + carry, pos[i].w);
+    pos_lo[i] = vec4<f32>(lo - carry, 0.0);
+}
+
+// Moves particle i by d (S1-11, S1-13's r += u Δt).
+fn shift(i: u32, d: vec3<f32>) {
+    if WIDE {
+        place(i, pos[i].xyz, pos_lo[i].xyz + d);
+        return;
+    }
+    pos[i] = vec4<f32>(pos[i].xyz + d, pos[i].w);
 }
 
 fn kind_of(i: u32) -> u32 {

@@ -17,9 +17,10 @@ struct DragParams {
 };
 
 @group(1) @binding(0) var<uniform> drg: DragParams;
-// 3 per reaction: (centroid, footprint half-width a), (force, 0), (paired sample point, 1 when
-// there is one); then 1 per reaction: (Σ_k W(ρ_k), 0, 0, 0); then the sample points (xyz), then
-// the flow at them (velocity, λ_min).
+// REACTION_ROWS per reaction: (centroid, footprint half-width a), (force, 0), (paired sample
+// point, 1 when there is one), and the low parts of the centroid and of the sample point (with
+// wide positions, src/gpu/frame.rs; 0 otherwise); then 1 per reaction: (Σ_k W(ρ_k), 0, 0, 0);
+// then the sample points (xyz), the flow at them (velocity, λ_min), and their low parts.
 @group(1) @binding(1) var<storage, read_write> drag_f: array<vec4<f32>>;
 // [0, reactions): each reaction's state in the step (REACTION_*); then the reactions' grid: its
 // cells' starts (cells + 1), then its entries (reaction · 2 + 1 for a paired sample point's,
@@ -97,7 +98,9 @@ fn sample_flow(v: Invocation) {
     if k >= drg.points {
         return;
     }
-    let x = drag_f[4u * drg.reactions + k].xyz;
+    let points = points_row();
+    let x = drag_f[points + k].xyz;
+    let xl = drag_f[points + 2u * drg.points + k].xyz;
     let c = grid_cell(x);
     let reach = i32(drg.sample_reach);
     let lo = max(c - vec3<i32>(reach), vec3<i32>(0));
@@ -116,7 +119,7 @@ fn sample_flow(v: Invocation) {
                 if kind == REMOVED {
                     continue;
                 }
-                let d = pos[j].xyz - x;
+                let d = apart(pos[j].xyz, j, x, xl);
                 let r2 = dot(d, d);
                 if r2 >= r2max {
                     continue;
@@ -136,16 +139,16 @@ fn sample_flow(v: Invocation) {
         }
     }
     if weight <= 0.0 {
-        drag_f[4u * drg.reactions + drg.points + k] = vec4<f32>(0.0);
+        drag_f[points + drg.points + k] = vec4<f32>(0.0);
         return;
     }
     let lambda = smallest_eigenvalue(m0.x, m0.y, m0.z, m1.x, m1.y, m1.z);
-    drag_f[4u * drg.reactions + drg.points + k] = vec4<f32>(u / weight, lambda);
+    drag_f[points + drg.points + k] = vec4<f32>(u / weight, lambda);
 }
 
 // Σ_k W(max(0, |x_k − x| − a)) over the fluid particles around x (spreading.rs shares_around,
 // before normalising), the particles' cell list being sorted for their present positions.
-fn footprint_sum(x: vec3<f32>, a: f32) -> f32 {
+fn footprint_sum(x: vec3<f32>, xl: vec3<f32>, a: f32) -> f32 {
     let reach = a + drg.radius;
     let cells = i32(ceil(reach * prm.inv_cell));
     let c = grid_cell(x);
@@ -159,16 +162,24 @@ fn footprint_sum(x: vec3<f32>, a: f32) -> f32 {
                 if kind_of(j) != FLUID {
                     continue;
                 }
-                sum = sum + wendland(max(0.0, length(pos[j].xyz - x) - a));
+                sum = sum + wendland(max(0.0, length(apart(pos[j].xyz, j, x, xl)) - a));
             }
         }
     }
     return sum;
 }
 
+// Rows per reaction in drag_f.
+const REACTION_ROWS: u32 = 5u;
+
 // The base of reaction r's rows in drag_f.
 fn reaction_row(r: u32) -> u32 {
-    return 3u * r;
+    return REACTION_ROWS * r;
+}
+
+// The first row of the sample points in drag_f.
+fn points_row() -> u32 {
+    return (REACTION_ROWS + 1u) * drg.reactions;
 }
 
 // spreading.rs share_of, the normalisation of each reaction with a force: its weights' sum
@@ -182,17 +193,17 @@ fn reaction_sums(v: Invocation) {
     let row = reaction_row(r);
     let centroid = drag_f[row];
     let force = drag_f[row + 1u].xyz;
-    let sums = 3u * drg.reactions;
+    let sums = REACTION_ROWS * drg.reactions;
     if all(force == vec3<f32>(0.0)) {
         drag_u[r] = REACTION_IDLE;
         return;
     }
     var state = REACTION_CENTROID;
-    var sum = footprint_sum(centroid.xyz, centroid.w);
+    var sum = footprint_sum(centroid.xyz, drag_f[row + 3u].xyz, centroid.w);
     let paired = drag_f[row + 2u];
     if sum <= 0.0 && paired.w > 0.0 {
         state = REACTION_MOVED;
-        sum = footprint_sum(paired.xyz, centroid.w);
+        sum = footprint_sum(paired.xyz, drag_f[row + 4u].xyz, centroid.w);
     }
     if sum <= 0.0 {
         state = REACTION_UNAPPLIED;
@@ -221,7 +232,8 @@ fn spread_reactions(v: Invocation) {
     let starts = drg.reactions;
     let cells = drg.dims.x * drg.dims.y * drg.dims.z;
     let entries = starts + cells + 1u;
-    let sums = 3u * drg.reactions;
+    let sums = REACTION_ROWS * drg.reactions;
+    let xl = low(i);
     var f = vec3<f32>(0.0);
     for (var z = lo.z; z <= hi.z; z = z + 1) {
         for (var y = lo.y; y <= hi.y; y = y + 1) {
@@ -238,10 +250,12 @@ fn spread_reactions(v: Invocation) {
                     let row = reaction_row(r);
                     let centroid = drag_f[row];
                     var centre = centroid.xyz;
+                    var centre_low = drag_f[row + 3u].xyz;
                     if moved == 1u {
                         centre = drag_f[row + 2u].xyz;
+                        centre_low = drag_f[row + 4u].xyz;
                     }
-                    let w = wendland(max(0.0, length(x - centre) - centroid.w));
+                    let w = wendland(max(0.0, length((x - centre) + (xl - centre_low)) - centroid.w));
                     if w > 0.0 {
                         f = f + drag_f[row + 1u].xyz * (w / drag_f[sums + r].x);
                     }

@@ -45,6 +45,7 @@ fn laplacian(v: Invocation) {
     let re = prm.re;
     let re2 = re * re;
     let xi = pos[i].xyz;
+    let li = low(i);
     let ui = vel[i].xyz;
     let c = cell_sorted[i];
     var l = vec3<f32>(0.0);
@@ -57,7 +58,7 @@ fn laplacian(v: Invocation) {
             seen = seen + range.y - range.x;
             for (var j = range.x; j < range.y; j = j + 1u) {
                 let pj = pos[j];
-                let d = pj.xyz - xi;
+                let d = apart(pj.xyz, j, xi, li);
                 let r2 = dot(d, d);
                 if r2 < re2 && r2 > 0.0 {
                     let rr = sqrt(r2);
@@ -95,7 +96,7 @@ fn predict(v: Invocation) {
         vel[i] = vec4<f32>(u, 0.0);
     }
     if k == FLUID || k == BODY {
-        pos[i] = vec4<f32>(pos[i].xyz + u * prm.dt, pos[i].w);
+        shift(i, u * prm.dt);
     }
 }
 
@@ -117,6 +118,7 @@ fn density(v: Invocation) {
     let re = prm.re;
     let re2 = re * re;
     let xi = pos[i].xyz;
+    let li = low(i);
     var sum = 0.0;
     var seen = 0u;
     let r = prm.reach;
@@ -125,7 +127,7 @@ fn density(v: Invocation) {
             let range = row_range(c, r, dy, dz);
             seen = seen + range.y - range.x;
             for (var j = range.x; j < range.y; j = j + 1u) {
-                let d = pos[j].xyz - xi;
+                let d = apart(pos[j].xyz, j, xi, li);
                 let r2 = dot(d, d);
                 if r2 < re2 && r2 > 0.0 {
                     let rr = sqrt(r2);
@@ -159,6 +161,7 @@ fn gradient(v: Invocation) {
     let re = prm.re_grad;
     let re2 = re * re;
     let xi = pos[i].xyz;
+    let li = low(i);
     let fi = dens[i].y;
     let c = cell_sorted[i];
     var gr = vec3<f32>(0.0);
@@ -172,7 +175,7 @@ fn gradient(v: Invocation) {
             for (var j = range.x; j < range.y; j = j + 1u) {
                 let pj = pos[j];
                 let kj = u32(pj.w);
-                let d = pj.xyz - xi;
+                let d = apart(pj.xyz, j, xi, li);
                 let r2 = dot(d, d);
                 if r2 < re2 && r2 > 0.0 && kj != DUMMY {
                     let rr = sqrt(r2);
@@ -200,7 +203,7 @@ fn correct(v: Invocation) {
     }
     let du = -(prm.dt / prm.rho) * acc[i].xyz;
     vel[i] = vec4<f32>(vel[i].xyz + du, 0.0);
-    pos[i] = vec4<f32>(pos[i].xyz + du * prm.dt, pos[i].w);
+    shift(i, du * prm.dt);
 }
 
 // Collision of close approaching particles (src/neighbours/collision.rs): for fluid i and j closer than
@@ -219,6 +222,7 @@ fn collide(v: Invocation) {
     }
     let d2 = prm.coll_dist * prm.coll_dist;
     let xi = pos[i].xyz;
+    let li = low(i);
     let ui = vel[i].xyz;
     let c = cell_sorted[i];
     var du = vec3<f32>(0.0);
@@ -231,7 +235,7 @@ fn collide(v: Invocation) {
             seen = seen + range.y - range.x;
             for (var j = range.x; j < range.y; j = j + 1u) {
                 let pj = pos[j];
-                let d = pj.xyz - xi;
+                let d = apart(pj.xyz, j, xi, li);
                 let r2 = dot(d, d);
                 if r2 < d2 && r2 > 0.0 {
                     let closing = dot(vel[j].xyz - ui, d);
@@ -264,5 +268,5 @@ fn apply_collisions(v: Invocation) {
     }
     let du = acc[i].xyz;
     vel[i] = vec4<f32>(vel[i].xyz + du, 0.0);
-    pos[i] = vec4<f32>(pos[i].xyz + du * prm.dt, pos[i].w);
+    shift(i, du * prm.dt);
 }

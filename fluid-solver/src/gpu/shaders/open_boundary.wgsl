@@ -4,6 +4,16 @@
 // then fluid past the outflow plane is removed. Removed and withdrawn particles are marked
 // REMOVED for the next cell sort to drop. The counts go to cell_count[cells + 1 … cells + 3]
 // (entered, removed, withdrawn), which the host zeroes before the pass.
+// Whether particle i, whose position's x (its high part with wide positions) is x, lies past
+// the outflow plane; with wide positions on both parts, so that it decides as the CPU's f64
+// does however far the plane lies from the frame's origin.
+fn past_outflow(i: u32, x: f32) -> bool {
+    if WIDE {
+        return (x - prm.outflow_x) + (pos_lo[i].x - prm.outflow_low) > 0.0;
+    }
+    return x > prm.outflow_x;
+}
+
 @compute @workgroup_size(64)
 fn open_boundaries(v: Invocation) {
     let i = item_index(v, WG);
@@ -22,11 +32,12 @@ fn open_boundaries(v: Invocation) {
             atomicAdd(&cell_count[prm.cells + 3u], 1u);
             return;
         } else {
-            p.x = p.x + prm.inflow_dx;
             vel[i] = vec4<f32>(prm.inflow_u, vel[i].y, vel[i].z, 0.0);
+            shift(i, vec3<f32>(prm.inflow_dx, 0.0, 0.0));
+            return;
         }
     }
-    if k == FLUID && p.x > prm.outflow_x {
+    if k == FLUID && past_outflow(i, p.x) {
         p.w = f32(REMOVED);
         atomicAdd(&cell_count[prm.cells + 2u], 1u);
     }

@@ -80,7 +80,7 @@ fn react(law: u32, reach: u32, v: Invocation) {
     var m = vec3<f32>(0.0);
     if reacts(i, b) {
         let xi = pos[i].xyz;
-        let centre = body_kin[b].centre.xyz;
+        let li = low(i);
         let c = cell_sorted[i];
         let reach2 = range2(law);
         for (var dz = 0u; dz <= 2u * reach; dz = dz + 1u) {
@@ -91,12 +91,12 @@ fn react(law: u32, reach: u32, v: Invocation) {
                     if u32(pj.w) != BODY {
                         continue;
                     }
-                    let d = pj.xyz - xi;
+                    let d = apart(pj.xyz, j, xi, li);
                     let r2 = dot(d, d);
                     if r2 > 0.0 && r2 < reach2 && body_of(j) == b {
                         let r = -pair_on_body(law, i, j, d, r2);
                         f = f + r;
-                        m = m + cross(pj.xyz - centre, r);
+                        m = m + cross(arm_of(j, b), r);
                     }
                 }
             }

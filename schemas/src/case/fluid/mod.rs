@@ -63,7 +63,7 @@ mod time_step;
 mod wave_maker;
 
 pub use geometry::{Aabb, BodyConfig, TankConfig};
-pub use gpu::GPU_MAX_ROUNDING;
+pub use gpu::{gpu_wide_quantum, GPU_MAX_ROUNDING, GPU_MAX_WIDE_ROUNDING};
 pub use inflow_law::InflowLaw;
 pub use inflow_series::InflowSeries;
 pub use initial_wave::InitialWaveConfig;
