@@ -4,8 +4,11 @@
 //! bytes crossing between host and device per step and per probe window (0.01 s).
 //!
 //! On a real GPU: Δs = 0.01 m and 0.005 m to t = 0.25 s (the time to solution), and
-//! 0.003 m for ≥ 1 M particles (the goal: ≥ 2e8 particle-steps/s there). With only a software Vulkan device (lavapipe) it says so and runs one small size
-//! to check that the path works; its numbers are not GPU speed.
+//! 0.003 m for ≥ 1 M particles (the goal: ≥ 2e8 particle-steps/s there), that size
+//! again in wide positions (the device measuring from 10⁵ spacings away, as a tank that long holds
+//! its far end: src/gpu/frame.rs) to price them. With only a software Vulkan device (lavapipe)
+//! it says so and runs one small size each way to check that the path works; its numbers are not
+//! GPU speed.
 
 use fluid_solver::gpu::GpuDevice;
 use fluid_solver::FluidSolver;
@@ -29,7 +32,12 @@ fn tank(base: &FluidConfig, ds: f64, depth: f64) -> FluidConfig {
     cfg
 }
 
-fn run(base: &FluidConfig, ds: f64, depth: f64, steps: u64) {
+/// How far before the tank the device's frame lies for a run in wide positions, in spacings.
+const WIDE_SPACINGS: f64 = 1.0e5;
+
+/// Runs the tank at `ds`, `depth` deep, for `steps` steps (then 20 profiled), in wide positions
+/// when `wide`, and prints its speed.
+fn run(base: &FluidConfig, ds: f64, depth: f64, steps: u64, wide: bool) {
     let cfg = tank(base, ds, depth);
     let dev = match GpuDevice::open() {
         Ok(d) => d,
@@ -40,7 +48,14 @@ fn run(base: &FluidConfig, ds: f64, depth: f64, steps: u64) {
     };
     let setup = Instant::now();
     let mut solver = FluidSolver::new(&cfg);
-    if let Err(e) = solver.to_device(&cfg, dev) {
+    let started = match wide {
+        false => solver.to_device(&cfg, dev),
+        true => {
+            let lo = cfg.tank.min;
+            solver.to_device_from(&cfg, dev, [lo[0] - WIDE_SPACINGS * ds, lo[1], lo[2]])
+        }
+    };
+    if let Err(e) = started {
         println!("error: {e}");
         return;
     }
@@ -71,8 +86,12 @@ fn run(base: &FluidConfig, ds: f64, depth: f64, steps: u64) {
     let (up1, down1) = d.bytes_moved();
     let per_step = (up1 - up0 + down1 - down0) as f64 / profiled as f64;
     let window = (0.01 / dt).round();
+    let positions = match wide {
+        true => "wide positions, 10⁵ spacings from the frame's origin",
+        false => "plain f32 positions",
+    };
     println!(
-        "Δs = {ds} m, {n} particles, {steps} steps: {:.3e} particle-steps/s ({:.2} ms/step); {:.3} G pair candidates/s (every pair examined in the step's passes, those beyond the kernel's reach included: the GPIPS peers print counts pairs of interacting particles, at most this)",
+        "Δs = {ds} m ({positions}), {n} particles, {steps} steps: {:.3e} particle-steps/s ({:.2} ms/step); {:.3} G pair candidates/s (every pair examined in the step's passes, those beyond the kernel's reach included: the GPIPS peers print counts pairs of interacting particles, at most this)",
         (n * steps) as f64 / plain,
         1e3 * plain / steps as f64,
         candidates as f64 / plain / 1e9
@@ -121,12 +140,14 @@ fn main() {
     };
     if software {
         println!("only a software Vulkan device is present: GPU speed not measured; one small size to check that the path works");
-        run(&base, 0.02, 0.1, 50);
+        run(&base, 0.02, 0.1, 50, false);
+        run(&base, 0.02, 0.1, 50, true);
     } else {
         // The seed's tank to t = 0.25 s (the time to solution), then ≥ 1 M particles.
-        run(&base, 0.01, 0.45, 500);
-        run(&base, 0.005, 0.45, 1000);
-        run(&base, 0.003, 0.45, 300);
-        run(&base, 0.0025, 0.45, 200);
+        run(&base, 0.01, 0.45, 500, false);
+        run(&base, 0.005, 0.45, 1000, false);
+        run(&base, 0.003, 0.45, 300, false);
+        run(&base, 0.003, 0.45, 300, true);
+        run(&base, 0.0025, 0.45, 200, false);
     }
 }
