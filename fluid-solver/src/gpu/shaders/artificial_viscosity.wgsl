@@ -25,7 +25,7 @@ fn artificial_viscosity(v: Invocation) {
             seen = seen + range.y - range.x;
             for (var j = range.x; j < range.y; j = j + 1u) {
                 let pj = pos[j];
-                let d = apart(pj.xyz, j, xi, li);
+                let d = apart_near(pj.xyz, j, xi, li);
                 let r2 = dot(d, d);
                 let approach = dot(vel[j].xyz - ui, d);
                 if r2 < re2 && r2 > 0.0 && u32(pj.w) == FLUID && approach < 0.0 {

@@ -98,7 +98,7 @@ fn body_viscous(v: Invocation) {
             let range = row_range(c, r, dy, dz);
             for (var j = range.x; j < range.y; j = j + 1u) {
                 let pj = pos[j];
-                let d = -apart(pj.xyz, j, xi, li);
+                let d = -apart_near(pj.xyz, j, xi, li);
                 let r2 = dot(d, d);
                 if u32(pj.w) == FLUID && r2 < re2 && r2 > 0.0 {
                     let rr = sqrt(r2);
@@ -132,7 +132,7 @@ fn body_pressure(v: Invocation) {
             let range = row_range(c, r, dy, dz);
             for (var j = range.x; j < range.y; j = j + 1u) {
                 let pj = pos[j];
-                let d = -apart(pj.xyz, j, xi, li);
+                let d = -apart_near(pj.xyz, j, xi, li);
                 let r2 = dot(d, d);
                 if u32(pj.w) == FLUID && r2 < re2 && r2 > 0.0 {
                     let rr = sqrt(r2);
@@ -170,7 +170,7 @@ fn body_collision(v: Invocation) {
             for (var j = range.x; j < range.y; j = j + 1u) {
                 let pj = pos[j];
                 let kj = u32(pj.w);
-                let d = -apart(pj.xyz, j, xi, li);
+                let d = -apart_near(pj.xyz, j, xi, li);
                 let r2 = dot(d, d);
                 if !(r2 > 0.0) {
                     continue;

@@ -183,6 +183,21 @@ fn apart(pj: vec3<f32>, j: u32, xi: vec3<f32>, li: vec3<f32>) -> vec3<f32> {
     return pj - xi;
 }
 
+// apart for the step's pair passes, whose radii are at most r_e: a candidate whose high parts
+// lie further apart than r_e + a quantum is out of every pass's reach whatever its low parts,
+// so its low part is not read (about three candidates in four: memory the pair loops save).
+fn apart_near(pj: vec3<f32>, j: u32, xi: vec3<f32>, li: vec3<f32>) -> vec3<f32> {
+    if WIDE {
+        let d = pj - xi;
+        let far = prm.re + prm.quantum;
+        if dot(d, d) > far * far {
+            return d;
+        }
+        return d + (pos_lo[j].xyz - li);
+    }
+    return pj - xi;
+}
+
 // With wide positions only: puts particle i (kind kept) at hi + lo, hi a multiple of the
 // quantum, lo's whole quanta carried into hi (exact: both are multiples of it, and hi stays
 // below 2²⁴ quanta).

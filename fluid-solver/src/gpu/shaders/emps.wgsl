@@ -58,7 +58,7 @@ fn laplacian(v: Invocation) {
             seen = seen + range.y - range.x;
             for (var j = range.x; j < range.y; j = j + 1u) {
                 let pj = pos[j];
-                let d = apart(pj.xyz, j, xi, li);
+                let d = apart_near(pj.xyz, j, xi, li);
                 let r2 = dot(d, d);
                 if r2 < re2 && r2 > 0.0 {
                     let rr = sqrt(r2);
@@ -127,7 +127,7 @@ fn density(v: Invocation) {
             let range = row_range(c, r, dy, dz);
             seen = seen + range.y - range.x;
             for (var j = range.x; j < range.y; j = j + 1u) {
-                let d = apart(pos[j].xyz, j, xi, li);
+                let d = apart_near(pos[j].xyz, j, xi, li);
                 let r2 = dot(d, d);
                 if r2 < re2 && r2 > 0.0 {
                     let rr = sqrt(r2);
@@ -175,7 +175,7 @@ fn gradient(v: Invocation) {
             for (var j = range.x; j < range.y; j = j + 1u) {
                 let pj = pos[j];
                 let kj = u32(pj.w);
-                let d = apart(pj.xyz, j, xi, li);
+                let d = apart_near(pj.xyz, j, xi, li);
                 let r2 = dot(d, d);
                 if r2 < re2 && r2 > 0.0 && kj != DUMMY {
                     let rr = sqrt(r2);
@@ -235,7 +235,7 @@ fn collide(v: Invocation) {
             seen = seen + range.y - range.x;
             for (var j = range.x; j < range.y; j = j + 1u) {
                 let pj = pos[j];
-                let d = apart(pj.xyz, j, xi, li);
+                let d = apart_near(pj.xyz, j, xi, li);
                 let r2 = dot(d, d);
                 if r2 < d2 && r2 > 0.0 {
                     let closing = dot(vel[j].xyz - ui, d);

@@ -91,7 +91,7 @@ fn react(law: u32, reach: u32, v: Invocation) {
                     if u32(pj.w) != BODY {
                         continue;
                     }
-                    let d = apart(pj.xyz, j, xi, li);
+                    let d = apart_near(pj.xyz, j, xi, li);
                     let r2 = dot(d, d);
                     if r2 > 0.0 && r2 < reach2 && body_of(j) == b {
                         let r = -pair_on_body(law, i, j, d, r2);
