@@ -5,17 +5,12 @@
 
 use fluid_solver::probes::ProbeSet;
 use fluid_solver::FluidSolver;
-use schemas::case::fluid::{ProbeConfig, ProbeKind};
+use schemas::case::fluid::ProbeConfig;
 use schemas::case::Case;
 
 /// A water-height gauge at x, in the middle of the flume's four particles.
 fn gauge(name: &str, x: f64) -> ProbeConfig {
-    ProbeConfig {
-        name: name.into(),
-        kind: ProbeKind::WaterHeight,
-        position: vec![x, 0.0125],
-        ..Default::default()
-    }
+    ProbeConfig::water_height(name, [x, 0.0125])
 }
 
 /// A flume 2 m long (still water d = 0.1 m from x = 0.1 m, a damping zone over its last 0.6 m)

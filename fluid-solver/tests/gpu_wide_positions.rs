@@ -13,8 +13,7 @@
 //! collisions do not follow).
 
 use fluid_solver::FluidSolver;
-use gpu_common::compare::{self, DeviceFrame, Runs, FAR, POSITION_BOUND};
-use std::time::Instant;
+use gpu_common::compare::{self, DeviceFrame, FAR, POSITION_BOUND};
 
 use crate::gpu_common;
 
@@ -25,32 +24,18 @@ const STEPS: usize = 150;
 fn the_slab_measured_from_100_000_spacings_away_ends_where_the_cpu_run_does() {
     let dir = compare::folder("wide-positions");
     let cfg = compare::slab(&dir, "");
-    let Some(dev) = gpu_common::device() else {
-        return;
-    };
-    let device = dev.description();
-    let t = Instant::now();
-    let cpu = compare::run_cpu(&cfg, STEPS);
-    let mut gpu = FluidSolver::new(&cfg);
-    compare::to_device(&mut gpu, &cfg, dev, DeviceFrame::Far);
-    let quantum = gpu.device().and_then(|d| d.frame().quantum);
-    println!("high parts on a grid of {quantum:?} m");
-    for _ in 0..STEPS {
-        gpu.step(cfg.time_step).unwrap_or_else(|e| panic!("GPU: {e}"));
-    }
-    gpu.sync_host();
     let plain = (FAR + 0.4) * f64::from(f32::EPSILON) / 2.0;
     println!("plain f32 positions here would round by {plain:.2e} m");
     assert!(
         plain > 5.0 * POSITION_BOUND,
         "the frame's origin is not far enough to tell"
     );
-    let runs = Runs {
-        cpu,
-        gpu,
-        device,
-        run_time_s: t.elapsed().as_secs_f64(),
+    // compare::to_device asserts that the device keeps wide positions there
+    let Some(runs) = compare::run_both_in(&cfg, STEPS, DeviceFrame::Far) else {
+        return;
     };
+    let quantum = runs.gpu.device().and_then(|d| d.frame().quantum);
+    println!("high parts on a grid of {quantum:?} m");
     let worst = compare::check_and_record(
         &runs,
         (

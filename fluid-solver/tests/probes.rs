@@ -206,12 +206,7 @@ fn a_gauge_next_to_a_drop_against_the_lid_reads_the_water_below() {
         "the drop must pass the spray filter for this test to mean anything"
     );
     for at in [[0.09, 0.09], [0.07, 0.11], [0.1, 0.1]] {
-        let gauge = ProbeConfig {
-            name: "h".into(),
-            kind: ProbeKind::WaterHeight,
-            position: at.to_vec(),
-            ..Default::default()
-        };
+        let gauge = ProbeConfig::water_height("h", at);
         let h = probes::sample(&gauge, p, kernel, &solver.tank());
         println!("gauge at {at:?}: {h:.4} m");
         assert!(

@@ -17,7 +17,7 @@ use fluid_solver::neighbour_search::CellGrid;
 use fluid_solver::probes::{self, ProbeSet};
 use fluid_solver::vector_field::VectorField;
 use fluid_solver::{FluidSolver, Kind};
-use schemas::case::fluid::{FluidMethodName, PaddleKind, ProbeConfig, ProbeKind};
+use schemas::case::fluid::{FluidMethodName, PaddleKind, ProbeConfig};
 use schemas::case::Case;
 use schemas::validation::{largest, record, Record};
 use schemas::wave_motion::flap::turned;
@@ -394,12 +394,7 @@ kind = "run-up"
 }
 
 fn gauge(name: &str, x: f64) -> ProbeConfig {
-    ProbeConfig {
-        name: name.into(),
-        kind: ProbeKind::WaterHeight,
-        position: vec![x, 0.0125],
-        ..Default::default()
-    }
+    ProbeConfig::water_height(name, [x, 0.0125])
 }
 
 /// The generated wave against the first-order solitary wave (H = 0.02 m, d = 0.1 m) with the

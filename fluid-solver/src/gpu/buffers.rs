@@ -215,21 +215,13 @@ impl Buffers {
         let pos: Vec<[f32; 4]> = self.read(dev, POS, n);
         let lo: Vec<[f32; 4]> = match self.wide {
             true => self.read(dev, POS_LO, n),
-            false => vec![[0.0; 4]; n],
+            false => Vec::new(),
         };
         let vel: Vec<[f32; 4]> = self.read(dev, VEL, n);
         let id: Vec<u32> = self.read(dev, ID, n);
         let dens: Vec<[f32; 2]> = self.read(dev, DENS, n);
         let col = |v: &[[f32; 4]], a: usize| v.iter().map(|e| f64::from(e[a])).collect::<Vec<f64>>();
-        let back = |a: usize| {
-            pos.iter()
-                .zip(&lo)
-                .map(|(e, l)| frame.back(a, e[a], l[a]))
-                .collect::<Vec<f64>>()
-        };
-        p.x = back(0);
-        p.y = back(1);
-        p.z = back(2);
+        [p.x, p.y, p.z] = frame.columns_back(&pos, &lo);
         p.kind = pos.iter().map(|e| e[3] as u8).collect();
         p.vx = col(&vel, 0);
         p.vy = col(&vel, 1);

@@ -66,6 +66,17 @@ impl Frame {
         f64::from(hi) + f64::from(lo) + self.origin[a]
     }
 
+    /// The device's positions (xyz; w: the kind) and their low parts (empty with plain
+    /// positions) back in the case's frame, as x, y and z columns.
+    pub fn columns_back(&self, pos: &[[f32; 4]], lo: &[[f32; 4]]) -> [Vec<f64>; 3] {
+        std::array::from_fn(|a| {
+            pos.iter()
+                .enumerate()
+                .map(|(i, e)| self.back(a, e[a], lo.get(i).map_or(0.0, |l| l[a])))
+                .collect()
+        })
+    }
+
     /// True when positions are kept as two parts.
     pub fn wide(&self) -> bool {
         self.quantum.is_some()

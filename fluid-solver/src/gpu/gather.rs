@@ -108,17 +108,9 @@ impl GpuEmps {
         let pos: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(pos);
         let dens: Vec<[f32; 2]> = bytemuck::pod_collect_to_vec(dens);
         let m = pos.len();
-        let lo: Vec<[f32; 4]> = match self.buffers.wide {
-            true => bytemuck::pod_collect_to_vec(lo),
-            false => vec![[0.0; 4]; m],
-        };
-        let col = |a: usize| {
-            pos.iter()
-                .zip(&lo)
-                .map(|(e, l)| frame.back(a, e[a], l[a]))
-                .collect::<Vec<f64>>()
-        };
-        (p.x, p.y, p.z) = (col(0), col(1), col(2));
+        // empty with plain positions (nothing was copied there)
+        let lo: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(lo);
+        [p.x, p.y, p.z] = frame.columns_back(&pos, &lo);
         p.kind = pos.iter().map(|e| e[3] as u8).collect();
         (p.vx, p.vy, p.vz) = (vec![0.0; m], vec![0.0; m], vec![0.0; m]);
         p.number_density = dens.iter().map(|e| f64::from(e[0])).collect();

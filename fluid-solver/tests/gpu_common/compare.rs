@@ -81,6 +81,11 @@ pub struct Runs {
 
 /// Runs `cfg` for `steps` steps on the CPU and on the GPU (`None`: no adapter, skipped).
 pub fn run_both(cfg: &FluidConfig, steps: usize) -> Option<Runs> {
+    run_both_in(cfg, steps, DeviceFrame::Corner)
+}
+
+/// [`run_both`] with the device measuring positions from `frame`.
+pub fn run_both_in(cfg: &FluidConfig, steps: usize, frame: DeviceFrame) -> Option<Runs> {
     let dev = super::device()?;
     let device = dev.description();
     let t = Instant::now();
@@ -88,7 +93,7 @@ pub fn run_both(cfg: &FluidConfig, steps: usize) -> Option<Runs> {
     let t_cpu = t.elapsed().as_secs_f64();
     let t = Instant::now();
     let mut gpu = FluidSolver::new(cfg);
-    gpu.to_device(cfg, dev).unwrap_or_else(|e| panic!("{e}"));
+    to_device(&mut gpu, cfg, dev, frame);
     for _ in 0..steps {
         gpu.step(cfg.time_step).unwrap_or_else(|e| panic!("GPU: {e}"));
     }

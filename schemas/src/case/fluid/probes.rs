@@ -80,6 +80,16 @@ pub fn signed_axis(s: &str) -> Option<(usize, f64)> {
 }
 
 impl ProbeConfig {
+    /// A water-height gauge named `name` at (x, y) = `at`.
+    pub fn water_height(name: &str, at: [f64; 2]) -> ProbeConfig {
+        ProbeConfig {
+            name: name.into(),
+            kind: ProbeKind::WaterHeight,
+            position: at.to_vec(),
+            ..Default::default()
+        }
+    }
+
     /// The surge-front axis as an index (0 = x).
     pub fn axis_index(&self) -> usize {
         self.axis_direction().0
