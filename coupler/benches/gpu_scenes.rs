@@ -9,7 +9,8 @@
 //! - `cargo bench -p coupler --bench gpu_scenes` on a machine with a GPU: `cases/bridge-washout`
 //!   at the seed's Δs = 2 m on the GPU and on the CPU, and at Δs = 1 m and 0.5 m on the GPU
 //!   (Δt scaled with Δs, keeping Table II's c Δt/Δs = 0.67);
-//! - `… -- SPACING…` chooses the spacings (both backends at each).
+//! - `… -- SPACING…` chooses the spacings (both backends at each; `gpu` or `cpu` among them: that
+//!   backend only).
 //!
 //! It first runs `cases/bridge-washout-small` for 1.2 s on both, which checks the bench and
 //! names the GPU; with only a software Vulkan device (lavapipe) it stops there (those numbers are
@@ -44,7 +45,16 @@ struct Measured {
     steps: String,
     fluid_wall: String,
     rate: String,
+    /// Whole copies of the particles from the GPU and their time (frames; empty on the CPU).
+    copies: String,
     wall: f64,
+}
+
+/// The text of `line` between `start` and the next `end` after it (empty when either is missing).
+fn between<'a>(line: &'a str, start: &str, end: &str) -> &'a str {
+    line.split_once(start)
+        .and_then(|(_, rest)| rest.split_once(end))
+        .map_or("", |(text, _)| text)
 }
 
 /// The word before `unit` in `line` (e.g. the number before " steps").
@@ -122,8 +132,11 @@ fn run(
         device,
         particles: before(done, " particles").to_string(),
         steps: before(done, " steps").to_string(),
-        fluid_wall: before(done, " s wall").to_string(),
+        fluid_wall: between(done, " steps, ", " wall").to_string(),
         rate: before(done, " particle-steps/s").to_string(),
+        copies: done.rsplit_once("; ").map_or(String::new(), |(_, c)| {
+            c.replace(" whole copies from the GPU", "")
+        }),
         wall,
     })
 }
@@ -144,8 +157,8 @@ fn row(case: &str, spacing: Option<f64>, end: Option<f64>, backend: &str, scratc
     match run(case, spacing, end, backend, scratch) {
         Ok(m) => {
             println!(
-                "| {case} | {ds} | {backend} | {} | {} | {} | {} | {:.1} |",
-                m.particles, m.steps, m.fluid_wall, m.rate, m.wall
+                "| {case} | {ds} | {backend} | {} | {} | {} | {} | {} | {:.1} |",
+                m.particles, m.steps, m.fluid_wall, m.rate, m.copies, m.wall
             );
             m.device
         }
@@ -158,9 +171,16 @@ fn row(case: &str, spacing: Option<f64>, end: Option<f64>, backend: &str, scratc
 
 fn main() {
     let scratch = std::env::temp_dir().join(format!("gpu-scenes-{}", std::process::id()));
-    let spacings: Vec<f64> = std::env::args().skip(1).filter_map(|a| a.parse().ok()).collect();
-    println!("| case | Δs [m] | fluid on | particles | fluid steps | fluid wall [s] | particle-steps/s | whole run [s] |");
-    println!("|---|---|---|---|---|---|---|---|");
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let spacings: Vec<f64> = args.iter().filter_map(|a| a.parse().ok()).collect();
+    let only: Vec<&str> = ["gpu", "cpu"]
+        .into_iter()
+        .filter(|b| args.iter().any(|a| a == b))
+        .collect();
+    let both = ["gpu", "cpu"];
+    let backends: &[&str] = if only.is_empty() { &both } else { &only };
+    println!("| case | Δs [m] | fluid on | particles | fluid steps | fluid wall | particle-steps/s | whole copies from the GPU | whole run [s] |");
+    println!("|---|---|---|---|---|---|---|---|---|");
     // the small scene first: it checks the bench, and its log names the GPU
     let device = row("bridge-washout-small", None, Some(1.2), "gpu", &scratch);
     row("bridge-washout-small", None, Some(1.2), "cpu", &scratch);
@@ -176,7 +196,7 @@ fn main() {
             (1.0, &["gpu"][..]),
             (0.5, &["gpu"][..]),
         ],
-        false => spacings.iter().map(|&s| (s, &["gpu", "cpu"][..])).collect(),
+        false => spacings.iter().map(|&s| (s, backends)).collect(),
     };
     for (ds, backends) in plan {
         for backend in backends {

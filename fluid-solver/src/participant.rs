@@ -466,7 +466,6 @@ impl Participant for FluidParticipant {
             outputs.push(self.outputs_at(inputs.samples.get(j)));
             if let Some(p) = &mut self.probes {
                 if p.due(t) {
-                    self.solver.sync_host();
                     p.sample(&self.solver);
                 }
             }
@@ -528,6 +527,7 @@ impl Participant for FluidParticipant {
             peak_memory: peak_memory_bytes(),
             escaped: s.escaped(),
             outflow_removed: s.open_boundaries().balance().removed,
+            host_copies: s.host_copies(),
         };
         eprintln!("fluid `{}`: done: {summary}", self.name);
         Ok(())

@@ -11,6 +11,7 @@ use crate::output::progress::{peak_memory_bytes, Progress};
 use crate::output::vtp::SurfaceFrames;
 use crate::output::vtu;
 use crate::sensors::probes::{ProbeFile, ProbeSet};
+use crate::sensors::view::ParticleView;
 use crate::solver::FluidSolver;
 use crate::stability::Instability;
 use schemas::case::{Case, FluidConfig};
@@ -132,12 +133,13 @@ pub fn run_case(case: &Case, out: &Path, terminal: bool) -> Result<RunSummary, R
     };
     let mut sample =
         |solver: &FluidSolver, probes: &mut ProbeSet, file: &mut ProbeFile| -> Result<(), RunError> {
+            let view = ParticleView::of(solver);
             if let Some(b) = &mut balance {
-                let (counts, p) = (solver.open_boundaries().balance(), solver.particles());
-                b.row(solver.time(), counts, p, solver.particle_mass())
+                let counts = solver.open_boundaries().balance();
+                b.row(solver.time(), counts, view.all(), solver.particle_mass())
                     .map_err(io_err(&balance_path))?;
             }
-            let values = probes.row(solver);
+            let values = probes.row_in(&view);
             file.row(solver.time(), &values, solver.removed())
                 .map_err(io_err(&probe_path))
         };
@@ -165,12 +167,12 @@ pub fn run_case(case: &Case, out: &Path, terminal: bool) -> Result<RunSummary, R
             progress.note_escapes(solver.time(), solver.escaped());
         }
         solver.land_on(target);
-        solver.sync_host(); // the GPU path: a copy only when a row or a frame is due
         if solver.time() >= row_at {
             sample(&solver, &mut probes, &mut probe_file)?;
             next_probe += 1;
         }
         if solver.time() >= at(next_frame, cfg.output_interval) {
+            solver.sync_host(); // the GPU path: a whole copy only for a frame
             write_frame(&solver, &mut series)?;
             next_frame += 1;
         }
@@ -188,5 +190,6 @@ pub fn run_case(case: &Case, out: &Path, terminal: bool) -> Result<RunSummary, R
         peak_memory: peak_memory_bytes(),
         escaped: solver.escaped(),
         outflow_removed: solver.open_boundaries().balance().removed,
+        host_copies: solver.host_copies(),
     })
 }

@@ -99,6 +99,8 @@ pub struct FluidSolver {
     pub(crate) host_stale: bool,
     pub(crate) host_dirty: bool,
     pub(crate) escape_pending: bool,
+    /// Whole copies from the device to the host so far, and their wall seconds.
+    pub(crate) host_copies: (u64, f64),
 }
 
 impl FluidSolver {
@@ -224,6 +226,7 @@ impl FluidSolver {
             host_stale: false,
             host_dirty: false,
             escape_pending: false,
+            host_copies: (0, 0.0),
         };
         solver.refresh_body_exchange();
         solver

@@ -170,12 +170,22 @@ impl FluidSolver {
     /// re-sorting the host's cell list for its point queries. Nothing on the CPU path.
     pub fn sync_host(&mut self) {
         if let (Some(dev), true) = (self.device.as_deref_mut(), self.host_stale) {
+            let started = std::time::Instant::now();
             self.positions_version += 1;
             let st = &mut self.state;
             dev.download(&mut st.particles);
             st.grid.sort(&mut st.particles, &mut Vec::new());
             self.host_stale = false;
+            self.host_copies.0 += 1;
+            self.host_copies.1 += started.elapsed().as_secs_f64();
         }
+    }
+
+    /// Whole copies of the particles from the device so far ([`FluidSolver::sync_host`]: frames,
+    /// checkpoints, the detector's findings, escapes), and their wall seconds with the host's
+    /// cell sort after each.
+    pub fn host_copies(&self) -> (u64, f64) {
+        self.host_copies
     }
 
     /// The device step when its particles are ahead of the host's copy (`None` on the CPU path
@@ -189,6 +199,12 @@ impl FluidSolver {
     /// host's particles are current (the CPU path, or right after [`FluidSolver::sync_host`]).
     pub fn device_particles_in(&self, lo: [f64; 3], hi: [f64; 3]) -> Option<Particles> {
         self.device_ahead().map(|dev| dev.particles_in(lo, hi))
+    }
+
+    /// All the particles, light ([`GpuEmps::particles_all`]), when they are on the device ahead of
+    /// the host's copy; `None` when the host's particles are current.
+    pub fn device_particles_all(&self) -> Option<Particles> {
+        self.device_ahead().map(|dev| dev.particles_all())
     }
 
     /// One step on the device (see the module doc): removals through the open top found by the

@@ -1,6 +1,8 @@
 //! The device's particles in a box, copied back without the rest: what a filtered wall-pressure
-//! sensor reads after every step on the GPU path ([`crate::sensors::probes::ProbeSet::observe`]),
-//! where the whole copy ([`crate::FluidSolver::sync_host`]) comes only at a probe row.
+//! sensor reads after every step on the GPU path ([`crate::sensors::probes::ProbeSet::observe`])
+//! and a local probe at a row ([`crate::sensors::view`]); a global probe reads all of them, as
+//! light ([`GpuEmps::particles_all`]). The whole copy ([`crate::FluidSolver::sync_host`]) comes
+//! only for frames and checkpoints.
 //!
 //! The device keeps its particles in the order of the step's last cell sort (at r*): the
 //! particles of cell c are the slots `cell_start[c] .. cell_start[c + 1]`, and a row of cells
@@ -31,7 +33,8 @@ impl GpuEmps {
         let frame = self.frame;
         let cell = |v: f64, a: usize, shift: i64| {
             let v = v - frame.origin[a];
-            let c = ((v - f64::from(prm.origin[a])) * f64::from(prm.inv_cell)).floor() as i64 + shift;
+            let c = (((v - f64::from(prm.origin[a])) * f64::from(prm.inv_cell)).floor() as i64)
+                .saturating_add(shift);
             c.clamp(pad, i64::from(prm.dims[a]) - pad - 1) as u64
         };
         let c_lo: [u64; 3] = std::array::from_fn(|a| cell(lo[a], a, -MARGIN_CELLS));
@@ -66,10 +69,9 @@ impl GpuEmps {
             }
         }
         let count: u64 = runs.iter().map(|r| r.1 - r.0).sum();
-        let mut p = Particles::default();
         if count == 0 {
             self.gathered.fetch_add(8 * rows.len() as u64, Ordering::Relaxed);
-            return p;
+            return Particles::default();
         }
         // per particle: position and kind, number density and pressure, and with wide positions
         // the position's low part
@@ -100,9 +102,36 @@ impl GpuEmps {
             k += len;
         }
         self.dev.queue.submit([enc.finish()]);
+        self.gathered.fetch_add(8 * rows.len() as u64, Ordering::Relaxed);
+        self.read_light(&staging, count)
+    }
+
+    /// All the device's particles, as [`GpuEmps::particles_in`] copies them (positions and
+    /// kinds, number densities and pressures: 24 B each, 40 with wide positions), in one copy
+    /// per array: what the global probes of a row read.
+    pub fn particles_all(&self) -> Particles {
+        let count = self.len() as u64;
+        if count == 0 {
+            return Particles::default();
+        }
+        let lows = if self.buffers.wide { 16 } else { 0 };
+        let staging = self.staging_of((24 + lows) * count);
+        let mut enc = self.gather_encoder();
+        enc.copy_buffer_to_buffer(self.buffers.at(POS), 0, &staging, 0, 16 * count);
+        enc.copy_buffer_to_buffer(self.buffers.at(DENS), 0, &staging, 16 * count, 8 * count);
+        if self.buffers.wide {
+            enc.copy_buffer_to_buffer(self.buffers.at(POS_LO), 0, &staging, 24 * count, 16 * count);
+        }
+        self.dev.queue.submit([enc.finish()]);
+        self.read_light(&staging, count)
+    }
+
+    /// Maps `staging`, which holds `count` particles' positions (16 B each), then their number
+    /// densities and pressures (8 B), then with wide positions their low parts (16 B), and
+    /// turns them into particles (velocities and ids 0).
+    fn read_light(&self, staging: &wgpu::Buffer, count: u64) -> Particles {
         let bytes: Vec<u8> = map_read(&self.dev, &staging.slice(..));
-        self.gathered
-            .fetch_add(8 * rows.len() as u64 + per * count, Ordering::Relaxed);
+        self.gathered.fetch_add(bytes.len() as u64, Ordering::Relaxed);
         let (pos, rest) = bytes.split_at(16 * count as usize);
         let (dens, lo) = rest.split_at(8 * count as usize);
         let pos: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(pos);
@@ -110,7 +139,8 @@ impl GpuEmps {
         let m = pos.len();
         // empty with plain positions (nothing was copied there)
         let lo: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(lo);
-        [p.x, p.y, p.z] = frame.columns_back(&pos, &lo);
+        let mut p = Particles::default();
+        [p.x, p.y, p.z] = self.frame.columns_back(&pos, &lo);
         p.kind = pos.iter().map(|e| e[3] as u8).collect();
         (p.vx, p.vy, p.vz) = (vec![0.0; m], vec![0.0; m], vec![0.0; m]);
         p.number_density = dens.iter().map(|e| f64::from(e[0])).collect();

@@ -129,6 +129,8 @@ pub struct RunSummary {
     pub escaped: u64,
     /// Fluid particles removed behind an outflow plane.
     pub outflow_removed: u64,
+    /// On the GPU path: whole copies of the particles to the host, and their wall seconds.
+    pub host_copies: (u64, f64),
 }
 
 impl fmt::Display for RunSummary {
@@ -148,7 +150,11 @@ impl fmt::Display for RunSummary {
             self.escaped + self.outflow_removed,
             self.escaped,
             self.outflow_removed
-        )
+        )?;
+        match self.host_copies {
+            (0, _) => Ok(()),
+            (k, s) => write!(f, "; {k} whole copies from the GPU in {}", duration(s)),
+        }
     }
 }
 

@@ -13,6 +13,7 @@ use crate::emps::kernel::{weight, Kernel};
 use crate::emps::pair_laws;
 use crate::particles::kind::{Kind, FLUID};
 use crate::particles::Particles;
+use crate::sensors::view::ParticleView;
 use crate::sensors::wall_sensor::Disc;
 use crate::solver::FluidSolver;
 use schemas::case::fluid::{Aabb, ProbeConfig, ProbeKind};
@@ -200,10 +201,11 @@ impl ProbeSet {
     /// this step's reading (windows longer than the row interval overlap: every step is kept).
     pub fn observe(&mut self, solver: &FluidSolver, next_row: f64) {
         let t = solver.time();
+        let view = ParticleView::of(solver);
         for ((probe, disc), w) in self.probes.iter().zip(&self.discs).zip(&mut self.windows) {
             if let (Some(window), Some(readings)) = (probe.window, w) {
                 if t > next_row - window - 1e-12 {
-                    readings.push_back((t, read(probe, disc, solver)));
+                    readings.push_back((t, read(probe, disc, &view)));
                 }
             }
         }
@@ -213,7 +215,12 @@ impl ProbeSet {
     /// over the steps of their last `window` seconds (the instantaneous reading when no step
     /// fell in it yet).
     pub fn row(&mut self, solver: &FluidSolver) -> Vec<f64> {
-        let t = solver.time();
+        self.row_in(&ParticleView::of(solver))
+    }
+
+    /// [`ProbeSet::row`] read from `view` (which a caller shares with other readers of the row).
+    pub fn row_in(&mut self, view: &ParticleView) -> Vec<f64> {
+        let t = view.solver().time();
         self.probes
             .iter()
             .zip(&self.discs)
@@ -224,33 +231,43 @@ impl ProbeSet {
                         readings.pop_front();
                     }
                     match readings.len() {
-                        0 => read(probe, disc, solver),
+                        0 => read(probe, disc, view),
                         n => readings.iter().map(|r| r.1).sum::<f64>() / n as f64,
                     }
                 }
-                _ => read(probe, disc, solver),
+                _ => read(probe, disc, view),
             })
             .collect()
     }
 }
 
-/// The instantaneous reading of one probe (`disc`: a wall-pressure sensor's, as placed). On the
-/// GPU path between probe rows (a filtered sensor's step) the sensor reads the device's particles
-/// around its disc, gathered without the rest, by the same rule and E-MPS pair law.
-fn read(probe: &ProbeConfig, disc: &Option<Disc>, solver: &FluidSolver) -> f64 {
-    let ds = solver.kernel().spacing;
+/// The instantaneous reading of one probe (`disc`: a wall-pressure sensor's, as placed) from
+/// `view`: on the GPU path a sensor or a local probe reads the device's particles around it,
+/// gathered without the rest, by the same rule (and the sensor by the E-MPS pair law); a global
+/// probe reads the row's light copy of them all.
+fn read(probe: &ProbeConfig, disc: &Option<Disc>, view: &ParticleView) -> f64 {
+    let solver = view.solver();
+    let (ds, reach) = (solver.kernel().spacing, solver.kernel().re_grad);
+    let at: [f64; 3] = std::array::from_fn(|a| probe.position.get(a).copied().unwrap_or(0.0));
+    let (lo, hi) = match (disc, probe.kind) {
+        (Some(disc), _) => disc.bounds(reach, ds),
+        (None, ProbeKind::WaterHeight) => (
+            [at[0] - ds, at[1] - ds, f64::NEG_INFINITY],
+            [at[0] + ds, at[1] + ds, f64::INFINITY],
+        ),
+        (None, ProbeKind::Pressure) => (at.map(|v| v - reach), at.map(|v| v + reach)),
+        (None, _) => return sample(probe, view.all(), solver.kernel(), &solver.tank()),
+    };
+    let near = view.around(lo, hi);
     match disc {
-        Some(disc) => {
-            let (lo, hi) = disc.bounds(solver.kernel().re_grad, ds);
-            match solver.device_particles_in(lo, hi) {
-                // the GPU path is E-MPS only (`FluidConfig::gpu_support`)
-                Some(near) => disc.pressure(&near, &pair_laws::pressure(solver.kernel(), &near), ds),
-                None => disc.pressure(solver.particles(), &solver.pressure_law(), ds),
-            }
-            .unwrap_or(f64::NAN)
+        // the GPU path is E-MPS only (`FluidConfig::gpu_support`)
+        Some(disc) if solver.device_ahead().is_some() => {
+            disc.pressure(&near, &pair_laws::pressure(solver.kernel(), &near), ds)
         }
-        None => sample(probe, solver.particles(), solver.kernel(), &solver.tank()),
+        Some(disc) => disc.pressure(&near, &solver.pressure_law(), ds),
+        None => Some(sample(probe, &near, solver.kernel(), &solver.tank())),
     }
+    .unwrap_or(f64::NAN)
 }
 
 /// The probe CSV: `time`, one column per probe, then `removed` (fluid particles removed so far

@@ -1,0 +1,52 @@
+//! The particles a sensor reads: the host's, or on the GPU path while the device is ahead of the
+//! host's copy, what the device gives back without a whole copy. A local probe (a gauge's
+//! column, a pressure point's ball) reads the device's particles around it
+//! ([`crate::gpu::gather`]); a global one (a surge front, the run-up, the open boundaries'
+//! balance) reads all of them once per row, positions, kinds, number densities and pressures
+//! only (24 B a particle against the whole copy's 44 and the host's cell sort after it).
+
+use crate::particles::Particles;
+use crate::solver::FluidSolver;
+use std::borrow::Cow;
+use std::cell::OnceCell;
+
+/// One instant's particles for the sensors of a row (see the module doc).
+pub struct ParticleView<'a> {
+    solver: &'a FluidSolver,
+    /// The device's particles, all of them, light (copied at the first global read).
+    all: OnceCell<Option<Particles>>,
+}
+
+impl<'a> ParticleView<'a> {
+    /// The view of `solver`'s particles now.
+    pub fn of(solver: &'a FluidSolver) -> ParticleView<'a> {
+        ParticleView {
+            solver,
+            all: OnceCell::new(),
+        }
+    }
+
+    pub fn solver(&self) -> &'a FluidSolver {
+        self.solver
+    }
+
+    /// Every particle (kinds, positions, number densities and pressures; on the device's copy
+    /// velocities and ids read 0).
+    pub fn all(&self) -> &Particles {
+        match self.all.get_or_init(|| self.solver.device_particles_all()) {
+            Some(p) => p,
+            None => self.solver.particles(),
+        }
+    }
+
+    /// At least the particles in the box `lo`–`hi` (the device's copy holds some around it).
+    pub fn around(&self, lo: [f64; 3], hi: [f64; 3]) -> Cow<'_, Particles> {
+        if let Some(Some(p)) = self.all.get() {
+            return Cow::Borrowed(p);
+        }
+        match self.solver.device_particles_in(lo, hi) {
+            Some(p) => Cow::Owned(p),
+            None => Cow::Borrowed(self.solver.particles()),
+        }
+    }
+}
