@@ -67,8 +67,10 @@ pub const DAMPING: usize = 21;
 pub const SOLID_BITS: usize = 22;
 pub const POS_LO: usize = 23;
 
-/// Words after the cells' counts: the open boundaries' counters (`shaders/open_boundary.wgsl`).
-pub const OPEN_COUNTERS: u64 = 4;
+/// Words after the cells' counts: the removed particles' count (`shaders/cell_sort.wgsl`), the
+/// open boundaries' three counters (`shaders/open_boundary.wgsl`) and the water's extent's six
+/// keys (`shaders/water_extent.wgsl`).
+pub const OPEN_COUNTERS: u64 = 10;
 
 impl Buffers {
     /// Buffers for `n` particles (with low parts when `wide`), `cells` cells, `boxes` wall blocks, `groups` reduction groups,

@@ -7,7 +7,7 @@ use super::buffers::Buffers;
 use super::device::GpuDevice;
 
 /// The WGSL sources, joined into one module (the bindings are declared once in `common.wgsl`).
-const SOURCES: [&str; 13] = [
+const SOURCES: [&str; 14] = [
     include_str!("shaders/common.wgsl"),
     include_str!("shaders/cell_sort.wgsl"),
     include_str!("shaders/emps.wgsl"),
@@ -20,6 +20,7 @@ const SOURCES: [&str; 13] = [
     include_str!("shaders/reaction.wgsl"),
     include_str!("shaders/paddle.wgsl"),
     include_str!("shaders/open_boundary.wgsl"),
+    include_str!("shaders/water_extent.wgsl"),
     include_str!("shaders/drag.wgsl"),
 ];
 
@@ -61,6 +62,7 @@ pub struct Kernels {
     pub react_collision: wgpu::ComputePipeline,
     pub place_paddle: wgpu::ComputePipeline,
     pub open_boundaries: wgpu::ComputePipeline,
+    pub water_extent: wgpu::ComputePipeline,
     pub sample_flow: wgpu::ComputePipeline,
     pub reaction_sums: wgpu::ComputePipeline,
     pub spread_reactions: wgpu::ComputePipeline,
@@ -186,6 +188,7 @@ impl Kernels {
             react_collision: make("react_collision"),
             place_paddle: make("place_paddle"),
             open_boundaries: make("open_boundaries"),
+            water_extent: make("water_extent"),
             sample_flow: make_drag("sample_flow"),
             reaction_sums: make_drag("reaction_sums"),
             spread_reactions: make_drag("spread_reactions"),

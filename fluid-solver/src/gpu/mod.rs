@@ -19,7 +19,9 @@
 //!   the arrays compacted on the device;
 //! - [`drag`]: the unresolved drag coupling: the flow sampled at the coupler's points and the
 //!   point reactions spread over the fluid;
-//! - [`gather`]: the particles around a filtered wall-pressure sensor, copied back after each step;
+//! - [`gather`]: the particles around a filtered wall-pressure sensor or a local probe, copied
+//!   back without the rest, and the light copy of all that a global probe reads;
+//! - [`water_extent`]: the water's extent along each axis, all a surge-front probe reads;
 //! - [`reduce`]: the instability detector's scan and the step's totals, reduced on the device;
 //! - [`driver`]: the solver's step on the device (escapes, detector, host copies).
 
@@ -40,6 +42,7 @@ pub mod params;
 pub mod reduce;
 pub mod solids;
 pub mod step;
+pub mod water_extent;
 
 pub use device::{GpuDevice, NoAdapter};
 pub use step::GpuEmps;

@@ -55,18 +55,41 @@ pub fn sample(probe: &ProbeConfig, p: &Particles, kernel: &Kernel, tank: &Aabb) 
             }
         }
         ProbeKind::SurgeFront => {
-            // Distance reached from the face the water starts at: tank.min towards +, tank.max
-            // towards −.
-            let (a, sign) = probe.axis_direction();
-            let coord = [&p.x, &p.y, &p.z][a];
-            let face = if sign > 0.0 { tank.min[a] } else { tank.max[a] };
-            (0..p.len())
-                .filter(|&i| in_water(i))
-                .map(|i| sign * (coord[i] - face) + 0.5 * ds)
-                .fold(0.0, f64::max)
+            let coord = [&p.x, &p.y, &p.z][probe.axis_direction().0];
+            let water = (0..p.len()).filter(|&i| in_water(i)).map(|i| coord[i]);
+            // the largest and the smallest coordinate, a NaN kept
+            let extent = water.fold(None, |e: Option<[f64; 2]>, x| {
+                Some(e.map_or([x, x], |[most, least]| {
+                    [
+                        if x > most || x.is_nan() { x } else { most },
+                        if x < least || x.is_nan() { x } else { least },
+                    ]
+                }))
+            });
+            surge_front_of(probe, extent, ds, tank)
         }
         ProbeKind::WallPressure => f64::NAN,
         ProbeKind::RunUp => run_up(p, kernel, tank, in_water),
+    }
+}
+
+/// The surge front from the water's extent along the probe's axis (its largest and smallest
+/// coordinate; `None`: no water): the distance the water reached from the face it starts at
+/// (tank.min towards +, tank.max towards −) plus Δs/2; 0 with no water, NaN with a NaN position.
+fn surge_front_of(probe: &ProbeConfig, extent: Option<[f64; 2]>, ds: f64, tank: &Aabb) -> f64 {
+    let (a, sign) = probe.axis_direction();
+    let Some([most, least]) = extent else {
+        return 0.0;
+    };
+    let (reached, face) = match sign > 0.0 {
+        true => (most, tank.min[a]),
+        false => (least, tank.max[a]),
+    };
+    let front = sign * (reached - face) + 0.5 * ds;
+    if front > 0.0 || front.is_nan() {
+        front
+    } else {
+        0.0
     }
 }
 
@@ -256,6 +279,10 @@ fn read(probe: &ProbeConfig, disc: &Option<Disc>, view: &ParticleView) -> f64 {
             [at[0] + ds, at[1] + ds, f64::INFINITY],
         ),
         (None, ProbeKind::Pressure) => (at.map(|v| v - reach), at.map(|v| v + reach)),
+        (None, ProbeKind::SurgeFront) if view.water_extent().is_some() => {
+            let along = view.water_extent().map(|e| e[probe.axis_direction().0]);
+            return surge_front_of(probe, along, ds, &solver.tank());
+        }
         (None, _) => return sample(probe, view.all(), solver.kernel(), &solver.tank()),
     };
     let near = view.around(lo, hi);

@@ -1,9 +1,11 @@
 //! The particles a sensor reads: the host's, or on the GPU path while the device is ahead of the
 //! host's copy, what the device gives back without a whole copy. A local probe (a gauge's
 //! column, a pressure point's ball) reads the device's particles around it
-//! ([`crate::gpu::gather`]); a global one (a surge front, the run-up, the open boundaries'
-//! balance) reads all of them once per row, positions, kinds, number densities and pressures
-//! only (24 B a particle against the whole copy's 44 and the host's cell sort after it).
+//! ([`crate::gpu::gather`]); a surge front the water's extent, reduced on the device
+//! ([`crate::gpu::water_extent`]); the run-up and the open boundaries' balance read all the
+//! particles once per row, positions, kinds, number densities and pressures only (24 B a
+//! particle against the whole copy's 44 and the host's cell sort after it), as does a surge
+//! front with wide positions.
 
 use crate::particles::Particles;
 use crate::solver::FluidSolver;
@@ -15,6 +17,8 @@ pub struct ParticleView<'a> {
     solver: &'a FluidSolver,
     /// The device's particles, all of them, light (copied at the first global read).
     all: OnceCell<Option<Particles>>,
+    /// The water's extent on the device (reduced at the first surge front's read).
+    extent: OnceCell<Option<[[f64; 2]; 3]>>,
 }
 
 impl<'a> ParticleView<'a> {
@@ -23,6 +27,7 @@ impl<'a> ParticleView<'a> {
         ParticleView {
             solver,
             all: OnceCell::new(),
+            extent: OnceCell::new(),
         }
     }
 
@@ -37,6 +42,15 @@ impl<'a> ParticleView<'a> {
             Some(p) => p,
             None => self.solver.particles(),
         }
+    }
+
+    /// Per axis, the largest and smallest coordinate of the water (fluid not spray), reduced on
+    /// the device; `None` when the host's particles are current, with wide positions, or with no
+    /// water.
+    pub fn water_extent(&self) -> Option<[[f64; 2]; 3]> {
+        *self
+            .extent
+            .get_or_init(|| self.solver.device_ahead().and_then(|dev| dev.water_extent()))
     }
 
     /// At least the particles in the box `lo`–`hi` (the device's copy holds some around it).
