@@ -13,7 +13,9 @@
 //!   laws) and their contact with the walls;
 //! - [`boundaries`]: inflow and outflow boundaries, and splash leaving through an open top;
 //! - [`unresolved`]: sample points and point reactions of the unresolved drag coupling (S2);
-//! - [`sensors`]: probes and wall-pressure sensors; [`output`]: VTU / VTP frames, progress.
+//! - [`sensors`]: probes and wall-pressure sensors; [`output`]: VTU / VTP frames, progress;
+//! - [`ranks`]: the fluid cut into slabs with halos, stepped together (the decomposition the MPI
+//!   ranks will use).
 //!
 //! The spine, at the root: [`solver`], the clock, advance-to, checkpoints of
 //! [`state::FluidState`]; [`physics`]: the fluid's parameters; [`stability`]: the instability
@@ -31,6 +33,7 @@ pub mod output;
 pub mod participant;
 pub mod particles;
 pub mod physics;
+pub mod ranks;
 pub mod run;
 pub mod sensors;
 pub mod solver;

@@ -120,11 +120,17 @@ impl StabilityMonitor {
 
     /// Mechanical energy per unit mass summed over fluid particles: Σ ½|u|² − g·r.
     pub fn mechanical_energy(&self, p: &Particles) -> f64 {
+        self.mechanical_energy_where(p, |_| true)
+    }
+
+    /// [`StabilityMonitor::mechanical_energy`] over the fluid particles `i` with `keep(i)` (a
+    /// slab's own, not its halo's: [`crate::ranks`]).
+    pub fn mechanical_energy_where(&self, p: &Particles, keep: impl Fn(usize) -> bool + Sync) -> f64 {
         let g = self.gravity;
         (0..p.len())
             .into_par_iter()
             .with_min_len(4096)
-            .filter(|&i| p.kind[i] == FLUID)
+            .filter(|&i| p.kind[i] == FLUID && keep(i))
             .map(|i| {
                 let v2 = p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i];
                 0.5 * v2 - (g[0] * p.x[i] + g[1] * p.y[i] + g[2] * p.z[i])

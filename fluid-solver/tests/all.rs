@@ -59,6 +59,7 @@ mod operators;
 mod output;
 mod participant;
 mod probes;
+mod ranks;
 mod scene_walls;
 mod surface_mesh;
 mod unresolved_fluid_side;

@@ -111,6 +111,46 @@ impl Particles {
         gather(&mut self.id, perm, &mut id);
     }
 
+    /// The particles at `indices`, in that order.
+    pub fn subset(&self, indices: &[u32]) -> Particles {
+        let pick = |v: &[f64]| indices.iter().map(|&i| v[i as usize]).collect::<Vec<f64>>();
+        Particles {
+            x: pick(&self.x),
+            y: pick(&self.y),
+            z: pick(&self.z),
+            vx: pick(&self.vx),
+            vy: pick(&self.vy),
+            vz: pick(&self.vz),
+            pressure: pick(&self.pressure),
+            number_density: pick(&self.number_density),
+            kind: indices.iter().map(|&i| self.kind[i as usize]).collect(),
+            id: indices.iter().map(|&i| self.id[i as usize]).collect(),
+        }
+    }
+
+    /// Appends every particle of `other` (ids as they are).
+    pub fn append(&mut self, other: &Particles) {
+        for (v, w) in self.f64_arrays_mut().into_iter().zip(other.f64_arrays()) {
+            v.extend_from_slice(w);
+        }
+        self.kind.extend_from_slice(&other.kind);
+        self.id.extend_from_slice(&other.id);
+    }
+
+    /// Every `f64` array, read only (in [`Particles::f64_arrays_mut`]'s order).
+    fn f64_arrays(&self) -> [&Vec<f64>; 8] {
+        [
+            &self.x,
+            &self.y,
+            &self.z,
+            &self.vx,
+            &self.vy,
+            &self.vz,
+            &self.pressure,
+            &self.number_density,
+        ]
+    }
+
     /// Releases spare capacity (after building or removing particles).
     pub fn shrink_to_fit(&mut self) {
         for v in self.f64_arrays_mut() {

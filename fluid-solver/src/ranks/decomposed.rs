@@ -1,0 +1,158 @@
+//! The slabs of one case in one process, stepped together: each slab's step in parallel, then
+//! the fluid that crossed a cut handed to its new owner and the halos sent again
+//! ([`super::subdomain`]). The checks that need the whole fluid (its energy) are made here over
+//! the slabs' own particles.
+
+use super::slabs::{cuts, halo_width};
+use super::subdomain::{Subdomain, ToNeighbours};
+use crate::particles::Particles;
+use crate::solver::FluidSolver;
+use crate::stability::{Instability, StabilityMonitor};
+use rayon::prelude::*;
+use schemas::case::fluid::{FluidBackend, FluidConfig, FluidMethodName};
+
+/// A case's fluid in slabs along x.
+pub struct DecomposedFluid {
+    parts: Vec<Subdomain>,
+    /// The whole domain's monitor: its energy reference.
+    whole: StabilityMonitor,
+    /// Fluid particles handed from one slab to another so far.
+    handed_over: u64,
+}
+
+impl DecomposedFluid {
+    /// The fluid of `cfg` (a validated section) in `parts` slabs balanced by fluid particles; an
+    /// error naming what the slabs do not support yet, or when a slab would be thinner than the
+    /// halo.
+    pub fn new(cfg: &FluidConfig, parts: usize) -> Result<DecomposedFluid, String> {
+        let unsupported = [
+            (cfg.method != FluidMethodName::Emps, "method = \"isph\""),
+            (cfg.backend != FluidBackend::Cpu, "backend = \"gpu\""),
+            (!cfg.body.is_empty(), "[[body]]"),
+            (
+                cfg.inflow.is_some() || cfg.outflow.is_some(),
+                "inflow and outflow",
+            ),
+            (cfg.wave_maker.is_some(), "[wave_maker]"),
+        ];
+        if let Some((_, what)) = unsupported.iter().find(|(on, _)| *on) {
+            return Err(format!(
+                "the fluid in slabs supports E-MPS on CPU threads with walls, blocks, gates, solids and damping zones; not yet {what}"
+            ));
+        }
+        let mut whole = FluidSolver::new(cfg);
+        whole.remove_gates();
+        let halo = halo_width(whole.kernel());
+        let cuts = cuts(whole.particles(), parts, halo)?;
+        let everything = whole.particles().clone();
+        let parts: Vec<Subdomain> = (0..parts)
+            .into_par_iter()
+            .map(|r| {
+                let mut solver = FluidSolver::new(cfg);
+                solver.remove_gates();
+                Subdomain::of(solver, &everything, cuts[r], cuts[r + 1], halo)
+            })
+            .collect();
+        whole.monitor.start(&everything);
+        Ok(DecomposedFluid {
+            parts,
+            whole: whole.monitor,
+            handed_over: 0,
+        })
+    }
+
+    pub fn parts(&self) -> &[Subdomain] {
+        &self.parts
+    }
+
+    /// Fluid particles handed from one slab to another so far (they crossed a cut).
+    pub fn handed_over(&self) -> u64 {
+        self.handed_over
+    }
+
+    /// The simulated time (every slab's).
+    pub fn time(&self) -> f64 {
+        self.parts[0].solver.time()
+    }
+
+    /// One step of `dt` on every slab, then the exchange: stops with the first slab's diagnostic,
+    /// or the whole fluid's energy check (as [`StabilityMonitor::check`]'s, over the slabs' own
+    /// fluid).
+    pub fn step(&mut self, dt: f64) -> Result<(), Instability> {
+        self.parts
+            .par_iter_mut()
+            .map(|s| s.solver.step(dt).map(|_| ()))
+            .collect::<Result<Vec<()>, Instability>>()?;
+        let leaving: Vec<ToNeighbours> = self.parts.par_iter_mut().map(|s| s.emigrants()).collect();
+        self.handed_over += leaving.iter().flatten().map(|p| p.len() as u64).sum::<u64>();
+        let arriving = from_neighbours(leaving);
+        self.parts
+            .par_iter_mut()
+            .zip(&arriving)
+            .for_each(|(s, a)| s.take(a));
+        let copies: Vec<ToNeighbours> = self.parts.par_iter().map(|s| s.halo_copies()).collect();
+        let halos = from_neighbours(copies);
+        self.parts
+            .par_iter_mut()
+            .zip(&halos)
+            .for_each(|(s, h)| s.take_halo(h));
+        self.check_energy(dt)
+    }
+
+    /// The whole fluid's mechanical energy against the whole domain's reference.
+    fn check_energy(&self, dt: f64) -> Result<(), Instability> {
+        let Some(limit) = self.whole.energy_limit() else {
+            return Ok(());
+        };
+        let e: f64 = self
+            .parts
+            .iter()
+            .map(|s| {
+                let p = s.solver.particles();
+                self.whole.mechanical_energy_where(p, |i| s.owned(i))
+            })
+            .sum();
+        if e.is_finite() && e <= limit {
+            return Ok(());
+        }
+        let s = &self.parts[0].solver;
+        Err(Instability {
+            step: s.steps(),
+            time: s.time(),
+            particle: None,
+            quantity: "mechanical energy",
+            message: format!(
+                "the fluid's energy per unit particle mass, summed over {} slabs, grew to {e:.6e}, past the allowed {limit:.6e}, with no source (step of {dt} s)",
+                self.parts.len()
+            ),
+        })
+    }
+
+    /// Every slab's own fluid, slab after slab.
+    pub fn fluid(&self) -> Particles {
+        let mut all = Particles::default();
+        for s in &self.parts {
+            all.append(&s.owned_fluid());
+        }
+        all
+    }
+}
+
+/// What each slab receives from its neighbours: slab r gets what r − 1 sent right and what
+/// r + 1 sent left (its own left and right inputs).
+fn from_neighbours(sent: Vec<ToNeighbours>) -> Vec<ToNeighbours> {
+    let n = sent.len();
+    (0..n)
+        .map(|r| {
+            let from_left = match r {
+                0 => Particles::default(),
+                _ => sent[r - 1][1].clone(),
+            };
+            let from_right = match r + 1 < n {
+                true => sent[r + 1][0].clone(),
+                false => Particles::default(),
+            };
+            [from_left, from_right]
+        })
+        .collect()
+}

@@ -1,0 +1,17 @@
+//! The fluid cut into sub-domains (issue 39's domain decomposition, E-MPS first): slabs along x,
+//! each stepped by its own [`crate::FluidSolver`] on the particles it owns and a halo of copies
+//! of its neighbours' particles, thick enough that the owned particles' step is the whole
+//! domain's ([`slabs::halo_width`]); after each step the particles that crossed a cut move to
+//! their new owner and the halos are sent again.
+//!
+//! - [`slabs`]: where the cuts lie (balanced by fluid particles) and how thick a halo must be;
+//! - [`subdomain`]: one slab's solver, what it owns, what it sends and takes;
+//! - [`decomposed`]: the slabs in one process, stepped together, with the whole domain's checks.
+//!
+//! The slabs trade particles through plain values (what each sends to its left and right
+//! neighbour), so the same [`subdomain::Subdomain`] serves one process's threads here and one MPI
+//! rank each once the ranks' transport lands.
+
+pub mod decomposed;
+pub mod slabs;
+pub mod subdomain;

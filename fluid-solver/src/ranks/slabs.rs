@@ -1,0 +1,105 @@
+//! Where the fluid is cut into slabs, and the halo each slab needs.
+
+use crate::emps::kernel::Kernel;
+use crate::particles::kind::FLUID;
+use crate::particles::Particles;
+
+/// Neighbour passes whose results an owned particle's step depends on in a chain: the viscous
+/// term (at r^k), the number density at r*, the pressure gradient (and the artificial viscosity)
+/// at r*, the collisions, and the number density at the step's end (crate::emps::step). A
+/// particle within this many kernel reaches of an owned one can change its step; one farther
+/// cannot.
+pub const CHAINED_PASSES: f64 = 5.0;
+
+/// Spacings added to the halo for what the particles move in a step (the detector stops a step
+/// that moves one farther than a spacing).
+pub const MOTION_SPACINGS: f64 = 2.0;
+
+/// The halo's thickness: every particle within it of a slab's faces is copied to the slab, so
+/// that the owned particles' step is the whole domain's (see [`CHAINED_PASSES`]).
+pub fn halo_width(k: &Kernel) -> f64 {
+    CHAINED_PASSES * k.re.max(k.re_grad) + MOTION_SPACINGS * k.spacing
+}
+
+/// The cuts of `parts` slabs along x: slab r owns `cuts[r] ≤ x < cuts[r + 1]` (the first and
+/// last reach ±∞). The inner cuts split the fluid particles of `p` into about equal counts, each
+/// half-way between the two nearest distinct x of the fluid (so no particle sits on one). An
+/// error when a slab would be thinner than `min_width` (a halo must come from one neighbour).
+pub fn cuts(p: &Particles, parts: usize, min_width: f64) -> Result<Vec<f64>, String> {
+    let mut x: Vec<f64> = (0..p.len())
+        .filter(|&i| p.kind[i] == FLUID)
+        .map(|i| p.x[i])
+        .collect();
+    if x.is_empty() || parts == 0 {
+        return Err("no fluid to cut into slabs".into());
+    }
+    x.sort_by(f64::total_cmp);
+    let mut cuts = vec![f64::NEG_INFINITY];
+    for r in 1..parts {
+        let m = (r * x.len() / parts).max(1);
+        let before = x[m - 1];
+        let Some(&after) = x[m..].iter().find(|&&v| v > before) else {
+            return Err(format!(
+                "the fluid cannot be cut into {parts} slabs along x: use fewer"
+            ));
+        };
+        cuts.push(0.5 * (before + after));
+    }
+    cuts.push(f64::INFINITY);
+    let (lo, hi) = (x[0], x[x.len() - 1]);
+    for r in 0..parts {
+        let (a, b) = (cuts[r].max(lo), cuts[r + 1].min(hi));
+        // inner slabs between their cuts; the end slabs from the fluid's end
+        if b - a < min_width && parts > 1 {
+            return Err(format!(
+                "{parts} slabs of the fluid's {:.4} m along x would leave slab {r} {:.4} m wide, less than the halo of {min_width:.4} m each slab needs: use fewer slabs",
+                hi - lo,
+                b - a
+            ));
+        }
+    }
+    Ok(cuts)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::particles::kind::Kind;
+
+    fn row(n: usize, spacing: f64) -> Particles {
+        let mut p = Particles::default();
+        for i in 0..n {
+            p.push([(i as f64 + 0.5) * spacing, 0.0, 0.0], Kind::Fluid);
+            p.push([(i as f64 + 0.5) * spacing, -spacing, 0.0], Kind::Wall);
+        }
+        p
+    }
+
+    #[test]
+    fn cuts_split_the_fluid_evenly_between_lattice_planes() {
+        let ds = 0.01;
+        let p = row(100, ds);
+        let cuts = cuts(&p, 4, 0.1).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(cuts.len(), 5);
+        for r in 0..4 {
+            let owned = (0..p.len())
+                .filter(|&i| p.kind[i] == FLUID && cuts[r] <= p.x[i] && p.x[i] < cuts[r + 1])
+                .count();
+            assert_eq!(owned, 25, "slab {r}: {cuts:?}");
+        }
+        for c in &cuts[1..4] {
+            let off = (c / ds).fract();
+            assert!(
+                off.abs() < 1e-9 || (off - 1.0).abs() < 1e-9,
+                "cut {c} not half-way between particles"
+            );
+        }
+    }
+
+    #[test]
+    fn slabs_thinner_than_the_halo_are_refused() {
+        let p = row(100, 0.01);
+        let e = cuts(&p, 8, 0.2).expect_err("8 slabs of 0.125 m against a 0.2 m halo");
+        assert!(e.contains("use fewer slabs"), "{e}");
+    }
+}
