@@ -94,11 +94,12 @@ pub struct FluidSolver {
     reaction_shares: Mutex<Option<ReactionShares>>,
     /// The GPU path ([`crate::gpu`]): the step on the device, when the case asks for it.
     pub(crate) device: Option<Box<crate::gpu::GpuEmps>>,
-    /// The device's particles are ahead of the host's / the host's of the device's; the last
-    /// step saw fluid leave through the open top (removed on the host before the next step).
+    /// The device's particles are ahead of the host's / the host's of the device's; the fluid
+    /// particles when the last step saw fluid leave through the open top (removed on the device
+    /// before the next step).
     pub(crate) host_stale: bool,
     pub(crate) host_dirty: bool,
-    pub(crate) escape_pending: bool,
+    pub(crate) escape_pending: Option<u64>,
     /// Whole copies from the device to the host so far, and their wall seconds.
     pub(crate) host_copies: (u64, f64),
 }
@@ -225,7 +226,7 @@ impl FluidSolver {
             device: None,
             host_stale: false,
             host_dirty: false,
-            escape_pending: false,
+            escape_pending: None,
             host_copies: (0, 0.0),
         };
         solver.refresh_body_exchange();
@@ -465,10 +466,20 @@ impl FluidSolver {
     pub(crate) fn remove_escaped(&mut self) -> Result<u64, Instability> {
         let escaped = self.open_top.remove_escaped(&mut self.state.particles);
         if escaped > 0 {
+            let fluid = self.state.particles.count(Kind::Fluid) as u64;
+            self.book_escaped(escaped, fluid)?;
+        }
+        Ok(escaped)
+    }
+
+    /// Counts `escaped` fluid particles removed through the open top, `fluid` being left; stops
+    /// when more than `max_removed_fraction` of the fluid has left.
+    pub(crate) fn book_escaped(&mut self, escaped: u64, fluid: u64) -> Result<(), Instability> {
+        {
             let st = &mut self.state;
             st.escaped += escaped;
             let removed = st.escaped + st.open_boundaries.balance().removed;
-            let fluid = st.particles.count(Kind::Fluid) as u64 + removed;
+            let fluid = fluid + removed;
             let fraction = st.escaped as f64 / fluid.max(1) as f64;
             if fraction > self.max_removed_fraction {
                 return Err(Instability {
@@ -485,7 +496,7 @@ impl FluidSolver {
                 });
             }
         }
-        Ok(escaped)
+        Ok(())
     }
 
     /// The rest of [`FluidSolver::step`] on the CPU.

@@ -146,7 +146,8 @@ fn energy_fed_in_without_a_source_is_found_as_on_the_cpu() {
 }
 
 /// A fluid particle above an open tank's domain has left through the open top: the device
-/// counts it, the host removes it before the next step, as on the CPU.
+/// counts it and removes it before the next step, as the CPU does, without copying the
+/// particles back.
 #[test]
 fn fluid_leaving_through_the_open_top_is_removed_as_on_the_cpu() {
     let Some(dev) = gpu_common::device() else {
@@ -172,4 +173,10 @@ fn fluid_leaving_through_the_open_top_is_removed_as_on_the_cpu() {
     }
     assert_eq!((cpu.escaped(), gpu.escaped()), (1, 1));
     assert_eq!(cpu.particles().len(), gpu.particles().len());
+    // whole copies: the one that moved the particle (particles_mut) and the final one
+    assert_eq!(
+        gpu.host_copies().0,
+        2,
+        "the escape must not copy the particles back"
+    );
 }

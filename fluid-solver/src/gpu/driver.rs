@@ -1,7 +1,7 @@
 //! The solver's step on the device: the GPU path of [`FluidSolver::step`]. The host keeps the
 //! clock, the totals and the instability detector's thresholds; the particles stay on the device
-//! and are copied back only when an output, a probe row, a removal through the open top or a
-//! diagnostic needs them ([`FluidSolver::sync_host`]).
+//! and are copied back whole only when a frame, a checkpoint or a diagnostic needs them
+//! ([`FluidSolver::sync_host`]); probes read them without a whole copy ([`crate::sensors::view`]).
 
 use super::device::{GpuDevice, NoAdapter};
 use super::drag::{NOT_APPLIED, SPREAD_AT_CENTROID, SPREAD_AT_SAMPLE_POINT};
@@ -182,8 +182,8 @@ impl FluidSolver {
     }
 
     /// Whole copies of the particles from the device so far ([`FluidSolver::sync_host`]: frames,
-    /// checkpoints, the detector's findings, escapes), and their wall seconds with the host's
-    /// cell sort after each.
+    /// checkpoints, the detector's findings), and their wall seconds with the host's cell sort
+    /// after each.
     pub fn host_copies(&self) -> (u64, f64) {
         self.host_copies
     }
@@ -208,7 +208,7 @@ impl FluidSolver {
     }
 
     /// One step on the device (see the module doc): removals through the open top found by the
-    /// last step happen on the host first, the detector's findings are explained by the host's
+    /// last step happen on the device first, the detector's findings are explained by the host's
     /// detector on a copy.
     pub(crate) fn step_on_device(&mut self, dt: f64) -> Result<StepTotals, Instability> {
         if !self.started {
@@ -216,15 +216,6 @@ impl FluidSolver {
             self.monitor.start(&self.state.particles);
             self.started = true;
         }
-        if self.escape_pending {
-            self.sync_host();
-            self.remove_escaped()?;
-            self.host_dirty = true;
-            self.escape_pending = false;
-        }
-        let Some(dev) = self.device.as_deref_mut() else {
-            unreachable!("step_on_device is called with a device")
-        };
         let device_error = |time: f64, steps: u64, quantity: &'static str, message: String| Instability {
             step: steps + 1,
             time,
@@ -232,11 +223,20 @@ impl FluidSolver {
             quantity,
             message,
         };
-        if self.host_dirty {
+        if let (Some(dev), true) = (self.device.as_deref_mut(), self.host_dirty) {
             dev.upload(&self.state.particles)
                 .map_err(|m| device_error(self.state.time, self.state.steps, "GPU arrays", m))?;
             self.host_dirty = false;
         }
+        // the fluid that left through the open top in the last step, removed on the device by
+        // the rule its scan counted with (`gpu/escape.rs`)
+        if let Some(fluid) = self.escape_pending.take() {
+            let escaped = self.device.as_deref_mut().map_or(0, |dev| dev.remove_escaped());
+            self.book_escaped(escaped, fluid.saturating_sub(escaped))?;
+        }
+        let Some(dev) = self.device.as_deref_mut() else {
+            unreachable!("step_on_device is called with a device")
+        };
         // the open boundaries before the step, as on the CPU: the host's copy of the strip runs
         // the CPU's rule, the device converts, moves and removes by it (`gpu/open_boundary.rs`)
         if self.state.open_boundaries.is_active() {
@@ -285,7 +285,7 @@ impl FluidSolver {
         st.body_exchange.loads.extend_from_slice(dev.body_loads());
         st.body_exchange.reaction.clear();
         st.body_exchange.reaction.extend_from_slice(dev.body_reactions());
-        self.escape_pending = report.escaped > 0;
+        self.escape_pending = (report.escaped > 0).then_some(report.fluid);
         let energy_over = self
             .monitor
             .energy_limit()

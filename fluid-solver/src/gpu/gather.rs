@@ -2,8 +2,8 @@
 //! sensor reads after every step on the GPU path ([`crate::sensors::probes::ProbeSet::observe`])
 //! and a local probe at a row ([`crate::sensors::view`]); the run-up and the inflow balance read
 //! all of them, as light ([`GpuEmps::particles_all`]). The whole copy
-//! ([`crate::FluidSolver::sync_host`]) comes only for frames, checkpoints, escapes and the
-//! detector's findings.
+//! ([`crate::FluidSolver::sync_host`]) comes only for frames, checkpoints and the detector's
+//! findings.
 //!
 //! The device keeps its particles in the order of the step's last cell sort (at r*): the
 //! particles of cell c are the slots `cell_start[c] .. cell_start[c + 1]`, and a row of cells

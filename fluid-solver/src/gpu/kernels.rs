@@ -7,7 +7,7 @@ use super::buffers::Buffers;
 use super::device::GpuDevice;
 
 /// The WGSL sources, joined into one module (the bindings are declared once in `common.wgsl`).
-const SOURCES: [&str; 14] = [
+const SOURCES: [&str; 15] = [
     include_str!("shaders/common.wgsl"),
     include_str!("shaders/cell_sort.wgsl"),
     include_str!("shaders/emps.wgsl"),
@@ -21,6 +21,7 @@ const SOURCES: [&str; 14] = [
     include_str!("shaders/paddle.wgsl"),
     include_str!("shaders/open_boundary.wgsl"),
     include_str!("shaders/water_extent.wgsl"),
+    include_str!("shaders/escape.wgsl"),
     include_str!("shaders/drag.wgsl"),
 ];
 
@@ -63,6 +64,7 @@ pub struct Kernels {
     pub place_paddle: wgpu::ComputePipeline,
     pub open_boundaries: wgpu::ComputePipeline,
     pub water_extent: wgpu::ComputePipeline,
+    pub remove_escaped: wgpu::ComputePipeline,
     pub sample_flow: wgpu::ComputePipeline,
     pub reaction_sums: wgpu::ComputePipeline,
     pub spread_reactions: wgpu::ComputePipeline,
@@ -189,6 +191,7 @@ impl Kernels {
             place_paddle: make("place_paddle"),
             open_boundaries: make("open_boundaries"),
             water_extent: make("water_extent"),
+            remove_escaped: make("remove_escaped"),
             sample_flow: make_drag("sample_flow"),
             reaction_sums: make_drag("reaction_sums"),
             spread_reactions: make_drag("spread_reactions"),

@@ -17,13 +17,14 @@
 //! - [`paddle`]: the wave maker's paddle, placed before each step by the prescribed motion;
 //! - [`open_boundary`]: inflow and outflow: the strip's new rows appended, particles removed and
 //!   the arrays compacted on the device;
+//! - [`escape`]: fluid that left through an open top, removed on the device;
 //! - [`drag`]: the unresolved drag coupling: the flow sampled at the coupler's points and the
 //!   point reactions spread over the fluid;
 //! - [`gather`]: the particles around a filtered wall-pressure sensor or a local probe, copied
 //!   back without the rest, and the light copy of all that a global probe reads;
 //! - [`water_extent`]: the water's extent along each axis, all a surge-front probe reads;
 //! - [`reduce`]: the instability detector's scan and the step's totals, reduced on the device;
-//! - [`driver`]: the solver's step on the device (escapes, detector, host copies).
+//! - [`driver`]: the solver's step on the device (detector, host copies).
 
 pub mod bodies;
 pub mod body_inside;
@@ -33,6 +34,7 @@ pub mod damping;
 pub mod device;
 pub mod drag;
 pub mod driver;
+pub mod escape;
 pub mod frame;
 pub mod gather;
 pub mod kernels;

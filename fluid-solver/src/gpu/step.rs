@@ -392,6 +392,12 @@ impl GpuEmps {
         Ok([entered, removed, withdrawn])
     }
 
+    /// Drops the last `removed` particles (those a compaction sort put past the rest).
+    pub(super) fn shrink_by(&mut self, removed: usize) {
+        self.n -= removed;
+        self.params.n = self.n as u32;
+    }
+
     /// Particles the arrays hold room for.
     pub fn capacity(&self) -> usize {
         self.buffers.capacity
