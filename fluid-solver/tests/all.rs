@@ -37,6 +37,7 @@ mod gpu_open_boundaries;
 mod gpu_pressure_stages;
 mod gpu_refusals;
 mod gpu_run;
+mod gpu_run_up;
 mod gpu_scene_walls;
 mod gpu_skips;
 mod gpu_wave_maker;

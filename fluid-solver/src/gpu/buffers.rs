@@ -69,8 +69,9 @@ pub const POS_LO: usize = 23;
 
 /// Words after the cells' counts: the removed particles' count (`shaders/cell_sort.wgsl`), the
 /// open boundaries' three counters (`shaders/open_boundary.wgsl`), the water's extent's six keys
-/// (`shaders/water_extent.wgsl`) and the escapes' count (`shaders/escape.wgsl`).
-pub const OPEN_COUNTERS: u64 = 11;
+/// (`shaders/probe_reductions.wgsl`), the escapes' count (`shaders/escape.wgsl`) and the
+/// run-up's key (`shaders/probe_reductions.wgsl`).
+pub const OPEN_COUNTERS: u64 = 12;
 
 impl Buffers {
     /// Buffers for `n` particles (with low parts when `wide`), `cells` cells, `boxes` wall blocks, `groups` reduction groups,

@@ -1,7 +1,7 @@
 //! The device's particles in a box, copied back without the rest: what a filtered wall-pressure
 //! sensor reads after every step on the GPU path ([`crate::sensors::probes::ProbeSet::observe`])
-//! and a local probe at a row ([`crate::sensors::view`]); the run-up and the inflow balance read
-//! all of them, as light ([`GpuEmps::particles_all`]). The whole copy
+//! and a local probe at a row ([`crate::sensors::view`]); a standalone run's inflow balance (and
+//! a global probe with wide positions) reads all of them, as light ([`GpuEmps::particles_all`]). The whole copy
 //! ([`crate::FluidSolver::sync_host`]) comes only for frames, checkpoints and the detector's
 //! findings.
 //!

@@ -22,7 +22,7 @@
 //!   point reactions spread over the fluid;
 //! - [`gather`]: the particles around a filtered wall-pressure sensor or a local probe, copied
 //!   back without the rest, and the light copy of all that a global probe reads;
-//! - [`water_extent`]: the water's extent along each axis, all a surge-front probe reads;
+//! - [`probe_reductions`]: what the surge fronts and the run-up gauge read, reduced on the device;
 //! - [`reduce`]: the instability detector's scan and the step's totals, reduced on the device;
 //! - [`driver`]: the solver's step on the device (detector, host copies).
 
@@ -41,10 +41,10 @@ pub mod kernels;
 pub mod open_boundary;
 pub mod paddle;
 pub mod params;
+pub mod probe_reductions;
 pub mod reduce;
 pub mod solids;
 pub mod step;
-pub mod water_extent;
 
 pub use device::{GpuDevice, NoAdapter};
 pub use step::GpuEmps;

@@ -18,6 +18,8 @@ pub struct DecomposedFluid {
     whole: StabilityMonitor,
     /// Fluid particles handed from one slab to another so far.
     handed_over: u64,
+    /// Halo copies sent so far.
+    copied: u64,
 }
 
 impl DecomposedFluid {
@@ -58,6 +60,7 @@ impl DecomposedFluid {
             parts,
             whole: whole.monitor,
             handed_over: 0,
+            copied: 0,
         })
     }
 
@@ -68,6 +71,11 @@ impl DecomposedFluid {
     /// Fluid particles handed from one slab to another so far (they crossed a cut).
     pub fn handed_over(&self) -> u64 {
         self.handed_over
+    }
+
+    /// Halo copies of fluid particles sent so far (every step, to each neighbour).
+    pub fn copied(&self) -> u64 {
+        self.copied
     }
 
     /// The simulated time (every slab's).
@@ -91,6 +99,7 @@ impl DecomposedFluid {
             .zip(&arriving)
             .for_each(|(s, a)| s.take(a));
         let copies: Vec<ToNeighbours> = self.parts.par_iter().map(|s| s.halo_copies()).collect();
+        self.copied += copies.iter().flatten().map(|p| p.len() as u64).sum::<u64>();
         let halos = from_neighbours(copies);
         self.parts
             .par_iter_mut()

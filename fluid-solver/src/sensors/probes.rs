@@ -120,10 +120,20 @@ fn run_up(p: &Particles, kernel: &Kernel, tank: &Aabb, in_water: impl Fn(usize) 
             })
         })
     };
-    let heights = (0..p.len())
-        .filter(|&i| in_water(i) && rests(i))
-        .map(|i| p.z[i] + 0.5 * kernel.spacing - tank.min[2]);
-    schemas::validation::largest(heights, 0.0)
+    let resting = (0..p.len()).filter(|&i| in_water(i) && rests(i)).map(|i| p.z[i]);
+    // the highest, a NaN kept
+    let top = resting.fold(None, |top: Option<f64>, z| {
+        Some(top.map_or(z, |t| if z > t || z.is_nan() { z } else { t }))
+    });
+    run_up_of(top, kernel.spacing, tank)
+}
+
+/// The run-up gauge's reading from the highest water resting on a solid (`None`: none rests):
+/// its height plus Δs/2 above the tank floor, 0 when none rests or below the floor.
+fn run_up_of(top: Option<f64>, ds: f64, tank: &Aabb) -> f64 {
+    top.map_or(0.0, |z| {
+        schemas::validation::largest([z + 0.5 * ds - tank.min[2]], 0.0)
+    })
 }
 
 /// The water-height gauge: the top of the connected column on the bed (see the module doc).
@@ -279,6 +289,10 @@ fn read(probe: &ProbeConfig, disc: &Option<Disc>, view: &ParticleView) -> f64 {
             [at[0] + ds, at[1] + ds, f64::INFINITY],
         ),
         (None, ProbeKind::Pressure) => (at.map(|v| v - reach), at.map(|v| v + reach)),
+        (None, ProbeKind::RunUp) if view.run_up_top().is_some() => {
+            let top = view.run_up_top().flatten();
+            return run_up_of(top, ds, &solver.tank());
+        }
         (None, ProbeKind::SurgeFront) if view.water_extent().is_some() => {
             let along = view.water_extent().map(|e| e[probe.axis_direction().0]);
             return surge_front_of(probe, along, ds, &solver.tank());

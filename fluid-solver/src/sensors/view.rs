@@ -1,11 +1,11 @@
 //! The particles a sensor reads: the host's, or on the GPU path while the device is ahead of the
 //! host's copy, what the device gives back without a whole copy. A local probe (a gauge's
 //! column, a pressure point's ball) reads the device's particles around it
-//! ([`crate::gpu::gather`]); a surge front the water's extent, reduced on the device
-//! ([`crate::gpu::water_extent`]); the run-up and the open boundaries' balance read all the
-//! particles once per row, positions, kinds, number densities and pressures only (24 B a
-//! particle against the whole copy's 44 and the host's cell sort after it), as does a surge
-//! front with wide positions.
+//! ([`crate::gpu::gather`]); a surge front the water's extent and the run-up gauge the highest
+//! water resting on a solid, both reduced on the device ([`crate::gpu::probe_reductions`]); the
+//! open boundaries' balance reads all the particles once per row, positions, kinds, number
+//! densities and pressures only (24 B a particle against the whole copy's 44 and the host's cell
+//! sort after it), as do a surge front and a run-up gauge with wide positions.
 
 use crate::particles::Particles;
 use crate::solver::FluidSolver;
@@ -19,6 +19,8 @@ pub struct ParticleView<'a> {
     all: OnceCell<Option<Particles>>,
     /// The water's extent on the device (reduced at the first surge front's read).
     extent: OnceCell<Option<[[f64; 2]; 3]>>,
+    /// The highest water resting on a solid, on the device (reduced at the first run-up read).
+    run_up_top: OnceCell<Option<Option<f64>>>,
 }
 
 impl<'a> ParticleView<'a> {
@@ -28,6 +30,7 @@ impl<'a> ParticleView<'a> {
             solver,
             all: OnceCell::new(),
             extent: OnceCell::new(),
+            run_up_top: OnceCell::new(),
         }
     }
 
@@ -51,6 +54,14 @@ impl<'a> ParticleView<'a> {
         *self
             .extent
             .get_or_init(|| self.solver.device_ahead().and_then(|dev| dev.water_extent()))
+    }
+
+    /// The highest z of the water resting on a solid (`Some(None)`: none rests), reduced on the
+    /// device; `None` when the host's particles are current or with wide positions.
+    pub fn run_up_top(&self) -> Option<Option<f64>> {
+        *self
+            .run_up_top
+            .get_or_init(|| self.solver.device_ahead().and_then(|dev| dev.run_up_top()))
     }
 
     /// At least the particles in the box `lo`–`hi` (the device's copy holds some around it).
