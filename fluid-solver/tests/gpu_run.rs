@@ -1,13 +1,10 @@
 //! A standalone run on the GPU path writes the same probe rows as on the CPU: at each probe row
 //! the local probes (water height, point pressure) read the device's particles around them and
-//! the global one (surge front) a light copy of all, by the CPU's rules; the whole copy comes only
-//! for a frame.
+//! the surge front the water's extent reduced on the device, by the CPU's rules; the whole copy
+//! comes only for a frame.
 
 use crate::gpu_common;
-
-use fluid_solver::run::run_case;
-use schemas::case::Case;
-use std::path::{Path, PathBuf};
+use crate::gpu_common::probe_rows::probe_rows;
 
 const CASE: &str = r#"
 [case]
@@ -35,42 +32,18 @@ name = "pressure"
 kind = "pressure"
 position = [0.05, 0.03, 0.04]
 
-# last: the local probes above read the device's particles around them, not its light copy of all
 [[fluid.water.probe]]
 name = "front"
 kind = "surge-front"
 axis = "x"
 "#;
 
-/// Runs the case on `backend` and returns the probe CSV's rows and the run's whole copies from
-/// the GPU.
-fn probe_rows(backend: &str) -> (Vec<Vec<f64>>, u64) {
-    let text = CASE.replace(
-        "spacing = 0.02",
-        &format!("backend = \"{backend}\"\nspacing = 0.02"),
-    );
-    let case = Case::parse(Path::new("small.toml"), text).unwrap_or_else(|e| panic!("{e}"));
-    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("gpu_run_{backend}"));
-    let summary = run_case(&case, &out, false).unwrap_or_else(|e| panic!("{e}"));
-    let csv = std::fs::read_to_string(out.join("water_probes.csv")).unwrap_or_else(|e| panic!("{e}"));
-    let rows = csv
-        .lines()
-        .skip(1)
-        .map(|l| {
-            l.split(',')
-                .map(|v| v.parse().unwrap_or_else(|e| panic!("{v}: {e}")))
-                .collect()
-        })
-        .collect();
-    (rows, summary.host_copies.0)
-}
-
 #[test]
 fn gpu_run_writes_the_cpus_probe_rows() {
     if gpu_common::device().is_none() {
         return;
     }
-    let ((cpu, _), (gpu, copies)) = (probe_rows("cpu"), probe_rows("gpu"));
+    let ((cpu, _), (gpu, copies)) = (probe_rows(CASE, "water", "cpu"), probe_rows(CASE, "water", "gpu"));
     assert_eq!(cpu.len(), 6, "rows at t = 0, 0.008 … 0.04: {cpu:?}");
     // frames at t = 0 (before the first step: the host's particles are current) and 0.04
     assert_eq!(

@@ -3,10 +3,7 @@
 //! that an E-MPS run settles (`wave_maker.rs`'s beach at Δs = 0.02 m, 0.1 s).
 
 use crate::gpu_common;
-
-use fluid_solver::run::run_case;
-use schemas::case::Case;
-use std::path::{Path, PathBuf};
+use crate::gpu_common::probe_rows::probe_rows;
 
 const CASE: &str = r#"[case]
 name = "beach"
@@ -32,25 +29,10 @@ name = "run-up"
 kind = "run-up"
 "#;
 
-/// The run-up column of the probe CSV on `backend`, and the run's whole copies from the GPU.
+/// The run-up column on `backend`, and the run's whole copies from the GPU.
 fn run_up(backend: &str) -> (Vec<f64>, u64) {
-    let text = CASE.replace(
-        "spacing = 0.02",
-        &format!("backend = \"{backend}\"\nspacing = 0.02"),
-    );
-    let case = Case::parse(Path::new("beach.toml"), text).unwrap_or_else(|e| panic!("{e}"));
-    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("gpu_run_up_{backend}"));
-    let summary = run_case(&case, &out, false).unwrap_or_else(|e| panic!("{e}"));
-    let csv = std::fs::read_to_string(out.join("beach_probes.csv")).unwrap_or_else(|e| panic!("{e}"));
-    let column = csv
-        .lines()
-        .skip(1)
-        .map(|l| {
-            let v = l.split(',').nth(1).unwrap_or_else(|| panic!("row {l}"));
-            v.parse().unwrap_or_else(|e| panic!("{v}: {e}"))
-        })
-        .collect();
-    (column, summary.host_copies.0)
+    let (rows, copies) = probe_rows(CASE, "beach", backend);
+    (rows.iter().map(|r| r[1]).collect(), copies)
 }
 
 #[test]

@@ -9,6 +9,7 @@
 //! - [`buffers`]: the device arrays, their precision, upload and download;
 //! - [`kernels`]: the WGSL modules (`shaders/`) as compute pipelines on one bind group;
 //! - [`cell_sort`]: counting sort and prefix sum by cell;
+//! - [`counter_pass`]: a pass that counts or reduces into a few words, read back;
 //! - [`step`]: the E-MPS stages of [`crate::emps::step`] in the same order;
 //! - [`bodies`]: resolved rigid bodies: placed from the host's pose, loads reduced on the device;
 //! - [`solids`]: mesh solids and terrains: their sites for the detector;
@@ -30,6 +31,7 @@ pub mod bodies;
 pub mod body_inside;
 pub mod buffers;
 pub mod cell_sort;
+pub mod counter_pass;
 pub mod damping;
 pub mod device;
 pub mod drag;

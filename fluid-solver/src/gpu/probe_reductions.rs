@@ -4,10 +4,7 @@
 //! ([`crate::sensors::probes`]). A probe row then needs no copy of the particles: one pass over
 //! them and a few bytes back.
 
-use super::buffers::{map_read, CELL_COUNT};
-use super::kernels::{dispatch, WG};
 use super::step::GpuEmps;
-use std::sync::atomic::Ordering;
 
 /// The words after the cells' counts the passes write (`OPEN_COUNTERS` counts them in): the
 /// extent's six, the run-up's one.
@@ -48,40 +45,14 @@ impl GpuEmps {
         Some(value_of_key(keys[0]).map(|z| self.frame.origin[2] + f64::from(z)))
     }
 
-    /// Runs `pass` over the particles after clearing the words `(first, count)` past the cells'
-    /// counts, and reads them back; `None` with wide positions or no particles.
+    /// Runs `pass` over the particles into the words `(first, count)` past the cells' counts and
+    /// reads them; `None` with wide positions or no particles.
     fn reduce_keys(&self, pass: &wgpu::ComputePipeline, (first, count): (u64, u64)) -> Option<Vec<u32>> {
         if self.buffers.wide || self.is_empty() {
             return None;
         }
-        let offset = 4 * (u64::from(self.params.cells) + first);
-        let bytes = 4 * count;
-        let staging = self.dev.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("probe reduction"),
-            size: bytes,
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let counters = self.buffers.at(CELL_COUNT);
-        let mut enc = self
-            .dev
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("probe reduction"),
-            });
-        enc.clear_buffer(counters, offset, Some(bytes));
-        {
-            let mut p = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("probe reduction"),
-                timestamp_writes: None,
-            });
-            dispatch(&mut p, &self.kernels, pass, self.len() as u32, WG);
-        }
-        enc.copy_buffer_to_buffer(counters, offset, &staging, 0, bytes);
-        self.dev.queue.submit([enc.finish()]);
-        let keys: Vec<u32> = map_read(&self.dev, &staging.slice(..));
-        self.gathered.fetch_add(bytes, Ordering::Relaxed);
-        Some(keys)
+        let words = first..first + count;
+        Some(self.counter_pass(pass, words.clone(), words))
     }
 }
 

@@ -4,6 +4,7 @@
 //! pass green without running the GPU code.
 
 pub mod compare;
+pub mod probe_rows;
 
 use fluid_solver::gpu::GpuDevice;
 use std::io::Write;
