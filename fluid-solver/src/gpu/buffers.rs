@@ -30,6 +30,7 @@ use super::frame::Frame;
 use super::reduce::Partial;
 use crate::particles::Particles;
 use bytemuck::{Pod, Zeroable};
+use rayon::prelude::*;
 use std::sync::mpsc;
 
 /// Sums kept per body (`SUMS` in `shaders/common.wgsl`): the loads summed by body particle, the
@@ -213,25 +214,56 @@ impl Buffers {
     }
 
     /// Copies the first `n` particles back into `p` (its arrays are replaced; kinds from the
-    /// position's w; positions from `frame`).
+    /// position's w; positions from `frame`): every array into one staging buffer, one
+    /// submission and one mapping, the columns then filled in parallel.
     pub fn download(&mut self, dev: &GpuDevice, n: usize, p: &mut Particles, frame: &Frame) {
-        let pos: Vec<[f32; 4]> = self.read(dev, POS, n);
-        let lo: Vec<[f32; 4]> = match self.wide {
-            true => self.read(dev, POS_LO, n),
-            false => Vec::new(),
-        };
-        let vel: Vec<[f32; 4]> = self.read(dev, VEL, n);
-        let id: Vec<u32> = self.read(dev, ID, n);
-        let dens: Vec<[f32; 2]> = self.read(dev, DENS, n);
-        let col = |v: &[[f32; 4]], a: usize| v.iter().map(|e| f64::from(e[a])).collect::<Vec<f64>>();
+        // (binding, bytes per particle), in the staging buffer's order
+        let mut arrays = vec![(POS, 16u64), (VEL, 16), (ID, 4), (DENS, 8)];
+        if self.wide {
+            arrays.push((POS_LO, 16));
+        }
+        let total: u64 = arrays.iter().map(|&(_, size)| size * n as u64).sum();
+        if total == 0 {
+            *p = Particles::default();
+            return;
+        }
+        let staging = dev.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("download"),
+            size: total,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut enc = dev
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("download"),
+            });
+        let mut at = 0;
+        for &(b, size) in &arrays {
+            enc.copy_buffer_to_buffer(self.at(b), 0, &staging, at, size * n as u64);
+            at += size * n as u64;
+        }
+        dev.queue.submit([enc.finish()]);
+        let bytes: Vec<u8> = map_read(dev, &staging.slice(..));
+        self.downloaded += total;
+        let (pos, rest) = bytes.split_at(16 * n);
+        let (vel, rest) = rest.split_at(16 * n);
+        let (id, rest) = rest.split_at(4 * n);
+        let (dens, lo) = rest.split_at(8 * n);
+        let pos: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(pos);
+        let vel: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(vel);
+        let dens: Vec<[f32; 2]> = bytemuck::pod_collect_to_vec(dens);
+        // empty with plain positions (nothing was copied there)
+        let lo: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(lo);
+        let col = |v: &[[f32; 4]], a: usize| v.par_iter().map(|e| f64::from(e[a])).collect::<Vec<f64>>();
         [p.x, p.y, p.z] = frame.columns_back(&pos, &lo);
-        p.kind = pos.iter().map(|e| e[3] as u8).collect();
+        p.kind = pos.par_iter().map(|e| e[3] as u8).collect();
         p.vx = col(&vel, 0);
         p.vy = col(&vel, 1);
         p.vz = col(&vel, 2);
-        p.number_density = dens.iter().map(|e| f64::from(e[0])).collect();
-        p.pressure = dens.iter().map(|e| f64::from(e[1])).collect();
-        p.id = id;
+        p.number_density = dens.par_iter().map(|e| f64::from(e[0])).collect();
+        p.pressure = dens.par_iter().map(|e| f64::from(e[1])).collect();
+        p.id = bytemuck::pod_collect_to_vec(id);
     }
 
     /// Reads the first `count` elements of binding `b`'s buffer.

@@ -23,6 +23,8 @@
 //! position within q/2; the solver widens the cell edge by q so that no pair within a kernel's
 //! radius falls outside the cells searched (`reach · (h + q) ≥ r_e + q`).
 
+use rayon::prelude::*;
+
 /// The device's frame: positions are kept relative to `origin`, as hi + lo on a grid of
 /// `quantum` when there is one (wide positions, module doc).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -70,7 +72,7 @@ impl Frame {
     /// positions) back in the case's frame, as x, y and z columns.
     pub fn columns_back(&self, pos: &[[f32; 4]], lo: &[[f32; 4]]) -> [Vec<f64>; 3] {
         std::array::from_fn(|a| {
-            pos.iter()
+            pos.par_iter()
                 .enumerate()
                 .map(|(i, e)| self.back(a, e[a], lo.get(i).map_or(0.0, |l| l[a])))
                 .collect()
