@@ -222,30 +222,12 @@ impl Buffers {
         if self.wide {
             arrays.push((POS_LO, 16));
         }
-        let total: u64 = arrays.iter().map(|&(_, size)| size * n as u64).sum();
-        if total == 0 {
+        if n == 0 {
             *p = Particles::default();
             return;
         }
-        let staging = dev.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("download"),
-            size: total,
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let mut enc = dev
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("download"),
-            });
-        let mut at = 0;
-        for &(b, size) in &arrays {
-            enc.copy_buffer_to_buffer(self.at(b), 0, &staging, at, size * n as u64);
-            at += size * n as u64;
-        }
-        dev.queue.submit([enc.finish()]);
-        let bytes: Vec<u8> = map_read(dev, &staging.slice(..));
-        self.downloaded += total;
+        let bytes = self.read_arrays(dev, &arrays, n);
+        self.downloaded += bytes.len() as u64;
         let (pos, rest) = bytes.split_at(16 * n);
         let (vel, rest) = rest.split_at(16 * n);
         let (id, rest) = rest.split_at(4 * n);
@@ -268,13 +250,22 @@ impl Buffers {
 
     /// Reads the first `count` elements of binding `b`'s buffer.
     pub fn read<T: Pod + Zeroable>(&mut self, dev: &GpuDevice, b: usize, count: usize) -> Vec<T> {
-        let size = (std::mem::size_of::<T>() * count) as u64;
-        if size == 0 {
+        if count == 0 {
             return Vec::new();
         }
+        let bytes = self.read_arrays(dev, &[(b, std::mem::size_of::<T>() as u64)], count);
+        self.downloaded += bytes.len() as u64;
+        bytemuck::pod_collect_to_vec(&bytes)
+    }
+
+    /// The first `n` elements of each binding of `arrays` ((binding, bytes per element), `n` > 0),
+    /// one after the other: copied into one staging buffer in one submission and mapped once.
+    /// The caller counts the bytes.
+    pub fn read_arrays(&self, dev: &GpuDevice, arrays: &[(usize, u64)], n: usize) -> Vec<u8> {
+        let total: u64 = arrays.iter().map(|&(_, size)| size * n as u64).sum();
         let staging = dev.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("download"),
-            size,
+            size: total,
             usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -283,11 +274,13 @@ impl Buffers {
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("download"),
             });
-        enc.copy_buffer_to_buffer(self.at(b), 0, &staging, 0, size);
+        let mut at = 0;
+        for &(b, size) in arrays {
+            enc.copy_buffer_to_buffer(self.at(b), 0, &staging, at, size * n as u64);
+            at += size * n as u64;
+        }
         dev.queue.submit([enc.finish()]);
-        let out = map_read(dev, &staging.slice(..));
-        self.downloaded += size;
-        out
+        map_read(dev, &staging.slice(..))
     }
 }
 

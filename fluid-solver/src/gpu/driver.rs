@@ -166,8 +166,9 @@ impl FluidSolver {
         self.device.as_deref_mut()
     }
 
-    /// Copies the device's particles to the host when the device is ahead (outputs, probes),
-    /// re-sorting the host's cell list for its point queries. Nothing on the CPU path.
+    /// Copies the device's particles to the host when the device is ahead (frames, checkpoints,
+    /// the detector's findings), re-sorting the host's cell list for its point queries. Nothing
+    /// on the CPU path.
     pub fn sync_host(&mut self) {
         if let (Some(dev), true) = (self.device.as_deref_mut(), self.host_stale) {
             let started = std::time::Instant::now();

@@ -104,34 +104,28 @@ impl GpuEmps {
         }
         self.dev.queue.submit([enc.finish()]);
         self.gathered.fetch_add(8 * rows.len() as u64, Ordering::Relaxed);
-        self.read_light(&staging, count)
+        self.light(&map_read(&self.dev, &staging.slice(..)), count)
     }
 
     /// All the device's particles, as [`GpuEmps::particles_in`] copies them (positions and
     /// kinds, number densities and pressures: 24 B each, 40 with wide positions), in one copy
     /// per array: what the global probes of a row read.
     pub fn particles_all(&self) -> Particles {
-        let count = self.len() as u64;
-        if count == 0 {
+        let n = self.len();
+        if n == 0 {
             return Particles::default();
         }
-        let lows = if self.buffers.wide { 16 } else { 0 };
-        let staging = self.staging_of((24 + lows) * count);
-        let mut enc = self.gather_encoder();
-        enc.copy_buffer_to_buffer(self.buffers.at(POS), 0, &staging, 0, 16 * count);
-        enc.copy_buffer_to_buffer(self.buffers.at(DENS), 0, &staging, 16 * count, 8 * count);
+        let mut arrays = vec![(POS, 16), (DENS, 8)];
         if self.buffers.wide {
-            enc.copy_buffer_to_buffer(self.buffers.at(POS_LO), 0, &staging, 24 * count, 16 * count);
+            arrays.push((POS_LO, 16));
         }
-        self.dev.queue.submit([enc.finish()]);
-        self.read_light(&staging, count)
+        self.light(&self.buffers.read_arrays(&self.dev, &arrays, n), n as u64)
     }
 
-    /// Maps `staging`, which holds `count` particles' positions (16 B each), then their number
-    /// densities and pressures (8 B), then with wide positions their low parts (16 B), and
-    /// turns them into particles (velocities and ids 0).
-    fn read_light(&self, staging: &wgpu::Buffer, count: u64) -> Particles {
-        let bytes: Vec<u8> = map_read(&self.dev, &staging.slice(..));
+    /// `count` particles from `bytes`, which hold their positions (16 B each), then their number
+    /// densities and pressures (8 B), then with wide positions their low parts (16 B): as
+    /// particles (velocities and ids 0).
+    fn light(&self, bytes: &[u8], count: u64) -> Particles {
         self.gathered.fetch_add(bytes.len() as u64, Ordering::Relaxed);
         let (pos, rest) = bytes.split_at(16 * count as usize);
         let (dens, lo) = rest.split_at(8 * count as usize);
