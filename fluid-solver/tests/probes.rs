@@ -3,26 +3,15 @@
 //! lid reads the water below it, and a surge front runs towards −x as well as +x.
 
 use crate::common;
+use crate::hydrostatic_common;
 
-use fluid_solver::probes::{self, ProbeSet};
+use fluid_solver::probes;
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{ProbeConfig, ProbeKind};
 use schemas::case::FluidConfig;
 use schemas::validation::{record, Record};
 
-fn sensor(name: &str, position: [f64; 3], normal: &str, diameter: f64, window: Option<f64>) -> ProbeConfig {
-    ProbeConfig {
-        name: name.into(),
-        kind: ProbeKind::WallPressure,
-        position: position.to_vec(),
-        normal: Some(normal.into()),
-        diameter: Some(diameter),
-        window,
-        ..Default::default()
-    }
-}
-
-/// Hydrostatic tank of `hydrostatic.rs` (Δs = 0.02 m, water 0.3 m deep in 0.2 × 0.2 m, settled
+/// Hydrostatic tank of `hydrostatic.rs`, the same run (Δs = 0.02 m, water 0.3 m deep in 0.2 × 0.2 m, settled
 /// for 1.5 s), sensors of 0.08 m diameter (4 spacings) box-filtered over the last 0.5 s (one
 /// period of the tank's first sloshing mode, ω² = g k tanh(k h), k = π/0.2 m: 0.5 s): one on
 /// the floor, and pairs on opposite side walls at two depths.
@@ -32,8 +21,10 @@ fn sensor(name: &str, position: [f64; 3], normal: &str, diameter: f64, window: O
 /// column is 2.5 % shorter than 0.3 m, compressed most in its top layers, so ρ0 g (0.3 − z) is
 /// off by up to 2 %). Bounds: the floor sensor 1 % (issue 15: the floor carries the whole
 /// weight, `hydrostatic.rs` checks that total within 1 %, measured −0.5 %). The side walls carry
-/// no weight, so nothing forces their reading onto the weight above: measured, opposite pairs
-/// read −0.65 % (z = 0.08 m) and −1.63 % (z = 0.16 m), single sensors +0.2 … −2.8 %. Issue 15
+/// no weight, so nothing forces their reading onto the weight above: measured (29 Nov 2026, the
+/// run shared with `hydrostatic.rs`), opposite pairs read −0.32 % (z = 0.08 m) and −1.61 %
+/// (z = 0.16 m), single sensors +0.19 … −1.97 % (before the run was shared, with a short step
+/// every 0.01 s: −0.65 and −1.63 %, +0.2 … −2.8 %). Issue 15
 /// asks 1 % of a single side sensor; this is not the sensor's error but the settled E-MPS
 /// column's static stress, which is not isotropic (the particles jam on their lattice and carry
 /// some shear; wall by wall it differs), measured with eight side sensors (all four walls, both
@@ -47,62 +38,24 @@ fn sensor(name: &str, position: [f64; 3], normal: &str, diameter: f64, window: O
 /// point probe's bound in `hydrostatic.rs`.
 #[test]
 fn a_wall_sensor_on_a_hydrostatic_tank_reads_rho_g_h() {
-    let (_, mut cfg): (_, FluidConfig) = common::load_case("hydrostatic-tank");
-    cfg.spacing = 0.02;
-    cfg.tank.max = [0.2, 0.2, 0.4];
-    cfg.block[0].max = [0.2, 0.2, 0.3];
-    cfg.time_step = 8.0e-4;
-    cfg.probe = vec![
-        sensor("floor", [0.1, 0.1, 0.0], "+z", 0.08, Some(0.5)),
-        sensor("x0-deep", [0.0, 0.1, 0.08], "+x", 0.08, Some(0.5)),
-        sensor("x1-deep", [0.2, 0.1, 0.08], "-x", 0.08, Some(0.5)),
-        sensor("y0-mid", [0.1, 0.0, 0.16], "+y", 0.08, Some(0.5)),
-        sensor("y1-mid", [0.1, 0.2, 0.16], "-y", 0.08, Some(0.5)),
-    ];
-    cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
-    let started = std::time::Instant::now();
-    let mut solver = FluidSolver::new(&cfg);
-    let mut set = ProbeSet::new(&cfg.probe, &solver).unwrap_or_else(|e| panic!("{e}"));
-    solver.advance_to(1.5).unwrap_or_else(|e| panic!("{e}"));
-    let heights = [0.0, 0.08, 0.16];
-    let (mut above, mut samples) = ([0.0; 3], 0);
-    while let Some(dt) = solver.next_step_towards(2.0) {
-        solver.step(dt).unwrap_or_else(|e| panic!("{e}"));
-        set.observe(&solver, 2.0);
-        if solver.steps().is_multiple_of(25) {
-            let p = solver.particles();
-            for (k, z) in heights.iter().enumerate() {
-                above[k] += (0..p.len())
-                    .filter(|&i| p.kind[i] == Kind::Fluid.code() && p.z[i] > *z)
-                    .count() as f64;
-            }
-            samples += 1;
-        }
-    }
-    solver.land_on(2.0);
-    let weight_per_area = solver.particle_mass() * cfg.gravity_magnitude() / (0.2 * 0.2);
-    let exact: Vec<f64> = above
-        .iter()
-        .map(|n| n / samples as f64 * weight_per_area)
-        .collect();
-    let readings = set.row(&solver);
+    let run = hydrostatic_common::cpu_tank();
     let mut errors = Vec::new();
-    for (probe, p) in cfg.probe.iter().zip(&readings) {
-        let k = heights
+    for (probe, p) in hydrostatic_common::wall_sensors().iter().zip(&run.sensors) {
+        let k = hydrostatic_common::SENSOR_HEIGHTS
             .iter()
             .position(|z| (z - probe.position[2]).abs() < 1e-9)
             .unwrap_or(0);
-        let err = p / exact[k] - 1.0;
+        let exact = run.weight_above[k];
+        let err = p / exact - 1.0;
         println!(
-            "{:8} z = {:.2} m: {p:7.1} Pa, weight above {:7.1} Pa, {:+.2} %",
+            "{:8} z = {:.2} m: {p:7.1} Pa, weight above {exact:7.1} Pa, {:+.2} %",
             probe.name,
             probe.position[2],
-            exact[k],
             100.0 * err
         );
         errors.push(err);
     }
-    let run_time_s = started.elapsed().as_secs_f64();
+    let run_time_s = run.run_time_s;
     let sensor_record =
         |id: &str, place: &str, measure: &str, value: f64, bound: f64, bound_source: &str| Record {
             id: format!("emps-wall-sensor-{id}"),
