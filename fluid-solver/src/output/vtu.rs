@@ -16,8 +16,21 @@ pub fn write_vtu(path: &Path, p: &Particles, progress: &mut dyn ProgressSink) ->
         .filter(|&i| p.kind[i as usize] != DUMMY)
         .collect();
     let n = keep.len();
-    let kept = || keep.iter().map(|&i| i as usize);
-    let sections = [
+    let arrays = sections(p, &keep);
+    vtk_appended::write(
+        path,
+        "UnstructuredGrid",
+        &format!("NumberOfPoints=\"{n}\" NumberOfCells=\"{n}\""),
+        &arrays,
+        progress,
+    )
+}
+
+/// The arrays of a frame holding the particles `keep` of `p`.
+fn sections<'a>(p: &'a Particles, keep: &'a [u32]) -> [Section<'a>; 3] {
+    let n = keep.len();
+    let kept = move || keep.iter().map(|&i| i as usize);
+    [
         Section {
             element: "PointData",
             attributes: "Scalars=\"pressure\" Vectors=\"velocity\"".into(),
@@ -72,24 +85,24 @@ pub fn write_vtu(path: &Path, p: &Particles, progress: &mut dyn ProgressSink) ->
             element: "Cells",
             attributes: String::new(),
             arrays: vec![
-                Array::new("Int64", "connectivity", 1, n, || 0..n as i64, i64::to_le_bytes),
-                Array::new("Int64", "offsets", 1, n, || 1..=n as i64, i64::to_le_bytes),
+                Array::new(
+                    "Int64",
+                    "connectivity",
+                    1,
+                    n,
+                    move || 0..n as i64,
+                    i64::to_le_bytes,
+                ),
+                Array::new("Int64", "offsets", 1, n, move || 1..=n as i64, i64::to_le_bytes),
                 Array::new(
                     "UInt8",
                     "types",
                     1,
                     n,
-                    || std::iter::repeat_n(1u8, n),
+                    move || std::iter::repeat_n(1u8, n),
                     u8::to_le_bytes,
                 ), // VTK_VERTEX
             ],
         },
-    ];
-    vtk_appended::write(
-        path,
-        "UnstructuredGrid",
-        &format!("NumberOfPoints=\"{n}\" NumberOfCells=\"{n}\""),
-        &sections,
-        progress,
-    )
+    ]
 }

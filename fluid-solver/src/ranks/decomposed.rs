@@ -27,17 +27,7 @@ impl DecomposedFluid {
     /// error naming what the slabs do not support yet, or when a slab would be thinner than the
     /// halo.
     pub fn new(cfg: &FluidConfig, parts: usize) -> Result<DecomposedFluid, String> {
-        let unsupported = [
-            (cfg.method != FluidMethodName::Emps, "method = \"isph\""),
-            (cfg.backend != FluidBackend::Cpu, "backend = \"gpu\""),
-            (!cfg.body.is_empty(), "[[body]]"),
-            (
-                cfg.inflow.is_some() || cfg.outflow.is_some(),
-                "inflow and outflow",
-            ),
-            (cfg.wave_maker.is_some(), "[wave_maker]"),
-        ];
-        if let Some((_, what)) = unsupported.iter().find(|(on, _)| *on) {
+        if let Some(what) = unsupported(cfg) {
             return Err(format!(
                 "the fluid in slabs supports E-MPS on CPU threads with walls, blocks, gates, solids and damping zones; not yet {what}"
             ));
@@ -145,6 +135,22 @@ impl DecomposedFluid {
         }
         all
     }
+}
+
+/// The first feature of `cfg` the slabs do not support yet, by its case-file name.
+pub fn unsupported(cfg: &FluidConfig) -> Option<&'static str> {
+    [
+        (cfg.method != FluidMethodName::Emps, "method = \"isph\""),
+        (cfg.backend != FluidBackend::Cpu, "backend = \"gpu\""),
+        (!cfg.body.is_empty(), "[[body]]"),
+        (
+            cfg.inflow.is_some() || cfg.outflow.is_some(),
+            "inflow and outflow",
+        ),
+        (cfg.wave_maker.is_some(), "[wave_maker]"),
+    ]
+    .into_iter()
+    .find_map(|(on, what)| on.then_some(what))
 }
 
 /// What each slab receives from its neighbours: slab r gets what r − 1 sent right and what
