@@ -1,4 +1,5 @@
-//! `fluid-solver run CASE [--out DIR]`: runs a fluid-only case standalone;
+//! `fluid-solver run CASE [--out DIR]`: runs a fluid-only case standalone (on MPI ranks when
+//! started by `mpirun -np N` and built with the `mpi` feature);
 //! `fluid-solver participant …`: one fluid participant inside a coupled run (started by the coupler).
 
 use clap::{Parser, Subcommand};
@@ -67,6 +68,9 @@ fn main() -> ExitCode {
                 return ExitCode::from(2);
             }
             let out = out.unwrap_or_else(|| PathBuf::from("out").join(&case.info.name));
+            if let Some(code) = ranks::run_if_launched(&case, &out) {
+                return code;
+            }
             let terminal = std::io::stderr().is_terminal();
             match fluid_solver::run::run_case(&case, &out, terminal) {
                 Ok(s) => {
@@ -83,6 +87,98 @@ fn main() -> ExitCode {
                 }
             }
         }
+    }
+}
+
+/// A standalone run started by an MPI launcher (`mpirun`, `srun`): on the ranks with the `mpi`
+/// feature, refused without it (each process would run the whole case into the same files).
+mod ranks {
+    use schemas::case::Case;
+    use std::path::Path;
+    use std::process::ExitCode;
+
+    /// The ranks' run and its exit code, or `None` when no launcher started this process.
+    #[cfg(feature = "mpi")]
+    pub fn run_if_launched(case: &Case, out: &Path) -> Option<ExitCode> {
+        use fluid_solver::ranks::mpi_link::{launched_by_mpi, RankLink};
+        use fluid_solver::ranks::rank_run::{run_on_ranks, RankRunError};
+        use fluid_solver::run::RunError;
+        if !launched_by_mpi() {
+            return None;
+        }
+        let link = match RankLink::initialize() {
+            Ok(link) => link,
+            Err(e) => {
+                eprintln!("error: {e}");
+                return Some(ExitCode::FAILURE);
+            }
+        };
+        let rank = link.rank();
+        if link.size() == 1 {
+            return None;
+        }
+        threads_per_rank();
+        Some(match run_on_ranks(case, out, &link) {
+            Ok(s) => {
+                if rank == 0 {
+                    eprintln!("done: {s}; output in {}", out.display());
+                }
+                ExitCode::SUCCESS
+            }
+            Err(RankRunError::Setup(e)) => {
+                if rank == 0 {
+                    eprintln!("error: {e}");
+                }
+                ExitCode::from(2)
+            }
+            Err(RankRunError::Here(e @ RunError::Unstable(_))) => {
+                eprintln!("error: rank {rank}: {e}");
+                ExitCode::FAILURE
+            }
+            Err(e @ RankRunError::Here(_)) => {
+                // the other ranks do not know: stop them rather than leave them waiting
+                eprintln!("error: rank {rank}: {e}; stopping every rank");
+                link.abort(1)
+            }
+            Err(RankRunError::Elsewhere { .. }) => ExitCode::FAILURE,
+        })
+    }
+
+    /// Without the `mpi` feature: an error when a launcher started more than one process.
+    #[cfg(not(feature = "mpi"))]
+    pub fn run_if_launched(_case: &Case, _out: &Path) -> Option<ExitCode> {
+        let size = ["OMPI_COMM_WORLD_SIZE", "PMI_SIZE"]
+            .iter()
+            .find_map(|v| std::env::var(v).ok()?.parse::<usize>().ok())?;
+        (size > 1).then(|| {
+            eprintln!(
+                "error: started as {size} MPI ranks, but this fluid-solver was built without MPI: build it with `cargo build --release --features fluid-solver/mpi` (needs OpenMPI and libclang), or run it without mpirun"
+            );
+            ExitCode::from(2)
+        })
+    }
+
+    /// Shares the machine's cores among the ranks on it (unless `RAYON_NUM_THREADS` says how
+    /// many threads each takes): each rank's threads are its cores divided by the ranks the
+    /// launcher put on this node.
+    #[cfg(feature = "mpi")]
+    fn threads_per_rank() {
+        if std::env::var_os("RAYON_NUM_THREADS").is_some() {
+            return;
+        }
+        let on_node = [
+            "OMPI_COMM_WORLD_LOCAL_SIZE",
+            "MPI_LOCALNRANKS",
+            "SLURM_NTASKS_PER_NODE",
+        ]
+        .iter()
+        .find_map(|v| std::env::var(v).ok()?.parse::<usize>().ok())
+        .unwrap_or(1)
+        .max(1);
+        let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+        let _ = rayon::ThreadPoolBuilder::new()
+            .num_threads((cores / on_node).max(1))
+            .build_global();
     }
 }
 

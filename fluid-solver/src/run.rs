@@ -33,6 +33,8 @@ pub enum RunError {
     Unstable(Instability),
     /// `backend = "gpu"` and no GPU, or a case the GPU path does not run (bad usage).
     Gpu { file: PathBuf, error: GpuStartError },
+    /// The ranks of a run on MPI could not trade their particles.
+    Ranks { message: String },
 }
 
 impl fmt::Display for RunError {
@@ -43,6 +45,7 @@ impl fmt::Display for RunError {
             RunError::Probe { file, message } => write!(f, "{}: {message}", file.display()),
             RunError::Unstable(i) => write!(f, "{i}"),
             RunError::Gpu { file, error } => write!(f, "{}: {error}", file.display()),
+            RunError::Ranks { message } => write!(f, "{message}"),
         }
     }
 }

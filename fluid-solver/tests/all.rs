@@ -55,6 +55,8 @@ mod isph_wall_geometry;
 mod isph_wall_signal;
 mod lattice;
 mod mesh_bodies;
+#[cfg(feature = "mpi")]
+mod mpi_ranks;
 mod open_top;
 mod operators;
 mod output;

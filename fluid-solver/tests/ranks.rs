@@ -50,7 +50,7 @@ max = [1.2, 0.06, 0.24]
 }
 
 /// Fluid positions by id.
-fn by_id(p: &Particles) -> HashMap<u32, [f64; 3]> {
+pub(crate) fn by_id(p: &Particles) -> HashMap<u32, [f64; 3]> {
     (0..p.len())
         .filter(|&i| p.kind_of(i) == fluid_solver::Kind::Fluid)
         .map(|i| (p.id[i], p.position(i)))
@@ -58,7 +58,7 @@ fn by_id(p: &Particles) -> HashMap<u32, [f64; 3]> {
 }
 
 /// The largest distance between the same particle in `a` and `b` (which hold the same ids).
-fn largest_gap(a: &HashMap<u32, [f64; 3]>, b: &HashMap<u32, [f64; 3]>) -> f64 {
+pub(crate) fn largest_gap(a: &HashMap<u32, [f64; 3]>, b: &HashMap<u32, [f64; 3]>) -> f64 {
     assert_eq!(
         a.len(),
         b.len(),

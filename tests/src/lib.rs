@@ -42,6 +42,9 @@ pub fn binary(name: &str) -> PathBuf {
         if bin_dir().ends_with("release") {
             build.arg("--release");
         }
+        if cfg!(feature = "mpi") {
+            build.arg("--all-features");
+        }
         let status = build
             .status()
             .unwrap_or_else(|e| panic!("cannot run cargo build: {e}"));

@@ -124,6 +124,32 @@ pub fn write(
     })
 }
 
+/// Writes the index of a `dataset` written in pieces (`PUnstructuredGrid` for
+/// `UnstructuredGrid`): each section's arrays declared as the pieces hold them (`Cells` are not
+/// declared in an index), and one `Piece` per file of `pieces` (paths relative to the index).
+pub fn write_index(path: &Path, dataset: &str, sections: &[Section], pieces: &[String]) -> io::Result<()> {
+    let mut xml = format!(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"P{dataset}\" version=\"1.0\" byte_order=\"LittleEndian\" \
+         header_type=\"UInt64\">\n<P{dataset} GhostLevel=\"0\">\n"
+    );
+    for s in sections.iter().filter(|s| s.element != "Cells") {
+        let space = if s.attributes.is_empty() { "" } else { " " };
+        xml.push_str(&format!("<P{}{space}{}>\n", s.element, s.attributes));
+        for a in &s.arrays {
+            xml.push_str(&format!(
+                "<PDataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\"/>\n",
+                a.ty, a.name, a.components
+            ));
+        }
+        xml.push_str(&format!("</P{}>\n", s.element));
+    }
+    for piece in pieces {
+        xml.push_str(&format!("<Piece Source=\"{piece}\"/>\n"));
+    }
+    xml.push_str(&format!("</P{dataset}>\n</VTKFile>\n"));
+    schemas::atomic_file::write_with(path, |out| out.write_all(xml.as_bytes()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

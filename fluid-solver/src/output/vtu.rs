@@ -1,6 +1,6 @@
 //! ParaView output: one VTU (XML unstructured grid, raw appended binary) per frame, listed in a PVD
 //! time series (`schemas::pvd`). Frames hold every particle except dummies: position, velocity,
-//! pressure, kind, id.
+//! pressure, kind, id. A frame written in pieces (one per MPI rank) has a PVTU index naming them.
 
 use crate::output::vtk_appended::{self, Array, Section};
 use crate::particles::kind::DUMMY;
@@ -23,6 +23,17 @@ pub fn write_vtu(path: &Path, p: &Particles, progress: &mut dyn ProgressSink) ->
         &format!("NumberOfPoints=\"{n}\" NumberOfCells=\"{n}\""),
         &arrays,
         progress,
+    )
+}
+
+/// Writes the PVTU index of a frame written in `pieces` (VTU files of [`write_vtu`], named
+/// relative to `path`).
+pub fn write_pvtu(path: &Path, pieces: &[String]) -> io::Result<()> {
+    vtk_appended::write_index(
+        path,
+        "UnstructuredGrid",
+        &sections(&Particles::default(), &[]),
+        pieces,
     )
 }
 

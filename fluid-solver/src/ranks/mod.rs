@@ -6,12 +6,18 @@
 //!
 //! - [`slabs`]: where the cuts lie (balanced by fluid particles) and how thick a halo must be;
 //! - [`subdomain`]: one slab's solver, what it owns, what it sends and takes;
-//! - [`decomposed`]: the slabs in one process, stepped together, with the whole domain's checks.
+//! - [`decomposed`]: the slabs in one process, stepped together, with the whole domain's checks;
+//! - [`mpi_link`] and [`rank_run`] (cargo feature `mpi`): one slab per MPI rank, the particles
+//!   traded between ranks, and a standalone run on ranks writing its frames in pieces.
 //!
 //! The slabs trade particles through plain values (what each sends to its left and right
-//! neighbour), so the same [`subdomain::Subdomain`] serves one process's threads here and one MPI
-//! rank each once the ranks' transport lands.
+//! neighbour), so the same [`subdomain::Subdomain`] serves one process's threads and one MPI
+//! rank each, in the same order: a run on N ranks steps as the case in N slabs of one process.
 
 pub mod decomposed;
+#[cfg(feature = "mpi")]
+pub mod mpi_link;
+#[cfg(feature = "mpi")]
+pub mod rank_run;
 pub mod slabs;
 pub mod subdomain;

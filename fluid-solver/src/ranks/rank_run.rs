@@ -1,0 +1,281 @@
+//! A standalone run of a fluid-only case on MPI ranks (`mpirun -np N fluid-solver run CASE`,
+//! cargo feature `mpi`): rank r steps slab r of the fluid ([`super::slabs`], cuts balanced by
+//! fluid particles) and trades particles with its neighbours after each step
+//! ([`super::mpi_link`]); the whole fluid's energy check is summed over the ranks. Every
+//! `output_interval` each rank writes its piece of the frame, `NAME_FFFFF_rRRRR.vtu` (the fluid
+//! it owns and the walls between its cuts, so every particle is in one piece), and rank 0 the
+//! frame's index `NAME_FFFFF.pvtu` and the PVD series over the indexes, which ParaView opens as
+//! one data set. The first frame is the layout after the gates are lifted.
+
+use super::decomposed::unsupported;
+use super::mpi_link::RankLink;
+use super::slabs::{cuts, halo_width};
+use super::subdomain::{Subdomain, ToNeighbours};
+use crate::output::progress::Progress;
+use crate::output::vtu;
+use crate::particles::kind::FLUID;
+use crate::run::{fluid_only, RunError};
+use crate::solver::FluidSolver;
+use crate::stability::{Instability, StabilityMonitor};
+use schemas::case::Case;
+use schemas::participant::DiscardProgress;
+use schemas::pvd::Collection;
+use std::path::Path;
+use std::time::Instant;
+
+/// Message tags of a step's two exchanges.
+const HAND_OVER: i32 = 1;
+const HALO: i32 = 2;
+
+/// What a run on ranks did (the same on every rank).
+#[derive(Debug, Clone)]
+pub struct RankRunSummary {
+    pub ranks: usize,
+    pub time: f64,
+    pub steps: u64,
+    /// Fluid particles over all ranks at the end.
+    pub fluid_particles: u64,
+    pub frames: usize,
+    /// Fluid particles handed from one rank to another, and halo copies sent, over the run.
+    pub handed_over: u64,
+    pub copied: u64,
+    pub wall_seconds: f64,
+}
+
+impl std::fmt::Display for RankRunSummary {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "t = {:.4} s in {} steps on {} ranks, {} fluid particles, {} frames, {} particles handed over, {} halo copies, {:.1} s",
+            self.time,
+            self.steps,
+            self.ranks,
+            self.fluid_particles,
+            self.frames,
+            self.handed_over,
+            self.copied,
+            self.wall_seconds
+        )
+    }
+}
+
+/// Why a run on ranks stopped early.
+#[derive(Debug)]
+pub enum RankRunError {
+    /// The case cannot run on ranks: every rank finds the same (rank 0 reports it).
+    Setup(RunError),
+    /// This rank's own error, which the others may not know of.
+    Here(RunError),
+    /// Another rank's error, which that rank reports.
+    Elsewhere { rank: usize },
+}
+
+impl std::fmt::Display for RankRunError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            RankRunError::Setup(e) | RankRunError::Here(e) => write!(f, "{e}"),
+            RankRunError::Elsewhere { rank } => {
+                write!(f, "rank {rank} stopped the run (its message says why)")
+            }
+        }
+    }
+}
+
+/// This rank's slab, its link and the whole fluid's energy reference.
+struct RankSlab<'a> {
+    slab: Subdomain,
+    link: &'a RankLink,
+    whole: StabilityMonitor,
+    handed_over: u64,
+    copied: u64,
+}
+
+impl RankSlab<'_> {
+    /// One step of `dt`, the exchanges, and the whole fluid's energy check. Every rank leaves
+    /// together: when one rank's step fails, the others learn it from the same reduction.
+    fn step(&mut self, dt: f64) -> Result<(), RankRunError> {
+        let stepped = self.slab.solver.step(dt).map(|_| ());
+        let failed_rank = self
+            .link
+            .max(stepped.as_ref().err().map_or(-1.0, |_| self.link.rank() as f64));
+        if let Err(e) = stepped {
+            return Err(RankRunError::Here(RunError::Unstable(e)));
+        }
+        if failed_rank >= 0.0 {
+            return Err(RankRunError::Elsewhere {
+                rank: failed_rank as usize,
+            });
+        }
+        let link_error = |message: String| RankRunError::Here(RunError::Ranks { message });
+        let leaving = self.slab.emigrants();
+        self.handed_over += count(&leaving);
+        let arriving = self.link.exchange(&leaving, HAND_OVER).map_err(link_error)?;
+        self.slab.take(&arriving);
+        let copies = self.slab.halo_copies();
+        self.copied += count(&copies);
+        let halo = self.link.exchange(&copies, HALO).map_err(link_error)?;
+        self.slab.take_halo(&halo);
+        self.check_energy(dt)
+    }
+
+    /// The whole fluid's mechanical energy against the whole domain's reference (as
+    /// [`StabilityMonitor::check`]'s, summed over the ranks' own fluid); every rank finds the
+    /// same, rank 0 reports it.
+    fn check_energy(&self, dt: f64) -> Result<(), RankRunError> {
+        let Some(limit) = self.whole.energy_limit() else {
+            return Ok(());
+        };
+        let slab = &self.slab;
+        let e = self.link.sum(
+            self.whole
+                .mechanical_energy_where(slab.solver.particles(), |i| slab.owned(i)),
+        );
+        if e.is_finite() && e <= limit {
+            return Ok(());
+        }
+        if self.link.rank() != 0 {
+            return Err(RankRunError::Elsewhere { rank: 0 });
+        }
+        let s = &self.slab.solver;
+        Err(RankRunError::Here(RunError::Unstable(Instability {
+            step: s.steps(),
+            time: s.time(),
+            particle: None,
+            quantity: "mechanical energy",
+            message: format!(
+                "the fluid's energy per unit particle mass, summed over {} ranks, grew to {e:.6e}, past the allowed {limit:.6e}, with no source (step of {dt} s)",
+                self.link.size()
+            ),
+        })))
+    }
+
+    /// This rank's piece of a frame: the fluid it owns and the walls between its cuts.
+    fn piece(&self) -> crate::particles::Particles {
+        let p = self.slab.solver.particles();
+        let (lo, hi) = (self.slab.lo, self.slab.hi);
+        let mine: Vec<u32> = (0..p.len())
+            .filter(|&i| match p.kind[i] {
+                FLUID => self.slab.owned(i),
+                _ => lo <= p.x[i] && p.x[i] < hi,
+            })
+            .map(|i| i as u32)
+            .collect();
+        p.subset(&mine)
+    }
+}
+
+fn count(sent: &ToNeighbours) -> u64 {
+    sent.iter().map(|p| p.len() as u64).sum()
+}
+
+/// Runs the fluid-only `case` to its end on the ranks of `link`, writing into `out` (every rank
+/// sees the same folder). Progress lines come from rank 0.
+pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunSummary, RankRunError> {
+    let started = Instant::now();
+    let here = RankRunError::Here;
+    let (name, cfg) = fluid_only(case).map_err(RankRunError::Setup)?;
+    let refuse = |what: &str| {
+        RankRunError::Setup(RunError::NotFluidOnly {
+            file: case.path.clone(),
+            message: format!("a run on MPI ranks supports E-MPS on CPU threads with walls, blocks, gates, solids and damping zones; not yet {what}"),
+        })
+    };
+    if let Some(what) = unsupported(cfg) {
+        return Err(refuse(what));
+    }
+    if !cfg.probe.is_empty() {
+        return Err(refuse("[[fluid.NAME.probe]]"));
+    }
+    if cfg.surface_mesh {
+        return Err(refuse("surface_mesh = true"));
+    }
+    let io_err = |path: &Path| {
+        let path = path.to_path_buf();
+        move |error| here(RunError::Output { path, error })
+    };
+    std::fs::create_dir_all(out).map_err(io_err(out))?;
+    let (rank, ranks) = (link.rank(), link.size());
+    let mut solver = FluidSolver::new(cfg);
+    solver.remove_gates();
+    let halo = halo_width(solver.kernel());
+    let cuts = cuts(solver.particles(), ranks, halo).map_err(|message| {
+        RankRunError::Setup(RunError::NotFluidOnly {
+            file: case.path.clone(),
+            message,
+        })
+    })?;
+    let everything = solver.particles().clone();
+    let mut whole = solver.monitor.clone();
+    whole.start(&everything);
+    let fluid_total = everything.kind.iter().filter(|&&k| k == FLUID).count();
+    let mut me = RankSlab {
+        slab: Subdomain::of(solver, &everything, cuts[rank], cuts[rank + 1], halo),
+        link,
+        whole,
+        handed_over: 0,
+        copied: 0,
+    };
+    drop(everything);
+
+    let pvd_path = out.join(format!("{name}.pvd"));
+    let mut series = Collection::new(pvd_path.clone());
+    let mut frames = 0usize;
+    let mut write_frame = |me: &RankSlab, series: &mut Collection| -> Result<(), RankRunError> {
+        let piece = |r: usize| format!("{name}_{frames:05}_r{r:04}.vtu");
+        let path = out.join(piece(rank));
+        vtu::write_vtu(&path, &me.piece(), &mut DiscardProgress).map_err(io_err(&path))?;
+        if rank == 0 {
+            let index = format!("{name}_{frames:05}.pvtu");
+            let pieces: Vec<String> = (0..ranks).map(piece).collect();
+            let path = out.join(&index);
+            vtu::write_pvtu(&path, &pieces).map_err(io_err(&path))?;
+            series
+                .add(me.slab.solver.time(), &index)
+                .map_err(io_err(&pvd_path))?;
+        }
+        frames += 1;
+        Ok(())
+    };
+    let end = case.info.end_time;
+    let mut progress = (rank == 0).then(|| Progress::new(name, end, cfg.progress_interval, false));
+    write_frame(&me, &mut series)?;
+    let mut next_frame = 1u64;
+    while me.slab.solver.time() < end {
+        let target = (next_frame as f64 * cfg.output_interval).min(end);
+        while let Some(dt) = me.slab.solver.next_step_towards(target) {
+            me.step(dt).inspect_err(|_| {
+                if let Some(p) = &mut progress {
+                    p.finish();
+                }
+            })?;
+            if let Some(p) = &mut progress {
+                let steps = me.slab.solver.steps();
+                p.update(
+                    me.slab.solver.time(),
+                    steps,
+                    steps * fluid_total as u64,
+                    fluid_total,
+                );
+            }
+        }
+        me.slab.solver.land_on(target);
+        write_frame(&me, &mut series)?;
+        next_frame += 1;
+    }
+    if let Some(p) = &mut progress {
+        p.finish();
+    }
+    let owned = (0..me.slab.solver.particles().len())
+        .filter(|&i| me.slab.owned(i))
+        .count() as u64;
+    Ok(RankRunSummary {
+        ranks,
+        time: me.slab.solver.time(),
+        steps: me.slab.solver.steps(),
+        fluid_particles: link.sum_count(owned),
+        frames,
+        handed_over: link.sum_count(me.handed_over),
+        copied: link.sum_count(me.copied),
+        wall_seconds: started.elapsed().as_secs_f64(),
+    })
+}

@@ -1,0 +1,225 @@
+//! The fluid on MPI ranks (issue 39; built with the `mpi` feature): `mpirun -np 2 fluid-solver
+//! run` on the tilted dam break of `ranks.rs`, 200 steps. The ranks trade the same particles in
+//! the same order as the slabs of one process ([`fluid_solver::ranks::decomposed`]), so the two
+//! ranks' fluid must equal the in-process 2-slab run's bit for bit (positions are written as
+//! f64); `ranks.rs` holds those slabs within the round-off spread of the undivided run, so the
+//! ranks are too (measured 29 Nov 2026 against `fluid-solver run` in one process: 1.7e-15 m after
+//! 200 steps, the reversed order's spread 4.7e-15 m). Mass is exact, each particle is in one
+//! piece, and the PVTU index and PVD series name every piece. A case the ranks do not run yet
+//! is refused once, naming the feature, and nothing runs.
+
+use crate::ranks::{by_id, largest_gap};
+use fluid_solver::ranks::decomposed::DecomposedFluid;
+use schemas::case::{Case, FluidConfig};
+use schemas::validation::{record, Record};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// 0.1 s at Δt = 5e-4 s.
+const STEPS: usize = 200;
+
+/// `ranks.rs`' tank (1.6 × 0.06 × 0.3 m, column 1.2 × 0.24 m, 2 160 fluid particles, gravity
+/// leaning 6 m/s² towards +x), one frame at the end; `extra` is appended to the fluid section.
+fn case_text(extra: &str) -> String {
+    format!(
+        r#"[case]
+name = "slabs"
+end_time = 0.1
+
+[fluid.water]
+spacing = 0.02
+time_step = 5.0e-4
+sound_speed = 12.1
+gravity = [6.0, 0.0, -9.8]
+output_interval = 0.1
+tank = {{ min = [0.0, 0.0, 0.0], max = [1.6, 0.06, 0.3], lid = true }}
+{extra}
+[[fluid.water.block]]
+min = [0.0, 0.0, 0.0]
+max = [1.2, 0.06, 0.24]
+"#
+    )
+}
+
+fn dir(name: &str) -> PathBuf {
+    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap_or_else(|e| panic!("{e}"));
+    d
+}
+
+/// `fluid-solver run CASE --out OUT`, on `ranks` MPI ranks when `ranks > 1` (as root, which CI
+/// is, and with more ranks than cores allowed; one thread per rank).
+fn run(case: &Path, out: &Path, ranks: usize) -> Output {
+    let solver = env!("CARGO_BIN_EXE_fluid-solver");
+    let mut cmd = match ranks {
+        1 => Command::new(solver),
+        n => {
+            let mut c = Command::new("mpirun");
+            c.args(["-np", &n.to_string(), "--oversubscribe", solver]);
+            c
+        }
+    };
+    cmd.arg("run")
+        .arg(case)
+        .arg("--out")
+        .arg(out)
+        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
+        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+        .env("RAYON_NUM_THREADS", "1");
+    cmd.output()
+        .unwrap_or_else(|e| panic!("cannot start {cmd:?} (is OpenMPI's mpirun installed?): {e}"))
+}
+
+/// The arrays `position`, `id` and `kind` of a VTU frame the fluid wrote (raw appended data,
+/// UInt64 block headers).
+fn frame(vtu: &Path) -> Vec<(u32, u8, [f64; 3])> {
+    let bytes = std::fs::read(vtu).unwrap_or_else(|e| panic!("cannot read {}: {e}", vtu.display()));
+    let text = String::from_utf8_lossy(&bytes[..bytes.len().min(4096)]).into_owned();
+    let data = text
+        .find("<AppendedData encoding=\"raw\">")
+        .map(|m| m + text[m..].find('_').unwrap_or(0) + 1)
+        .unwrap_or_else(|| panic!("{}: no appended data", vtu.display()));
+    let block = |name: &str| -> &[u8] {
+        let at = text
+            .find(&format!("Name=\"{name}\""))
+            .unwrap_or_else(|| panic!("{}: no {name} array", vtu.display()));
+        let rest = &text[at..];
+        let start = rest.find("offset=\"").unwrap_or(0) + 8;
+        let end = start + rest[start..].find('"').unwrap_or(0);
+        let offset: usize = rest[start..end].parse().unwrap_or_else(|e| panic!("{e}"));
+        let at = data + offset;
+        let len = u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap_or_default()) as usize;
+        &bytes[at + 8..at + 8 + len]
+    };
+    let (position, id, kind) = (block("position"), block("id"), block("kind"));
+    let f = |i: usize| f64::from_le_bytes(position[8 * i..8 * i + 8].try_into().unwrap_or_default());
+    (0..kind.len())
+        .map(|i| {
+            let id = u32::from_le_bytes(id[4 * i..4 * i + 4].try_into().unwrap_or_default());
+            (id, kind[i], [f(3 * i), f(3 * i + 1), f(3 * i + 2)])
+        })
+        .collect()
+}
+
+/// Fluid positions by id.
+fn fluid_by_id(particles: &[(u32, u8, [f64; 3])]) -> HashMap<u32, [f64; 3]> {
+    particles
+        .iter()
+        .filter(|(_, kind, _)| *kind == fluid_solver::Kind::Fluid.code())
+        .map(|(id, _, r)| (*id, *r))
+        .collect()
+}
+
+fn config(path: &Path) -> FluidConfig {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{e}"));
+    let case = Case::parse(path, text).unwrap_or_else(|e| panic!("{e}"));
+    case.fluid["water"].clone()
+}
+
+#[test]
+fn two_ranks_step_as_two_slabs_in_one_process_bit_for_bit() {
+    let started = std::time::Instant::now();
+    let d = dir("mpi-ranks");
+    let case = d.join("case.toml");
+    std::fs::write(&case, case_text("")).unwrap_or_else(|e| panic!("{e}"));
+    let cfg = config(&case);
+
+    let ranked = run(&case, &d.join("ranks"), 2);
+    let log = String::from_utf8_lossy(&ranked.stderr);
+    println!("{log}");
+    assert!(ranked.status.success(), "mpirun -np 2 failed: {log}");
+    assert!(
+        log.contains("on 2 ranks") && log.matches("done:").count() == 1,
+        "rank 0 alone reports the run: {log}"
+    );
+    let pieces: Vec<PathBuf> = (0..2)
+        .map(|r| d.join("ranks").join(format!("water_00001_r{r:04}.vtu")))
+        .collect();
+    let index = std::fs::read_to_string(d.join("ranks/water_00001.pvtu")).unwrap_or_else(|e| panic!("{e}"));
+    for r in 0..2 {
+        assert!(
+            index.contains(&format!("<Piece Source=\"water_00001_r{r:04}.vtu\"/>")),
+            "the index names piece {r}: {index}"
+        );
+    }
+    for array in ["position", "velocity", "pressure", "kind", "id"] {
+        assert!(
+            index.contains(&format!("Name=\"{array}\"")),
+            "the index declares {array}"
+        );
+    }
+    let series = std::fs::read_to_string(d.join("ranks/water.pvd")).unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        series.contains("water_00000.pvtu") && series.contains("water_00001.pvtu"),
+        "{series}"
+    );
+    let mut every: Vec<(u32, u8, [f64; 3])> = Vec::new();
+    let mut fluid_per_rank = Vec::new();
+    for p in &pieces {
+        let f = frame(p);
+        fluid_per_rank.push(fluid_by_id(&f).len());
+        every.extend(f);
+    }
+    let mut ids: Vec<u32> = every.iter().map(|(id, _, _)| *id).collect();
+    ids.sort_unstable();
+    let before = ids.len();
+    ids.dedup();
+    assert_eq!(ids.len(), before, "a particle is in both pieces");
+    let ranks = fluid_by_id(&every);
+
+    // the same case in two slabs of one process, stepped as the run steps
+    let mut slabs = DecomposedFluid::new(&cfg, 2).unwrap_or_else(|e| panic!("{e}"));
+    while let Some(dt) = slabs.parts()[0].solver.next_step_towards(0.1) {
+        slabs.step(dt).unwrap_or_else(|e| panic!("{e}"));
+    }
+    assert_eq!(slabs.parts()[0].solver.steps(), STEPS as u64);
+    let in_process = by_id(&slabs.fluid());
+    let same = largest_gap(&ranks, &in_process);
+    println!(
+        "2 ranks against 2 slabs in one process: largest gap {same:.3e} m; fluid per rank {fluid_per_rank:?}"
+    );
+    assert!(
+        fluid_per_rank.iter().all(|&n| n > 500),
+        "each rank owns part of the fluid: {fluid_per_rank:?}"
+    );
+
+    record(Record {
+        id: "emps-mpi-2-ranks-vs-2-slabs".into(),
+        capability: "E-MPS fluid on MPI ranks (slabs along x, halos traded by MPI)".into(),
+        reference: "the same case in 2 slabs of one process (whose drift from the undivided run ranks.rs bounds)".into(),
+        case: "tilted dam break: 1.6 × 0.06 × 0.3 m tank, column 1.2 × 0.24 m (2 160 fluid particles), gravity 6 m/s² along x".into(),
+        resolution: format!("E-MPS, Δs = 0.02 m, {STEPS} steps, mpirun -np 2"),
+        measure: "largest |r_ranks − r_slabs| over the fluid particles".into(),
+        value: same,
+        bound: Some(0.0),
+        bound_source: "bit for bit: the ranks do the slabs' arithmetic in the same order".into(),
+        unit: "m".into(),
+        source: "fluid-solver/tests/mpi_ranks.rs::two_ranks_step_as_two_slabs_in_one_process_bit_for_bit".into(),
+        run_time_s: started.elapsed().as_secs_f64(),
+        ..Default::default()
+    });
+    assert!(
+        same == 0.0,
+        "the ranks' fluid differs from the slabs' by {same:e} m"
+    );
+}
+
+#[test]
+fn a_case_the_ranks_do_not_run_is_refused_once_and_nothing_runs() {
+    let d = dir("mpi-ranks-refused");
+    let case = d.join("case.toml");
+    let probe = "\n[[fluid.water.probe]]\nname = \"front\"\nkind = \"surge-front\"\naxis = \"+x\"\n";
+    std::fs::write(&case, case_text(probe)).unwrap_or_else(|e| panic!("{e}"));
+    let out = d.join("out");
+    let refused = run(&case, &out, 2);
+    let log = String::from_utf8_lossy(&refused.stderr);
+    println!("{log}");
+    assert_eq!(refused.status.code(), Some(2), "{log}");
+    assert_eq!(log.matches("not yet [[fluid.NAME.probe]]").count(), 1, "{log}");
+    assert!(
+        !out.join("water_00000.pvtu").exists(),
+        "nothing is written for a refused case"
+    );
+}
