@@ -8,7 +8,7 @@
 //! piece, and the PVTU index and PVD series name every piece. A case the ranks do not run yet
 //! is refused once, naming the feature, and nothing runs.
 
-use crate::ranks::{by_id, largest_gap};
+use crate::ranks::{by_id, largest_gap, TANK};
 use fluid_solver::ranks::decomposed::DecomposedFluid;
 use schemas::case::{Case, FluidConfig};
 use schemas::validation::{record, Record};
@@ -20,25 +20,13 @@ use std::process::{Command, Output};
 const STEPS: usize = 200;
 
 /// `ranks.rs`' tank (1.6 × 0.06 × 0.3 m, column 1.2 × 0.24 m, 2 160 fluid particles, gravity
-/// leaning 6 m/s² towards +x), one frame at the end; `extra` is appended to the fluid section.
+/// leaning 6 m/s² towards +x) with one frame at the end; `extra` is added to the fluid section.
 fn case_text(extra: &str) -> String {
-    format!(
-        r#"[case]
-name = "slabs"
-end_time = 0.1
-
-[fluid.water]
-spacing = 0.02
-time_step = 5.0e-4
-sound_speed = 12.1
-gravity = [6.0, 0.0, -9.8]
-output_interval = 0.1
-tank = {{ min = [0.0, 0.0, 0.0], max = [1.6, 0.06, 0.3], lid = true }}
-{extra}
-[[fluid.water.block]]
-min = [0.0, 0.0, 0.0]
-max = [1.2, 0.06, 0.24]
-"#
+    let text = TANK.replace("output_interval = 0.05", "output_interval = 0.1");
+    assert_ne!(text, TANK, "ranks.rs' tank has changed its output interval");
+    text.replace(
+        "[[fluid.water.block]]",
+        &format!("{extra}\n[[fluid.water.block]]"),
     )
 }
 

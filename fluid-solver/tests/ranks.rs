@@ -27,8 +27,7 @@ const SPREADS: f64 = 100.0;
 /// slabs of at least the halo (5 × 3.1 Δs + 2 Δs = 0.35 m). Gravity leans 6 m/s² towards +x (a
 /// tilted tank), so the whole column moves along x from the start, ½ 6 t² = 1.7 cm by 0.075 s,
 /// and the water crosses the cuts inside it, not only at its front.
-fn tank() -> FluidConfig {
-    let text = r#"[case]
+pub(crate) const TANK: &str = r#"[case]
 name = "slabs"
 end_time = 0.1
 
@@ -44,8 +43,11 @@ tank = { min = [0.0, 0.0, 0.0], max = [1.6, 0.06, 0.3], lid = true }
 min = [0.0, 0.0, 0.0]
 max = [1.2, 0.06, 0.24]
 "#;
+
+/// [`TANK`]'s fluid section.
+fn tank() -> FluidConfig {
     let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("slabs.toml");
-    let case = Case::parse(&path, text.to_string()).unwrap_or_else(|e| panic!("{e}"));
+    let case = Case::parse(&path, TANK.to_string()).unwrap_or_else(|e| panic!("{e}"));
     case.fluid["water"].clone()
 }
 
