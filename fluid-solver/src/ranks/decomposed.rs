@@ -100,31 +100,15 @@ impl DecomposedFluid {
 
     /// The whole fluid's mechanical energy against the whole domain's reference.
     fn check_energy(&self, dt: f64) -> Result<(), Instability> {
-        let Some(limit) = self.whole.energy_limit() else {
-            return Ok(());
-        };
-        let e: f64 = self
-            .parts
-            .iter()
-            .map(|s| {
-                let p = s.solver.particles();
-                self.whole.mechanical_energy_where(p, |i| s.owned(i))
-            })
-            .sum();
-        if e.is_finite() && e <= limit {
-            return Ok(());
-        }
-        let s = &self.parts[0].solver;
-        Err(Instability {
-            step: s.steps(),
-            time: s.time(),
-            particle: None,
-            quantity: "mechanical energy",
-            message: format!(
-                "the fluid's energy per unit particle mass, summed over {} slabs, grew to {e:.6e}, past the allowed {limit:.6e}, with no source (step of {dt} s)",
-                self.parts.len()
-            ),
-        })
+        let energy = || self.parts.iter().map(|s| s.owned_energy(&self.whole)).sum();
+        check_whole_energy(
+            &self.whole,
+            energy,
+            &self.parts[0].solver,
+            self.parts.len(),
+            "slabs",
+            dt,
+        )
     }
 
     /// Every slab's own fluid, slab after slab.
@@ -135,6 +119,35 @@ impl DecomposedFluid {
         }
         all
     }
+}
+
+/// The whole fluid's energy check (as [`StabilityMonitor::check`]'s) when its parts each hold
+/// some of it: `energy()`, the fluid's energy summed over its `parts` `what` ("slabs",
+/// "ranks"), against `whole`'s limit (taken only when there is one), reported at `s`'s step.
+pub(super) fn check_whole_energy(
+    whole: &StabilityMonitor,
+    energy: impl FnOnce() -> f64,
+    s: &FluidSolver,
+    parts: usize,
+    what: &str,
+    dt: f64,
+) -> Result<(), Instability> {
+    let Some(limit) = whole.energy_limit() else {
+        return Ok(());
+    };
+    let e = energy();
+    if e.is_finite() && e <= limit {
+        return Ok(());
+    }
+    Err(Instability {
+        step: s.steps(),
+        time: s.time(),
+        particle: None,
+        quantity: "mechanical energy",
+        message: format!(
+            "the fluid's energy per unit particle mass, summed over {parts} {what}, grew to {e:.6e}, past the allowed {limit:.6e}, with no source (step of {dt} s)"
+        ),
+    })
 }
 
 /// The first feature of `cfg` the slabs do not support yet, by its case-file name.

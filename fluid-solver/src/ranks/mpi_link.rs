@@ -101,17 +101,9 @@ impl RankLink {
         Ok([decode(from_left, "left")?, decode(from_right, "right")?])
     }
 
-    /// The sum of `value` over the ranks, on every rank.
-    pub fn sum(&self, value: f64) -> f64 {
-        let mut total = 0.0;
-        self.world
-            .all_reduce_into(&value, &mut total, SystemOperation::sum());
-        total
-    }
-
-    /// The sum of `value` over the ranks, on every rank (exact counts).
-    pub fn sum_count(&self, value: u64) -> u64 {
-        let mut total = 0u64;
+    /// The sum of `value` over the ranks, on every rank (f64 energies, u64 counts).
+    pub fn sum<T: Equivalence + Default>(&self, value: T) -> T {
+        let mut total = T::default();
         self.world
             .all_reduce_into(&value, &mut total, SystemOperation::sum());
         total

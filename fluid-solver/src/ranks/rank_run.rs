@@ -7,7 +7,7 @@
 //! frame's index `NAME_FFFFF.pvtu` and the PVD series over the indexes, which ParaView opens as
 //! one data set. The first frame is the layout after the gates are lifted.
 
-use super::decomposed::unsupported;
+use super::decomposed::{check_whole_energy, unsupported};
 use super::mpi_link::RankLink;
 use super::slabs::{cuts, halo_width};
 use super::subdomain::{Subdomain, ToNeighbours};
@@ -16,7 +16,7 @@ use crate::output::vtu;
 use crate::particles::kind::FLUID;
 use crate::run::{fluid_only, RunError};
 use crate::solver::FluidSolver;
-use crate::stability::{Instability, StabilityMonitor};
+use crate::stability::StabilityMonitor;
 use schemas::case::Case;
 use schemas::participant::DiscardProgress;
 use schemas::pvd::Collection;
@@ -118,35 +118,17 @@ impl RankSlab<'_> {
         self.check_energy(dt)
     }
 
-    /// The whole fluid's mechanical energy against the whole domain's reference (as
-    /// [`StabilityMonitor::check`]'s, summed over the ranks' own fluid); every rank finds the
+    /// The whole fluid's energy check, summed over the ranks' own fluid; every rank finds the
     /// same, rank 0 reports it.
     fn check_energy(&self, dt: f64) -> Result<(), RankRunError> {
-        let Some(limit) = self.whole.energy_limit() else {
-            return Ok(());
-        };
-        let slab = &self.slab;
-        let e = self.link.sum(
-            self.whole
-                .mechanical_energy_where(slab.solver.particles(), |i| slab.owned(i)),
-        );
-        if e.is_finite() && e <= limit {
-            return Ok(());
-        }
-        if self.link.rank() != 0 {
-            return Err(RankRunError::Elsewhere { rank: 0 });
-        }
-        let s = &self.slab.solver;
-        Err(RankRunError::Here(RunError::Unstable(Instability {
-            step: s.steps(),
-            time: s.time(),
-            particle: None,
-            quantity: "mechanical energy",
-            message: format!(
-                "the fluid's energy per unit particle mass, summed over {} ranks, grew to {e:.6e}, past the allowed {limit:.6e}, with no source (step of {dt} s)",
-                self.link.size()
-            ),
-        })))
+        let (slab, link) = (&self.slab, self.link);
+        let energy = || link.sum(slab.owned_energy(&self.whole));
+        check_whole_energy(&self.whole, energy, &slab.solver, link.size(), "ranks", dt).map_err(
+            |e| match link.rank() {
+                0 => RankRunError::Here(RunError::Unstable(e)),
+                _ => RankRunError::Elsewhere { rank: 0 },
+            },
+        )
     }
 
     /// This rank's piece of a frame: the fluid it owns and the walls between its cuts.
@@ -272,10 +254,10 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
         ranks,
         time: me.slab.solver.time(),
         steps: me.slab.solver.steps(),
-        fluid_particles: link.sum_count(owned),
+        fluid_particles: link.sum(owned),
         frames,
-        handed_over: link.sum_count(me.handed_over),
-        copied: link.sum_count(me.copied),
+        handed_over: link.sum(me.handed_over),
+        copied: link.sum(me.copied),
         wall_seconds: started.elapsed().as_secs_f64(),
     })
 }

@@ -5,6 +5,7 @@
 use crate::particles::kind::FLUID;
 use crate::particles::Particles;
 use crate::solver::FluidSolver;
+use crate::stability::StabilityMonitor;
 
 /// What a slab sends to its left (lower x) and right neighbours.
 pub type ToNeighbours = [Particles; 2];
@@ -56,6 +57,11 @@ impl Subdomain {
     pub fn owned(&self, i: usize) -> bool {
         let p = self.solver.particles();
         p.kind[i] == FLUID && self.owns[p.id[i] as usize]
+    }
+
+    /// The mechanical energy of the fluid this slab owns, by `whole`'s measure.
+    pub fn owned_energy(&self, whole: &StabilityMonitor) -> f64 {
+        whole.mechanical_energy_where(self.solver.particles(), |i| self.owned(i))
     }
 
     /// The fluid this slab owns.
