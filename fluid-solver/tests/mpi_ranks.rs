@@ -5,8 +5,9 @@
 //! f64); `ranks.rs` holds those slabs within the round-off spread of the undivided run, so the
 //! ranks are too (measured 29 Nov 2026 against `fluid-solver run` in one process: 1.7e-15 m after
 //! 200 steps, the reversed order's spread 4.7e-15 m). Mass is exact, each particle is in one
-//! piece, and the PVTU index and PVD series name every piece. A case the ranks do not run yet
-//! is refused once, naming the feature, and nothing runs.
+//! piece, and the PVTU index and PVD series name every piece; the probe CSV rank 0 writes holds
+//! the slabs' rows to the digit. A case the ranks do not run yet is refused once, naming the
+//! feature, and nothing runs.
 
 use crate::ranks::{by_id, largest_gap, TANK};
 use fluid_solver::ranks::decomposed::DecomposedFluid;
@@ -159,8 +160,22 @@ fn two_ranks_step_as_two_slabs_in_one_process_bit_for_bit() {
 
     // the same case in two slabs of one process, stepped as the run steps
     let mut slabs = DecomposedFluid::new(&cfg, 2).unwrap_or_else(|e| panic!("{e}"));
+    let mut rows = vec![slabs.probe_row()];
     while let Some(dt) = slabs.parts()[0].solver.next_step_towards(0.1) {
         slabs.step(dt).unwrap_or_else(|e| panic!("{e}"));
+        slabs.observe_probes(0.1);
+    }
+    rows.push(slabs.probe_row());
+    let csv = std::fs::read_to_string(d.join("ranks/water_probes.csv")).unwrap_or_else(|e| panic!("{e}"));
+    let written: Vec<&str> = csv.lines().skip(1).collect();
+    assert_eq!(written.len(), 2, "rows at 0 and 0.1 s: {csv}");
+    for (line, (row, t)) in written.iter().zip(rows.iter().zip([0.0, 0.1])) {
+        let expected: Vec<String> = row.iter().map(|v| format!("{v:.6e}")).collect();
+        assert_eq!(
+            *line,
+            format!("{t:.6},{},0", expected.join(",")),
+            "rank 0's probe row against the slabs' in one process"
+        );
     }
     assert_eq!(slabs.parts()[0].solver.steps(), STEPS as u64);
     let in_process = by_id(&slabs.fluid());
@@ -198,14 +213,13 @@ fn two_ranks_step_as_two_slabs_in_one_process_bit_for_bit() {
 fn a_case_the_ranks_do_not_run_is_refused_once_and_nothing_runs() {
     let d = dir("mpi-ranks-refused");
     let case = d.join("case.toml");
-    let probe = "\n[[fluid.water.probe]]\nname = \"front\"\nkind = \"surge-front\"\naxis = \"+x\"\n";
-    std::fs::write(&case, case_text(probe)).unwrap_or_else(|e| panic!("{e}"));
+    std::fs::write(&case, case_text("surface_mesh = true")).unwrap_or_else(|e| panic!("{e}"));
     let out = d.join("out");
     let refused = run(&case, &out, 2);
     let log = String::from_utf8_lossy(&refused.stderr);
     println!("{log}");
     assert_eq!(refused.status.code(), Some(2), "{log}");
-    assert_eq!(log.matches("not yet [[fluid.NAME.probe]]").count(), 1, "{log}");
+    assert_eq!(log.matches("not yet surface_mesh = true").count(), 1, "{log}");
     assert!(
         !out.join("water_00000.pvtu").exists(),
         "nothing is written for a refused case"

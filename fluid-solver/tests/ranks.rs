@@ -3,9 +3,12 @@
 //! by id. Decomposing changes only the order in which each particle's neighbour sums are added
 //! (the halo holds every particle its step depends on), so the slabs must stay within the
 //! round-off spread that the same change of order makes on one solver: the whole domain with its
-//! particles stored in reverse order. Mass (the fluid's particle count) is exact.
+//! particles stored in reverse order. Mass (the fluid's particle count) is exact. The probes the
+//! slabs read between them (pressure on both sides of a cut, gauges, a filtered wall sensor, the
+//! surge front and the run-up) are held to the same spread of the same probes' readings.
 
 use fluid_solver::particles::Particles;
+use fluid_solver::probes::ProbeSet;
 use fluid_solver::ranks::decomposed::DecomposedFluid;
 use fluid_solver::FluidSolver;
 use schemas::case::{Case, FluidConfig};
@@ -42,7 +45,48 @@ tank = { min = [0.0, 0.0, 0.0], max = [1.6, 0.06, 0.3], lid = true }
 [[fluid.water.block]]
 min = [0.0, 0.0, 0.0]
 max = [1.2, 0.06, 0.24]
+
+# two slabs cut the column at x = 0.6 m, three at 0.4 and 0.8 m
+[[fluid.water.probe]]
+name = "p-left-of-cut"
+kind = "pressure"
+position = [0.595, 0.03, 0.05]
+
+[[fluid.water.probe]]
+name = "p-right-of-cut"
+kind = "pressure"
+position = [0.605, 0.03, 0.05]
+
+[[fluid.water.probe]]
+name = "gauge-cut"
+kind = "water-height"
+position = [0.6, 0.03]
+
+[[fluid.water.probe]]
+name = "gauge-front"
+kind = "water-height"
+position = [1.15, 0.03]
+
+[[fluid.water.probe]]
+name = "left-wall"
+kind = "wall-pressure"
+position = [0.0, 0.03, 0.06]
+normal = "+x"
+diameter = 0.04
+window = 0.005
+
+[[fluid.water.probe]]
+name = "front"
+kind = "surge-front"
+axis = "+x"
+
+[[fluid.water.probe]]
+name = "run-up"
+kind = "run-up"
 "#;
+
+/// Steps between two probe rows.
+const ROW_EVERY: usize = 10;
 
 /// [`TANK`]'s fluid section.
 fn tank() -> FluidConfig {
@@ -78,9 +122,10 @@ pub(crate) fn largest_gap(a: &HashMap<u32, [f64; 3]>, b: &HashMap<u32, [f64; 3]>
 }
 
 /// The whole domain after [`STEPS`] steps, its particles first stored in reverse order when
-/// `reversed`.
-fn whole(cfg: &FluidConfig, reversed: bool) -> HashMap<u32, [f64; 3]> {
+/// `reversed`, and its probe rows every [`ROW_EVERY`] steps.
+fn whole(cfg: &FluidConfig, reversed: bool) -> (HashMap<u32, [f64; 3]>, Vec<Vec<f64>>) {
     let mut s = FluidSolver::new(cfg);
+    let mut probes = ProbeSet::new(&cfg.probe, &s).unwrap_or_else(|e| panic!("{e}"));
     s.remove_gates();
     if reversed {
         let mut state = s.save_state();
@@ -90,28 +135,100 @@ fn whole(cfg: &FluidConfig, reversed: bool) -> HashMap<u32, [f64; 3]> {
         state.grid.sort(&mut state.particles, &mut Vec::new());
         s.restore_state(&state);
     }
-    for _ in 0..STEPS {
+    let mut rows = Vec::new();
+    for k in 1..=STEPS {
         s.step(cfg.time_step).unwrap_or_else(|e| panic!("{e}"));
+        probes.observe(&s, next_row(k, cfg.time_step));
+        if k % ROW_EVERY == 0 {
+            rows.push(probes.row(&s));
+        }
     }
-    by_id(s.particles())
+    (by_id(s.particles()), rows)
+}
+
+/// The time of the probe row after step `k`.
+fn next_row(k: usize, dt: f64) -> f64 {
+    k.div_ceil(ROW_EVERY) as f64 * ROW_EVERY as f64 * dt
+}
+
+/// The largest difference of each probe's readings between two runs' rows.
+fn probe_gaps(a: &[Vec<f64>], b: &[Vec<f64>]) -> Vec<f64> {
+    assert_eq!(a.len(), b.len(), "probe rows");
+    (0..a[0].len())
+        .map(|k| largest(a.iter().zip(b).map(|(x, y)| (x[k] - y[k]).abs()), 0.0))
+        .collect()
 }
 
 #[test]
 fn slabs_step_as_the_whole_domain_within_its_round_off_spread() {
     let cfg = tank();
+    let names: Vec<&str> = cfg.probe.iter().map(|p| p.name.as_str()).collect();
     let started = std::time::Instant::now();
-    let reference = whole(&cfg, false);
-    let spread = largest_gap(&reference, &whole(&cfg, true));
-    println!("whole domain, reversed order: largest gap {spread:.3e} m after {STEPS} steps");
+    let (reference, reference_rows) = whole(&cfg, false);
+    let (reversed, reversed_rows) = whole(&cfg, true);
+    let spread = largest_gap(&reference, &reversed);
+    let probe_spread = probe_gaps(&reference_rows, &reversed_rows);
+    println!("whole domain, reversed order: largest gap {spread:.3e} m after {STEPS} steps; probes {names:?}: {probe_spread:?}");
+    let last = reference_rows.last().cloned().unwrap_or_default();
+    println!("the probes' last row: {last:?}");
+    let probe_bounds: Vec<f64> = (0..names.len())
+        .map(|k| {
+            let scale = largest(reference_rows.iter().map(|r| r[k].abs()), 0.0);
+            SPREADS * largest([probe_spread[k]], f64::EPSILON * scale)
+        })
+        .collect();
+    assert!(
+        last.iter().all(|v| *v > 0.0),
+        "every probe reads something by the end: {last:?}"
+    );
     assert!(
         spread < 1e-6,
         "the reversed order alone moved a particle by {spread} m"
     );
     for parts in [2, 3] {
         let mut d = DecomposedFluid::new(&cfg, parts).unwrap_or_else(|e| panic!("{e}"));
-        for _ in 0..STEPS {
+        let mut rows = Vec::new();
+        for k in 1..=STEPS {
             d.step(cfg.time_step).unwrap_or_else(|e| panic!("{e}"));
+            d.observe_probes(next_row(k, cfg.time_step));
+            if k % ROW_EVERY == 0 {
+                rows.push(d.probe_row());
+            }
         }
+        let probe_gap = probe_gaps(&reference_rows, &rows);
+        println!("{parts} slabs: probes {probe_gap:?}");
+        assert_eq!(d.removed(), 0, "{parts} slabs: no fluid leaves the closed tank");
+        // each probe within SPREADS × its own spread, at least SPREADS roundings of its largest
+        // reading (the surge front's spread is 0: a position, where no order change moved the
+        // farthest particle)
+        let worst = largest(
+            probe_gap
+                .iter()
+                .zip(&probe_bounds)
+                .map(|(gap, bound)| gap / bound),
+            0.0,
+        );
+        for ((name, gap), bound) in names.iter().zip(&probe_gap).zip(&probe_bounds) {
+            assert!(
+                gap <= bound,
+                "{parts} slabs: probe {name} reads {gap:.3e} from the whole domain's, more than {bound:.3e} ({SPREADS} × the order's spread)"
+            );
+        }
+        record(Record {
+            id: format!("emps-slabs-{parts}-probes-vs-undivided"),
+            capability: "probes read by the slabs (pressure, gauges, a filtered wall sensor, surge front, run-up)".into(),
+            reference: "the undivided run's probe rows from the same start".into(),
+            case: "tilted dam break of emps-slabs-2-vs-undivided, 7 probes, a pressure probe 5 mm each side of the first cut".into(),
+            resolution: format!("E-MPS, Δs = 0.02 m, {STEPS} steps, a row every {ROW_EVERY} steps, {parts} slabs"),
+            measure: "largest |reading_slabs − reading_undivided| over rows and probes, in units of each probe's bound".into(),
+            value: worst,
+            bound: Some(1.0),
+            bound_source: format!("each probe: {SPREADS} × the spread of its readings in the undivided run with its particles stored in reverse order, at least {SPREADS} roundings (2.2e-16) of its largest reading"),
+            unit: "1".into(),
+            source: "fluid-solver/tests/ranks.rs::slabs_step_as_the_whole_domain_within_its_round_off_spread".into(),
+            run_time_s: started.elapsed().as_secs_f64(),
+            ..Default::default()
+        });
         let cuts: Vec<f64> = d.parts().iter().skip(1).map(|s| s.lo).collect();
         let gap = largest_gap(&reference, &by_id(&d.fluid()));
         let moved = d.handed_over();

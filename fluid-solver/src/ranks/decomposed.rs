@@ -3,9 +3,13 @@
 //! ([`super::subdomain`]). The checks that need the whole fluid (its energy) are made here over
 //! the slabs' own particles.
 
+use super::slab_probes::SlabProbes;
 use super::slabs::{cuts, halo_width};
 use super::subdomain::{Subdomain, ToNeighbours};
+use crate::particles::kind::FLUID;
 use crate::particles::Particles;
+use crate::sensors::probes::ProbeSet;
+use crate::sensors::view::ParticleView;
 use crate::solver::FluidSolver;
 use crate::stability::{Instability, StabilityMonitor};
 use rayon::prelude::*;
@@ -20,12 +24,17 @@ pub struct DecomposedFluid {
     handed_over: u64,
     /// Halo copies sent so far.
     copied: u64,
+    /// The case's probes: how the slabs' rows make the whole's, and each slab's set.
+    probes: SlabProbes,
+    probe_sets: Vec<ProbeSet>,
+    /// Fluid particles at the start (after the gates are lifted).
+    fluid_at_start: u64,
 }
 
 impl DecomposedFluid {
-    /// The fluid of `cfg` (a validated section) in `parts` slabs balanced by fluid particles; an
-    /// error naming what the slabs do not support yet, or when a slab would be thinner than the
-    /// halo.
+    /// The fluid of `cfg` (a validated section) in `parts` slabs balanced by fluid particles, with
+    /// the case's probes; an error naming what the slabs do not support yet, a probe that cannot
+    /// be placed, or a slab thinner than the halo.
     pub fn new(cfg: &FluidConfig, parts: usize) -> Result<DecomposedFluid, String> {
         if let Some(what) = unsupported(cfg) {
             return Err(format!(
@@ -33,10 +42,13 @@ impl DecomposedFluid {
             ));
         }
         let mut whole = FluidSolver::new(cfg);
+        let probe_set = ProbeSet::new(&cfg.probe, &whole)?;
         whole.remove_gates();
         let halo = halo_width(whole.kernel());
         let cuts = cuts(whole.particles(), parts, halo)?;
+        let (probes, probe_sets) = SlabProbes::new(&probe_set, &cuts);
         let everything = whole.particles().clone();
+        let fluid_at_start = everything.kind.iter().filter(|&&k| k == FLUID).count() as u64;
         let parts: Vec<Subdomain> = (0..parts)
             .into_par_iter()
             .map(|r| {
@@ -51,6 +63,9 @@ impl DecomposedFluid {
             whole: whole.monitor,
             handed_over: 0,
             copied: 0,
+            probes,
+            probe_sets,
+            fluid_at_start,
         })
     }
 
@@ -66,6 +81,31 @@ impl DecomposedFluid {
     /// Halo copies of fluid particles sent so far (every step, to each neighbour).
     pub fn copied(&self) -> u64 {
         self.copied
+    }
+
+    /// Fluid particles removed so far (through the open top): those the slabs no longer own.
+    pub fn removed(&self) -> u64 {
+        let owned = |s: &Subdomain| (0..s.solver.particles().len()).filter(|&i| s.owned(i)).count();
+        self.fluid_at_start - self.parts.iter().map(owned).sum::<usize>() as u64
+    }
+
+    /// After a step, as [`ProbeSet::observe`]: each slab's filtered probes keep their readings.
+    pub fn observe_probes(&mut self, next_row: f64) {
+        self.probe_sets
+            .par_iter_mut()
+            .zip(&self.parts)
+            .for_each(|(set, s)| set.observe(&s.solver, next_row));
+    }
+
+    /// The probes' row at the present time, as the undivided fluid's ([`super::slab_probes`]).
+    pub fn probe_row(&mut self) -> Vec<f64> {
+        let rows: Vec<Vec<f64>> = self
+            .probe_sets
+            .par_iter_mut()
+            .zip(&self.parts)
+            .map(|(set, s)| set.row_in(&ParticleView::of(&s.solver)))
+            .collect();
+        self.probes.combine(&rows)
     }
 
     /// The simulated time (every slab's).

@@ -5,6 +5,7 @@
 //! their new owner and the halos are sent again.
 //!
 //! - [`slabs`]: where the cuts lie (balanced by fluid particles) and how thick a halo must be;
+//! - [`slab_probes`]: the case's probes read by the slabs and combined into the whole's row;
 //! - [`subdomain`]: one slab's solver, what it owns, what it sends and takes;
 //! - [`decomposed`]: the slabs in one process, stepped together, with the whole domain's checks;
 //! - [`mpi_link`] and [`rank_run`] (cargo feature `mpi`): one slab per MPI rank, the particles
@@ -19,5 +20,6 @@ pub mod decomposed;
 pub mod mpi_link;
 #[cfg(feature = "mpi")]
 pub mod rank_run;
+pub mod slab_probes;
 pub mod slabs;
 pub mod subdomain;

@@ -117,6 +117,16 @@ impl RankLink {
         largest
     }
 
+    /// Every rank's `row` (all of one length), by rank, on every rank.
+    pub fn all_rows(&self, row: &[f64]) -> Vec<Vec<f64>> {
+        let mut all = vec![0.0; row.len() * self.size()];
+        self.world.all_gather_into(row, &mut all[..]);
+        match row.len() {
+            0 => vec![Vec::new(); self.size()],
+            n => all.chunks(n).map(<[f64]>::to_vec).collect(),
+        }
+    }
+
     /// Stops every rank at once with `code` (after one rank's error, so the others do not wait
     /// for it in an exchange).
     pub fn abort(&self, code: i32) -> ! {

@@ -5,16 +5,21 @@
 //! `output_interval` each rank writes its piece of the frame, `NAME_FFFFF_rRRRR.vtu` (the fluid
 //! it owns and the walls between its cuts, so every particle is in one piece), and rank 0 the
 //! frame's index `NAME_FFFFF.pvtu` and the PVD series over the indexes, which ParaView opens as
-//! one data set. The first frame is the layout after the gates are lifted.
+//! one data set. The first frame is the layout after the gates are lifted. Every
+//! `probe_interval` each rank reads the probes it owns ([`super::slab_probes`]) and rank 0 writes
+//! the whole fluid's row to `NAME_probes.csv`, as a run in one process does.
 
 use super::decomposed::{check_whole_energy, unsupported};
 use super::mpi_link::RankLink;
+use super::slab_probes::SlabProbes;
 use super::slabs::{cuts, halo_width};
 use super::subdomain::{Subdomain, ToNeighbours};
 use crate::output::progress::Progress;
 use crate::output::vtu;
 use crate::particles::kind::FLUID;
 use crate::run::{fluid_only, RunError};
+use crate::sensors::probes::{ProbeFile, ProbeSet};
+use crate::sensors::view::ParticleView;
 use crate::solver::FluidSolver;
 use crate::stability::StabilityMonitor;
 use schemas::case::Case;
@@ -131,6 +136,12 @@ impl RankSlab<'_> {
         )
     }
 
+    /// Fluid particles this rank owns.
+    fn owned_count(&self) -> u64 {
+        let n = self.slab.solver.particles().len();
+        (0..n).filter(|&i| self.slab.owned(i)).count() as u64
+    }
+
     /// This rank's piece of a frame: the fluid it owns and the walls between its cuts.
     fn piece(&self) -> crate::particles::Particles {
         let p = self.slab.solver.particles();
@@ -165,9 +176,6 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
     if let Some(what) = unsupported(cfg) {
         return Err(refuse(what));
     }
-    if !cfg.probe.is_empty() {
-        return Err(refuse("[[fluid.NAME.probe]]"));
-    }
     if cfg.surface_mesh {
         return Err(refuse("surface_mesh = true"));
     }
@@ -178,6 +186,12 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
     std::fs::create_dir_all(out).map_err(io_err(out))?;
     let (rank, ranks) = (link.rank(), link.size());
     let mut solver = FluidSolver::new(cfg);
+    let probe_set = ProbeSet::new(&cfg.probe, &solver).map_err(|message| {
+        RankRunError::Setup(RunError::Probe {
+            file: case.path.clone(),
+            message,
+        })
+    })?;
     solver.remove_gates();
     let halo = halo_width(solver.kernel());
     let cuts = cuts(solver.particles(), ranks, halo).map_err(|message| {
@@ -186,6 +200,8 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
             message,
         })
     })?;
+    let (slab_probes, mut probe_sets) = SlabProbes::new(&probe_set, &cuts);
+    let mut probes = probe_sets.swap_remove(rank);
     let everything = solver.particles().clone();
     let mut whole = solver.monitor.clone();
     whole.start(&everything);
@@ -218,18 +234,39 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
         frames += 1;
         Ok(())
     };
+    // the probe CSV: each rank reads its own probes, rank 0 writes the whole fluid's row
+    let probe_path = out.join(format!("{name}_probes.csv"));
+    let mut probe_file = match rank {
+        0 => Some(ProbeFile::create(&probe_path, &probe_set.names()).map_err(io_err(&probe_path))?),
+        _ => None,
+    };
+    let mut sample = |me: &RankSlab, probes: &mut ProbeSet| -> Result<(), RankRunError> {
+        let rows = link.all_rows(&probes.row_in(&ParticleView::of(&me.slab.solver)));
+        let removed = fluid_total as u64 - link.sum(me.owned_count());
+        match &mut probe_file {
+            Some(file) => file
+                .row(me.slab.solver.time(), &slab_probes.combine(&rows), removed)
+                .map_err(io_err(&probe_path)),
+            None => Ok(()),
+        }
+    };
+    let probe_interval = cfg.probe_interval.unwrap_or(cfg.output_interval);
     let end = case.info.end_time;
     let mut progress = (rank == 0).then(|| Progress::new(name, end, cfg.progress_interval, false));
     write_frame(&me, &mut series)?;
-    let mut next_frame = 1u64;
+    sample(&me, &mut probes)?;
+    let (mut next_frame, mut next_probe) = (1u64, 1u64);
+    let at = |k: u64, interval: f64| (k as f64 * interval).min(end);
     while me.slab.solver.time() < end {
-        let target = (next_frame as f64 * cfg.output_interval).min(end);
+        let row_at = at(next_probe, probe_interval);
+        let target = at(next_frame, cfg.output_interval).min(row_at);
         while let Some(dt) = me.slab.solver.next_step_towards(target) {
             me.step(dt).inspect_err(|_| {
                 if let Some(p) = &mut progress {
                     p.finish();
                 }
             })?;
+            probes.observe(&me.slab.solver, row_at);
             if let Some(p) = &mut progress {
                 let steps = me.slab.solver.steps();
                 p.update(
@@ -241,15 +278,19 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
             }
         }
         me.slab.solver.land_on(target);
-        write_frame(&me, &mut series)?;
-        next_frame += 1;
+        if me.slab.solver.time() >= row_at {
+            sample(&me, &mut probes)?;
+            next_probe += 1;
+        }
+        if me.slab.solver.time() >= at(next_frame, cfg.output_interval) {
+            write_frame(&me, &mut series)?;
+            next_frame += 1;
+        }
     }
     if let Some(p) = &mut progress {
         p.finish();
     }
-    let owned = (0..me.slab.solver.particles().len())
-        .filter(|&i| me.slab.owned(i))
-        .count() as u64;
+    let owned = me.owned_count();
     Ok(RankRunSummary {
         ranks,
         time: me.slab.solver.time(),

@@ -177,6 +177,9 @@ pub struct ProbeSet {
     discs: Vec<Option<Disc>>,
     /// Per filtered probe: the readings (time, value) of the steps inside its window.
     windows: Vec<Option<VecDeque<(f64, f64)>>>,
+    /// Whether this set reads each probe: all of them, unless [`ProbeSet::reading_only`] left
+    /// some to another part of the fluid.
+    reads: Vec<bool>,
 }
 
 impl ProbeSet {
@@ -212,7 +215,32 @@ impl ProbeSet {
             probes: probes.to_vec(),
             discs,
             windows: probes.iter().map(|p| p.window.map(|_| VecDeque::new())).collect(),
+            reads: vec![true; probes.len()],
         })
+    }
+
+    /// The same probes, of which this set reads only those `reads` marks (a slab of the fluid
+    /// reads the probes it owns, [`crate::ranks::slab_probes`]); the others read 0 and keep no
+    /// readings.
+    pub fn reading_only(mut self, reads: Vec<bool>) -> ProbeSet {
+        assert_eq!(reads.len(), self.probes.len(), "one mark per probe");
+        self.reads = reads;
+        self
+    }
+
+    /// Where along x each probe reads around a point (a pressure probe's or a gauge's
+    /// position, a wall-pressure disc's centre as placed); `None` for a probe over the whole
+    /// fluid (surge front, run-up).
+    pub fn points_x(&self) -> Vec<Option<f64>> {
+        self.probes
+            .iter()
+            .zip(&self.discs)
+            .map(|(probe, disc)| match (disc, probe.kind) {
+                (Some(disc), _) => Some(disc.centre[0]),
+                (None, ProbeKind::Pressure | ProbeKind::WaterHeight) => Some(probe.position[0]),
+                (None, _) => None,
+            })
+            .collect()
     }
 
     /// The filtered probes' readings kept for their windows (a checkpoint keeps them).
@@ -235,7 +263,8 @@ impl ProbeSet {
     pub fn observe(&mut self, solver: &FluidSolver, next_row: f64) {
         let t = solver.time();
         let view = ParticleView::of(solver);
-        for ((probe, disc), w) in self.probes.iter().zip(&self.discs).zip(&mut self.windows) {
+        let probes = self.probes.iter().zip(&self.discs).zip(&mut self.windows);
+        for (((probe, disc), w), _) in probes.zip(&self.reads).filter(|(_, reads)| **reads) {
             if let (Some(window), Some(readings)) = (probe.window, w) {
                 if t > next_row - window - 1e-12 {
                     readings.push_back((t, read(probe, disc, &view)));
@@ -258,7 +287,9 @@ impl ProbeSet {
             .iter()
             .zip(&self.discs)
             .zip(&mut self.windows)
-            .map(|((probe, disc), w)| match (probe.window, w) {
+            .zip(&self.reads)
+            .map(|(((probe, disc), w), &reads)| match (probe.window, w) {
+                _ if !reads => 0.0,
                 (Some(window), Some(readings)) => {
                     while readings.front().is_some_and(|r| r.0 <= t - window + 1e-12) {
                         readings.pop_front();
