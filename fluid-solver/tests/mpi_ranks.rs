@@ -9,7 +9,7 @@
 //! the slabs' rows to the digit. A case the ranks do not run yet is refused once, naming the
 //! feature, and nothing runs.
 
-use crate::ranks::{by_id, largest_gap, TANK};
+use crate::ranks::{by_id, largest_gap, CHANNEL, TANK};
 use fluid_solver::ranks::decomposed::DecomposedFluid;
 use schemas::case::{Case, FluidConfig};
 use schemas::validation::{record, Record};
@@ -207,6 +207,85 @@ fn two_ranks_step_as_two_slabs_in_one_process_bit_for_bit() {
         same == 0.0,
         "the ranks' fluid differs from the slabs' by {same:e} m"
     );
+}
+
+/// `ranks.rs`' channel (inflow through x = 0.4 m, outflow behind x = 3.4 m, gravity leaning
+/// along x) on 2 ranks to 0.4 s (200 steps, a frame and a balance row every 0.1 s): rank 0
+/// feeds the water in, rank 1 lets it out, and both equal 2 slabs of one process bit for bit;
+/// the balance CSV rank 0 writes closes exactly, holds the slabs' counts, and counts the
+/// undivided layout's walls in every row.
+#[test]
+fn inflow_and_outflow_on_two_ranks_step_as_two_slabs_and_the_balance_closes() {
+    let d = dir("mpi-ranks-channel");
+    let case = d.join("case.toml");
+    let text = CHANNEL.replace("end_time = 1.0", "end_time = 0.4");
+    assert_ne!(text, CHANNEL, "ranks.rs' channel has changed its end time");
+    std::fs::write(&case, text).unwrap_or_else(|e| panic!("{e}"));
+    let cfg = config(&case);
+    let ranked = run(&case, &d.join("ranks"), 2);
+    let log = String::from_utf8_lossy(&ranked.stderr);
+    println!("{log}");
+    assert!(ranked.status.success(), "mpirun -np 2 failed: {log}");
+    let mut every: Vec<(u32, u8, [f64; 3])> = Vec::new();
+    for r in 0..2 {
+        every.extend(frame(&d.join(format!("ranks/water_00004_r{r:04}.vtu"))));
+    }
+    let ranks = fluid_by_id(&every);
+
+    let mut slabs = DecomposedFluid::new(&cfg, 2).unwrap_or_else(|e| panic!("{e}"));
+    let at_start = slabs.fluid_count();
+    for k in 1..=4 {
+        let target = k as f64 * 0.1;
+        while let Some(dt) = slabs.parts()[0].solver.next_step_towards(target) {
+            slabs.step(dt).unwrap_or_else(|e| panic!("{e}"));
+        }
+        slabs.land_on(target);
+    }
+    let same = largest_gap(&ranks, &by_id(&slabs.fluid()));
+    let b = slabs.balance();
+    println!("2 ranks against 2 slabs: largest gap {same:e} m; {b:?}");
+    assert!(
+        same == 0.0,
+        "the ranks' fluid differs from the slabs' by {same:e} m"
+    );
+
+    let csv = std::fs::read_to_string(d.join("ranks/water_balance.csv")).unwrap_or_else(|e| panic!("{e}"));
+    let last: Vec<&str> = csv.lines().last().unwrap_or_default().split(',').collect();
+    let field = |k: usize| -> u64 { last.get(k).and_then(|v| v.parse().ok()).unwrap_or(u64::MAX) };
+    assert_eq!(
+        csv.lines().count(),
+        6,
+        "a header and rows at 0, 0.1, …, 0.4 s: {csv}"
+    );
+    assert_eq!(
+        [field(1), field(2), field(3), field(4)],
+        [b.inserted, b.entered, b.removed, b.withdrawn],
+        "the ranks' counts are the slabs': {csv}"
+    );
+    assert!(b.entered > 0 && b.removed > 0, "water entered and left: {b:?}");
+    assert_eq!(
+        field(6),
+        ranks.len() as u64,
+        "the fluid column counts the pieces' fluid: {csv}"
+    );
+    assert_eq!(
+        field(6),
+        at_start + field(2) - field(3),
+        "fluid = at the start + entered − removed: {csv}"
+    );
+    // the walls (every particle but the fluid and the strip) are the undivided layout's, in
+    // every row
+    let layout = fluid_solver::FluidSolver::new(&cfg);
+    let p = layout.particles();
+    let walls = p.len() - p.count(fluid_solver::Kind::Fluid) - p.count(fluid_solver::Kind::Inflow);
+    for row in csv.lines().skip(1) {
+        let n: Vec<usize> = row.split(',').map(|v| v.parse().unwrap_or(usize::MAX)).collect();
+        assert_eq!(
+            n[7] - n[6] - n[5],
+            walls,
+            "total − fluid − strip in the row {row}"
+        );
+    }
 }
 
 #[test]

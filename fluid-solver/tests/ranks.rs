@@ -123,7 +123,7 @@ pub(crate) fn largest_gap(a: &HashMap<u32, [f64; 3]>, b: &HashMap<u32, [f64; 3]>
 
 /// The whole domain after [`STEPS`] steps, its particles first stored in reverse order when
 /// `reversed`, and its probe rows every [`ROW_EVERY`] steps.
-fn whole(cfg: &FluidConfig, reversed: bool) -> (HashMap<u32, [f64; 3]>, Vec<Vec<f64>>) {
+fn whole(cfg: &FluidConfig, reversed: bool) -> (FluidSolver, Vec<Vec<f64>>) {
     let mut s = FluidSolver::new(cfg);
     let mut probes = ProbeSet::new(&cfg.probe, &s).unwrap_or_else(|e| panic!("{e}"));
     s.remove_gates();
@@ -143,7 +143,7 @@ fn whole(cfg: &FluidConfig, reversed: bool) -> (HashMap<u32, [f64; 3]>, Vec<Vec<
             rows.push(probes.row(&s));
         }
     }
-    (by_id(s.particles()), rows)
+    (s, rows)
 }
 
 /// The time of the probe row after step `k`.
@@ -166,7 +166,8 @@ fn slabs_step_as_the_whole_domain_within_its_round_off_spread() {
     let started = std::time::Instant::now();
     let (reference, reference_rows) = whole(&cfg, false);
     let (reversed, reversed_rows) = whole(&cfg, true);
-    let spread = largest_gap(&reference, &reversed);
+    let reference = by_id(reference.particles());
+    let spread = largest_gap(&reference, &by_id(reversed.particles()));
     let probe_spread = probe_gaps(&reference_rows, &reversed_rows);
     println!("whole domain, reversed order: largest gap {spread:.3e} m after {STEPS} steps; probes {names:?}: {probe_spread:?}");
     let last = reference_rows.last().cloned().unwrap_or_default();
@@ -252,6 +253,116 @@ fn slabs_step_as_the_whole_domain_within_its_round_off_spread() {
             bound_source: format!("{SPREADS} × the round-off spread of the undivided run with its particles stored in reverse order ({spread:.1e} m)"),
             unit: "m".into(),
             source: "fluid-solver/tests/ranks.rs::slabs_step_as_the_whole_domain_within_its_round_off_spread".into(),
+            run_time_s: started.elapsed().as_secs_f64(),
+            ..Default::default()
+        });
+        assert!(
+            gap <= SPREADS * spread.max(1e-15),
+            "{parts} slabs: a particle is {gap:.3e} m from the whole domain's, more than {SPREADS} × the order's spread {spread:.3e} m"
+        );
+    }
+}
+
+/// A channel 3.8 m long at Δs = 0.05 m (4 × 4 particles of water across, 0.2 m deep): a strip
+/// feeds water in at 0.5 m/s through the plane x = 0.4 m and water leaves behind x = 3.4 m;
+/// gravity leans 3 m/s² towards +x (½ 3 t² = 0.24 m by 0.4 s), so the water crosses the cuts. Two
+/// slabs cut it at 1.9 m, three at 1.4 and 2.4 m: every boundary more than the halo (0.875 m)
+/// from the nearest cut.
+pub(crate) const CHANNEL: &str = r#"[case]
+name = "slab-channel"
+end_time = 1.0
+
+[fluid.water]
+spacing = 0.05
+time_step = 2.0e-3
+viscosity_term = false
+gravity = [3.0, 0.0, -9.8]
+output_interval = 0.1
+tank = { min = [0.0, 0.0, 0.0], max = [3.8, 0.2, 0.5] }
+
+[fluid.water.inflow]
+plane = 0.4
+velocity = 0.5
+strip_length = 0.3
+level = 0.2
+
+[fluid.water.outflow]
+plane = 3.4
+
+[[fluid.water.block]]
+min = [0.4, 0.0, 0.0]
+max = [3.4, 0.2, 0.2]
+"#;
+
+/// Inflow and outflow across the cuts: the first slab feeds the water in, the last one lets it
+/// out, and the fluid in between crosses the cuts; the counts close exactly (the fluid the slabs
+/// own is what was there and entered less what the outflow removed), they equal the undivided
+/// run's, the ids stay unique, and every particle stays within the round-off spread of the
+/// undivided run, as the closed tank's.
+#[test]
+fn inflow_and_outflow_run_in_the_end_slabs_and_the_balance_closes_exactly() {
+    let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("slab-channel.toml");
+    let case = Case::parse(&path, CHANNEL.to_string()).unwrap_or_else(|e| panic!("{e}"));
+    let cfg = case.fluid["water"].clone();
+    let started = std::time::Instant::now();
+    let (reference, _) = whole(&cfg, false);
+    let (reversed, _) = whole(&cfg, true);
+    let expected = reference.open_boundaries().balance();
+    let at_start = FluidSolver::new(&cfg)
+        .particles()
+        .count(fluid_solver::Kind::Fluid) as u64;
+    let reference_fluid = by_id(reference.particles());
+    let spread = largest_gap(&reference_fluid, &by_id(reversed.particles()));
+    println!(
+        "undivided: {expected:?}, {at_start} fluid at the start; reversed order's spread {spread:.3e} m"
+    );
+    assert!(
+        expected.entered > 0 && expected.removed > 0,
+        "water must enter and leave: {expected:?}"
+    );
+    for parts in [2, 3] {
+        let mut d = DecomposedFluid::new(&cfg, parts).unwrap_or_else(|e| panic!("{e}"));
+        for _ in 0..STEPS {
+            d.step(cfg.time_step).unwrap_or_else(|e| panic!("{e}"));
+        }
+        let b = d.balance();
+        let fluid = d.fluid();
+        let mut ids = fluid.id.clone();
+        ids.sort_unstable();
+        ids.dedup();
+        let gap = largest_gap(&reference_fluid, &by_id(&fluid));
+        println!(
+            "{parts} slabs: {b:?}, {} fluid owned, {} handed over, largest gap {gap:.3e} m",
+            d.fluid_count(),
+            d.handed_over()
+        );
+        assert_eq!(ids.len(), fluid.len(), "{parts} slabs: a fluid id is owned twice");
+        assert_eq!(
+            d.fluid_count(),
+            at_start + b.entered - b.removed,
+            "{parts} slabs: the fluid owned is not what was there and entered less what left: {b:?}"
+        );
+        assert_eq!(
+            b, expected,
+            "{parts} slabs: the counts differ from the undivided run's"
+        );
+        assert!(
+            d.handed_over() >= 16 * (parts as u64 - 1),
+            "{parts} slabs: less than a lattice plane crossed the cuts: {}",
+            d.handed_over()
+        );
+        record(Record {
+            id: format!("emps-slabs-{parts}-inflow-outflow-vs-undivided"),
+            capability: "inflow and outflow with the fluid in slabs (the first runs the inflow, the last the outflow)".into(),
+            reference: "the undivided run from the same start; its particle balance".into(),
+            case: "channel 3.8 × 0.2 m, water 0.2 m deep fed at 0.5 m/s through x = 0.4 m and let out behind x = 3.4 m, gravity 3 m/s² along x".into(),
+            resolution: format!("E-MPS, Δs = 0.05 m, {STEPS} steps, {parts} slabs ({} entered, {} removed, all equal to the undivided run's)", b.entered, b.removed),
+            measure: "largest |r_slabs − r_undivided| over the fluid particles".into(),
+            value: gap,
+            bound: Some(SPREADS * spread.max(1e-15)),
+            bound_source: format!("{SPREADS} × the round-off spread of the undivided run with its particles stored in reverse order ({spread:.1e} m)"),
+            unit: "m".into(),
+            source: "fluid-solver/tests/ranks.rs::inflow_and_outflow_run_in_the_end_slabs_and_the_balance_closes_exactly".into(),
             run_time_s: started.elapsed().as_secs_f64(),
             ..Default::default()
         });

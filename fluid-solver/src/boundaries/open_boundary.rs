@@ -46,6 +46,19 @@ pub struct ParticleBalance {
     pub withdrawn: u64,
 }
 
+/// The counts of several parts of the fluid added up (the slabs of [`crate::ranks`], each of
+/// which runs only the boundaries in it).
+impl std::iter::Sum for ParticleBalance {
+    fn sum<I: Iterator<Item = ParticleBalance>>(parts: I) -> ParticleBalance {
+        parts.fold(ParticleBalance::default(), |a, b| ParticleBalance {
+            inserted: a.inserted + b.inserted,
+            entered: a.entered + b.entered,
+            removed: a.removed + b.removed,
+            withdrawn: a.withdrawn + b.withdrawn,
+        })
+    }
+}
+
 /// The inflow strip: where its lattice is and how far it is filled.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 struct InflowStrip {
@@ -243,6 +256,22 @@ impl OpenBoundaries {
         self.outflow
     }
 
+    /// x of the inflow plane, when there is one.
+    pub fn inflow_plane(&self) -> Option<f64> {
+        self.inflow.as_ref().map(|strip| strip.plane)
+    }
+
+    /// Leaves the inflow out unless `inflow`, the outflow unless `outflow`: a slab of the fluid
+    /// runs only the boundaries that lie in it ([`crate::ranks::subdomain`]).
+    pub fn keep_only(&mut self, inflow: bool, outflow: bool) {
+        if !inflow {
+            self.inflow = None;
+        }
+        if !outflow {
+            self.outflow = None;
+        }
+    }
+
     /// Adds fluid particles removed behind the outflow plane elsewhere (the GPU path removes
     /// them on the device and runs [`OpenBoundaries::apply`] on its host copy of the strip
     /// only: `crate::gpu::open_boundary`).
@@ -303,18 +332,28 @@ impl BalanceFile {
         Ok(BalanceFile { out })
     }
 
-    /// Appends the row of time `t`; `particle_mass` is ρ0 Δs³.
+    /// Appends the row of time `t` with the counts of `p`; `particle_mass` is ρ0 Δs³.
     pub fn row(&mut self, t: f64, b: ParticleBalance, p: &Particles, particle_mass: f64) -> io::Result<()> {
-        let fluid = p.count(Kind::Fluid);
+        let counts = [p.count(Kind::Inflow), p.count(Kind::Fluid), p.len()].map(|n| n as u64);
+        self.row_of_counts(t, b, counts, particle_mass)
+    }
+
+    /// Appends the row of time `t` with the particles counted elsewhere: `[inflow, fluid,
+    /// total]` (the slabs of a fluid count their own).
+    pub fn row_of_counts(
+        &mut self,
+        t: f64,
+        b: ParticleBalance,
+        [inflow, fluid, total]: [u64; 3],
+        particle_mass: f64,
+    ) -> io::Result<()> {
         writeln!(
             self.out,
-            "{t:.6},{},{},{},{},{},{fluid},{},{:.6e}",
+            "{t:.6},{},{},{},{},{inflow},{fluid},{total},{:.6e}",
             b.inserted,
             b.entered,
             b.removed,
             b.withdrawn,
-            p.count(Kind::Inflow),
-            p.len(),
             fluid as f64 * particle_mass
         )?;
         self.out.flush()

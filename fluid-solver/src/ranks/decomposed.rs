@@ -4,8 +4,9 @@
 //! the slabs' own particles.
 
 use super::slab_probes::SlabProbes;
-use super::slabs::{cuts, halo_width};
+use super::slabs::{cuts, halo_width, open_boundaries_fit};
 use super::subdomain::{Subdomain, ToNeighbours};
+use crate::boundaries::open_boundary::ParticleBalance;
 use crate::particles::kind::FLUID;
 use crate::particles::Particles;
 use crate::sensors::probes::ProbeSet;
@@ -38,7 +39,7 @@ impl DecomposedFluid {
     pub fn new(cfg: &FluidConfig, parts: usize) -> Result<DecomposedFluid, String> {
         if let Some(what) = unsupported(cfg) {
             return Err(format!(
-                "the fluid in slabs supports E-MPS on CPU threads with walls, blocks, gates, solids and damping zones; not yet {what}"
+                "the fluid in slabs supports E-MPS on CPU threads with walls, blocks, gates, solids, damping zones, inflow and outflow; not yet {what}"
             ));
         }
         let mut whole = FluidSolver::new(cfg);
@@ -46,6 +47,8 @@ impl DecomposedFluid {
         whole.remove_gates();
         let halo = halo_width(whole.kernel());
         let cuts = cuts(whole.particles(), parts, halo)?;
+        let open = whole.open_boundaries();
+        open_boundaries_fit(open.inflow_plane(), open.outflow_plane(), &cuts, halo)?;
         let (probes, probe_sets) = SlabProbes::new(&probe_set, &cuts);
         let everything = whole.particles().clone();
         let fluid_at_start = everything.kind.iter().filter(|&&k| k == FLUID).count() as u64;
@@ -83,10 +86,24 @@ impl DecomposedFluid {
         self.copied
     }
 
-    /// Fluid particles removed so far (through the open top): those the slabs no longer own.
+    /// Fluid particles the slabs own.
+    pub fn fluid_count(&self) -> u64 {
+        self.parts.iter().map(Subdomain::owned_count).sum()
+    }
+
+    /// The open boundaries' particle balance: the first slab's inflow and the last slab's
+    /// outflow (the others run neither).
+    pub fn balance(&self) -> ParticleBalance {
+        self.parts
+            .iter()
+            .map(|s| s.solver.open_boundaries().balance())
+            .sum()
+    }
+
+    /// Fluid particles removed so far, through the open top and the outflow: what entered and
+    /// was there at the start, less what the slabs own.
     pub fn removed(&self) -> u64 {
-        let owned = |s: &Subdomain| (0..s.solver.particles().len()).filter(|&i| s.owned(i)).count();
-        self.fluid_at_start - self.parts.iter().map(owned).sum::<usize>() as u64
+        self.fluid_at_start + self.balance().entered - self.fluid_count()
     }
 
     /// After a step, as [`ProbeSet::observe`]: each slab's filtered probes keep their readings.
@@ -106,6 +123,12 @@ impl DecomposedFluid {
             .map(|(set, s)| set.row_in(&ParticleView::of(&s.solver)))
             .collect();
         self.probes.combine(&rows)
+    }
+
+    /// Sets every slab's clock to `t_end` when the steps have reached it up to rounding
+    /// ([`FluidSolver::land_on`]), as a run does at each output time.
+    pub fn land_on(&mut self, t_end: f64) {
+        self.parts.iter_mut().for_each(|s| s.solver.land_on(t_end));
     }
 
     /// The simulated time (every slab's).
@@ -196,10 +219,6 @@ pub fn unsupported(cfg: &FluidConfig) -> Option<&'static str> {
         (cfg.method != FluidMethodName::Emps, "method = \"isph\""),
         (cfg.backend != FluidBackend::Cpu, "backend = \"gpu\""),
         (!cfg.body.is_empty(), "[[body]]"),
-        (
-            cfg.inflow.is_some() || cfg.outflow.is_some(),
-            "inflow and outflow",
-        ),
         (cfg.wave_maker.is_some(), "[wave_maker]"),
     ]
     .into_iter()

@@ -12,8 +12,9 @@
 use super::decomposed::{check_whole_energy, unsupported};
 use super::mpi_link::RankLink;
 use super::slab_probes::SlabProbes;
-use super::slabs::{cuts, halo_width};
+use super::slabs::{cuts, halo_width, open_boundaries_fit};
 use super::subdomain::{Subdomain, ToNeighbours};
+use crate::boundaries::open_boundary::{BalanceFile, ParticleBalance};
 use crate::output::progress::Progress;
 use crate::output::vtu;
 use crate::particles::kind::FLUID;
@@ -136,24 +137,43 @@ impl RankSlab<'_> {
         )
     }
 
-    /// Fluid particles this rank owns.
-    fn owned_count(&self) -> u64 {
-        let n = self.slab.solver.particles().len();
-        (0..n).filter(|&i| self.slab.owned(i)).count() as u64
-    }
-
     /// This rank's piece of a frame: the fluid it owns and the walls between its cuts.
     fn piece(&self) -> crate::particles::Particles {
+        self.slab.solver.particles().subset(&self.piece_indices())
+    }
+
+    /// The particles of [`RankSlab::piece`]: the owned fluid, and the others between the cuts
+    /// (walls, the inflow strip of the first slab).
+    fn piece_indices(&self) -> Vec<u32> {
         let p = self.slab.solver.particles();
         let (lo, hi) = (self.slab.lo, self.slab.hi);
-        let mine: Vec<u32> = (0..p.len())
+        (0..p.len())
             .filter(|&i| match p.kind[i] {
                 FLUID => self.slab.owned(i),
                 _ => lo <= p.x[i] && p.x[i] < hi,
             })
             .map(|i| i as u32)
-            .collect();
-        p.subset(&mine)
+            .collect()
+    }
+
+    /// The whole fluid's open-boundary balance and its particle counts `[inflow strip, fluid,
+    /// all]`, summed over the ranks (each runs only the boundaries in its slab).
+    fn balance(&self) -> (ParticleBalance, [u64; 3]) {
+        let link = self.link;
+        let b = self.slab.solver.open_boundaries().balance();
+        let balance = ParticleBalance {
+            inserted: link.sum(b.inserted),
+            entered: link.sum(b.entered),
+            removed: link.sum(b.removed),
+            withdrawn: link.sum(b.withdrawn),
+        };
+        let strip = self.slab.solver.particles().count(crate::Kind::Inflow) as u64;
+        let counts = [
+            link.sum(strip),
+            link.sum(self.slab.owned_count()),
+            link.sum(self.piece_indices().len() as u64),
+        ];
+        (balance, counts)
     }
 }
 
@@ -170,7 +190,7 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
     let refuse = |what: &str| {
         RankRunError::Setup(RunError::NotFluidOnly {
             file: case.path.clone(),
-            message: format!("a run on MPI ranks supports E-MPS on CPU threads with walls, blocks, gates, solids and damping zones; not yet {what}"),
+            message: format!("a run on MPI ranks supports E-MPS on CPU threads with walls, blocks, gates, solids, damping zones, inflow and outflow; not yet {what}"),
         })
     };
     if let Some(what) = unsupported(cfg) {
@@ -200,6 +220,14 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
             message,
         })
     })?;
+    let open = solver.open_boundaries();
+    open_boundaries_fit(open.inflow_plane(), open.outflow_plane(), &cuts, halo).map_err(|message| {
+        RankRunError::Setup(RunError::NotFluidOnly {
+            file: case.path.clone(),
+            message,
+        })
+    })?;
+    let open = open.is_active();
     let (slab_probes, mut probe_sets) = SlabProbes::new(&probe_set, &cuts);
     let mut probes = probe_sets.swap_remove(rank);
     let everything = solver.particles().clone();
@@ -240,12 +268,26 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
         0 => Some(ProbeFile::create(&probe_path, &probe_set.names()).map_err(io_err(&probe_path))?),
         _ => None,
     };
+    // with an inflow or an outflow, the balance CSV from rank 0 too
+    let balance_path = out.join(format!("{name}_balance.csv"));
+    let mut balance_file = match rank == 0 && open {
+        true => Some(BalanceFile::create(&balance_path).map_err(io_err(&balance_path))?),
+        false => None,
+    };
+    let mass = me.slab.solver.particle_mass();
     let mut sample = |me: &RankSlab, probes: &mut ProbeSet| -> Result<(), RankRunError> {
+        let t = me.slab.solver.time();
         let rows = link.all_rows(&probes.row_in(&ParticleView::of(&me.slab.solver)));
-        let removed = fluid_total as u64 - link.sum(me.owned_count());
+        let (balance, counts) = me.balance();
+        if let Some(file) = &mut balance_file {
+            file.row_of_counts(t, balance, counts, mass)
+                .map_err(io_err(&balance_path))?;
+        }
+        // what was there and entered, less what the ranks own: the open top's and the outflow's
+        let removed = fluid_total as u64 + balance.entered - counts[1];
         match &mut probe_file {
             Some(file) => file
-                .row(me.slab.solver.time(), &slab_probes.combine(&rows), removed)
+                .row(t, &slab_probes.combine(&rows), removed)
                 .map_err(io_err(&probe_path)),
             None => Ok(()),
         }
@@ -290,7 +332,7 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
     if let Some(p) = &mut progress {
         p.finish();
     }
-    let owned = me.owned_count();
+    let owned = me.slab.owned_count();
     Ok(RankRunSummary {
         ranks,
         time: me.slab.solver.time(),

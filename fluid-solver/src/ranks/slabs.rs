@@ -61,6 +61,36 @@ pub fn cuts(p: &Particles, parts: usize, min_width: f64) -> Result<Vec<f64>, Str
     Ok(cuts)
 }
 
+/// Whether the open boundaries fit the slabs cut at `cuts`: the first slab runs the inflow and
+/// the last the outflow ([`super::subdomain`]), so the inflow plane (its strip lies upstream)
+/// must lie a halo (`halo`) or more before the first inner cut and the outflow plane a halo or
+/// more after the last one; an error naming the plane and the cut otherwise.
+pub fn open_boundaries_fit(
+    inflow: Option<f64>,
+    outflow: Option<f64>,
+    cuts: &[f64],
+    halo: f64,
+) -> Result<(), String> {
+    let slabs = cuts.len() - 1;
+    if slabs < 2 {
+        return Ok(());
+    }
+    let (first, last) = (cuts[1], cuts[slabs - 1]);
+    if let Some(plane) = inflow.filter(|&plane| first - plane < halo) {
+        return Err(format!(
+            "the inflow plane at x = {plane} m lies {:.4} m before the first cut at x = {first:.4} m, less than the halo of {halo:.4} m: use fewer slabs (the first slab runs the inflow, and no other slab may hold its strip)",
+            first - plane
+        ));
+    }
+    if let Some(plane) = outflow.filter(|&plane| plane - last < halo) {
+        return Err(format!(
+            "the outflow plane at x = {plane} m lies {:.4} m after the last cut at x = {last:.4} m, less than the halo of {halo:.4} m: use fewer slabs (the last slab runs the outflow, and no other slab may hold water behind it)",
+            plane - last
+        ));
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -94,6 +124,27 @@ mod tests {
                 "cut {c} not half-way between particles"
             );
         }
+    }
+
+    #[test]
+    fn open_boundaries_closer_to_a_cut_than_the_halo_are_refused() {
+        let cuts = [f64::NEG_INFINITY, 1.0, 2.0, f64::INFINITY];
+        assert!(open_boundaries_fit(Some(0.5), Some(2.5), &cuts, 0.5).is_ok());
+        let e = open_boundaries_fit(Some(0.6), None, &cuts, 0.5).expect_err("inflow 0.4 m from the cut");
+        assert!(
+            e.contains("the inflow plane at x = 0.6 m") && e.contains("use fewer slabs"),
+            "{e}"
+        );
+        let e = open_boundaries_fit(None, Some(2.4), &cuts, 0.5).expect_err("outflow 0.4 m from the cut");
+        assert!(
+            e.contains("the outflow plane at x = 2.4 m") && e.contains("use fewer slabs"),
+            "{e}"
+        );
+        let one = [f64::NEG_INFINITY, f64::INFINITY];
+        assert!(
+            open_boundaries_fit(Some(10.0), Some(-10.0), &one, 0.5).is_ok(),
+            "one slab runs both"
+        );
     }
 
     #[test]

@@ -1,8 +1,11 @@
 //! One slab of the fluid: a solver stepping the fluid particles the slab owns (lo ≤ x < hi), a
 //! halo of copies of its neighbours' fluid within the halo's width of its faces, and the walls
-//! over both (walls do not move: each slab keeps those it needs from the start).
+//! over both (walls do not move: each slab keeps those it needs from the start). The first slab
+//! runs the inflow and the last the outflow, each farther than a halo from the slab's cut
+//! ([`super::slabs::open_boundaries_fit`]): no other slab holds a strip particle or fluid behind
+//! the outflow plane, so the first slab's entries and the last slab's removals are the fluid's.
 
-use crate::particles::kind::FLUID;
+use crate::particles::kind::{Kind, FLUID};
 use crate::particles::Particles;
 use crate::solver::FluidSolver;
 use crate::stability::StabilityMonitor;
@@ -18,7 +21,8 @@ pub struct Subdomain {
     pub hi: f64,
     /// Halo thickness ([`super::slabs::halo_width`]).
     halo: f64,
-    /// Whether the slab owns the fluid particle of each id (indexed by id).
+    /// Whether the slab owns the fluid particle of each id (indexed by id; an id past its end,
+    /// fluid that entered through the inflow since, was never this slab's).
     owns: Vec<bool>,
 }
 
@@ -36,11 +40,16 @@ impl Subdomain {
                 lo - halo <= x && x < hi + halo
             })
             .collect();
+        let (first, last) = (lo == f64::NEG_INFINITY, hi == f64::INFINITY);
         for &i in &near {
             let i = i as usize;
-            owns[whole.id[i] as usize] = whole.kind[i] == FLUID && lo <= whole.x[i] && whole.x[i] < hi;
+            let (kind, x) = (whole.kind[i], whole.x[i]);
+            // the inflow strip's particles are the first slab's fluid once they cross the plane
+            owns[whole.id[i] as usize] =
+                (kind == FLUID && lo <= x && x < hi) || (kind == Kind::Inflow.code() && first);
         }
         solver.monitor.set_driven();
+        solver.state.open_boundaries.keep_only(first, last);
         let mut slab = Subdomain {
             solver,
             lo,
@@ -56,7 +65,22 @@ impl Subdomain {
     /// Whether local particle `i` is fluid this slab owns.
     pub fn owned(&self, i: usize) -> bool {
         let p = self.solver.particles();
-        p.kind[i] == FLUID && self.owns[p.id[i] as usize]
+        p.kind[i] == FLUID && self.owns.get(p.id[i] as usize).copied().unwrap_or(false)
+    }
+
+    /// Fluid particles this slab owns.
+    pub fn owned_count(&self) -> u64 {
+        let n = self.solver.particles().len();
+        (0..n).filter(|&i| self.owned(i)).count() as u64
+    }
+
+    /// Marks the fluid particle `id` as this slab's or not.
+    fn set_owned(&mut self, id: u32, owned: bool) {
+        let id = id as usize;
+        if id >= self.owns.len() {
+            self.owns.resize(id + 1, false);
+        }
+        self.owns[id] = owned;
     }
 
     /// The mechanical energy of the fluid this slab owns, by `whole`'s measure.
@@ -71,15 +95,27 @@ impl Subdomain {
         self.solver.particles().subset(&mine)
     }
 
-    /// After a step: drops the halo's copies and hands over the owned fluid that left the slab
-    /// (to the left neighbour below `lo`, to the right one from `hi` on).
+    /// After a step: takes the fluid that entered through the inflow in it (ids no slab had
+    /// yet), drops the halo's copies and hands over the owned fluid that left the slab (to the
+    /// left neighbour below `lo`, to the right one from `hi` on).
     pub fn emigrants(&mut self) -> ToNeighbours {
+        let known = self.owns.len() as u32;
+        let entered: Vec<u32> = {
+            let p = self.solver.particles();
+            (0..p.len())
+                .filter(|&i| p.kind[i] == FLUID && p.id[i] >= known)
+                .map(|i| p.id[i])
+                .collect()
+        };
+        for id in entered {
+            self.set_owned(id, true);
+        }
         let p = self.solver.particles();
         let (mut keep, mut left, mut right) = (Vec::new(), Vec::new(), Vec::new());
         for i in 0..p.len() {
             if p.kind[i] != FLUID {
                 keep.push(i as u32);
-            } else if self.owns[p.id[i] as usize] {
+            } else if self.owns.get(p.id[i] as usize).copied().unwrap_or(false) {
                 match p.x[i] {
                     x if x < self.lo => left.push(i as u32),
                     x if x >= self.hi => right.push(i as u32),
@@ -90,7 +126,7 @@ impl Subdomain {
         let out = [p.subset(&left), p.subset(&right)];
         for q in &out {
             for &id in &q.id {
-                self.owns[id as usize] = false;
+                self.owns[id as usize] = false; // owned, so known
             }
         }
         self.solver.state.particles = p.subset(&keep);
@@ -101,7 +137,7 @@ impl Subdomain {
     pub fn take(&mut self, arrivals: &ToNeighbours) {
         for q in arrivals {
             for &id in &q.id {
-                self.owns[id as usize] = true;
+                self.set_owned(id, true);
             }
             self.solver.state.particles.append(q);
         }
@@ -124,6 +160,11 @@ impl Subdomain {
     /// into the solver's cell list: the slab is ready for its next step.
     pub fn take_halo(&mut self, copies: &ToNeighbours) {
         for q in copies {
+            for &id in &q.id {
+                if id as usize >= self.owns.len() {
+                    self.set_owned(id, false);
+                }
+            }
             self.solver.state.particles.append(q);
         }
         self.settle();
