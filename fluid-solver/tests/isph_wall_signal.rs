@@ -110,8 +110,11 @@ fn roughness(s: &Series, h: f64) -> (f64, f64) {
 /// Measured (28 Nov 2026; the probe wets at 0.263 s), under water 0.31–0.70 s, per step /
 /// high-passed [Pa]: probe E-MPS 107 / 347, ISPH 75 / 48; sensor E-MPS 129 / 428, ISPH 95 / 64.
 /// The arrival, 0.26–0.31 s: probe E-MPS 373 / 1 306, ISPH 1 324 / 1 091. Bounds: ISPH below
-/// E-MPS on both measures at both readers under water (the "smoother").
+/// E-MPS on both measures at both readers under water (the "smoother"). A non-default
+/// setting, as the MARIN twin's symmetric variant (`dam_break_obstacle.rs`): run with
+/// `--ignored` (about 50 s of CI's 2 cores, 30 Nov 2026).
 #[test]
+#[ignore = "non-default ISPH setting (symmetric gradient + shifting; 50 s on 2 cores): run with --ignored"]
 fn isph_wall_pressure_under_water_is_smoother_than_e_mps() {
     let (e, i) = (emps(), isph());
     let h = i.time_step;

@@ -5,6 +5,7 @@
 use schemas::validation::{largest_abs, record, Record};
 use stack_tests::{coupler_run, csv_header, csv_rows, out_dir, stderr, workspace};
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 use std::time::Instant;
 
 /// `cases/NAME/FILE` at particle size 0.02 m (Δt 8e-4 s) ending at `end`, written into `dir`.
@@ -22,6 +23,22 @@ pub(crate) fn coarse_case(name: &str, file: &str, dir: &Path, end: f64) -> PathB
     let path = dir.join(file);
     std::fs::write(&path, text).unwrap_or_else(|e| panic!("cannot write {}: {e}", path.display()));
     path
+}
+
+/// The unresolved prism's CI twin (`case.toml` to 0.3 s), run once for this file's test and
+/// `gpu_prism.rs`' CPU reference (the case's `[report]` ladders do not change the run): its
+/// output folder and what the coupler wrote to stderr.
+pub(crate) fn unresolved_twin() -> &'static (PathBuf, String) {
+    static RUN: OnceLock<(PathBuf, String)> = OnceLock::new();
+    RUN.get_or_init(|| {
+        let dir = out_dir("prism-dam-break-ci-unresolved");
+        let case = coarse_case("prism-dam-break", "case.toml", &dir, 0.3);
+        // the resolved prism the case names as its reference must sit beside it
+        coarse_case("prism-dam-break", "resolved.toml", &dir, 0.3);
+        let out = dir.join("out");
+        let (_, _, log) = run(&case, &out);
+        (out, log)
+    })
 }
 
 /// Runs `case`; the ledger's rows and its header, and what the coupler wrote to stderr.
@@ -60,10 +77,11 @@ pub(crate) fn impulse_x(rows: &[Vec<f64>], fx: usize) -> f64 {
 #[test]
 fn the_unresolved_prism_takes_the_impulse_of_the_resolved_one_within_the_coarse_bound() {
     let dir = out_dir("prism-dam-break-ci");
-    let unresolved = coarse_case("prism-dam-break", "case.toml", &dir, 0.3);
     let resolved = coarse_case("prism-dam-break", "resolved.toml", &dir, 0.3);
     let started = Instant::now();
-    let (rows, header, log) = run(&unresolved, &dir.join("unresolved"));
+    let (unresolved, log) = unresolved_twin();
+    let ledger = unresolved.join("ledger.csv");
+    let (rows, header) = (csv_rows(&ledger), csv_header(&ledger));
     let (ref_rows, ref_header, _) = run(&resolved, &dir.join("resolved"));
     let run_time_s = started.elapsed().as_secs_f64();
     // 0.05 m is wider than the reaction's support 2.4 Δs = 0.048 m: the user is told.

@@ -27,6 +27,8 @@ pub fn launched_by_mpi() -> bool {
 /// This process's place among the ranks and its link to them.
 pub struct RankLink {
     world: SimpleCommunicator,
+    /// Bytes this rank has sent its neighbours in [`RankLink::exchange`] so far.
+    sent_bytes: std::cell::Cell<u64>,
     /// Finalizes MPI when dropped, after `world`.
     _universe: mpi::environment::Universe,
 }
@@ -39,6 +41,7 @@ impl RankLink {
         let world = universe.world();
         Ok(RankLink {
             world,
+            sent_bytes: std::cell::Cell::new(0),
             _universe: universe,
         })
     }
@@ -46,6 +49,11 @@ impl RankLink {
     /// This rank, from 0.
     pub fn rank(&self) -> usize {
         self.world.rank() as usize
+    }
+
+    /// Bytes this rank has sent its neighbours in exchanges so far (encoded particles).
+    pub fn sent_bytes(&self) -> u64 {
+        self.sent_bytes.get()
     }
 
     /// How many ranks run the case.
@@ -69,6 +77,8 @@ impl RankLink {
             left.map(|_| encode(&sent[0])).transpose()?,
             right.map(|_| encode(&sent[1])).transpose()?,
         ];
+        let bytes: usize = outgoing.iter().flatten().map(Vec::len).sum();
+        self.sent_bytes.set(self.sent_bytes.get() + bytes as u64);
         let received = mpi::request::scope(|scope| {
             let _sends: Vec<WaitGuard<'_, [u8], _>> = [left, right]
                 .iter()

@@ -45,14 +45,19 @@ pub struct RankRunSummary {
     /// Fluid particles handed from one rank to another, and halo copies sent, over the run.
     pub handed_over: u64,
     pub copied: u64,
+    /// Bytes the ranks sent each other in the steps' exchanges (encoded particles).
+    pub sent_bytes: u64,
     pub wall_seconds: f64,
+    /// Wall time of the steps with their exchanges and checks (rank 0's; frames, probes and
+    /// the set-up left out).
+    pub step_seconds: f64,
 }
 
 impl std::fmt::Display for RankRunSummary {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "t = {:.4} s in {} steps on {} ranks, {} fluid particles, {} frames, {} particles handed over, {} halo copies, {:.1} s",
+            "t = {:.4} s in {} steps on {} ranks, {} fluid particles, {} frames, {} particles handed over, {} halo copies, {} bytes sent between ranks, {:.1} s ({:.3} s in the steps)",
             self.time,
             self.steps,
             self.ranks,
@@ -60,7 +65,9 @@ impl std::fmt::Display for RankRunSummary {
             self.frames,
             self.handed_over,
             self.copied,
-            self.wall_seconds
+            self.sent_bytes,
+            self.wall_seconds,
+            self.step_seconds
         )
     }
 }
@@ -299,15 +306,18 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
     sample(&me, &mut probes)?;
     let (mut next_frame, mut next_probe) = (1u64, 1u64);
     let at = |k: u64, interval: f64| (k as f64 * interval).min(end);
+    let mut step_seconds = 0.0;
     while me.slab.solver.time() < end {
         let row_at = at(next_probe, probe_interval);
         let target = at(next_frame, cfg.output_interval).min(row_at);
         while let Some(dt) = me.slab.solver.next_step_towards(target) {
+            let stepping = Instant::now();
             me.step(dt).inspect_err(|_| {
                 if let Some(p) = &mut progress {
                     p.finish();
                 }
             })?;
+            step_seconds += stepping.elapsed().as_secs_f64();
             probes.observe(&me.slab.solver, row_at);
             if let Some(p) = &mut progress {
                 let steps = me.slab.solver.steps();
@@ -341,6 +351,8 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
         frames,
         handed_over: link.sum(me.handed_over),
         copied: link.sum(me.copied),
+        sent_bytes: link.sum(link.sent_bytes()),
         wall_seconds: started.elapsed().as_secs_f64(),
+        step_seconds,
     })
 }
