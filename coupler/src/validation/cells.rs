@@ -85,13 +85,18 @@ pub fn test_source(source: &str) -> Option<(&str, &str)> {
     (file.ends_with(".rs") && !name.is_empty()).then_some((file, name))
 }
 
-/// The source cell: the CI test (linked from docs/) or the one-off run, with date and machine.
-pub fn source(r: &Record) -> String {
+/// The source cell: the CI test, or the test run with `--ignored` when `ignored` (linked from
+/// docs/), or the one-off run, with date and machine.
+pub fn source(r: &Record, ignored: bool) -> String {
     let when = format!("{}, {}", table_cell(&r.date), table_cell(&r.machine));
     match test_source(&r.source) {
         Some((file, name)) => {
             let short = file.rsplit('/').next().unwrap_or(file);
-            format!("CI test [`{short}::{name}`](../{file}) (run {when})")
+            let kind = match ignored {
+                true => "test run with `--ignored`",
+                false => "CI test",
+            };
+            format!("{kind} [`{short}::{name}`](../{file}) (run {when})")
         }
         None => format!(
             "one-off run, {when}: `{}`",

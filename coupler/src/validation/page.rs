@@ -4,9 +4,11 @@ use super::cells;
 use super::groups::{self, Group};
 use super::layout::{Layout, FRAGMENTS};
 use super::records;
+use super::sources;
 use super::summary;
 use schemas::markdown::table_cell;
 use schemas::validation::Record;
+use std::collections::HashSet;
 use std::fmt::Write as _;
 
 /// The commands that regenerate the page, as its top line gives them.
@@ -35,6 +37,7 @@ pub fn render(layout: &Layout) -> Result<Rendered, String> {
     let records = records::load(&layout.records())?;
     let groups = groups::load(&layout.groups())?;
     let (members, orphans) = groups::assign(&groups, &records)?;
+    let ignored = sources::ignored_tests(&layout.root, &records);
     let mut page = String::new();
     let _ = write!(
         page,
@@ -45,8 +48,9 @@ pub fn render(layout: &Layout) -> Result<Rendered, String> {
          Each row is one measured comparison of the solvers against an independent reference (a closed \
          form, an experiment, another code or method): the **error** as measured, the **bound** the test \
          asserts and where that bound comes from, the run time of the run that measured it, and the \
-         **source**: the CI test that asserts it (it rewrites its row each time it runs) or the one-off \
-         run, with its date, machine and command. Values are shown to three significant digits; the \
+         **source**: the CI test that asserts it (it rewrites its row each time it runs), the test that \
+         asserts it when run with `--ignored` (too long for CI), or the one-off run, with its date, \
+         machine and command. Values are shown to three significant digits; the \
          records hold them in full.\n\n"
     );
     let grouped: Vec<(Group, Vec<Record>)> = groups
@@ -60,11 +64,11 @@ pub fn render(layout: &Layout) -> Result<Rendered, String> {
         if !group.about.is_empty() {
             let _ = write!(page, "{}\n\n", group.about.trim());
         }
-        table(&mut page, rows);
+        table(&mut page, rows, &ignored);
     }
     if !orphans.is_empty() {
         page.push_str("\n## Other\n\nRecords that no group of `docs/validation/groups.toml` names yet.\n\n");
-        table(&mut page, &orphans);
+        table(&mut page, &orphans, &ignored);
     }
     report_sections(&mut page, layout)?;
     Ok(Rendered {
@@ -74,8 +78,8 @@ pub fn render(layout: &Layout) -> Result<Rendered, String> {
     })
 }
 
-/// One group's table.
-fn table(page: &mut String, rows: &[&Record]) {
+/// One group's table (`ignored`: the ids whose test CI skips).
+fn table(page: &mut String, rows: &[&Record], ignored: &HashSet<String>) {
     if rows.is_empty() {
         page.push_str("No records yet.\n");
         return;
@@ -96,7 +100,7 @@ fn table(page: &mut String, rows: &[&Record]) {
             cells::error(r),
             cells::bound(r),
             cells::run_time(r.run_time_s),
-            cells::source(r)
+            cells::source(r, ignored.contains(&r.id))
         );
     }
 }
