@@ -40,7 +40,7 @@ fn dir(name: &str) -> PathBuf {
 
 /// `fluid-solver run CASE --out OUT`, on `ranks` MPI ranks when `ranks > 1` (as root, which CI
 /// is, and with more ranks than cores allowed; one thread per rank).
-fn run(case: &Path, out: &Path, ranks: usize) -> Output {
+fn command(case: &Path, out: &Path, ranks: usize) -> Command {
     let solver = env!("CARGO_BIN_EXE_fluid-solver");
     let mut cmd = match ranks {
         1 => Command::new(solver),
@@ -57,6 +57,12 @@ fn run(case: &Path, out: &Path, ranks: usize) -> Output {
         .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
         .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
         .env("RAYON_NUM_THREADS", "1");
+    cmd
+}
+
+/// [`command`] run to its end.
+fn run(case: &Path, out: &Path, ranks: usize) -> Output {
+    let mut cmd = command(case, out, ranks);
     cmd.output()
         .unwrap_or_else(|e| panic!("cannot start {cmd:?} (is OpenMPI's mpirun installed?): {e}"))
 }
@@ -286,6 +292,90 @@ fn inflow_and_outflow_on_two_ranks_step_as_two_slabs_and_the_balance_closes() {
             "total − fluid − strip in the row {row}"
         );
     }
+}
+
+/// The process of `parent`'s children whose environment says it is MPI rank `rank`.
+fn rank_process(parent: u32, rank: usize) -> Option<u32> {
+    let wanted = format!("OMPI_COMM_WORLD_RANK={rank}");
+    std::fs::read_dir("/proc").ok()?.flatten().find_map(|entry| {
+        let pid: u32 = entry.file_name().to_str()?.parse().ok()?;
+        let stat = std::fs::read_to_string(entry.path().join("stat")).ok()?;
+        // the parent's pid is the second field after the command name's closing parenthesis
+        let ppid: u32 = stat.rsplit_once(')')?.1.split_whitespace().nth(1)?.parse().ok()?;
+        let environ = std::fs::read(entry.path().join("environ")).ok()?;
+        let is_rank = environ.split(|&b| b == 0).any(|v| v == wanted.as_bytes());
+        (ppid == parent && is_rank).then_some(pid)
+    })
+}
+
+/// A rank killed with SIGKILL in the middle of a run: every rank stops within seconds, the
+/// launcher names the rank that died and the signal, and the frames written before stay whole.
+#[test]
+fn a_rank_killed_stops_every_rank_within_seconds_naming_it() {
+    let d = dir("mpi-ranks-killed");
+    let case = d.join("case.toml");
+    // 4 s of the tilted tank (about 3 min on 2 ranks): it is killed long before its end
+    let text = TANK
+        .replace("end_time = 0.1", "end_time = 4.0")
+        .replace("output_interval = 0.05", "output_interval = 0.01");
+    assert!(text.contains("end_time = 4.0") && text.contains("output_interval = 0.01"));
+    std::fs::write(&case, text).unwrap_or_else(|e| panic!("{e}"));
+    let out = d.join("out");
+    let mut child = command(&case, &out, 2)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap_or_else(|e| panic!("cannot start mpirun: {e}"));
+    let waited = std::time::Instant::now();
+    while !out.join("water_00002.pvtu").exists() {
+        assert!(waited.elapsed().as_secs() < 120, "no third frame after 120 s");
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    let victim = rank_process(child.id(), 1).unwrap_or_else(|| panic!("no process of rank 1 under mpirun"));
+    let killed = std::time::Instant::now();
+    let status = Command::new("kill")
+        .args(["-KILL", &victim.to_string()])
+        .status()
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(status.success(), "kill -KILL {victim}");
+    let stopped = loop {
+        if let Some(status) = child.try_wait().unwrap_or_else(|e| panic!("{e}")) {
+            break status;
+        }
+        if killed.elapsed().as_secs() > 30 {
+            let _ = child.kill();
+            panic!("mpirun still runs 30 s after rank 1 was killed");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    };
+    let took = killed.elapsed().as_secs_f64();
+    let mut log = String::new();
+    if let Some(mut e) = child.stderr.take() {
+        let _ = std::io::Read::read_to_string(&mut e, &mut log);
+    }
+    println!("{log}\nstopped {took:.2} s after the kill: {stopped}");
+    assert!(!stopped.success(), "a run with a killed rank must not exit 0");
+    assert!(took < 10.0, "every rank stops within seconds: {took} s");
+    assert!(
+        log.contains("rank 1") && log.contains("signal 9"),
+        "the launcher names the rank and the signal: {log}"
+    );
+    // what was written before the kill is whole: every index names pieces that are there and
+    // parse (an index is written once all its pieces are)
+    let mut indexes = 0;
+    for entry in std::fs::read_dir(&out)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .flatten()
+    {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        if let Some(frame_name) = name.strip_suffix(".pvtu") {
+            indexes += 1;
+            for r in 0..2 {
+                let piece = frame(&out.join(format!("{frame_name}_r{r:04}.vtu")));
+                assert!(!piece.is_empty(), "piece {r} of {name} is empty");
+            }
+        }
+    }
+    assert!(indexes >= 3, "the frames before the kill: {indexes}");
 }
 
 #[test]

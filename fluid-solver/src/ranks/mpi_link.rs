@@ -127,6 +127,11 @@ impl RankLink {
         largest
     }
 
+    /// Waits until every rank has come here.
+    pub fn barrier(&self) {
+        self.world.barrier();
+    }
+
     /// Every rank's `row` (all of one length), by rank, on every rank.
     pub fn all_rows(&self, row: &[f64]) -> Vec<Vec<f64>> {
         let mut all = vec![0.0; row.len() * self.size()];

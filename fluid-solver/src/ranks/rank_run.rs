@@ -257,6 +257,9 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
         let piece = |r: usize| format!("{name}_{frames:05}_r{r:04}.vtu");
         let path = out.join(piece(rank));
         vtu::write_vtu(&path, &me.piece(), &mut DiscardProgress).map_err(io_err(&path))?;
+        // the index only once every piece is whole: a run stopped at any moment leaves no
+        // index naming a piece that is missing or cut
+        link.barrier();
         if rank == 0 {
             let index = format!("{name}_{frames:05}.pvtu");
             let pieces: Vec<String> = (0..ranks).map(piece).collect();
