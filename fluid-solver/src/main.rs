@@ -100,7 +100,8 @@ mod ranks {
     /// The ranks' run and its exit code, or `None` when no launcher started this process.
     #[cfg(feature = "mpi")]
     pub fn run_if_launched(case: &Case, out: &Path) -> Option<ExitCode> {
-        use fluid_solver::ranks::mpi_link::{launched_by_mpi, RankLink};
+        use fluid_solver::ranks::launcher::launched_by_mpi;
+        use fluid_solver::ranks::mpi_link::RankLink;
         use fluid_solver::ranks::rank_run::{run_on_ranks, RankRunError};
         use fluid_solver::run::RunError;
         if !launched_by_mpi() {
@@ -147,9 +148,7 @@ mod ranks {
     /// Without the `mpi` feature: an error when a launcher started more than one process.
     #[cfg(not(feature = "mpi"))]
     pub fn run_if_launched(_case: &Case, _out: &Path) -> Option<ExitCode> {
-        let size = ["OMPI_COMM_WORLD_SIZE", "PMI_SIZE"]
-            .iter()
-            .find_map(|v| std::env::var(v).ok()?.parse::<usize>().ok())?;
+        let size = fluid_solver::ranks::launcher::launched_ranks()?;
         (size > 1).then(|| {
             eprintln!(
                 "error: started as {size} MPI ranks, but this fluid-solver was built without MPI: build it with `cargo build --release --features fluid-solver/mpi` (needs OpenMPI and libclang), or run it without mpirun"
@@ -166,15 +165,7 @@ mod ranks {
         if std::env::var_os("RAYON_NUM_THREADS").is_some() {
             return;
         }
-        let on_node = [
-            "OMPI_COMM_WORLD_LOCAL_SIZE",
-            "MPI_LOCALNRANKS",
-            "SLURM_NTASKS_PER_NODE",
-        ]
-        .iter()
-        .find_map(|v| std::env::var(v).ok()?.parse::<usize>().ok())
-        .unwrap_or(1)
-        .max(1);
+        let on_node = fluid_solver::ranks::launcher::ranks_on_node();
         let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
         let _ = rayon::ThreadPoolBuilder::new()
             .num_threads((cores / on_node).max(1))

@@ -373,6 +373,135 @@ fn inflow_and_outflow_run_in_the_end_slabs_and_the_balance_closes_exactly() {
     }
 }
 
+/// [`TANK`] with a box body 0.2 m long on its floor under the water, across the cut of two slabs
+/// (x = 0.6 m), pressed down into the floor at 2 cm/s: the water's loads on it and, once its
+/// particles come closer than Δs to the floor's, the floor's contact.
+fn tank_with_a_body() -> FluidConfig {
+    let column = "[[fluid.water.block]]\nmin = [0.0, 0.0, 0.0]\nmax = [1.2, 0.06, 0.24]\n";
+    let around = "[[fluid.water.body]]\nname = \"box\"\nmin = [0.5, 0.0, 0.0]\nmax = [0.7, 0.06, 0.08]\n\n\
+                  [[fluid.water.block]]\nmin = [0.0, 0.0, 0.0]\nmax = [0.5, 0.06, 0.24]\n\n\
+                  [[fluid.water.block]]\nmin = [0.7, 0.0, 0.0]\nmax = [1.2, 0.06, 0.24]\n\n\
+                  [[fluid.water.block]]\nmin = [0.5, 0.0, 0.08]\nmax = [0.7, 0.06, 0.24]\n";
+    assert!(TANK.contains(column), "ranks.rs' tank has changed its column");
+    let text = TANK.replace(column, around);
+    let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("slabs-body.toml");
+    let case = Case::parse(&path, text).unwrap_or_else(|e| panic!("{e}"));
+    case.fluid["water"].clone()
+}
+
+/// The box's pose and velocity at time `t` (sinking at 2 cm/s from its place at rest).
+fn sinking(t: f64) -> ([f64; 7], [f64; 6]) {
+    let w = -0.02;
+    (
+        [0.6, 0.03, 0.04 + w * t, 1.0, 0.0, 0.0, 0.0],
+        [0.0, 0.0, w, 0.0, 0.0, 0.0],
+    )
+}
+
+/// The undivided tank with the sinking box: its loads after each step, first with its particles
+/// stored in reverse order when `reversed`.
+fn body_loads_whole(cfg: &FluidConfig, reversed: bool) -> Vec<Vec<f64>> {
+    let mut s = FluidSolver::new(cfg);
+    s.remove_gates();
+    if reversed {
+        let mut state = s.save_state();
+        let n = state.particles.len() as u32;
+        let order: Vec<u32> = (0..n).rev().collect();
+        state.particles.permute(&order, &mut Vec::new());
+        state.grid.sort(&mut state.particles, &mut Vec::new());
+        s.restore_state(&state);
+    }
+    let dt = cfg.time_step;
+    (1..=STEPS)
+        .map(|k| {
+            let (pose, velocity) = sinking(k as f64 * dt);
+            s.set_body_motion(&pose, &velocity, dt)
+                .unwrap_or_else(|e| panic!("{e}"));
+            s.step(dt).unwrap_or_else(|e| panic!("{e}"));
+            s.body_loads()
+        })
+        .collect()
+}
+
+/// The largest difference of the loads' components over the steps.
+fn load_gap(a: &[Vec<f64>], b: &[Vec<f64>]) -> f64 {
+    largest(
+        a.iter()
+            .zip(b)
+            .flat_map(|(x, y)| x.iter().zip(y).map(|(u, v)| (u - v).abs())),
+        0.0,
+    )
+}
+
+/// A body across a cut: every slab holds all of its particles and reports the loads from the
+/// fluid it owns and the floor's contact on the particles between its cuts, so the slabs' loads
+/// add up to the undivided run's within the round-off spread of the same loads (the undivided
+/// run with its particles stored in reverse order), and the reaction balances them.
+#[test]
+fn a_body_across_a_cut_takes_the_undivided_runs_loads() {
+    let cfg = tank_with_a_body();
+    let started = std::time::Instant::now();
+    let reference = body_loads_whole(&cfg, false);
+    let spread = load_gap(&reference, &body_loads_whole(&cfg, true));
+    let scale = largest(reference.iter().flat_map(|l| l.iter().map(|v| v.abs())), 0.0);
+    let last = reference.last().cloned().unwrap_or_default();
+    println!(
+        "undivided: last loads {last:?}; reversed order's spread {spread:.3e} (largest component {scale:.3})"
+    );
+    assert!(
+        last[2] > 1.0,
+        "the floor's contact pushes the sinking box up: {last:?}"
+    );
+    let bound = SPREADS * largest([spread], f64::EPSILON * scale);
+    let dt = cfg.time_step;
+    // two slabs: a third would be thinner than the halo (the box takes the column's water)
+    let parts = 2;
+    let mut d = DecomposedFluid::new(&cfg, parts).unwrap_or_else(|e| panic!("{e}"));
+    let mut worst_balance: f64 = 0.0;
+    let loads: Vec<Vec<f64>> = (1..=STEPS)
+        .map(|k| {
+            let (pose, velocity) = sinking(k as f64 * dt);
+            d.set_body_motion(&pose, &velocity, dt)
+                .unwrap_or_else(|e| panic!("{e}"));
+            d.step(dt).unwrap_or_else(|e| panic!("{e}"));
+            let (l, r) = (d.body_loads(), d.body_reactions());
+            worst_balance = largest(
+                l.iter()
+                    .zip(&r)
+                    .map(|(a, b)| (a + b).abs())
+                    .chain([worst_balance]),
+                0.0,
+            );
+            l
+        })
+        .collect();
+    let gap = load_gap(&reference, &loads);
+    println!("{parts} slabs: largest load difference {gap:.3e} (bound {bound:.3e}); worst |load + reaction| {worst_balance:.3e}");
+    record(Record {
+        id: format!("emps-slabs-{parts}-body-loads-vs-undivided"),
+        capability: "resolved bodies with the fluid in slabs (each slab's loads from the fluid it owns)".into(),
+        reference: "the undivided run's loads from the same start".into(),
+        case: "tilted dam break of emps-slabs-2-vs-undivided with a 0.2 × 0.06 × 0.08 m box on the floor across the first cut, pressed into the floor at 2 cm/s".into(),
+        resolution: format!("E-MPS, Δs = 0.02 m, {STEPS} steps, {parts} slabs"),
+        measure: "largest |load_slabs − load_undivided| over the steps and the 6 components".into(),
+        value: gap,
+        bound: Some(bound),
+        bound_source: format!("{SPREADS} × the spread of the same loads in the undivided run with its particles stored in reverse order ({spread:.1e})"),
+        unit: "N, N m".into(),
+        source: "fluid-solver/tests/ranks.rs::a_body_across_a_cut_takes_the_undivided_runs_loads".into(),
+        run_time_s: started.elapsed().as_secs_f64(),
+        ..Default::default()
+    });
+    assert!(
+        gap <= bound,
+        "{parts} slabs: the loads differ by {gap:.3e}, more than {bound:.3e}"
+    );
+    assert!(
+        worst_balance <= 1e-9 * scale,
+        "{parts} slabs: the reaction does not balance the loads: {worst_balance:e}"
+    );
+}
+
 #[test]
 fn slabs_thinner_than_the_halo_and_unsupported_scenes_are_refused() {
     let cfg = tank();

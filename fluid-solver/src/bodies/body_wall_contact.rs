@@ -31,12 +31,13 @@ impl RigidBodies {
         centres: &[f64],
         scales: &ExchangeScales,
     ) -> Vec<f64> {
-        let is_wall = |kind: u8| kind == WALL || kind == DUMMY;
+        let is_wall = |w: usize| p.kind[w] == WALL || p.kind[w] == DUMMY;
         self.body_side_sum(
             grid,
             p,
             scales.spacing,
             centres,
+            |j| self.counts_body_particle(p, j),
             is_wall,
             wall_contact_pair(scales, p),
         )

@@ -38,6 +38,26 @@ pub struct RigidBodies {
     centres: Vec<[f64; 3]>,
     /// (particle id, body index, offset from the initial centre), sorted by id.
     members: Vec<(u32, usize, [f64; 3])>,
+    /// The part of the loads this fluid reports when it is one slab of a fluid cut into slabs.
+    share: Option<LoadShare>,
+}
+
+/// The part of the bodies' loads one slab of the fluid reports ([`crate::ranks`]): the pairs
+/// with the fluid it owns, and the walls' contact on the body particles between its cuts
+/// (`lo ≤ x < hi`; every slab holds every body particle), so the slabs' loads and reactions add
+/// up to the whole fluid's.
+#[derive(Debug, Clone, Default)]
+pub struct LoadShare {
+    /// Whether the slab owns the fluid particle of each id (an id past the end: no).
+    pub owned: Vec<bool>,
+    pub lo: f64,
+    pub hi: f64,
+}
+
+impl LoadShare {
+    fn owns(&self, id: u32) -> bool {
+        self.owned.get(id as usize).copied().unwrap_or(false)
+    }
 }
 
 /// Rotates `v` by the unit quaternion `q = (w, x, y, z)`.
@@ -77,6 +97,29 @@ impl RigidBodies {
         }
         out.members.sort_by_key(|m| m.0);
         out
+    }
+
+    /// Makes these bodies report only `share` of their loads (a slab of the fluid), or all of
+    /// them (`None`).
+    pub fn set_share(&mut self, share: Option<LoadShare>) {
+        self.share = share;
+    }
+
+    /// The share set by [`RigidBodies::set_share`], to update in place.
+    pub fn share_mut(&mut self) -> Option<&mut LoadShare> {
+        self.share.as_mut()
+    }
+
+    /// Whether particle `i` of `p` is fluid whose pairs with the bodies count here.
+    fn counts_fluid(&self, p: &Particles, i: usize) -> bool {
+        p.kind[i] == FLUID && self.share.as_ref().is_none_or(|s| s.owns(p.id[i]))
+    }
+
+    /// Whether the walls' contact on body particle `j` of `p` counts here.
+    pub(crate) fn counts_body_particle(&self, p: &Particles, j: usize) -> bool {
+        self.share
+            .as_ref()
+            .is_none_or(|s| s.lo <= p.x[j] && p.x[j] < s.hi)
     }
 
     /// Body names, in the order of the interface arrays.
@@ -146,32 +189,36 @@ impl RigidBodies {
         law: &PairLaw,
     ) -> (Vec<f64>, Vec<f64>) {
         let pair = |i: usize, j: usize| law.force(i, j);
-        let loads = self.body_side_sum(grid, p, law.radius, centres, is_fluid, pair);
+        let fluid = |i: usize| self.counts_fluid(p, i);
+        let loads = self.body_side_sum(grid, p, law.radius, centres, |_| true, fluid, pair);
         let reaction = self.fluid_side_sum(grid, p, law.radius, centres, pair);
         (loads, reaction)
     }
 
-    /// Σ over body particles j of `pair(i, j)` over neighbours i within `radius` whose kind byte
-    /// `partner` accepts, per body, with the moment about the body's centre at r_j (6 per body).
+    /// Σ over the body particles j that `body` accepts of `pair(i, j)` over neighbours i within
+    /// `radius` that `partner` accepts, per body, with the moment about the body's centre at r_j
+    /// (6 per body).
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn body_side_sum(
         &self,
         grid: &CellGrid,
         p: &Particles,
         radius: f64,
         centres: &[f64],
-        partner: impl Fn(u8) -> bool + Sync,
+        body: impl Fn(usize) -> bool + Sync,
+        partner: impl Fn(usize) -> bool + Sync,
         pair: impl Fn(usize, usize) -> Option<[f64; 3]> + Sync,
     ) -> Vec<f64> {
         let reach = grid.reach(radius);
         let per_particle: Vec<(usize, [f64; 3], [f64; 3])> = (0..p.len())
             .into_par_iter()
             .with_min_len(1024)
-            .filter(|&j| p.kind[j] == Kind::Body.code())
+            .filter(|&j| p.kind[j] == Kind::Body.code() && body(j))
             .filter_map(|j| {
                 let &(_, b, _) = self.member(p.id[j])?;
                 let mut f = [0.0; 3];
                 grid.for_each_range(j, reach, |s, e| {
-                    for i in (s..e).filter(|&i| partner(p.kind[i])) {
+                    for i in (s..e).filter(|&i| partner(i)) {
                         if let Some(fij) = pair(i, j) {
                             (0..3).for_each(|a| f[a] += fij[a]);
                         }
@@ -205,7 +252,7 @@ impl RigidBodies {
         (0..p.len())
             .into_par_iter()
             .with_min_len(1024)
-            .filter(|&i| p.kind[i] == FLUID)
+            .filter(|&i| self.counts_fluid(p, i))
             .fold(
                 || vec![0.0; 6 * bodies],
                 |mut acc, i| {
@@ -233,11 +280,6 @@ impl RigidBodies {
                 |a, b| a.iter().zip(&b).map(|(x, y)| x + y).collect(),
             )
     }
-}
-
-/// Whether a kind byte is fluid: the partners of the fluid–body exchanges.
-fn is_fluid(kind: u8) -> bool {
-    kind == FLUID
 }
 
 /// Adds force `f` acting at `r` and its moment about `centre` to `out` (fx fy fz mx my mz).

@@ -39,7 +39,7 @@ impl DecomposedFluid {
     pub fn new(cfg: &FluidConfig, parts: usize) -> Result<DecomposedFluid, String> {
         if let Some(what) = unsupported(cfg) {
             return Err(format!(
-                "the fluid in slabs supports E-MPS on CPU threads with walls, blocks, gates, solids, damping zones, inflow and outflow; not yet {what}"
+                "the fluid in slabs supports E-MPS on CPU threads with walls, blocks, gates, solids, bodies, damping zones, inflow and outflow; not yet {what}"
             ));
         }
         let mut whole = FluidSolver::new(cfg);
@@ -123,6 +123,28 @@ impl DecomposedFluid {
             .map(|(set, s)| set.row_in(&ParticleView::of(&s.solver)))
             .collect();
         self.probes.combine(&rows)
+    }
+
+    /// Moves every slab's bodies ([`FluidSolver::set_body_motion`]); a moving body drives the
+    /// fluid (no energy check from then on).
+    pub fn set_body_motion(&mut self, pose: &[f64], velocity: &[f64], lead: f64) -> Result<(), String> {
+        if velocity.iter().any(|&v| v != 0.0) {
+            self.whole.set_driven();
+        }
+        self.parts
+            .iter_mut()
+            .try_for_each(|s| s.solver.set_body_motion(pose, velocity, lead))
+    }
+
+    /// The bodies' loads of the last step (6 per body), summed over the slabs: each reports
+    /// those from the fluid it owns and the walls' contact between its cuts.
+    pub fn body_loads(&self) -> Vec<f64> {
+        sum_over(self.parts.iter().map(|s| s.solver.body_loads()))
+    }
+
+    /// The bodies' reaction on the fluid and the walls in the last step, summed over the slabs.
+    pub fn body_reactions(&self) -> Vec<f64> {
+        sum_over(self.parts.iter().map(|s| s.solver.body_reactions()))
     }
 
     /// Sets every slab's clock to `t_end` when the steps have reached it up to rounding
@@ -218,11 +240,17 @@ pub fn unsupported(cfg: &FluidConfig) -> Option<&'static str> {
     [
         (cfg.method != FluidMethodName::Emps, "method = \"isph\""),
         (cfg.backend != FluidBackend::Cpu, "backend = \"gpu\""),
-        (!cfg.body.is_empty(), "[[body]]"),
         (cfg.wave_maker.is_some(), "[wave_maker]"),
     ]
     .into_iter()
     .find_map(|(on, what)| on.then_some(what))
+}
+
+/// The element-wise sum of equally long vectors.
+fn sum_over(parts: impl Iterator<Item = Vec<f64>>) -> Vec<f64> {
+    parts
+        .reduce(|a, b| a.iter().zip(&b).map(|(x, y)| x + y).collect())
+        .unwrap_or_default()
 }
 
 /// What each slab receives from its neighbours: slab r gets what r − 1 sent right and what

@@ -8,6 +8,7 @@
 //! - [`slab_probes`]: the case's probes read by the slabs and combined into the whole's row;
 //! - [`subdomain`]: one slab's solver, what it owns, what it sends and takes;
 //! - [`decomposed`]: the slabs in one process, stepped together, with the whole domain's checks;
+//! - [`launcher`]: what `mpirun` or `srun` tells the ranks it starts (with or without MPI built in);
 //! - [`mpi_link`] and [`rank_run`] (cargo feature `mpi`): one slab per MPI rank, the particles
 //!   traded between ranks, and a standalone run on ranks writing its frames in pieces.
 //!
@@ -16,6 +17,7 @@
 //! rank each, in the same order: a run on N ranks steps as the case in N slabs of one process.
 
 pub mod decomposed;
+pub mod launcher;
 #[cfg(feature = "mpi")]
 pub mod mpi_link;
 #[cfg(feature = "mpi")]

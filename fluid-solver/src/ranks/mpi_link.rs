@@ -15,15 +15,6 @@ use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
 use mpi::Tag;
 
-/// The environment variables an MPI launcher sets in every rank it starts (OpenMPI, MPICH's
-/// Hydra, Slurm's PMI and PMIx).
-const LAUNCHER_VARIABLES: [&str; 4] = ["OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "PMI_RANK"];
-
-/// Whether this process was started by an MPI launcher (`mpirun`, `srun`, …).
-pub fn launched_by_mpi() -> bool {
-    LAUNCHER_VARIABLES.iter().any(|v| std::env::var_os(v).is_some())
-}
-
 /// This process's place among the ranks and its link to them.
 pub struct RankLink {
     world: SimpleCommunicator,

@@ -206,6 +206,10 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
     if cfg.surface_mesh {
         return Err(refuse("surface_mesh = true"));
     }
+    if !cfg.body.is_empty() {
+        // the slabs of one process carry bodies; on ranks they wait for the coupler's `ranks`
+        return Err(refuse("[[fluid.NAME.body]]"));
+    }
     let io_err = |path: &Path| {
         let path = path.to_path_buf();
         move |error| here(RunError::Output { path, error })

@@ -1,10 +1,12 @@
 //! One slab of the fluid: a solver stepping the fluid particles the slab owns (lo ≤ x < hi), a
 //! halo of copies of its neighbours' fluid within the halo's width of its faces, and the walls
-//! over both (walls do not move: each slab keeps those it needs from the start). The first slab
+//! over both (walls do not move: each slab keeps those it needs from the start), and every body
+//! particle (a slab reports the loads from the fluid it owns: [`LoadShare`]). The first slab
 //! runs the inflow and the last the outflow, each farther than a halo from the slab's cut
 //! ([`super::slabs::open_boundaries_fit`]): no other slab holds a strip particle or fluid behind
 //! the outflow plane, so the first slab's entries and the last slab's removals are the fluid's.
 
+use crate::bodies::rigid_bodies::LoadShare;
 use crate::particles::kind::{Kind, FLUID};
 use crate::particles::Particles;
 use crate::solver::FluidSolver;
@@ -34,10 +36,12 @@ impl Subdomain {
     pub fn of(mut solver: FluidSolver, whole: &Particles, lo: f64, hi: f64, halo: f64) -> Subdomain {
         let ids = whole.id.iter().map(|&i| i as usize + 1).max().unwrap_or(0);
         let mut owns = vec![false; ids];
+        // every body particle: a body moves, and each slab places all of it by the pose
+        let body = Kind::Body.code();
         let near: Vec<u32> = (0..whole.len() as u32)
             .filter(|&i| {
                 let x = whole.x[i as usize];
-                lo - halo <= x && x < hi + halo
+                (lo - halo <= x && x < hi + halo) || whole.kind[i as usize] == body
             })
             .collect();
         let (first, last) = (lo == f64::NEG_INFINITY, hi == f64::INFINITY);
@@ -50,6 +54,14 @@ impl Subdomain {
         }
         solver.monitor.set_driven();
         solver.state.open_boundaries.keep_only(first, last);
+        if !solver.bodies.names().is_empty() {
+            // the slab reports the bodies' loads from the fluid it owns ([`Subdomain::settle`])
+            solver.bodies.set_share(Some(LoadShare {
+                owned: Vec::new(),
+                lo,
+                hi,
+            }));
+        }
         let mut slab = Subdomain {
             solver,
             lo,
@@ -170,10 +182,14 @@ impl Subdomain {
         self.settle();
     }
 
-    /// Sorts the particles into the solver's cell list after they were replaced.
+    /// Sorts the particles into the solver's cell list after they were replaced, and tells the
+    /// bodies which fluid the slab owns now.
     fn settle(&mut self) {
         let st = &mut self.solver.state;
         st.grid.sort(&mut st.particles, &mut Vec::new());
+        if let Some(share) = self.solver.bodies.share_mut() {
+            share.owned.clone_from(&self.owns);
+        }
         self.solver.moved();
     }
 }
