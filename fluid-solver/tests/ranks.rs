@@ -128,12 +128,7 @@ fn whole(cfg: &FluidConfig, reversed: bool) -> (FluidSolver, Vec<Vec<f64>>) {
     let mut probes = ProbeSet::new(&cfg.probe, &s).unwrap_or_else(|e| panic!("{e}"));
     s.remove_gates();
     if reversed {
-        let mut state = s.save_state();
-        let n = state.particles.len() as u32;
-        let order: Vec<u32> = (0..n).rev().collect();
-        state.particles.permute(&order, &mut Vec::new());
-        state.grid.sort(&mut state.particles, &mut Vec::new());
-        s.restore_state(&state);
+        store_in_reverse(&mut s);
     }
     let mut rows = Vec::new();
     for k in 1..=STEPS {
@@ -144,6 +139,61 @@ fn whole(cfg: &FluidConfig, reversed: bool) -> (FluidSolver, Vec<Vec<f64>>) {
         }
     }
     (s, rows)
+}
+
+/// Stores `s`'s particles in reverse order (the same state, its sums added in another order: the
+/// round-off spread the slabs are held to).
+fn store_in_reverse(s: &mut FluidSolver) {
+    let mut state = s.save_state();
+    let n = state.particles.len() as u32;
+    let order: Vec<u32> = (0..n).rev().collect();
+    state.particles.permute(&order, &mut Vec::new());
+    state.grid.sort(&mut state.particles, &mut Vec::new());
+    s.restore_state(&state);
+}
+
+/// A decomposed run's largest distance to the undivided run's particles, with what it ran.
+struct Positions {
+    id: String,
+    capability: &'static str,
+    case: &'static str,
+    resolution: String,
+    /// The test in this file that measured it.
+    test: &'static str,
+    gap: f64,
+    /// The undivided run's round-off spread (its particles stored in reverse order).
+    spread: f64,
+    started: std::time::Instant,
+}
+
+/// Records `p` and asserts its gap within [`SPREADS`] × its spread.
+fn positions_within_the_spread(p: Positions) {
+    let bound = SPREADS * p.spread.max(1e-15);
+    record(Record {
+        id: p.id.clone(),
+        capability: p.capability.into(),
+        reference: "the undivided run from the same start".into(),
+        case: p.case.into(),
+        resolution: p.resolution,
+        measure: "largest |r_slabs − r_undivided| over the fluid particles".into(),
+        value: p.gap,
+        bound: Some(bound),
+        bound_source: format!(
+            "{SPREADS} × the round-off spread of the undivided run with its particles stored in reverse order ({:.1e} m)",
+            p.spread
+        ),
+        unit: "m".into(),
+        source: format!("fluid-solver/tests/ranks.rs::{}", p.test),
+        run_time_s: p.started.elapsed().as_secs_f64(),
+        ..Default::default()
+    });
+    assert!(
+        p.gap <= bound,
+        "{}: a particle is {:.3e} m from the whole domain's, more than {SPREADS} × the order's spread {:.3e} m",
+        p.id,
+        p.gap,
+        p.spread
+    );
 }
 
 /// The time of the probe row after step `k`.
@@ -241,25 +291,16 @@ fn slabs_step_as_the_whole_domain_within_its_round_off_spread() {
             moved >= 36 * (parts as u64 - 1),
             "{parts} slabs: only {moved} particles crossed a cut"
         );
-        record(Record {
+        positions_within_the_spread(Positions {
             id: format!("emps-slabs-{parts}-vs-undivided"),
-            capability: "E-MPS fluid in slabs with halos (the decomposition of MPI ranks)".into(),
-            reference: "the undivided run from the same start".into(),
-            case: "tilted dam break: 1.6 × 0.06 × 0.3 m tank, column 1.2 × 0.24 m (2 160 fluid particles), gravity 6 m/s² along x".into(),
+            capability: "E-MPS fluid in slabs with halos (the decomposition of MPI ranks)",
+            case: "tilted dam break: 1.6 × 0.06 × 0.3 m tank, column 1.2 × 0.24 m (2 160 fluid particles), gravity 6 m/s² along x",
             resolution: format!("E-MPS, Δs = 0.02 m, {STEPS} steps, {parts} slabs ({moved} particles handed over)"),
-            measure: "largest |r_slabs − r_undivided| over the fluid particles".into(),
-            value: gap,
-            bound: Some(SPREADS * spread.max(1e-15)),
-            bound_source: format!("{SPREADS} × the round-off spread of the undivided run with its particles stored in reverse order ({spread:.1e} m)"),
-            unit: "m".into(),
-            source: "fluid-solver/tests/ranks.rs::slabs_step_as_the_whole_domain_within_its_round_off_spread".into(),
-            run_time_s: started.elapsed().as_secs_f64(),
-            ..Default::default()
+            test: "slabs_step_as_the_whole_domain_within_its_round_off_spread",
+            gap,
+            spread,
+            started,
         });
-        assert!(
-            gap <= SPREADS * spread.max(1e-15),
-            "{parts} slabs: a particle is {gap:.3e} m from the whole domain's, more than {SPREADS} × the order's spread {spread:.3e} m"
-        );
     }
 }
 
@@ -351,25 +392,16 @@ fn inflow_and_outflow_run_in_the_end_slabs_and_the_balance_closes_exactly() {
             "{parts} slabs: less than a lattice plane crossed the cuts: {}",
             d.handed_over()
         );
-        record(Record {
+        positions_within_the_spread(Positions {
             id: format!("emps-slabs-{parts}-inflow-outflow-vs-undivided"),
-            capability: "inflow and outflow with the fluid in slabs (the first runs the inflow, the last the outflow)".into(),
-            reference: "the undivided run from the same start; its particle balance".into(),
-            case: "channel 3.8 × 0.2 m, water 0.2 m deep fed at 0.5 m/s through x = 0.4 m and let out behind x = 3.4 m, gravity 3 m/s² along x".into(),
+            capability: "inflow and outflow with the fluid in slabs (the first runs the inflow, the last the outflow)",
+            case: "channel 3.8 × 0.2 m, water 0.2 m deep fed at 0.5 m/s through x = 0.4 m and let out behind x = 3.4 m, gravity 3 m/s² along x",
             resolution: format!("E-MPS, Δs = 0.05 m, {STEPS} steps, {parts} slabs ({} entered, {} removed, all equal to the undivided run's)", b.entered, b.removed),
-            measure: "largest |r_slabs − r_undivided| over the fluid particles".into(),
-            value: gap,
-            bound: Some(SPREADS * spread.max(1e-15)),
-            bound_source: format!("{SPREADS} × the round-off spread of the undivided run with its particles stored in reverse order ({spread:.1e} m)"),
-            unit: "m".into(),
-            source: "fluid-solver/tests/ranks.rs::inflow_and_outflow_run_in_the_end_slabs_and_the_balance_closes_exactly".into(),
-            run_time_s: started.elapsed().as_secs_f64(),
-            ..Default::default()
+            test: "inflow_and_outflow_run_in_the_end_slabs_and_the_balance_closes_exactly",
+            gap,
+            spread,
+            started,
         });
-        assert!(
-            gap <= SPREADS * spread.max(1e-15),
-            "{parts} slabs: a particle is {gap:.3e} m from the whole domain's, more than {SPREADS} × the order's spread {spread:.3e} m"
-        );
     }
 }
 
@@ -404,12 +436,7 @@ fn body_loads_whole(cfg: &FluidConfig, reversed: bool) -> Vec<Vec<f64>> {
     let mut s = FluidSolver::new(cfg);
     s.remove_gates();
     if reversed {
-        let mut state = s.save_state();
-        let n = state.particles.len() as u32;
-        let order: Vec<u32> = (0..n).rev().collect();
-        state.particles.permute(&order, &mut Vec::new());
-        state.grid.sort(&mut state.particles, &mut Vec::new());
-        s.restore_state(&state);
+        store_in_reverse(&mut s);
     }
     let dt = cfg.time_step;
     (1..=STEPS)
