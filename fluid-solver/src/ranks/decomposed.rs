@@ -3,11 +3,10 @@
 //! ([`super::subdomain`]). The checks that need the whole fluid (its energy) are made here over
 //! the slabs' own particles.
 
+use super::slab_plan::SlabPlan;
 use super::slab_probes::SlabProbes;
-use super::slabs::{cuts, halo_width, open_boundaries_fit};
 use super::subdomain::{Subdomain, ToNeighbours};
 use crate::boundaries::open_boundary::ParticleBalance;
-use crate::particles::kind::FLUID;
 use crate::particles::Particles;
 use crate::sensors::probes::ProbeSet;
 use crate::sensors::view::ParticleView;
@@ -43,32 +42,29 @@ impl DecomposedFluid {
             ));
         }
         let mut whole = FluidSolver::new(cfg);
-        let probe_set = ProbeSet::new(&cfg.probe, &whole)?;
-        whole.remove_gates();
-        let halo = halo_width(whole.kernel());
-        let cuts = cuts(whole.particles(), parts, halo)?;
-        let open = whole.open_boundaries();
-        open_boundaries_fit(open.inflow_plane(), open.outflow_plane(), &cuts, halo)?;
-        let (probes, probe_sets) = SlabProbes::new(&probe_set, &cuts);
-        let everything = whole.particles().clone();
-        let fluid_at_start = everything.kind.iter().filter(|&&k| k == FLUID).count() as u64;
+        let plan = SlabPlan::new(&mut whole, &cfg.probe, parts).map_err(|e| e.to_string())?;
         let parts: Vec<Subdomain> = (0..parts)
             .into_par_iter()
             .map(|r| {
                 let mut solver = FluidSolver::new(cfg);
                 solver.remove_gates();
-                Subdomain::of(solver, &everything, cuts[r], cuts[r + 1], halo)
+                Subdomain::of(
+                    solver,
+                    &plan.everything,
+                    plan.cuts[r],
+                    plan.cuts[r + 1],
+                    plan.halo,
+                )
             })
             .collect();
-        whole.monitor.start(&everything);
         Ok(DecomposedFluid {
             parts,
-            whole: whole.monitor,
+            whole: plan.whole,
             handed_over: 0,
             copied: 0,
-            probes,
-            probe_sets,
-            fluid_at_start,
+            probes: plan.probes,
+            probe_sets: plan.probe_sets,
+            fluid_at_start: plan.fluid_at_start,
         })
     }
 

@@ -5,6 +5,7 @@
 //! their new owner and the halos are sent again.
 //!
 //! - [`slabs`]: where the cuts lie (balanced by fluid particles) and how thick a halo must be;
+//! - [`slab_plan`]: what the slabs of a case start from (layout, cuts, halo, probes, energy);
 //! - [`slab_probes`]: the case's probes read by the slabs and combined into the whole's row;
 //! - [`subdomain`]: one slab's solver, what it owns, what it sends and takes;
 //! - [`decomposed`]: the slabs in one process, stepped together, with the whole domain's checks;
@@ -22,6 +23,7 @@ pub mod launcher;
 pub mod mpi_link;
 #[cfg(feature = "mpi")]
 pub mod rank_run;
+pub mod slab_plan;
 pub mod slab_probes;
 pub mod slabs;
 pub mod subdomain;

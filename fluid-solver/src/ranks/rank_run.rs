@@ -11,8 +11,7 @@
 
 use super::decomposed::{check_whole_energy, unsupported};
 use super::mpi_link::RankLink;
-use super::slab_probes::SlabProbes;
-use super::slabs::{cuts, halo_width, open_boundaries_fit};
+use super::slab_plan::{PlanError, SlabPlan};
 use super::subdomain::{Subdomain, ToNeighbours};
 use crate::boundaries::open_boundary::{BalanceFile, ParticleBalance};
 use crate::output::progress::Progress;
@@ -146,21 +145,19 @@ impl RankSlab<'_> {
 
     /// This rank's piece of a frame: the fluid it owns and the walls between its cuts.
     fn piece(&self) -> crate::particles::Particles {
-        self.slab.solver.particles().subset(&self.piece_indices())
+        let n = self.slab.solver.particles().len() as u32;
+        let mine: Vec<u32> = (0..n).filter(|&i| self.in_piece(i as usize)).collect();
+        self.slab.solver.particles().subset(&mine)
     }
 
-    /// The particles of [`RankSlab::piece`]: the owned fluid, and the others between the cuts
-    /// (walls, the inflow strip of the first slab).
-    fn piece_indices(&self) -> Vec<u32> {
+    /// Whether local particle `i` is in [`RankSlab::piece`]: the owned fluid, and the others
+    /// between the cuts (walls, the inflow strip of the first slab).
+    fn in_piece(&self, i: usize) -> bool {
         let p = self.slab.solver.particles();
-        let (lo, hi) = (self.slab.lo, self.slab.hi);
-        (0..p.len())
-            .filter(|&i| match p.kind[i] {
-                FLUID => self.slab.owned(i),
-                _ => lo <= p.x[i] && p.x[i] < hi,
-            })
-            .map(|i| i as u32)
-            .collect()
+        match p.kind[i] {
+            FLUID => self.slab.owned(i),
+            _ => self.slab.lo <= p.x[i] && p.x[i] < self.slab.hi,
+        }
     }
 
     /// The whole fluid's open-boundary balance and its particle counts `[inflow strip, fluid,
@@ -178,7 +175,11 @@ impl RankSlab<'_> {
         let counts = [
             link.sum(strip),
             link.sum(self.slab.owned_count()),
-            link.sum(self.piece_indices().len() as u64),
+            link.sum(
+                (0..self.slab.solver.particles().len())
+                    .filter(|&i| self.in_piece(i))
+                    .count() as u64,
+            ),
         ];
         (balance, counts)
     }
@@ -217,34 +218,24 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
     std::fs::create_dir_all(out).map_err(io_err(out))?;
     let (rank, ranks) = (link.rank(), link.size());
     let mut solver = FluidSolver::new(cfg);
-    let probe_set = ProbeSet::new(&cfg.probe, &solver).map_err(|message| {
-        RankRunError::Setup(RunError::Probe {
-            file: case.path.clone(),
-            message,
+    let plan = SlabPlan::new(&mut solver, &cfg.probe, ranks).map_err(|e| {
+        let file = case.path.clone();
+        RankRunError::Setup(match e {
+            PlanError::Probe(message) => RunError::Probe { file, message },
+            PlanError::Slabs(message) => RunError::NotFluidOnly { file, message },
         })
     })?;
-    solver.remove_gates();
-    let halo = halo_width(solver.kernel());
-    let cuts = cuts(solver.particles(), ranks, halo).map_err(|message| {
-        RankRunError::Setup(RunError::NotFluidOnly {
-            file: case.path.clone(),
-            message,
-        })
-    })?;
-    let open = solver.open_boundaries();
-    open_boundaries_fit(open.inflow_plane(), open.outflow_plane(), &cuts, halo).map_err(|message| {
-        RankRunError::Setup(RunError::NotFluidOnly {
-            file: case.path.clone(),
-            message,
-        })
-    })?;
-    let open = open.is_active();
-    let (slab_probes, mut probe_sets) = SlabProbes::new(&probe_set, &cuts);
+    let open = solver.open_boundaries().is_active();
+    let SlabPlan {
+        everything,
+        cuts,
+        halo,
+        probes: slab_probes,
+        mut probe_sets,
+        whole,
+        fluid_at_start,
+    } = plan;
     let mut probes = probe_sets.swap_remove(rank);
-    let everything = solver.particles().clone();
-    let mut whole = solver.monitor.clone();
-    whole.start(&everything);
-    let fluid_total = everything.kind.iter().filter(|&&k| k == FLUID).count();
     let mut me = RankSlab {
         slab: Subdomain::of(solver, &everything, cuts[rank], cuts[rank + 1], halo),
         link,
@@ -279,7 +270,7 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
     // the probe CSV: each rank reads its own probes, rank 0 writes the whole fluid's row
     let probe_path = out.join(format!("{name}_probes.csv"));
     let mut probe_file = match rank {
-        0 => Some(ProbeFile::create(&probe_path, &probe_set.names()).map_err(io_err(&probe_path))?),
+        0 => Some(ProbeFile::create(&probe_path, &probes.names()).map_err(io_err(&probe_path))?),
         _ => None,
     };
     // with an inflow or an outflow, the balance CSV from rank 0 too
@@ -298,7 +289,7 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
                 .map_err(io_err(&balance_path))?;
         }
         // what was there and entered, less what the ranks own: the open top's and the outflow's
-        let removed = fluid_total as u64 + balance.entered - counts[1];
+        let removed = fluid_at_start + balance.entered - counts[1];
         match &mut probe_file {
             Some(file) => file
                 .row(t, &slab_probes.combine(&rows), removed)
@@ -331,8 +322,8 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
                 p.update(
                     me.slab.solver.time(),
                     steps,
-                    steps * fluid_total as u64,
-                    fluid_total,
+                    steps * fluid_at_start,
+                    fluid_at_start as usize,
                 );
             }
         }
