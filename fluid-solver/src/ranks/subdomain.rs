@@ -77,7 +77,12 @@ impl Subdomain {
     /// Whether local particle `i` is fluid this slab owns.
     pub fn owned(&self, i: usize) -> bool {
         let p = self.solver.particles();
-        p.kind[i] == FLUID && self.owns.get(p.id[i] as usize).copied().unwrap_or(false)
+        p.kind[i] == FLUID && self.owns_id(p.id[i])
+    }
+
+    /// Whether the slab owns the fluid particle `id` (an id it never saw: no).
+    fn owns_id(&self, id: u32) -> bool {
+        self.owns.get(id as usize).copied().unwrap_or(false)
     }
 
     /// Fluid particles this slab owns.
@@ -127,7 +132,7 @@ impl Subdomain {
         for i in 0..p.len() {
             if p.kind[i] != FLUID {
                 keep.push(i as u32);
-            } else if self.owns.get(p.id[i] as usize).copied().unwrap_or(false) {
+            } else if self.owns_id(p.id[i]) {
                 match p.x[i] {
                     x if x < self.lo => left.push(i as u32),
                     x if x >= self.hi => right.push(i as u32),
