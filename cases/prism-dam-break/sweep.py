@@ -3,9 +3,12 @@ the resolved 0.05 m prism, the X force per unit width against time of each, and 
 
 usage: python3 cases/prism-dam-break/sweep.py [--spacing DS] [--end T] [--out DIR]
                                                [--coupler PATH] [--widths W,W,...] [--no-run]
+                                               [--method isph]
 
 --spacing: particle size (default 0.005, S2 Table 1); the time steps scale with it (Δt = 2e-4 s
 at 5 mm: c Δt/Δs = 0.6) and the water column keeps its size (so 0.01 gives 16 000 particles).
+--method isph: the fluid as S2 ran it, ISPH at S2's Δt = 5e-4 s at 5 mm (Table 1), scaled alike,
+with the coupling window and the frame's step the same.
 Writes into DIR (default out/prism-dam-break): one coupler run per width (w0.0005/, …) and
 resolved/, force-per-width.csv (time, F_x/D of each run), force-per-width.png (drawn by
 `coupler plot`), and prints each
@@ -24,11 +27,16 @@ WIDTHS = [0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05]
 RESOLVED_WIDTH = 0.05
 BASE_SPACING = 0.005
 BASE_STEP = "2.0e-4"
+BASE_STEP_EMPS = 2.0e-4
+BASE_STEP_ISPH = 5.0e-4
 
 
-def scaled(text, spacing, end):
-    """The case text at particle size `spacing` (time steps scaled alike) and end time `end`."""
-    step = 2.0e-4 * spacing / BASE_SPACING
+def scaled(text, spacing, end, method):
+    """The case text at particle size `spacing` (time steps scaled alike), end time `end` and
+    fluid method `method` ("emps": the case's; "isph": S2's method and Δt)."""
+    step = {"emps": BASE_STEP_EMPS, "isph": BASE_STEP_ISPH}[method] * spacing / BASE_SPACING
+    if method == "isph":
+        text = text.replace("sound_speed = 15.0", 'method = "isph"')
     text = text.replace("spacing = 0.005", "spacing = %g" % spacing)
     text = text.replace(BASE_STEP, "%.6g" % step)
     if end is not None:
@@ -82,11 +90,12 @@ def main():
     ap.add_argument("--coupler", default="target/release/coupler")
     ap.add_argument("--widths", default=",".join("%g" % w for w in WIDTHS))
     ap.add_argument("--no-run", action="store_true")
+    ap.add_argument("--method", choices=["emps", "isph"], default="emps")
     a = ap.parse_args()
     widths = [float(w) for w in a.widths.split(",")]
     os.makedirs(a.out, exist_ok=True)
-    base = scaled(open(os.path.join(HERE, "case.toml")).read(), a.spacing, a.end)
-    resolved = scaled(open(os.path.join(HERE, "resolved.toml")).read(), a.spacing, a.end)
+    base = scaled(open(os.path.join(HERE, "case.toml")).read(), a.spacing, a.end, a.method)
+    resolved = scaled(open(os.path.join(HERE, "resolved.toml")).read(), a.spacing, a.end, a.method)
     # the unresolved cases name resolved.toml as their [reference] case: it must exist first
     with open(os.path.join(a.out, "resolved.toml"), "w") as f:
         f.write(resolved)

@@ -194,5 +194,6 @@ pub fn run_case(case: &Case, out: &Path, terminal: bool) -> Result<RunSummary, R
         escaped: solver.escaped(),
         outflow_removed: solver.open_boundaries().balance().removed,
         host_copies: solver.host_copies(),
+        advective_cuts: (solver.totals().advective_cuts, solver.totals().fastest_cut),
     })
 }

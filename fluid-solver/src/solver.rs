@@ -11,6 +11,7 @@ use crate::emps::kernel::Kernel;
 use crate::emps::step::EmpsStep;
 use crate::isph::neighbour_list;
 use crate::isph::step::{IsphState, IsphStep};
+use crate::isph::step_length::AdvectiveLimit;
 use crate::method::{FluidMethod, MethodState, StepTotals};
 use crate::neighbours::neighbour_search::{CellGrid, CELL_IN_SPACINGS};
 use crate::particles::kind::Kind;
@@ -47,6 +48,10 @@ pub struct RunTotals {
     pub reaction_impulse: [f64; 3],
     /// Σ (point reactions no fluid was near)·Δt: impulse that could not be applied [N s].
     pub unapplied_impulse: [f64; 3],
+    /// ISPH's steps cut short because the fluid outran the case's Δt ([`AdvectiveLimit`]).
+    pub advective_cuts: u64,
+    /// The fastest fluid speed that cut a step [m/s] (0 when none did).
+    pub fastest_cut: f64,
 }
 
 /// Shares of point reactions found while sampling, for the particles at `version`.
@@ -70,6 +75,9 @@ pub struct FluidSolver {
     pub(crate) physics: Physics,
     pub(crate) monitor: StabilityMonitor,
     time_step: f64,
+    /// ISPH's limit on each step's length from the fluid's speed (`None` for E-MPS, whose
+    /// limit is acoustic and set by the case's sound speed).
+    advective: Option<AdvectiveLimit>,
     pub(crate) started: bool,
     pub(crate) domain: Domain,
     pub(crate) tank: Aabb,
@@ -210,6 +218,8 @@ impl FluidSolver {
             physics,
             monitor,
             time_step: cfg.time_step,
+            advective: (cfg.method == FluidMethodName::Isph)
+                .then(|| AdvectiveLimit::new(cfg.spacing, cfg.time_step)),
             started: false,
             domain: layout.domain,
             tank: layout.tank,
@@ -431,6 +441,7 @@ impl FluidSolver {
         if !self.state.gates_removed {
             self.remove_gates();
         }
+        self.count_advective_cut(dt);
         let st = &mut self.state;
         if !self.started {
             self.monitor.start(&st.particles);
@@ -454,6 +465,21 @@ impl FluidSolver {
         let totals = self.step_on_host(dt);
         self.moved();
         totals
+    }
+
+    /// Counts a step of `dt` that is ISPH's advective limit cutting Δt short
+    /// ([`FluidSolver::next_step_towards`]).
+    fn count_advective_cut(&mut self, dt: f64) {
+        let Some(limit) = &self.advective else {
+            return;
+        };
+        if let (longest, Some(fastest)) = limit.longest_step(&self.state.particles) {
+            if (dt - longest).abs() <= self.time_step * LANDING_SLACK {
+                let totals = &mut self.state.totals;
+                totals.advective_cuts += 1;
+                totals.fastest_cut = totals.fastest_cut.max(fastest);
+            }
+        }
     }
 
     /// The particles may have changed: shares found before are not used again.
@@ -670,16 +696,21 @@ impl FluidSolver {
         )
     }
 
-    /// The next step's length towards `t_end`: Δt, or the remainder when it is at most Δt
+    /// The next step's length towards `t_end`: the longest step (Δt, or with ISPH shorter
+    /// where the fluid outruns it, [`AdvectiveLimit`]), or the remainder when it is at most that
     /// (the last step lands exactly); `None` when `t_end` is reached (up to rounding).
     pub fn next_step_towards(&self, t_end: f64) -> Option<f64> {
         let left = t_end - self.state.time;
+        let longest = match &self.advective {
+            Some(limit) => limit.longest_step(&self.state.particles).0,
+            None => self.time_step,
+        };
         if left <= self.time_step * LANDING_SLACK {
             None
-        } else if left <= self.time_step * (1.0 + LANDING_SLACK) {
+        } else if left <= longest * (1.0 + LANDING_SLACK) {
             Some(left)
         } else {
-            Some(self.time_step)
+            Some(longest)
         }
     }
 

@@ -279,7 +279,7 @@ impl StabilityMonitor {
                 id,
                 "velocity",
                 format!(
-                    "|u| = {:.4} m/s at r = {r:?} moves {:.3} spacings in one step (limit {MAX_STEP_DISPLACEMENT}): the flow is faster than the time step allows; use time_step ≤ {:.3e} s (E-MPS: with sound_speed ≥ 10 |u|; ISPH: set max_velocity ≥ {:.2} m/s so that the case check accounts for it)",
+                    "|u| = {:.4} m/s at r = {r:?} moves {:.3} spacings in one step (limit {MAX_STEP_DISPLACEMENT}): the flow is faster than the time step allows; use time_step ≤ {:.3e} s (E-MPS: with sound_speed ≥ 10 |u|; ISPH, which cuts a step short where the fluid at its start outruns it, down to Δt/8: or set max_velocity ≥ {:.2} m/s so that the case check accounts for it)",
                     speed(p, i),
                     step / self.spacing,
                     MAX_STEP_DISPLACEMENT * self.spacing / speed(p, i),

@@ -50,6 +50,7 @@ mod isph_dam_break;
 mod isph_divergence;
 mod isph_lattice_modes;
 mod isph_momentum;
+mod isph_step_length;
 mod isph_two_level;
 mod isph_wall_geometry;
 mod isph_wall_signal;

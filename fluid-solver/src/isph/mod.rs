@@ -25,4 +25,5 @@ pub mod ppe;
 pub mod ppe_two_level;
 pub mod shifting;
 pub mod step;
+pub mod step_length;
 pub mod walls;

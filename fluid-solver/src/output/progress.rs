@@ -2,6 +2,7 @@
 //! time, steps, particle-steps/s, ETA), redrawn as a bar when stderr is a terminal, and the
 //! summary every run ends with ([`RunSummary`]).
 
+use schemas::case::fluid::MAX_ADVECTIVE_COURANT;
 use std::fmt;
 use std::io::Write;
 use std::time::{Duration, Instant};
@@ -131,6 +132,9 @@ pub struct RunSummary {
     pub outflow_removed: u64,
     /// On the GPU path: whole copies of the particles to the host, and their wall seconds.
     pub host_copies: (u64, f64),
+    /// ISPH's steps cut short because the fluid outran the case's Δt, and the fastest fluid
+    /// speed that cut one [m/s] (`isph::step_length`).
+    pub advective_cuts: (u64, f64),
 }
 
 impl fmt::Display for RunSummary {
@@ -151,9 +155,16 @@ impl fmt::Display for RunSummary {
             self.escaped,
             self.outflow_removed
         )?;
-        match self.host_copies {
+        let (copies, seconds) = self.host_copies;
+        if copies > 0 {
+            write!(f, "; {copies} whole copies from the GPU in {}", duration(seconds))?;
+        }
+        match self.advective_cuts {
             (0, _) => Ok(()),
-            (k, s) => write!(f, "; {k} whole copies from the GPU in {}", duration(s)),
+            (k, u) => write!(
+                f,
+                "; {k} steps cut short where the fluid outran time_step (u·Δt/Δs ≤ {MAX_ADVECTIVE_COURANT}; fastest {u:.3} m/s)"
+            ),
         }
     }
 }

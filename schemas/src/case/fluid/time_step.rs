@@ -18,7 +18,9 @@ pub const MAX_VISCOUS_NUMBER: f64 = 1.0 / 6.0;
 
 /// Largest advective Courant number `u_max Δt / Δs` of ISPH: a particle at u_max moves at most
 /// 0.4 Δs per step, so a step's neighbour lists stay valid for its whole length and the
-/// instability detector's 0.5 Δs per step is not reached by the predicted flow itself.
+/// instability detector's 0.5 Δs per step is not reached by the predicted flow itself. The
+/// check holds it for the case's velocity scale; the solver cuts a step where the fluid at its
+/// start is faster than that (`fluid_solver::isph::step_length`).
 pub const MAX_ADVECTIVE_COURANT: f64 = 0.4;
 
 impl FluidConfig {
