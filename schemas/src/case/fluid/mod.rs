@@ -127,7 +127,9 @@ pub struct FluidConfig {
     pub isph: Option<IsphConfig>,
     /// Particle spacing Δs [m]. Range: > 0, and at most 5e7 particles in the tank and its walls.
     pub spacing: f64,
-    /// Fixed time step Δt [s]. Range: > 0, within the method's limits: E-MPS c Δt/Δs ≤ 1, ISPH
+    /// Time step Δt [s]: E-MPS's every step; ISPH's longest, a step being cut to
+    /// u Δt/Δs ≤ 0.4 where the fluid at its start is faster than the check's u_max (down to
+    /// Δt/8). Range: > 0, within the method's limits: E-MPS c Δt/Δs ≤ 1, ISPH
     /// u_max Δt/Δs ≤ 0.4, and ν Δt/Δs² ≤ 1/6 with the viscous term on.
     pub time_step: f64,
     /// Reference density ρ0 [kg/m³]. Range: > 0.
