@@ -10,8 +10,9 @@
 //! - [`subdomain`]: one slab's solver, what it owns, what it sends and takes;
 //! - [`decomposed`]: the slabs in one process, stepped together, with the whole domain's checks;
 //! - [`launcher`]: what `mpirun` or `srun` tells the ranks it starts (with or without MPI built in);
-//! - [`mpi_link`] and [`rank_run`] (cargo feature `mpi`): one slab per MPI rank, the particles
-//!   traded between ranks, and a standalone run on ranks writing its frames in pieces.
+//! - [`mpi_link`], [`rank_slab`] and [`rank_run`] (cargo feature `mpi`): one slab per MPI rank,
+//!   the particles traded between ranks, one rank's slab stepped with its exchanges, and a
+//!   standalone run on ranks writing its frames in pieces.
 //!
 //! The slabs trade particles through plain values (what each sends to its left and right
 //! neighbour), so the same [`subdomain::Subdomain`] serves one process's threads and one MPI
@@ -23,6 +24,8 @@ pub mod launcher;
 pub mod mpi_link;
 #[cfg(feature = "mpi")]
 pub mod rank_run;
+#[cfg(feature = "mpi")]
+mod rank_slab;
 pub mod slab_plan;
 pub mod slab_probes;
 pub mod slabs;
