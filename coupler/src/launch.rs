@@ -46,6 +46,52 @@ pub fn executable_for(
     Ok(path)
 }
 
+/// The launcher that starts participant `name` on its MPI ranks (`mpirun -np 2`), its program
+/// found on `PATH`; empty when the participant runs as one process (a structure, or a fluid
+/// with `ranks` ≤ 1). An error naming the section's `launcher` key when the program is not found,
+/// so `check` refuses what would fail at the start.
+pub fn launcher_for(case: &Case, name: &str) -> Result<Vec<String>, CouplerError> {
+    let Some(fluid) = case.fluid.get(name).filter(|f| f.rank_count() > 1) else {
+        return Ok(Vec::new());
+    };
+    let words = fluid.launcher_words();
+    let program = words.first().map(String::as_str).unwrap_or_default();
+    if on_path(program).is_none() {
+        return Err(CouplerError::Usage(format!(
+            "{}: fluid.{name}.launcher: fluid `{name}` runs on {} MPI ranks through `{program}`, which is not a program on PATH; install OpenMPI (Debian: `apt-get install openmpi-bin`) or name the cluster's launcher (e.g. launcher = \"srun -n {{ranks}}\")",
+            case.path.display(),
+            fluid.rank_count()
+        )));
+    }
+    Ok(words)
+}
+
+/// `program` itself when it names a file (holds a `/`), else the first file of that name in a
+/// folder of `PATH`.
+fn on_path(program: &str) -> Option<PathBuf> {
+    if program.contains('/') {
+        return Path::new(program).is_file().then(|| PathBuf::from(program));
+    }
+    let path = std::env::var_os("PATH")?;
+    std::env::split_paths(&path)
+        .map(|dir| dir.join(program))
+        .find(|p| p.is_file())
+}
+
+/// `exe args…` started by `launcher` (its program, its arguments, then `exe args…`), or as is
+/// when there is none.
+pub fn behind_launcher(launcher: &[String], exe: &Path, args: &[String]) -> (PathBuf, Vec<String>) {
+    match launcher.split_first() {
+        None => (exe.to_path_buf(), args.to_vec()),
+        Some((program, own)) => {
+            let mut all = own.to_vec();
+            all.push(exe.display().to_string());
+            all.extend_from_slice(args);
+            (PathBuf::from(program), all)
+        }
+    }
+}
+
 /// Whether the kernel can start `path`: it has an execute permission bit and is a program
 /// (an ELF binary) or a script (`#!` and its interpreter). Checked before anything starts, so
 /// `check` refuses what `exec` would refuse with "Permission denied" or "Exec format error".

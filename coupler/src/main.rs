@@ -310,8 +310,17 @@ fn check(path: &std::path::Path, out: Option<&std::path::Path>, max_output: u64)
     ));
     for (name, kind) in case.participants() {
         let exe = coupler::launch::executable_for(&case, &name, kind, &BTreeMap::new())?;
+        let launcher = coupler::launch::launcher_for(&case, &name)?;
+        let ranks = match launcher.is_empty() {
+            true => String::new(),
+            false => format!(
+                ", on {} ranks through `{}`",
+                case.fluid[&name].rank_count(),
+                launcher.join(" ")
+            ),
+        };
         lines.push(format!(
-            "  participant {name}: {} ({})",
+            "  participant {name}: {} ({}{ranks})",
             kind.binary_name(),
             exe.display()
         ));

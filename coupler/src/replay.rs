@@ -5,7 +5,7 @@
 //! own: a changed parameter, another implementation swapped in, a regression.
 
 use crate::error::CouplerError;
-use crate::launch::executable_for;
+use crate::launch::{executable_for, launcher_for};
 use crate::run::{new_run_id, output_folder, participant_args};
 use crate::stack::{variant, Launch, Stack};
 use schemas::case::{Case, Kind};
@@ -150,6 +150,7 @@ pub fn replay(opts: &ReplayOptions) -> Result<ReplayReport, CouplerError> {
         None => BTreeMap::new(),
     };
     let exe = executable_for(&case, name, kind, &exe)?;
+    let launcher = launcher_for(&case, name)?;
     signals::install();
     let run_id = new_run_id();
     let case_path = std::fs::canonicalize(&case.path).unwrap_or_else(|_| case.path.clone());
@@ -162,6 +163,7 @@ pub fn replay(opts: &ReplayOptions) -> Result<ReplayReport, CouplerError> {
         },
         exe,
         args: participant_args(&case_path, name, &run_id, &out),
+        launcher,
     };
     let timeout = Duration::from_secs_f64(case.coupling.as_ref().map(|c| c.timeout).unwrap_or(120.0));
     let (mut stack, initial) = Stack::launch(vec![launch], &run_id, case.hash, &out, None, timeout, None)?;

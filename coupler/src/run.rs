@@ -4,7 +4,7 @@ use crate::checkpoint::{self, Manifest};
 use crate::error::CouplerError;
 use crate::estimate::{bytes_text, Estimate};
 use crate::interface::Interface;
-use crate::launch::{describe, executable_for};
+use crate::launch::{behind_launcher, describe, executable_for, launcher_for};
 use crate::ledger::Ledger;
 use crate::out_folder::OutputFolder;
 use crate::progress::Progress;
@@ -102,6 +102,10 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
         .iter()
         .map(|(name, kind)| executable_for(&case, name, *kind, &opts.exe).map(|exe| (name.clone(), exe)))
         .collect::<Result<BTreeMap<_, _>, _>>()?;
+    let launchers = participants
+        .iter()
+        .map(|(name, _)| launcher_for(&case, name).map(|l| (name.clone(), l)))
+        .collect::<Result<BTreeMap<_, _>, _>>()?;
     let out = match &opts.resume {
         Some(dir) => dir.clone(),
         None => default_output_folder(&case, opts.out.as_deref()),
@@ -132,7 +136,7 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
     signals::install();
     let Some(coupling) = &case.coupling else {
         let (name, kind) = &participants[0];
-        return standalone(&case, name, *kind, &executables[name], &out);
+        return standalone(&case, name, *kind, &executables[name], &launchers[name], &out);
     };
     let case_path = std::fs::canonicalize(&case.path).unwrap_or_else(|_| case.path.clone());
     let run_id = new_run_id();
@@ -147,6 +151,7 @@ pub fn run(opts: &RunOptions) -> Result<(), CouplerError> {
             },
             exe: executables[name].clone(),
             args: participant_args(&case_path, name, &run_id, &out),
+            launcher: launchers[name].clone(),
         })
         .collect::<Vec<_>>();
     let mut launches = launches;
@@ -392,13 +397,32 @@ pub fn folder_size(dir: &Path) -> u64 {
 }
 
 /// A case with one participant and no coupling: the solver runs alone (`SOLVER run CASE --out DIR`).
-fn standalone(case: &Case, name: &str, kind: Kind, exe: &Path, out: &Path) -> Result<(), CouplerError> {
-    crate::say!("{name}: {} solver alone ({})", kind.binary_name(), exe.display());
-    let status = Command::new(exe)
-        .arg("run")
-        .arg(&case.path)
-        .arg("--out")
-        .arg(out)
+fn standalone(
+    case: &Case,
+    name: &str,
+    kind: Kind,
+    exe: &Path,
+    launcher: &[String],
+    out: &Path,
+) -> Result<(), CouplerError> {
+    let args = [
+        "run".to_string(),
+        case.path.display().to_string(),
+        "--out".into(),
+        out.display().to_string(),
+    ];
+    let (program, args) = behind_launcher(launcher, exe, &args);
+    match launcher.is_empty() {
+        true => crate::say!("{name}: {} solver alone ({})", kind.binary_name(), exe.display()),
+        false => crate::say!(
+            "{name}: {} solver alone on its ranks ({} {})",
+            kind.binary_name(),
+            launcher.join(" "),
+            exe.display()
+        ),
+    }
+    let status = Command::new(&program)
+        .args(&args)
         .status()
         .map_err(|e| CouplerError::Participant {
             name: name.to_string(),

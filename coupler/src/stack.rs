@@ -4,7 +4,7 @@
 mod liveness;
 
 use crate::error::CouplerError;
-use crate::launch::{log_tail, Children};
+use crate::launch::{behind_launcher, log_tail, Children};
 use liveness::{no_progress, progress_interval, LastReport};
 use schemas::link::{Link, LinkError, Side};
 use schemas::message::{FromParticipant, Geometry, InterfaceDecl, Role, ToParticipant, PROTOCOL_VERSION};
@@ -26,12 +26,14 @@ pub struct Session {
     link: Link,
 }
 
-/// A participant to start: name, role, executable and arguments.
+/// A participant to start: name, role, executable and arguments, and the launcher that starts
+/// it on MPI ranks (empty: one process; see [`crate::launch::launcher_for`]).
 pub struct Launch {
     pub name: String,
     pub role: Role,
     pub exe: PathBuf,
     pub args: Vec<String>,
+    pub launcher: Vec<String>,
 }
 
 /// The participants of a run, in serial order.
@@ -110,8 +112,17 @@ impl Stack {
             let log = out.join(format!("{}.log", l.name));
             let mut args = l.args.clone();
             args.extend(["--progress-interval".to_string(), interval.clone()]);
-            let pid = self.children.spawn(&l.name, &l.exe, &args, &log, append_logs)?;
-            crate::say!("started {} ({}, pid {pid})", l.name, l.exe.display());
+            let (program, args) = behind_launcher(&l.launcher, &l.exe, &args);
+            let pid = self.children.spawn(&l.name, &program, &args, &log, append_logs)?;
+            match l.launcher.is_empty() {
+                true => crate::say!("started {} ({}, pid {pid})", l.name, l.exe.display()),
+                false => crate::say!(
+                    "started {} ({} {}, rank 0 talking to the coupler, pid {pid})",
+                    l.name,
+                    l.launcher.join(" "),
+                    l.exe.display()
+                ),
+            }
             let link =
                 Link::open(run_id, &l.name, Side::Coupler).map_err(|e| link_error(&l.name, None, e))?;
             self.sessions.push(Session {

@@ -38,6 +38,9 @@ enum Command {
 
 fn participant(args: &ParticipantArgs) -> Result<(), String> {
     let case = Case::load_to(&args.case, args.end_time).map_err(|e| e.to_string())?;
+    if let Some(served) = ranks::participant_if_launched(&case, args) {
+        return served;
+    }
     let mut solver = match &args.resume {
         Some(from) => FluidParticipant::resume(&case, &args.name, args.out.as_deref(), from)?,
         None => FluidParticipant::from_case(&case, &args.name, args.out.as_deref())?,
@@ -51,7 +54,10 @@ fn main() -> ExitCode {
         Command::Participant(args) => match participant(&args) {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {
-                eprintln!("error: {e}");
+                // an empty message: another rank reports it
+                if !e.is_empty() {
+                    eprintln!("error: {e}");
+                }
                 ExitCode::FAILURE
             }
         },
@@ -70,6 +76,12 @@ fn main() -> ExitCode {
             let out = out.unwrap_or_else(|| PathBuf::from("out").join(&case.info.name));
             if let Some(code) = ranks::run_if_launched(&case, &out) {
                 return code;
+            }
+            for (name, cfg) in case.fluid.iter().filter(|(_, cfg)| cfg.rank_count() > 1) {
+                eprintln!(
+                    "note: fluid.{name}.ranks = {}, but no MPI launcher started this process: the fluid runs in one process (`coupler run` starts the ranks)",
+                    cfg.rank_count()
+                );
             }
             let terminal = std::io::stderr().is_terminal();
             match fluid_solver::run::run_case(&case, &out, terminal) {
@@ -94,6 +106,7 @@ fn main() -> ExitCode {
 /// feature, refused without it (each process would run the whole case into the same files).
 mod ranks {
     use schemas::case::Case;
+    use schemas::participant::ParticipantArgs;
     use std::path::Path;
     use std::process::ExitCode;
 
@@ -115,6 +128,15 @@ mod ranks {
             }
         };
         let rank = link.rank();
+        let counted = case.fluid.iter().try_for_each(|(name, cfg)| {
+            fluid_solver::ranks::launcher::check_rank_count(cfg.ranks, link.size(), name)
+        });
+        if let Err(e) = counted {
+            if rank == 0 {
+                eprintln!("error: {}: {e}", case.path.display());
+            }
+            return Some(ExitCode::from(2));
+        }
         if link.size() == 1 {
             return None;
         }
@@ -145,16 +167,75 @@ mod ranks {
         })
     }
 
+    /// A participant on the ranks a launcher started (the coupler, for a fluid section with
+    /// `ranks` > 1): rank 0 serves the coupler, the others follow it; `None` when no launcher
+    /// started this process or it started one rank.
+    #[cfg(feature = "mpi")]
+    pub fn participant_if_launched(case: &Case, args: &ParticipantArgs) -> Option<Result<(), String>> {
+        use fluid_solver::ranks::launcher::{check_rank_count, launched_by_mpi};
+        use fluid_solver::ranks::mpi_link::RankLink;
+        use fluid_solver::ranks::rank_participant::{follow, Leader, RankParticipant};
+        use schemas::participant::serve;
+        if !launched_by_mpi() {
+            return None;
+        }
+        let link = match RankLink::initialize() {
+            Ok(link) => link,
+            Err(e) => return Some(Err(e)),
+        };
+        let ranks = case.fluid.get(&args.name).and_then(|cfg| cfg.ranks);
+        if let Err(e) = check_rank_count(ranks, link.size(), &args.name) {
+            return Some(Err(format!("{}: {e}", case.path.display())));
+        }
+        if link.size() == 1 {
+            return None;
+        }
+        threads_per_rank();
+        let out = args.out.as_deref();
+        let ranks = match &args.resume {
+            Some(from) => RankParticipant::resume(case, &args.name, out, from, &link),
+            None => RankParticipant::from_case(case, &args.name, out, &link),
+        };
+        Some(match (link.rank(), ranks) {
+            (0, Ok(ranks)) => {
+                schemas::signals::install();
+                let mut leader = Leader::new(ranks);
+                let served = serve(args, case.hash, &mut leader).map_err(|e| e.to_string());
+                leader.stop_the_others();
+                served
+            }
+            (_, Ok(ranks)) => {
+                schemas::signals::install();
+                follow(ranks)
+            }
+            (0, Err(e)) => Err(e),
+            // rank 0 reports what every rank found
+            (_, Err(_)) => Err(String::new()),
+        })
+    }
+
     /// Without the `mpi` feature: an error when a launcher started more than one process.
     #[cfg(not(feature = "mpi"))]
     pub fn run_if_launched(_case: &Case, _out: &Path) -> Option<ExitCode> {
         let size = fluid_solver::ranks::launcher::launched_ranks()?;
         (size > 1).then(|| {
-            eprintln!(
-                "error: started as {size} MPI ranks, but this fluid-solver was built without MPI: build it with `cargo build --release --features fluid-solver/mpi` (needs OpenMPI and libclang), or run it without mpirun"
-            );
+            eprintln!("error: {}", without_mpi(size));
             ExitCode::from(2)
         })
+    }
+
+    /// Without the `mpi` feature: an error when a launcher started more than one process.
+    #[cfg(not(feature = "mpi"))]
+    pub fn participant_if_launched(_case: &Case, _args: &ParticipantArgs) -> Option<Result<(), String>> {
+        let size = fluid_solver::ranks::launcher::launched_ranks()?;
+        (size > 1).then(|| Err(without_mpi(size)))
+    }
+
+    #[cfg(not(feature = "mpi"))]
+    fn without_mpi(size: usize) -> String {
+        format!(
+            "started as {size} MPI ranks, but this fluid-solver was built without MPI: build it with `cargo build --release --features fluid-solver/mpi` (needs OpenMPI and libclang), or set the case's ranks = 1 (or run it without mpirun)"
+        )
     }
 
     /// Shares the machine's cores among the ranks on it (unless `RAYON_NUM_THREADS` says how

@@ -21,7 +21,8 @@
 //! summary there. Every step is reported to the coupler as it is done (`advance_reporting`), so a
 //! window longer than `coupling.timeout` is not taken for a hang.
 
-mod body_motion;
+pub(crate) mod body_motion;
+pub(crate) mod probe_rows;
 mod resume;
 
 use crate::gpu::GpuDevice;
@@ -31,6 +32,7 @@ use crate::output::vtu;
 use crate::sensors::probes::{ProbeFile, ProbeSet};
 use crate::solver::FluidSolver;
 use crate::state::FluidState;
+use probe_rows::ProbeRows;
 use schemas::case::fluid::FluidBackend;
 use schemas::case::Case;
 use schemas::f64s::F64s;
@@ -54,48 +56,6 @@ struct Frames {
     pending_time: f64,
     /// Free-surface meshes written with each frame (`surface_mesh = true`).
     surfaces: Option<SurfaceFrames>,
-}
-
-/// The probe CSV of a participant: rows sampled at the window times they fall due, written once
-/// the window is accepted (a repeated implicit iteration never writes twice).
-struct ProbeRows {
-    path: PathBuf,
-    file: ProbeFile,
-    probes: ProbeSet,
-    /// The probes' filters at the checkpoint.
-    saved: Option<ProbeSet>,
-    interval: f64,
-    written: u64,
-    pending: Vec<(f64, Vec<f64>, u64)>,
-}
-
-impl ProbeRows {
-    /// Whether a row falls due at `t` (the next row's time reached).
-    fn due(&self, t: f64) -> bool {
-        t >= self.next_row() - 1e-9 * self.interval
-    }
-
-    /// Time of the next row.
-    fn next_row(&self) -> f64 {
-        (self.written + self.pending.len() as u64) as f64 * self.interval
-    }
-
-    /// Samples every probe now and keeps the row until the window is accepted.
-    fn sample(&mut self, solver: &FluidSolver) {
-        let values = self.probes.row(solver);
-        self.pending.push((solver.time(), values, solver.removed()));
-    }
-
-    /// Writes the rows kept back from the accepted window.
-    fn commit(&mut self) -> Result<(), String> {
-        for (t, values, removed) in self.pending.drain(..) {
-            self.file
-                .row(t, &values, removed)
-                .map_err(|e| format!("cannot write {}: {e}", self.path.display()))?;
-            self.written += 1;
-        }
-        Ok(())
-    }
 }
 
 /// One fluid participant of a case, with its checkpoint.
@@ -171,15 +131,8 @@ impl FluidParticipant {
                     .map_err(|e| format!("{}: fluid `{name}`: {e}", case.path.display()))?;
                 let file = ProbeFile::create(&path, &probes.names())
                     .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-                let mut rows = ProbeRows {
-                    path,
-                    file,
-                    probes,
-                    saved: None,
-                    interval: cfg.probe_interval.unwrap_or(cfg.output_interval),
-                    written: 0,
-                    pending: Vec::new(),
-                };
+                let interval = cfg.probe_interval.unwrap_or(cfg.output_interval);
+                let mut rows = ProbeRows::new(path, Some(file), probes, interval, 0);
                 rows.sample(&solver);
                 rows.commit()?;
                 Some(rows)
@@ -385,7 +338,7 @@ impl Participant for FluidParticipant {
         self.solver.sync_host();
         self.checkpoint = Some(self.solver.save_state());
         if let Some(p) = &mut self.probes {
-            p.saved = Some(p.probes.clone());
+            p.save_filters();
         }
     }
 
@@ -395,10 +348,7 @@ impl Participant for FluidParticipant {
             f.pending = None;
         }
         if let Some(p) = &mut self.probes {
-            p.pending.clear();
-            if let Some(saved) = &p.saved {
-                p.probes.clone_from(saved);
-            }
+            p.restore_filters();
         }
         let saved = self.checkpoint.as_ref().ok_or_else(|| {
             format!(

@@ -24,6 +24,8 @@ mod isph_floating;
 mod oscillator;
 mod output_estimate;
 mod prism_cases;
+#[cfg(feature = "mpi")]
+mod ranked_fluid;
 mod recording_cut;
 mod replay;
 mod report;

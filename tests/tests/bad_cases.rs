@@ -488,3 +488,59 @@ fn an_output_folder_through_a_file_or_on_proc_is_refused_as_such() {
         "the file is left alone"
     );
 }
+
+/// The fluid on MPI ranks (`ranks`, `launcher`): what the ranks do not run, a launcher that is
+/// not on PATH or has no place for the number of ranks, and no ranks at all are each refused by
+/// `check` as by `run`, naming the key, before anything starts (with or without MPI built in).
+#[test]
+fn ranks_the_fluid_cannot_run_are_refused_by_check_as_by_run() {
+    let ranked = |name: &str, from: &str, to: &str| {
+        let dir = out_dir(&format!("bad-ranks-{name}"));
+        let case = stack_tests::ranked_floating_box(&dir, 2, "scheme = \"explicit\"");
+        let text = std::fs::read_to_string(&case).unwrap_or_default();
+        assert!(text.contains(from), "the ranked case holds `{from}`");
+        std::fs::write(&case, text.replacen(from, to, 1)).unwrap_or_else(|e| panic!("{e}"));
+        case
+    };
+    let mpirun = "launcher = \"mpirun --allow-run-as-root --oversubscribe -np {ranks}\"";
+    for (case, fragments) in [
+        (
+            ranked(
+                "launcher-missing",
+                mpirun,
+                "launcher = \"no-such-launcher -n {ranks}\"",
+            ),
+            &[
+                "fluid.water.launcher",
+                "`no-such-launcher`",
+                "not a program on PATH",
+            ][..],
+        ),
+        (
+            ranked("launcher-without-ranks", mpirun, "launcher = \"srun\""),
+            &["fluid.water.launcher", "{ranks}"][..],
+        ),
+        (
+            ranked("zero-ranks", "ranks = 2", "ranks = 0"),
+            &["fluid.water.ranks", "at least 1"][..],
+        ),
+        (
+            ranked("isph", "ranks = 2", "ranks = 2\nmethod = \"isph\""),
+            &["fluid.water.ranks", "not yet method = \"isph\"", "ranks = 1"][..],
+        ),
+        (
+            ranked("surface-mesh", "ranks = 2", "ranks = 2\nsurface_mesh = true"),
+            &["fluid.water.ranks", "surface_mesh = true"][..],
+        ),
+    ] {
+        refused_by_check_and_run(&case, fragments);
+    }
+    let dir = out_dir("bad-ranks-drag");
+    let text = stack_tests::DRAG_COLUMN_CASE
+        .replace("SCHEME", "explicit")
+        .replace("TOLERANCE", "")
+        .replacen("spacing = 0.01", "spacing = 0.01\nranks = 2", 1);
+    let case = dir.join("case.toml");
+    std::fs::write(&case, text).unwrap_or_else(|e| panic!("{e}"));
+    refused_by_check_and_run(&case, &["coupling.drag[0].fluid", "2 MPI ranks", "ranks = 1"]);
+}

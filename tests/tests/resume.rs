@@ -337,6 +337,28 @@ fn an_implicit_oscillator_with_iqn_ils_killed_and_resumed_writes_the_same_output
     assert!(replay.status.success(), "{}", stderr(&replay));
 }
 
+/// The fluid on two MPI ranks (issue 39): each rank writes its own checkpoint file beside rank
+/// 0's and resumes from it; the frames' pieces and indexes, the probes and the box's history
+/// are written again byte for byte.
+#[cfg(feature = "mpi")]
+#[test]
+fn a_floating_box_with_its_fluid_on_two_ranks_killed_and_resumed_writes_the_same_outputs() {
+    let dir = out_dir("resume-ranked-floating-box");
+    let case = stack_tests::ranked_floating_box(&dir, 2, "scheme = \"explicit\"");
+    with_checkpoints(&case, "0.01");
+    killed_and_resumed_equals_uninterrupted(&dir, &case);
+    let checkpoints: Vec<String> = std::fs::read_dir(dir.join("resumed/checkpoint"))
+        .into_iter()
+        .flatten()
+        .filter_map(Result::ok)
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(
+        checkpoints.iter().any(|f| f.starts_with("water.r1-")),
+        "rank 1 writes its own checkpoint file: {checkpoints:?}"
+    );
+}
+
 #[test]
 fn resuming_a_folder_without_a_checkpoint_is_refused_as_bad_usage() {
     let dir = out_dir("resume-none");

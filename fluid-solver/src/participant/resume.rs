@@ -140,15 +140,9 @@ impl FluidParticipant {
         {
             let path = dir.join(format!("{name}_probes.csv"));
             probes.set_windows(windows);
-            p.probes = Some(ProbeRows {
-                file: ProbeFile::append(&path).map_err(|e| io(&path, e))?,
-                path,
-                probes,
-                saved: None,
-                interval: cfg.probe_interval.unwrap_or(cfg.output_interval),
-                written,
-                pending: Vec::new(),
-            });
+            let interval = cfg.probe_interval.unwrap_or(cfg.output_interval);
+            let file = ProbeFile::append(&path).map_err(|e| io(&path, e))?;
+            p.probes = Some(ProbeRows::new(path, Some(file), probes, interval, written));
         }
         eprintln!(
             "fluid `{name}`: resumed from {} at t = {} s (step {})",

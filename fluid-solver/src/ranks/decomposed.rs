@@ -5,7 +5,7 @@
 
 use super::slab_plan::SlabPlan;
 use super::slab_probes::SlabProbes;
-use super::subdomain::{Subdomain, ToNeighbours};
+use super::subdomain::{SlabState, Subdomain, ToNeighbours};
 use crate::boundaries::open_boundary::ParticleBalance;
 use crate::particles::Particles;
 use crate::sensors::probes::ProbeSet;
@@ -13,7 +13,7 @@ use crate::sensors::view::ParticleView;
 use crate::solver::FluidSolver;
 use crate::stability::{Instability, StabilityMonitor};
 use rayon::prelude::*;
-use schemas::case::fluid::{FluidBackend, FluidConfig, FluidMethodName};
+use schemas::case::fluid::FluidConfig;
 
 /// A case's fluid in slabs along x.
 pub struct DecomposedFluid {
@@ -143,6 +143,21 @@ impl DecomposedFluid {
         sum_over(self.parts.iter().map(|s| s.solver.body_reactions()))
     }
 
+    /// Every slab's state ([`DecomposedFluid::restore`] goes back to it), as an implicit
+    /// coupling window keeps its start.
+    pub fn save(&self) -> Vec<SlabState> {
+        self.parts.iter().map(Subdomain::save).collect()
+    }
+
+    /// Goes back to the states `saved` by [`DecomposedFluid::save`] (the counts of what moved
+    /// between the slabs keep counting).
+    pub fn restore(&mut self, saved: &[SlabState]) {
+        self.parts
+            .iter_mut()
+            .zip(saved)
+            .for_each(|(s, state)| s.restore(state));
+    }
+
     /// Sets every slab's clock to `t_end` when the steps have reached it up to rounding
     /// ([`FluidSolver::land_on`]), as a run does at each output time.
     pub fn land_on(&mut self, t_end: f64) {
@@ -231,15 +246,10 @@ pub(super) fn check_whole_energy(
     })
 }
 
-/// The first feature of `cfg` the slabs do not support yet, by its case-file name.
+/// The first feature of `cfg` the slabs do not support yet, by its case-file name
+/// ([`FluidConfig::unsupported_on_ranks`]).
 pub fn unsupported(cfg: &FluidConfig) -> Option<&'static str> {
-    [
-        (cfg.method != FluidMethodName::Emps, "method = \"isph\""),
-        (cfg.backend != FluidBackend::Cpu, "backend = \"gpu\""),
-        (cfg.wave_maker.is_some(), "[wave_maker]"),
-    ]
-    .into_iter()
-    .find_map(|(on, what)| on.then_some(what))
+    cfg.unsupported_on_ranks()
 }
 
 /// The element-wise sum of equally long vectors.

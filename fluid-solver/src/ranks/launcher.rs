@@ -33,3 +33,14 @@ fn first_number(variables: &[&str]) -> Option<usize> {
         .iter()
         .find_map(|v| std::env::var(v).ok()?.parse::<usize>().ok())
 }
+
+/// An error when the launcher started `started` ranks for fluid `name` of a case that sets
+/// another number (`ranks`, `None` when the case does not say).
+pub fn check_rank_count(ranks: Option<usize>, started: usize, name: &str) -> Result<(), String> {
+    match ranks {
+        Some(n) if n != started => Err(format!(
+            "started as {started} MPI ranks, but fluid.{name}.ranks = {n}: start {n} (`coupler run` starts them through the section's launcher)"
+        )),
+        _ => Ok(()),
+    }
+}

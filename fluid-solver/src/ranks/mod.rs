@@ -23,6 +23,10 @@ pub mod launcher;
 #[cfg(feature = "mpi")]
 pub mod mpi_link;
 #[cfg(feature = "mpi")]
+pub mod rank_frames;
+#[cfg(feature = "mpi")]
+pub mod rank_participant;
+#[cfg(feature = "mpi")]
 pub mod rank_run;
 #[cfg(feature = "mpi")]
 mod rank_slab;

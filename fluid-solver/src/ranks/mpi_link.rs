@@ -15,6 +15,15 @@ use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
 use mpi::Tag;
 
+/// Message tags of rank 0's orders to the other ranks and of the texts they send it back
+/// (a step's exchanges use 1 and 2).
+const ORDER: Tag = 3;
+const TEXT: Tag = 4;
+
+/// The longest sleep between two probes of a rank waiting for an order: what an order may wait
+/// on top of its own transfer.
+const ORDER_POLL_MAX: std::time::Duration = std::time::Duration::from_millis(5);
+
 /// This process's place among the ranks and its link to them.
 pub struct RankLink {
     world: SimpleCommunicator,
@@ -130,6 +139,104 @@ impl RankLink {
         match row.len() {
             0 => vec![Vec::new(); self.size()],
             n => all.chunks(n).map(<[f64]>::to_vec).collect(),
+        }
+    }
+
+    /// The element-wise sum of `values` (equally long on every rank) over the ranks, on every
+    /// rank.
+    pub fn sum_each(&self, values: &[f64]) -> Vec<f64> {
+        let mut total = vec![0.0; values.len()];
+        if !values.is_empty() {
+            self.world
+                .all_reduce_into(values, &mut total[..], SystemOperation::sum());
+        }
+        total
+    }
+
+    /// Rank 0 sends `bytes` to every other rank (an order they wait for with
+    /// [`RankLink::next_order`]).
+    pub fn send_order(&self, bytes: &[u8]) {
+        for r in 1..self.size() {
+            self.world.process_at_rank(r as i32).send_with_tag(bytes, ORDER);
+        }
+    }
+
+    /// On a rank other than 0: the next order rank 0 sends, waited for without spinning (OpenMPI's
+    /// blocking receive polls at full speed: this one probes, then sleeps, up to
+    /// [`ORDER_POLL_MAX`] between probes). `None` when `stop()` says to stop waiting (a
+    /// signal came).
+    pub fn next_order(&self, stop: impl Fn() -> bool) -> Option<Vec<u8>> {
+        let root = self.world.process_at_rank(0);
+        let mut pause = std::time::Duration::from_micros(50);
+        loop {
+            if root.immediate_probe_with_tag(ORDER).is_some() {
+                return Some(root.receive_vec_with_tag::<u8>(ORDER).0);
+            }
+            if stop() {
+                return None;
+            }
+            std::thread::sleep(pause);
+            pause = (pause * 2).min(ORDER_POLL_MAX);
+        }
+    }
+
+    /// Every rank's `text` (empty for none), by rank, on rank 0; empty on the others. Every rank
+    /// calls it (after a step that failed on some rank, to bring each rank's diagnostic to the
+    /// one that reports).
+    pub fn texts_at_root(&self, text: &str) -> Vec<String> {
+        if self.rank() != 0 {
+            self.world.process_at_rank(0).send_with_tag(text.as_bytes(), TEXT);
+            return Vec::new();
+        }
+        let mut all = vec![text.to_string()];
+        for r in 1..self.size() {
+            let (bytes, _) = self
+                .world
+                .process_at_rank(r as i32)
+                .receive_vec_with_tag::<u8>(TEXT);
+            all.push(String::from_utf8_lossy(&bytes).into_owned());
+        }
+        all
+    }
+
+    /// Every rank's `result` made one: as it is when it is `Ok` on every rank, else an error on
+    /// every rank, rank 0's naming each rank that failed with its message. Every rank calls it
+    /// (so it is a barrier too).
+    pub fn agree<T>(&self, result: Result<T, String>) -> Result<T, String> {
+        let failed = self.max(if result.is_err() { 1.0 } else { 0.0 });
+        if failed == 0.0 {
+            return result;
+        }
+        let mine = result.as_ref().err().cloned().unwrap_or_default();
+        Err(self.failures_at_root(&mine))
+    }
+
+    /// After a failure every rank knows of: rank 0 gets `rank R: MESSAGE` for every rank whose
+    /// `mine` is not empty, joined by `; `; the others get their own message (or that another
+    /// rank failed). Every rank calls it.
+    pub fn failures_at_root(&self, mine: &str) -> String {
+        let texts = self.texts_at_root(mine);
+        match self.rank() {
+            0 => {
+                // each message once, with the ranks that gave it
+                let mut said: Vec<(Vec<usize>, &str)> = Vec::new();
+                for (r, t) in texts.iter().enumerate().filter(|(_, t)| !t.is_empty()) {
+                    match said.iter_mut().find(|(_, s)| s == t) {
+                        Some((ranks, _)) => ranks.push(r),
+                        None => said.push((vec![r], t)),
+                    }
+                }
+                said.iter()
+                    .map(|(ranks, t)| match ranks.len() {
+                        n if n == texts.len() && n > 1 => format!("every rank: {t}"),
+                        1 => format!("rank {}: {t}", ranks[0]),
+                        _ => format!("ranks {ranks:?}: {t}"),
+                    })
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            }
+            r if mine.is_empty() => format!("rank {r}: another rank failed (rank 0 reports it)"),
+            _ => mine.to_string(),
         }
     }
 

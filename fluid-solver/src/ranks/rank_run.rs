@@ -11,19 +11,17 @@
 
 use super::decomposed::unsupported;
 use super::mpi_link::RankLink;
+use super::rank_frames::RankFrames;
 use super::rank_slab::RankSlab;
 use super::slab_plan::{PlanError, SlabPlan};
 use super::subdomain::Subdomain;
 use crate::boundaries::open_boundary::BalanceFile;
 use crate::output::progress::Progress;
-use crate::output::vtu;
 use crate::run::{fluid_only, RunError};
 use crate::sensors::probes::{ProbeFile, ProbeSet};
 use crate::sensors::view::ParticleView;
 use crate::solver::FluidSolver;
 use schemas::case::Case;
-use schemas::participant::DiscardProgress;
-use schemas::pvd::Collection;
 use std::path::Path;
 use std::time::Instant;
 
@@ -144,27 +142,15 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
     };
     drop(everything);
 
-    let pvd_path = out.join(format!("{name}.pvd"));
-    let mut series = Collection::new(pvd_path.clone());
-    let mut frames = 0usize;
-    let mut write_frame = |me: &RankSlab, series: &mut Collection| -> Result<(), RankRunError> {
-        let piece = |r: usize| format!("{name}_{frames:05}_r{r:04}.vtu");
-        let path = out.join(piece(rank));
-        vtu::write_vtu(&path, &me.piece(), &mut DiscardProgress).map_err(io_err(&path))?;
-        // the index only once every piece is whole: a run stopped at any moment leaves no
-        // index naming a piece that is missing or cut
-        link.barrier();
-        if rank == 0 {
-            let index = format!("{name}_{frames:05}.pvtu");
-            let pieces: Vec<String> = (0..ranks).map(piece).collect();
-            let path = out.join(&index);
-            vtu::write_pvtu(&path, &pieces).map_err(io_err(&path))?;
-            series
-                .add(me.slab.solver.time(), &index)
-                .map_err(io_err(&pvd_path))?;
-        }
-        frames += 1;
-        Ok(())
+    let mut frames = RankFrames::new(out, name);
+    // a frame that cannot be written stops every rank: each learns it from the frame's write
+    let mut write_frame = |me: &RankSlab| {
+        frames
+            .write(link, me.slab.solver.time(), &me.piece())
+            .map_err(|message| match rank {
+                0 => here(RunError::Ranks { message }),
+                _ => RankRunError::Elsewhere { rank: 0 },
+            })
     };
     // the probe CSV: each rank reads its own probes, rank 0 writes the whole fluid's row
     let probe_path = out.join(format!("{name}_probes.csv"));
@@ -199,7 +185,7 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
     let probe_interval = cfg.probe_interval.unwrap_or(cfg.output_interval);
     let end = case.info.end_time;
     let mut progress = (rank == 0).then(|| Progress::new(name, end, cfg.progress_interval, false));
-    write_frame(&me, &mut series)?;
+    write_frame(&me)?;
     sample(&me, &mut probes)?;
     let (mut next_frame, mut next_probe) = (1u64, 1u64);
     let at = |k: u64, interval: f64| (k as f64 * interval).min(end);
@@ -232,7 +218,7 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
             next_probe += 1;
         }
         if me.slab.solver.time() >= at(next_frame, cfg.output_interval) {
-            write_frame(&me, &mut series)?;
+            write_frame(&me)?;
             next_frame += 1;
         }
     }
@@ -245,7 +231,7 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
         time: me.slab.solver.time(),
         steps: me.slab.solver.steps(),
         fluid_particles: link.sum(owned),
-        frames,
+        frames: frames.next() as usize,
         handed_over: link.sum(me.handed_over),
         copied: link.sum(me.copied),
         sent_bytes: link.sum(link.sent_bytes()),

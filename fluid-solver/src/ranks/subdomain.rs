@@ -11,9 +11,17 @@ use crate::particles::kind::{Kind, FLUID};
 use crate::particles::Particles;
 use crate::solver::FluidSolver;
 use crate::stability::StabilityMonitor;
+use crate::state::FluidState;
 
 /// What a slab sends to its left (lower x) and right neighbours.
 pub type ToNeighbours = [Particles; 2];
+
+/// A slab's state, as a checkpoint keeps it: its solver's and which fluid it owns.
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+pub struct SlabState {
+    pub solver: FluidState,
+    pub owns: Vec<bool>,
+}
 
 /// One slab's solver and what it owns.
 pub struct Subdomain {
@@ -72,6 +80,23 @@ impl Subdomain {
         slab.solver.state.particles = whole.subset(&near);
         slab.settle();
         slab
+    }
+
+    /// The slab's state now ([`Subdomain::restore`] goes back to it).
+    pub fn save(&self) -> SlabState {
+        SlabState {
+            solver: self.solver.save_state(),
+            owns: self.owns.clone(),
+        }
+    }
+
+    /// Goes back to the state `saved` (of this slab).
+    pub fn restore(&mut self, saved: &SlabState) {
+        self.solver.restore_state(&saved.solver);
+        self.owns.clone_from(&saved.owns);
+        if let Some(share) = self.solver.bodies.share_mut() {
+            share.owned.clone_from(&self.owns);
+        }
     }
 
     /// Whether local particle `i` is fluid this slab owns.

@@ -13,6 +13,7 @@
 //! viscosity_term = false    # switch ν⟨∇²u⟩ off when ν is far below the numerical dissipation
 //! output_interval = 0.05
 //! surface_mesh = true       # also a free-surface mesh (VTP) per frame; default false
+//! ranks = 4                 # MPI ranks, each a slab along x (default 1; see FluidConfig::ranks)
 //! tank = { min = [0, 0, 0], max = [0.6, 0.45, 0.3] }
 //! [[fluid.tank.block]]      # water, filled on the lattice
 //! min = [0, 0, 0]
@@ -58,6 +59,7 @@ mod isph;
 mod mesh_bodies;
 mod open_boundary;
 mod probes;
+mod ranks;
 mod solids;
 mod time_step;
 mod wave_maker;
@@ -72,6 +74,7 @@ pub use isph::{
 };
 pub use open_boundary::{InflowConfig, OutflowConfig, MIN_INFLOW_STRIP_LAYERS};
 pub use probes::{signed_axis, ProbeConfig, ProbeKind};
+pub use ranks::{DEFAULT_LAUNCHER, RANKS_PLACEHOLDER};
 pub use solids::{Loaded, PlaneConfig, SolidConfig, TerrainConfig, MAX_MESH_TO_TANK};
 pub use time_step::{MACH, MAX_ACOUSTIC_COURANT, MAX_ADVECTIVE_COURANT, MAX_VISCOUS_NUMBER};
 pub use wave_maker::{DampingConfig, PaddleKind, PaddleMotion, WaveMakerConfig};
@@ -222,6 +225,18 @@ pub struct FluidConfig {
     /// Wall-clock time between progress lines in the log [s]. Range: > 0.
     #[serde(default = "default_progress_interval")]
     pub progress_interval: f64,
+    /// MPI ranks that step the fluid, each a slab along x balanced by fluid particles (the
+    /// fluid solver built with its `mpi` feature; `coupler run` starts them through
+    /// `launcher`). Default 1: one process. More than one runs E-MPS on CPU threads, without
+    /// a wave maker, surface meshes or the drag coupling. Range: ≥ 1.
+    #[serde(default)]
+    pub ranks: Option<usize>,
+    /// The command that starts `ranks` processes, `{ranks}` where their number goes (e.g.
+    /// `"srun -n {ranks}"` on a Slurm cluster, `"mpirun --oversubscribe -np {ranks}"` for more
+    /// ranks than cores); the solver's command follows it. Default `"mpirun -np {ranks}"`;
+    /// unused with one rank.
+    #[serde(default)]
+    pub launcher: Option<String>,
 }
 
 fn default_max_removed_fraction() -> f64 {
@@ -412,6 +427,7 @@ impl FluidConfig {
         if self.backend == FluidBackend::Gpu {
             self.gpu_support(key)?;
         }
+        self.validate_ranks(key)?;
         match self.method {
             FluidMethodName::Emps => {
                 if self.isph.is_some() {
