@@ -394,3 +394,54 @@ fn a_case_the_ranks_do_not_run_is_refused_once_and_nothing_runs() {
         "nothing is written for a refused case"
     );
 }
+
+/// Cut again on ranks as on the slabs of one process: `ranks.rs`' tilted dam break, whose cut
+/// follows the water at step 250 (x = 0.4 → 0.46 m, past a pressure probe and a filtered floor
+/// sensor), on 2 ranks to 0.15 s: the ranks count the fluid by bins (an all-reduce), move the
+/// cut, hand over the fluid, and pass the sensor's window to its new reader, so the run equals
+/// the 2 slabs of one process bit for bit, and rank 0's probe rows equal theirs to the digit.
+#[test]
+fn two_ranks_cut_again_as_the_water_moves_step_as_two_slabs_bit_for_bit() {
+    let d = dir("mpi-ranks-recut");
+    let case = d.join("case.toml");
+    std::fs::write(&case, crate::ranks::DAM).unwrap_or_else(|e| panic!("{e}"));
+    let cfg = crate::ranks::dam();
+    let ranked = run(&case, &d.join("ranks"), 2);
+    let log = String::from_utf8_lossy(&ranked.stderr);
+    println!("{log}");
+    assert!(ranked.status.success(), "mpirun -np 2 failed: {log}");
+    assert!(
+        log.contains("slabs cut again 1 times"),
+        "the ranks cut again once: {log}"
+    );
+    let mut every = Vec::new();
+    for r in 0..2 {
+        every.extend(frame(&d.join("ranks").join(format!("water_00001_r{r:04}.vtu"))));
+    }
+    let ranks = fluid_by_id(&every);
+
+    let mut slabs = DecomposedFluid::new(&cfg, 2).unwrap_or_else(|e| panic!("{e}"));
+    let interval = cfg.probe_interval.unwrap_or(cfg.output_interval);
+    let mut rows = vec![slabs.probe_row()];
+    for k in 1..=30 {
+        let t = k as f64 * interval;
+        while let Some(dt) = slabs.parts()[0].solver.next_step_towards(t) {
+            slabs.step(dt).unwrap_or_else(|e| panic!("{e}"));
+            slabs.observe_probes(t);
+        }
+        slabs.land_on(t);
+        rows.push(slabs.probe_row());
+    }
+    assert_eq!(slabs.recuts(), 1, "the slabs cut again once");
+    let gap = largest_gap(&ranks, &by_id(&slabs.fluid()));
+    println!("2 ranks cut again against 2 slabs in one process: largest gap {gap:.3e} m");
+    assert_eq!(gap, 0.0, "bit for bit");
+    let csv = std::fs::read_to_string(d.join("ranks/water_probes.csv")).unwrap_or_else(|e| panic!("{e}"));
+    let written: Vec<&str> = csv.lines().skip(1).collect();
+    assert_eq!(written.len(), rows.len(), "a row every 5 ms: {csv}");
+    for (line, row) in written.iter().zip(&rows) {
+        let values: Vec<&str> = line.split(',').skip(1).take(row.len()).collect();
+        let expected: Vec<String> = row.iter().map(|v| format!("{v:.6e}")).collect();
+        assert_eq!(values, expected, "rank 0's probe row against the slabs'");
+    }
+}

@@ -10,6 +10,7 @@
 use fluid_solver::particles::Particles;
 use fluid_solver::probes::ProbeSet;
 use fluid_solver::ranks::decomposed::DecomposedFluid;
+use fluid_solver::ranks::rebalance;
 use fluid_solver::FluidSolver;
 use schemas::case::{Case, FluidConfig};
 use schemas::validation::{largest, record, Record};
@@ -121,9 +122,9 @@ pub(crate) fn largest_gap(a: &HashMap<u32, [f64; 3]>, b: &HashMap<u32, [f64; 3]>
     )
 }
 
-/// The whole domain after [`STEPS`] steps, its particles first stored in reverse order when
+/// The whole domain after `steps` steps, its particles first stored in reverse order when
 /// `reversed`, and its probe rows every [`ROW_EVERY`] steps.
-fn whole(cfg: &FluidConfig, reversed: bool) -> (FluidSolver, Vec<Vec<f64>>) {
+fn whole(cfg: &FluidConfig, reversed: bool, steps: usize) -> (FluidSolver, Vec<Vec<f64>>) {
     let mut s = FluidSolver::new(cfg);
     let mut probes = ProbeSet::new(&cfg.probe, &s).unwrap_or_else(|e| panic!("{e}"));
     s.remove_gates();
@@ -131,7 +132,7 @@ fn whole(cfg: &FluidConfig, reversed: bool) -> (FluidSolver, Vec<Vec<f64>>) {
         store_in_reverse(&mut s);
     }
     let mut rows = Vec::new();
-    for k in 1..=STEPS {
+    for k in 1..=steps {
         s.step(cfg.time_step).unwrap_or_else(|e| panic!("{e}"));
         probes.observe(&s, next_row(k, cfg.time_step));
         if k % ROW_EVERY == 0 {
@@ -214,8 +215,8 @@ fn slabs_step_as_the_whole_domain_within_its_round_off_spread() {
     let cfg = tank();
     let names: Vec<&str> = cfg.probe.iter().map(|p| p.name.as_str()).collect();
     let started = std::time::Instant::now();
-    let (reference, reference_rows) = whole(&cfg, false);
-    let (reversed, reversed_rows) = whole(&cfg, true);
+    let (reference, reference_rows) = whole(&cfg, false, STEPS);
+    let (reversed, reversed_rows) = whole(&cfg, true, STEPS);
     let reference = by_id(reference.particles());
     let spread = largest_gap(&reference, &by_id(reversed.particles()));
     let probe_spread = probe_gaps(&reference_rows, &reversed_rows);
@@ -304,6 +305,134 @@ fn slabs_step_as_the_whole_domain_within_its_round_off_spread() {
     }
 }
 
+/// A dam break that moves the fluid's mass along x: a 2.0 × 0.06 × 0.4 m tank with a lid, a
+/// column 0.8 m long and 0.3 m high at its left end (1 800 fluid particles at Δs = 0.02 m), the
+/// two slabs first cut at x = 0.4 m, gravity leaning 6 m/s² towards +x. As the column slides and
+/// collapses the right slab fills and the cut follows the water (to x = 0.46 m at step 250). A
+/// pressure probe and a filtered sensor on the floor at x = 0.43 m change their reader when the
+/// cut passes them; the surge front is read by both slabs.
+pub(crate) const DAM: &str = r#"[case]
+name = "slab-dam-break"
+end_time = 0.15
+
+[fluid.water]
+spacing = 0.02
+time_step = 5.0e-4
+sound_speed = 12.1
+gravity = [6.0, 0.0, -9.8]
+output_interval = 0.15
+probe_interval = 0.005
+tank = { min = [0.0, 0.0, 0.0], max = [2.0, 0.06, 0.4], lid = true }
+
+[[fluid.water.block]]
+min = [0.0, 0.0, 0.0]
+max = [0.8, 0.06, 0.3]
+
+[[fluid.water.probe]]
+name = "p-floor"
+kind = "pressure"
+position = [0.43, 0.03, 0.03]
+
+[[fluid.water.probe]]
+name = "floor-sensor"
+kind = "wall-pressure"
+position = [0.43, 0.03, 0.0]
+normal = "+z"
+diameter = 0.04
+window = 0.005
+
+[[fluid.water.probe]]
+name = "front"
+kind = "surge-front"
+axis = "x"
+"#;
+
+/// Steps of [`DAM`]: 0.15 s.
+const DAM_STEPS: usize = 300;
+
+/// [`DAM`]'s fluid section.
+pub(crate) fn dam() -> FluidConfig {
+    let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("slab-dam-break.toml");
+    let case = Case::parse(&path, DAM.to_string()).unwrap_or_else(|e| panic!("{e}"));
+    case.fluid["water"].clone()
+}
+
+/// Slabs cut again as the water moves ([`fluid_solver::ranks::rebalance`]): in the dam break the
+/// cut follows the collapsing column, every particle stays within the round-off spread of the
+/// undivided run, each probe's readings too (the point probes change reader as the cut passes
+/// them, the filtered sensor with its window's readings), and after the last cut the slabs hold
+/// equal shares within the limit.
+#[test]
+fn slabs_cut_again_as_a_dam_break_moves_stay_within_the_undivided_runs_spread() {
+    let cfg = dam();
+    let started = std::time::Instant::now();
+    let (reference, reference_rows) = whole(&cfg, false, DAM_STEPS);
+    let (reversed, reversed_rows) = whole(&cfg, true, DAM_STEPS);
+    let reference = by_id(reference.particles());
+    let spread = largest_gap(&reference, &by_id(reversed.particles()));
+    let probe_spread = probe_gaps(&reference_rows, &reversed_rows);
+    let mut d = DecomposedFluid::new(&cfg, 2).unwrap_or_else(|e| panic!("{e}"));
+    let first_cut = d.cuts()[1];
+    let mut rows = Vec::new();
+    let mut cut_at = Vec::new();
+    for k in 1..=DAM_STEPS {
+        d.step(cfg.time_step).unwrap_or_else(|e| panic!("{e}"));
+        d.observe_probes(next_row(k, cfg.time_step));
+        if k % ROW_EVERY == 0 {
+            rows.push(d.probe_row());
+        }
+        if cut_at.last() != Some(&d.cuts()[1]) {
+            cut_at.push(d.cuts()[1]);
+        }
+    }
+    let owned: Vec<u64> = d.parts().iter().map(|s| s.owned_count()).collect();
+    let gap = largest_gap(&reference, &by_id(&d.fluid()));
+    let probe_gap = probe_gaps(&reference_rows, &rows);
+    println!(
+        "cut at x = {cut_at:?} ({} cuts again); owned {owned:?}; gap {gap:.3e} m (spread {spread:.3e} m); probes {probe_gap:?} (spread {probe_spread:?})",
+        d.recuts()
+    );
+    assert!(
+        d.recuts() >= 1,
+        "the slabs are cut again as the column collapses: {cut_at:?}"
+    );
+    assert!(
+        first_cut < 0.43 && d.cuts()[1] > 0.43,
+        "the cut passes the point probes at x = 0.43 m: {cut_at:?}"
+    );
+    let total: u64 = owned.iter().sum();
+    assert_eq!(total, 1800, "each particle owned once");
+    // the last step is a count's (300 is a multiple of CHECK_EVERY): the slabs are within the
+    // limit, or were cut again there into shares equal to a bin's particles
+    assert!((DAM_STEPS as u64).is_multiple_of(rebalance::CHECK_EVERY));
+    assert!(
+        rebalance::imbalance(&owned) <= rebalance::LIMIT,
+        "the slabs hold near-equal shares after the last count: {owned:?}"
+    );
+    for (k, (gap, spread)) in probe_gap.iter().zip(&probe_spread).enumerate() {
+        let scale = largest(reference_rows.iter().map(|r| r[k].abs()), 0.0);
+        let bound = SPREADS * largest([*spread], f64::EPSILON * scale);
+        assert!(
+            gap <= &bound,
+            "probe {k} reads {gap:.3e} off the undivided run's, more than {bound:.3e}"
+        );
+    }
+    positions_within_the_spread(Positions {
+        id: "emps-slabs-2-cut-again-vs-undivided".into(),
+        capability: "E-MPS fluid in slabs cut again as the water moves (rebalancing by fluid count)",
+        case: "dam break on a tilted tank: 2.0 × 0.06 × 0.4 m, column 0.8 × 0.3 m (1 800 fluid particles), gravity 6 m/s² along x, 0.15 s",
+        resolution: format!(
+            "E-MPS, Δs = 0.02 m, {DAM_STEPS} steps, 2 slabs cut again {} times (the cut from x = {first_cut} m to {:.2} m)",
+            d.recuts(),
+            d.cuts()[1]
+        ),
+        test: "slabs_cut_again_as_a_dam_break_moves_stay_within_the_undivided_runs_spread",
+        gap,
+        spread,
+        started,
+    });
+}
+
 /// A channel 3.8 m long at Δs = 0.05 m (4 × 4 particles of water across, 0.2 m deep): a strip
 /// feeds water in at 0.5 m/s through the plane x = 0.4 m and water leaves behind x = 3.4 m;
 /// gravity leans 3 m/s² towards +x (½ 3 t² = 0.24 m by 0.4 s), so the water crosses the cuts. Two
@@ -346,8 +475,8 @@ fn inflow_and_outflow_run_in_the_end_slabs_and_the_balance_closes_exactly() {
     let case = Case::parse(&path, CHANNEL.to_string()).unwrap_or_else(|e| panic!("{e}"));
     let cfg = case.fluid["water"].clone();
     let started = std::time::Instant::now();
-    let (reference, _) = whole(&cfg, false);
-    let (reversed, _) = whole(&cfg, true);
+    let (reference, _) = whole(&cfg, false, STEPS);
+    let (reversed, _) = whole(&cfg, true, STEPS);
     let expected = reference.open_boundaries().balance();
     let at_start = FluidSolver::new(&cfg)
         .particles()

@@ -3,7 +3,8 @@
 //! ([`super::subdomain`]). The checks that need the whole fluid (its energy) are made here over
 //! the slabs' own particles.
 
-use super::slab_plan::SlabPlan;
+use super::rebalance;
+use super::slab_plan::{Recut, SlabPlan};
 use super::slab_probes::SlabProbes;
 use super::subdomain::{SlabState, Subdomain, ToNeighbours};
 use crate::boundaries::open_boundary::ParticleBalance;
@@ -29,6 +30,11 @@ pub struct DecomposedFluid {
     probe_sets: Vec<ProbeSet>,
     /// Fluid particles at the start (after the gates are lifted).
     fluid_at_start: u64,
+    /// Where the slabs are cut now, and what cutting them again needs.
+    cuts: Vec<f64>,
+    recut: Recut,
+    /// How many times the slabs were cut again.
+    recuts: u64,
 }
 
 impl DecomposedFluid {
@@ -65,6 +71,9 @@ impl DecomposedFluid {
             probes: plan.probes,
             probe_sets: plan.probe_sets,
             fluid_at_start: plan.fluid_at_start,
+            cuts: plan.cuts,
+            recut: plan.recut,
+            recuts: 0,
         })
     }
 
@@ -171,19 +180,42 @@ impl DecomposedFluid {
 
     /// One step of `dt` on every slab, then the exchange: stops with the first slab's diagnostic,
     /// or the whole fluid's energy check (as [`StabilityMonitor::check`]'s, over the slabs' own
-    /// fluid).
+    /// fluid). Every [`rebalance::CHECK_EVERY`] steps the slabs are cut again if the water has
+    /// moved too far from an even split ([`super::rebalance`]).
     pub fn step(&mut self, dt: f64) -> Result<(), Instability> {
         self.parts
             .par_iter_mut()
             .map(|s| s.solver.step(dt).map(|_| ()))
             .collect::<Result<Vec<()>, Instability>>()?;
+        self.hand_over();
+        self.send_halos();
+        self.check_energy(dt)?;
+        if self.parts[0]
+            .solver
+            .steps()
+            .is_multiple_of(rebalance::CHECK_EVERY)
+        {
+            self.rebalance();
+        }
+        Ok(())
+    }
+
+    /// Each slab hands the owned fluid that left it to its neighbours; returns how many went.
+    fn hand_over(&mut self) -> u64 {
         let leaving: Vec<ToNeighbours> = self.parts.par_iter_mut().map(|s| s.emigrants()).collect();
-        self.handed_over += leaving.iter().flatten().map(|p| p.len() as u64).sum::<u64>();
+        let went = leaving.iter().flatten().map(|p| p.len() as u64).sum::<u64>();
+        self.handed_over += went;
         let arriving = from_neighbours(leaving);
         self.parts
             .par_iter_mut()
             .zip(&arriving)
             .for_each(|(s, a)| s.take(a));
+        went
+    }
+
+    /// Each slab sends copies of its fluid near its faces to its neighbours and sorts its
+    /// particles for the next step.
+    fn send_halos(&mut self) {
         let copies: Vec<ToNeighbours> = self.parts.par_iter().map(|s| s.halo_copies()).collect();
         self.copied += copies.iter().flatten().map(|p| p.len() as u64).sum::<u64>();
         let halos = from_neighbours(copies);
@@ -191,7 +223,56 @@ impl DecomposedFluid {
             .par_iter_mut()
             .zip(&halos)
             .for_each(|(s, h)| s.take_halo(h));
-        self.check_energy(dt)
+    }
+
+    /// Cuts the slabs again where the fluid's counts say, when the fullest slab holds more than
+    /// [`rebalance::LIMIT`] times the mean and the new cuts fit ([`super::rebalance`]).
+    fn rebalance(&mut self) {
+        let bins = &self.recut.bins;
+        let counts = self
+            .parts
+            .iter()
+            .map(|s| bins.histogram(s.solver.particles(), |i| s.owned(i)))
+            .reduce(|a, b| a.iter().zip(&b).map(|(x, y)| x + y).collect())
+            .unwrap_or_default();
+        let slabs = self.parts.len();
+        if rebalance::imbalance(&rebalance::slab_counts(bins, &counts, &self.cuts)) <= rebalance::LIMIT {
+            return;
+        }
+        let Some(cuts) = bins.cuts(&counts, slabs, self.recut.halo, self.recut.planes) else {
+            return;
+        };
+        let fixed = &self.recut.fixed;
+        self.parts
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(r, s)| s.recut(cuts[r], cuts[r + 1], fixed));
+        // a cut may have moved past a whole slab: hand over until every slab owns its own
+        while self.hand_over() > 0 {}
+        self.send_halos();
+        let windows: Vec<rebalance::Windows> = self.probe_sets.iter().map(|p| p.windows().to_vec()).collect();
+        let mut rules = None;
+        for (r, set) in self.probe_sets.iter_mut().enumerate() {
+            let (new_rules, new_set) =
+                rebalance::probes_after_recut(&self.recut.probes, &self.probes, &windows, &cuts, r);
+            *set = new_set;
+            rules = Some(new_rules);
+        }
+        if let Some(rules) = rules {
+            self.probes = rules;
+        }
+        self.cuts = cuts;
+        self.recuts += 1;
+    }
+
+    /// How many times the slabs were cut again as the water moved.
+    pub fn recuts(&self) -> u64 {
+        self.recuts
+    }
+
+    /// Where the slabs are cut now (slab r owns `cuts[r] ≤ x < cuts[r + 1]`).
+    pub fn cuts(&self) -> &[f64] {
+        &self.cuts
     }
 
     /// The whole fluid's mechanical energy against the whole domain's reference.

@@ -6,6 +6,7 @@
 //!
 //! - [`slabs`]: where the cuts lie (balanced by fluid particles) and how thick a halo must be;
 //! - [`slab_plan`]: what the slabs of a case start from (layout, cuts, halo, probes, energy);
+//! - [`rebalance`]: the slabs cut again when the water has moved (counted by bins of x);
 //! - [`slab_probes`]: the case's probes read by the slabs and combined into the whole's row;
 //! - [`subdomain`]: one slab's solver, what it owns, what it sends and takes;
 //! - [`decomposed`]: the slabs in one process, stepped together, with the whole domain's checks;
@@ -30,6 +31,7 @@ pub mod rank_participant;
 pub mod rank_run;
 #[cfg(feature = "mpi")]
 mod rank_slab;
+pub mod rebalance;
 pub mod slab_plan;
 pub mod slab_probes;
 pub mod slabs;

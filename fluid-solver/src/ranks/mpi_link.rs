@@ -10,6 +10,7 @@
 use super::subdomain::ToNeighbours;
 use crate::particles::Particles;
 use mpi::collective::SystemOperation;
+use mpi::datatype::PartitionMut;
 use mpi::request::WaitGuard;
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
@@ -143,14 +144,42 @@ impl RankLink {
     }
 
     /// The element-wise sum of `values` (equally long on every rank) over the ranks, on every
-    /// rank.
-    pub fn sum_each(&self, values: &[f64]) -> Vec<f64> {
-        let mut total = vec![0.0; values.len()];
+    /// rank (f64 loads, u64 counts).
+    pub fn sum_each<T: Equivalence + Default + Clone>(&self, values: &[T]) -> Vec<T> {
+        let mut total = vec![T::default(); values.len()];
         if !values.is_empty() {
             self.world
                 .all_reduce_into(values, &mut total[..], SystemOperation::sum());
         }
         total
+    }
+
+    /// Every rank's `bytes` (of any length), by rank, on every rank.
+    pub fn all_bytes(&self, bytes: &[u8]) -> Vec<Vec<u8>> {
+        let lengths: Vec<u64> = self
+            .all_rows(&[bytes.len() as f64])
+            .iter()
+            .map(|r| r[0] as u64)
+            .collect();
+        let counts: Vec<mpi::Count> = lengths.iter().map(|&n| n as mpi::Count).collect();
+        let displs: Vec<mpi::Count> = counts
+            .iter()
+            .scan(0, |at, &n| {
+                let start = *at;
+                *at += n;
+                Some(start)
+            })
+            .collect();
+        let mut all = vec![0u8; lengths.iter().sum::<u64>() as usize];
+        {
+            let mut parts = PartitionMut::new(&mut all[..], &counts[..], &displs[..]);
+            self.world.all_gather_varcount_into(bytes, &mut parts);
+        }
+        counts
+            .iter()
+            .zip(&displs)
+            .map(|(&n, &d)| all[d as usize..(d + n) as usize].to_vec())
+            .collect()
     }
 
     /// Rank 0 sends `bytes` to every other rank (an order they wait for with

@@ -109,6 +109,10 @@ struct SavedRank {
     whole: (Option<f64>, f64, bool),
     current: (Vec<f64>, Vec<f64>),
     moved: (u64, u64),
+    /// Where the slabs were cut, how many times they were cut again, and the step of the last
+    /// count.
+    cuts: Vec<f64>,
+    recuts: (u64, u64),
     /// Frames written and rank 0's series of indexes.
     frames: Option<(u64, Vec<(f64, String)>)>,
     probes: Option<SavedProbes>,
@@ -207,6 +211,7 @@ impl<'a> RankParticipant<'a> {
             mut probe_sets,
             whole,
             fluid_at_start,
+            recut,
         } = plan;
         let mut slab_solver = FluidSolver::new(cfg);
         slab_solver.remove_gates();
@@ -221,6 +226,10 @@ impl<'a> RankParticipant<'a> {
                 whole,
                 handed_over: 0,
                 copied: 0,
+                cuts,
+                recut,
+                recuts: 0,
+                counted_at: 0,
             },
             current,
             saved: None,
@@ -347,6 +356,24 @@ impl<'a> RankParticipant<'a> {
         }
     }
 
+    /// At a window's start, before anything of it is stepped or kept: the slabs cut again when
+    /// the water has moved ([`RankSlab::rebalance`]; every rank). A failure of the ranks' own
+    /// link stops every rank.
+    fn rebalance_if_due(&mut self) {
+        if !self.me.recount_due() {
+            return;
+        }
+        let set = self.probes.as_mut().map(|p| &mut p.probes);
+        if let Err(e) = self.me.rebalance(&mut self.combine, set) {
+            eprintln!(
+                "error: fluid `{}`: rank {}: {e}; stopping every rank",
+                self.name,
+                self.rank()
+            );
+            self.me.link.abort(1)
+        }
+    }
+
     /// Advances over the window as [`crate::participant::FluidParticipant`] does (every rank).
     fn advance(&mut self, inputs: &Waveform, progress: &mut dyn ProgressSink) -> Result<Vec<Fields>, String> {
         let now = self.time();
@@ -371,6 +398,10 @@ impl<'a> RankParticipant<'a> {
         self.commit()?;
         let bodies = self.me.slab.solver.body_names().len();
         let motion_at_end = std::mem::take(&mut self.iterated);
+        if !motion_at_end {
+            // an explicit window's start (an implicit one is cut again before it is saved)
+            self.rebalance_if_due();
+        }
         let mut outputs = vec![self.current.clone()];
         for &t in inputs.times.iter().skip(1) {
             while let Some(dt) = self.me.slab.solver.next_step_towards(t) {
@@ -421,6 +452,7 @@ impl<'a> RankParticipant<'a> {
     }
 
     fn save(&mut self) {
+        self.rebalance_if_due();
         self.iterated = true;
         self.saved = Some(WindowStart {
             slab: self.me.slab.save(),
@@ -467,6 +499,8 @@ impl<'a> RankParticipant<'a> {
                 self.current.body_reaction.0.clone(),
             ),
             moved: (self.me.handed_over, self.me.copied),
+            cuts: self.me.cuts.clone(),
+            recuts: (self.me.recuts, self.me.counted_at),
             frames: self.frames.as_ref().map(|f| (f.next(), f.series().to_vec())),
             probes: self.probes.as_ref().map(|p| SavedProbes {
                 written: p.written,
@@ -508,6 +542,14 @@ impl<'a> RankParticipant<'a> {
             ..Fields::default()
         };
         (self.me.handed_over, self.me.copied) = saved.moved;
+        (self.me.recuts, self.me.counted_at) = saved.recuts;
+        // the probes over the slabs as they were cut then
+        let (combine, mut sets) = SlabProbes::new(&self.me.recut.probes, &saved.cuts);
+        self.combine = combine;
+        if let Some(probes) = &mut self.probes {
+            probes.probes = sets.swap_remove(rank);
+        }
+        self.me.cuts = saved.cuts;
         if let (Some(frames), Some((next, series))) = (&mut self.frames, saved.frames) {
             frames.continue_after(next, series)?;
         }
@@ -543,6 +585,7 @@ impl<'a> RankParticipant<'a> {
             handed_over: link.sum(self.me.handed_over),
             copied: link.sum(self.me.copied),
             sent_bytes: link.sum(link.sent_bytes()),
+            recuts: self.me.recuts,
             wall_seconds: self.started.elapsed().as_secs_f64(),
             step_seconds: self.step_seconds,
         };

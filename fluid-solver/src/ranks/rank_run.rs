@@ -14,6 +14,7 @@ use super::mpi_link::RankLink;
 use super::rank_frames::RankFrames;
 use super::rank_slab::RankSlab;
 use super::slab_plan::{PlanError, SlabPlan};
+use super::slab_probes::SlabProbes;
 use super::subdomain::Subdomain;
 use crate::boundaries::open_boundary::BalanceFile;
 use crate::output::progress::Progress;
@@ -39,6 +40,8 @@ pub struct RankRunSummary {
     pub copied: u64,
     /// Bytes the ranks sent each other in the steps' exchanges (encoded particles).
     pub sent_bytes: u64,
+    /// How many times the slabs were cut again as the water moved.
+    pub recuts: u64,
     pub wall_seconds: f64,
     /// Wall time of the steps with their exchanges and checks (rank 0's; frames, probes and
     /// the set-up left out).
@@ -49,7 +52,7 @@ impl std::fmt::Display for RankRunSummary {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "t = {:.4} s in {} steps on {} ranks, {} fluid particles, {} frames, {} particles handed over, {} halo copies, {} bytes sent between ranks, {:.1} s ({:.3} s in the steps)",
+            "t = {:.4} s in {} steps on {} ranks, {} fluid particles, {} frames, {} particles handed over, {} halo copies, {} bytes sent between ranks, slabs cut again {} times, {:.1} s ({:.3} s in the steps)",
             self.time,
             self.steps,
             self.ranks,
@@ -58,6 +61,7 @@ impl std::fmt::Display for RankRunSummary {
             self.handed_over,
             self.copied,
             self.sent_bytes,
+            self.recuts,
             self.wall_seconds,
             self.step_seconds
         )
@@ -127,10 +131,11 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
         everything,
         cuts,
         halo,
-        probes: slab_probes,
+        probes: mut slab_probes,
         mut probe_sets,
         whole,
         fluid_at_start,
+        recut,
     } = plan;
     let mut probes = probe_sets.swap_remove(rank);
     let mut me = RankSlab {
@@ -139,6 +144,10 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
         whole,
         handed_over: 0,
         copied: 0,
+        cuts,
+        recut,
+        recuts: 0,
+        counted_at: 0,
     };
     drop(everything);
 
@@ -165,28 +174,29 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
         false => None,
     };
     let mass = me.slab.solver.particle_mass();
-    let mut sample = |me: &RankSlab, probes: &mut ProbeSet| -> Result<(), RankRunError> {
-        let t = me.slab.solver.time();
-        let rows = link.all_rows(&probes.row_in(&ParticleView::of(&me.slab.solver)));
-        let (balance, counts) = me.balance();
-        if let Some(file) = &mut balance_file {
-            file.row_of_counts(t, balance, counts, mass)
-                .map_err(io_err(&balance_path))?;
-        }
-        // what was there and entered, less what the ranks own: the open top's and the outflow's
-        let removed = fluid_at_start + balance.entered - counts[1];
-        match &mut probe_file {
-            Some(file) => file
-                .row(t, &slab_probes.combine(&rows), removed)
-                .map_err(io_err(&probe_path)),
-            None => Ok(()),
-        }
-    };
+    let mut sample =
+        |me: &RankSlab, probes: &mut ProbeSet, slab_probes: &SlabProbes| -> Result<(), RankRunError> {
+            let t = me.slab.solver.time();
+            let rows = link.all_rows(&probes.row_in(&ParticleView::of(&me.slab.solver)));
+            let (balance, counts) = me.balance();
+            if let Some(file) = &mut balance_file {
+                file.row_of_counts(t, balance, counts, mass)
+                    .map_err(io_err(&balance_path))?;
+            }
+            // what was there and entered, less what the ranks own: the open top's and the outflow's
+            let removed = fluid_at_start + balance.entered - counts[1];
+            match &mut probe_file {
+                Some(file) => file
+                    .row(t, &slab_probes.combine(&rows), removed)
+                    .map_err(io_err(&probe_path)),
+                None => Ok(()),
+            }
+        };
     let probe_interval = cfg.probe_interval.unwrap_or(cfg.output_interval);
     let end = case.info.end_time;
     let mut progress = (rank == 0).then(|| Progress::new(name, end, cfg.progress_interval, false));
     write_frame(&me)?;
-    sample(&me, &mut probes)?;
+    sample(&me, &mut probes, &slab_probes)?;
     let (mut next_frame, mut next_probe) = (1u64, 1u64);
     let at = |k: u64, interval: f64| (k as f64 * interval).min(end);
     let mut step_seconds = 0.0;
@@ -200,6 +210,9 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
                     p.finish();
                 }
             })?;
+            if me.recount_due() {
+                me.rebalance(&mut slab_probes, Some(&mut probes))?;
+            }
             step_seconds += stepping.elapsed().as_secs_f64();
             probes.observe(&me.slab.solver, row_at);
             if let Some(p) = &mut progress {
@@ -214,7 +227,7 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
         }
         me.slab.solver.land_on(target);
         if me.slab.solver.time() >= row_at {
-            sample(&me, &mut probes)?;
+            sample(&me, &mut probes, &slab_probes)?;
             next_probe += 1;
         }
         if me.slab.solver.time() >= at(next_frame, cfg.output_interval) {
@@ -235,6 +248,7 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
         handed_over: link.sum(me.handed_over),
         copied: link.sum(me.copied),
         sent_bytes: link.sum(link.sent_bytes()),
+        recuts: me.recuts,
         wall_seconds: started.elapsed().as_secs_f64(),
         step_seconds,
     })

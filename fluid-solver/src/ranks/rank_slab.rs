@@ -6,10 +6,14 @@
 use super::decomposed::check_whole_energy;
 use super::mpi_link::RankLink;
 use super::rank_run::RankRunError;
+use super::rebalance;
+use super::slab_plan::Recut;
+use super::slab_probes::SlabProbes;
 use super::subdomain::{Subdomain, ToNeighbours};
 use crate::boundaries::open_boundary::ParticleBalance;
 use crate::particles::kind::FLUID;
 use crate::run::RunError;
+use crate::sensors::probes::ProbeSet;
 use crate::stability::StabilityMonitor;
 
 /// Message tags of a step's two exchanges.
@@ -23,6 +27,16 @@ pub(super) struct RankSlab<'a> {
     pub(super) whole: StabilityMonitor,
     pub(super) handed_over: u64,
     pub(super) copied: u64,
+    /// Where the slabs are cut now, and what cutting them again needs.
+    pub(super) cuts: Vec<f64>,
+    pub(super) recut: Recut,
+    /// How many times the slabs were cut again, and the step of the last count.
+    pub(super) recuts: u64,
+    pub(super) counted_at: u64,
+}
+
+fn link_error(message: String) -> RankRunError {
+    RankRunError::Here(RunError::Ranks { message })
 }
 
 impl RankSlab<'_> {
@@ -41,16 +55,86 @@ impl RankSlab<'_> {
                 rank: failed_rank as usize,
             });
         }
-        let link_error = |message: String| RankRunError::Here(RunError::Ranks { message });
+        self.hand_over()?;
+        self.send_halos()?;
+        self.check_energy(dt)
+    }
+
+    /// Hands the owned fluid that left this slab to its neighbours and takes theirs; returns how
+    /// many particles this rank sent.
+    fn hand_over(&mut self) -> Result<u64, RankRunError> {
         let leaving = self.slab.emigrants();
-        self.handed_over += count(&leaving);
+        let went = count(&leaving);
+        self.handed_over += went;
         let arriving = self.link.exchange(&leaving, HAND_OVER).map_err(link_error)?;
         self.slab.take(&arriving);
+        Ok(went)
+    }
+
+    /// Sends copies of this slab's fluid near its faces to its neighbours, takes theirs, and
+    /// sorts the particles for the next step.
+    fn send_halos(&mut self) -> Result<(), RankRunError> {
         let copies = self.slab.halo_copies();
         self.copied += count(&copies);
         let halo = self.link.exchange(&copies, HALO).map_err(link_error)?;
         self.slab.take_halo(&halo);
-        self.check_energy(dt)
+        Ok(())
+    }
+
+    /// Whether [`rebalance::CHECK_EVERY`] steps have passed since the slabs' fluid was last
+    /// counted.
+    pub(super) fn recount_due(&self) -> bool {
+        self.slab.solver.steps() >= self.counted_at + rebalance::CHECK_EVERY
+    }
+
+    /// Counts the fluid over the ranks and, when the fullest slab holds more than
+    /// [`rebalance::LIMIT`] times the mean and new cuts fit, cuts the slabs again: each rank
+    /// takes its new reach's walls, hands over fluid until every rank owns what lies between its
+    /// cuts, and sends its halo; `rules` and this rank's probe `set` follow the new cuts (with the
+    /// filters' readings of the rank that read each probe). Every rank calls it; returns whether
+    /// the slabs were cut again.
+    pub(super) fn rebalance(
+        &mut self,
+        rules: &mut SlabProbes,
+        set: Option<&mut ProbeSet>,
+    ) -> Result<bool, RankRunError> {
+        self.counted_at = self.slab.solver.steps();
+        let (link, rank) = (self.link, self.link.rank());
+        let bins = &self.recut.bins;
+        let counts = link.sum_each(&bins.histogram(self.slab.solver.particles(), |i| self.slab.owned(i)));
+        if rebalance::imbalance(&rebalance::slab_counts(bins, &counts, &self.cuts)) <= rebalance::LIMIT {
+            return Ok(false);
+        }
+        let Some(cuts) = bins.cuts(&counts, link.size(), self.recut.halo, self.recut.planes) else {
+            return Ok(false);
+        };
+        self.slab.recut(cuts[rank], cuts[rank + 1], &self.recut.fixed);
+        // a cut may have moved past a whole slab: hand over until every rank owns its own
+        while link.sum(self.hand_over()?) > 0 {}
+        self.send_halos()?;
+        if let Some(set) = set {
+            let config = bincode::config::standard();
+            let mine = bincode::serde::encode_to_vec(set.windows(), config)
+                .map_err(|e| link_error(format!("rank {rank}: cannot encode the probes' readings: {e}")))?;
+            let windows = link
+                .all_bytes(&mine)
+                .iter()
+                .map(|bytes| bincode::serde::decode_from_slice(bytes, config).map(|(w, _)| w))
+                .collect::<Result<Vec<rebalance::Windows>, _>>()
+                .map_err(|e| {
+                    link_error(format!(
+                        "rank {rank}: the probes' readings from a rank are damaged: {e}"
+                    ))
+                })?;
+            let (new_rules, new_set) =
+                rebalance::probes_after_recut(&self.recut.probes, rules, &windows, &cuts, rank);
+            (*rules, *set) = (new_rules, new_set);
+        } else {
+            *rules = SlabProbes::new(&self.recut.probes, &cuts).0;
+        }
+        self.cuts = cuts;
+        self.recuts += 1;
+        Ok(true)
     }
 
     /// The whole fluid's energy check, summed over the ranks' own fluid; every rank finds the

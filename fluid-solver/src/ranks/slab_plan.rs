@@ -3,9 +3,10 @@
 //! gates lifted, where it is cut, the halo, the case's probes over the slabs, the whole fluid's
 //! energy reference and its fluid particles at the start.
 
+use super::rebalance::XBins;
 use super::slab_probes::SlabProbes;
 use super::slabs::{cuts, halo_width, open_boundaries_fit};
-use crate::particles::kind::FLUID;
+use crate::particles::kind::{Kind, FLUID};
 use crate::particles::Particles;
 use crate::sensors::probes::ProbeSet;
 use crate::solver::FluidSolver;
@@ -25,6 +26,19 @@ pub struct SlabPlan {
     /// The whole fluid's monitor, started on `everything`: its energy reference.
     pub whole: StabilityMonitor,
     pub fluid_at_start: u64,
+    /// What the slabs are cut again from as the water moves ([`super::rebalance`]).
+    pub recut: Recut,
+}
+
+/// What cutting the slabs again needs: the fluid's bins, the whole domain's walls, the probes as
+/// built on it, and the open boundaries' planes (inflow, outflow).
+#[derive(Debug, Clone)]
+pub struct Recut {
+    pub bins: XBins,
+    pub fixed: Particles,
+    pub probes: ProbeSet,
+    pub planes: (Option<f64>, Option<f64>),
+    pub halo: f64,
 }
 
 /// Why a case's slabs cannot start.
@@ -57,6 +71,18 @@ impl SlabPlan {
             .map_err(PlanError::Slabs)?;
         let (slab_probes, probe_sets) = SlabProbes::new(&probes, &cuts);
         let everything = whole.particles().clone();
+        let fixed_kinds = [Kind::Wall.code(), Kind::Dummy.code()];
+        let fixed: Vec<u32> = (0..everything.len() as u32)
+            .filter(|&i| fixed_kinds.contains(&everything.kind[i as usize]))
+            .collect();
+        let tank = whole.tank();
+        let recut = Recut {
+            bins: XBins::new(tank.min[0], tank.max[0], whole.kernel().spacing),
+            fixed: everything.subset(&fixed),
+            probes,
+            planes: (open.inflow_plane(), open.outflow_plane()),
+            halo,
+        };
         let mut monitor = whole.monitor.clone();
         monitor.start(&everything);
         let fluid_at_start = everything.kind.iter().filter(|&&k| k == FLUID).count() as u64;
@@ -68,6 +94,7 @@ impl SlabPlan {
             probe_sets,
             whole: monitor,
             fluid_at_start,
+            recut,
         })
     }
 }

@@ -51,6 +51,15 @@ impl SlabProbes {
         (SlabProbes { rules }, sets)
     }
 
+    /// The slab that reads probe `k` (a probe read around a point); `None` for a probe every
+    /// slab reads (over the whole fluid).
+    pub fn reader(&self, k: usize) -> Option<usize> {
+        match self.rules[k] {
+            Rule::Slab(r) => Some(r),
+            Rule::Largest => None,
+        }
+    }
+
     /// The whole fluid's row from the slabs' rows (`rows[r]`, slab r's, all of one length).
     pub fn combine(&self, rows: &[Vec<f64>]) -> Vec<f64> {
         self.rules

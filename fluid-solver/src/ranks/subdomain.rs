@@ -16,11 +16,14 @@ use crate::state::FluidState;
 /// What a slab sends to its left (lower x) and right neighbours.
 pub type ToNeighbours = [Particles; 2];
 
-/// A slab's state, as a checkpoint keeps it: its solver's and which fluid it owns.
+/// A slab's state, as a checkpoint keeps it: its solver's, which fluid it owns and where its
+/// cuts lie.
 #[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct SlabState {
     pub solver: FluidState,
     pub owns: Vec<bool>,
+    pub lo: f64,
+    pub hi: f64,
 }
 
 /// One slab's solver and what it owns.
@@ -87,6 +90,8 @@ impl Subdomain {
         SlabState {
             solver: self.solver.save_state(),
             owns: self.owns.clone(),
+            lo: self.lo,
+            hi: self.hi,
         }
     }
 
@@ -94,9 +99,50 @@ impl Subdomain {
     pub fn restore(&mut self, saved: &SlabState) {
         self.solver.restore_state(&saved.solver);
         self.owns.clone_from(&saved.owns);
+        (self.lo, self.hi) = (saved.lo, saved.hi);
         if let Some(share) = self.solver.bodies.share_mut() {
             share.owned.clone_from(&self.owns);
+            (share.lo, share.hi) = (saved.lo, saved.hi);
         }
+    }
+
+    /// Moves the slab's cuts to `lo ≤ x < hi` ([`super::rebalance`]): it keeps its own fluid,
+    /// its bodies and inflow strip and the walls it holds within a halo of its new faces (with
+    /// the pressures of their last step), takes the walls of `fixed` (the whole domain's, as
+    /// built) that its new reach adds, and drops its halo copies. A wall it takes lies more than
+    /// the halo less the cut's move from the fluid it owns, beyond what the next step reads
+    /// before computing it again. The fluid it owns outside its new cuts leaves at the next
+    /// [`Subdomain::emigrants`]; its halo comes with the next [`Subdomain::take_halo`].
+    pub fn recut(&mut self, lo: f64, hi: f64, fixed: &Particles) {
+        (self.lo, self.hi) = (lo, hi);
+        if let Some(share) = self.solver.bodies.share_mut() {
+            (share.lo, share.hi) = (lo, hi);
+        }
+        let (body, inflow) = (Kind::Body.code(), Kind::Inflow.code());
+        let reach = |x: f64| lo - self.halo <= x && x < hi + self.halo;
+        let p = self.solver.particles();
+        let keep: Vec<u32> = (0..p.len() as u32)
+            .filter(|&i| {
+                let (kind, id, x) = (p.kind[i as usize], p.id[i as usize], p.x[i as usize]);
+                match kind {
+                    FLUID => self.owns_id(id),
+                    k if k == body || k == inflow => true,
+                    _ => reach(x),
+                }
+            })
+            .collect();
+        let mut kept = p.subset(&keep);
+        let mut held = vec![false; fixed.id.iter().map(|&i| i as usize + 1).max().unwrap_or(0)];
+        for &id in &kept.id {
+            if let Some(h) = held.get_mut(id as usize) {
+                *h = true;
+            }
+        }
+        let added: Vec<u32> = (0..fixed.len() as u32)
+            .filter(|&i| reach(fixed.x[i as usize]) && !held[fixed.id[i as usize] as usize])
+            .collect();
+        kept.append(&fixed.subset(&added));
+        self.solver.state.particles = kept;
     }
 
     /// Whether local particle `i` is fluid this slab owns.
