@@ -265,3 +265,140 @@ fn a_rank_killed_stops_the_stack_naming_the_fluid_and_the_window() {
         "the fluid's log names the rank and the signal: {water_log}"
     );
 }
+
+/// A dam break on a tilted tank (`fluid-solver`'s `ranks.rs` scene: 2.0 × 0.06 × 0.4 m, a column
+/// 0.8 × 0.3 m, 1 800 fluid particles at Δs = 0.02 m, gravity leaning 6 m/s² along x) whose
+/// water moves enough for the two ranks to cut their slabs again (at step 250, 0.125 s), coupled
+/// to a 0.1 × 0.04 × 0.04 m box resting on the floor at the far end: the fluid on `ranks`,
+/// checkpoints every 0.05 s, 0.15 s.
+fn ranked_dam_break(dir: &Path, ranks: usize) -> std::path::PathBuf {
+    let text = format!(
+        r#"[case]
+name = "ranked-dam-break"
+end_time = 0.15
+
+[fluid.water]
+spacing = 0.02
+time_step = 5.0e-4
+sound_speed = 12.1
+gravity = [6.0, 0.0, -9.8]
+output_interval = 0.05
+probe_interval = 0.005
+tank = {{ min = [0.0, 0.0, 0.0], max = [2.0, 0.06, 0.4], lid = true }}
+ranks = {ranks}
+launcher = "mpirun --allow-run-as-root --oversubscribe -np {{ranks}}"
+
+[[fluid.water.block]]
+min = [0.0, 0.0, 0.0]
+max = [0.8, 0.06, 0.3]
+
+[[fluid.water.body]]
+name = "box"
+min = [1.8, 0.02, 0.0]
+max = [1.9, 0.04, 0.04]
+
+[[fluid.water.probe]]
+name = "floor-sensor"
+kind = "wall-pressure"
+position = [0.43, 0.03, 0.0]
+normal = "+z"
+diameter = 0.04
+window = 0.005
+
+[[fluid.water.probe]]
+name = "front"
+kind = "surge-front"
+axis = "x"
+
+[structure.block]
+max_step = 1.0e-4
+gravity = [6.0, 0.0, -9.8]
+
+[[structure.block.body]]
+name = "box"
+mass = 0.2
+centre = [1.85, 0.03, 0.02]
+inertia = {{ box = [0.1, 0.02, 0.04] }}
+
+[structure.block.history]
+interval = 0.005
+bodies = ["box"]
+
+[coupling]
+window = 5.0e-4
+scheme = "explicit"
+order = ["water", "block"]
+predictor = "linear"
+checkpoint_interval = 0.05
+
+[[coupling.body]]
+fluid = "water/box"
+structure = "block/box"
+"#
+    );
+    std::fs::create_dir_all(dir).unwrap_or_else(|e| panic!("{e}"));
+    let path = dir.join("case.toml");
+    std::fs::write(&path, text).unwrap_or_else(|e| panic!("{e}"));
+    path
+}
+
+/// The ranks cut their slabs again in a coupled run (at a window's start), and the checkpoint
+/// at 0.15 s, taken after that, keeps the cuts: a run on two ranks to 0.15 s extended to 0.2 s
+/// from its checkpoint writes the same bytes as one run to 0.2 s, and follows the one-rank run
+/// within [`ROUND_OFF`] (the box's history, the probes).
+#[test]
+fn two_ranks_cut_again_in_a_coupled_run_extend_from_their_checkpoint_and_follow_one_rank() {
+    let dir = out_dir("ranked-dam-break");
+    let case = ranked_dam_break(&dir.join("ranks-2"), 2);
+    let path = case.display().to_string();
+    let straight = dir.join("straight");
+    crate::resume::coupler_ok(&[
+        "run",
+        &path,
+        "--out",
+        &straight.display().to_string(),
+        "--end-time",
+        "0.2",
+    ]);
+    let extended = dir.join("extended");
+    let e = extended.display().to_string();
+    crate::resume::coupler_ok(&["run", &path, "--out", &e]);
+    let log = std::fs::read_to_string(extended.join("water.log")).unwrap_or_default();
+    assert!(
+        log.contains("slabs cut again 1 times"),
+        "the ranks cut again before the checkpoint at 0.15 s: {log}"
+    );
+    let err = crate::resume::coupler_ok(&["run", &path, "--resume", &e, "--end-time", "0.2"]);
+    assert!(err.contains("(t = 0.15 s)"), "extended from its end: {err}");
+    crate::resume::assert_same_outputs(&straight, &extended);
+
+    let one_case = ranked_dam_break(&dir.join("ranks-1"), 1);
+    let one = dir.join("one");
+    crate::resume::coupler_ok(&[
+        "run",
+        &one_case.display().to_string(),
+        "--out",
+        &one.display().to_string(),
+        "--end-time",
+        "0.2",
+    ]);
+    let history = largest_difference(
+        &one.join("block/body-box.csv"),
+        &straight.join("block/body-box.csv"),
+        false,
+    );
+    let probes = largest_difference(
+        &one.join("water/water_probes.csv"),
+        &straight.join("water/water_probes.csv"),
+        true,
+    );
+    println!("cut again, two ranks against one: box history {history:.2e}, probes {probes:.2e} (relative)");
+    assert!(
+        history <= ROUND_OFF,
+        "the box on two ranks is {history:.2e} off the one-rank run"
+    );
+    assert!(
+        probes <= ROUND_OFF,
+        "the probes on two ranks are {probes:.2e} off the one-rank run"
+    );
+}

@@ -18,7 +18,7 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 /// Adds `checkpoint_interval` to the case's `[coupling]` section.
-fn with_checkpoints(case: &Path, interval: &str) {
+pub(crate) fn with_checkpoints(case: &Path, interval: &str) {
     let text = std::fs::read_to_string(case).unwrap_or_default();
     assert!(
         text.contains("\n[coupling]\n"),
@@ -149,7 +149,7 @@ fn compared_files(dir: &Path) -> Vec<PathBuf> {
 }
 
 /// Asserts that the outputs of `a` and `b` are the same (see the module doc for what is excluded).
-fn assert_same_outputs(a: &Path, b: &Path) {
+pub(crate) fn assert_same_outputs(a: &Path, b: &Path) {
     let files = compared_files(a);
     assert_eq!(files, compared_files(b), "the two runs wrote the same files");
     for rel in &files {
@@ -693,7 +693,7 @@ fn a_resume_refuses_an_edited_load_table_or_setting_but_not_a_comment() {
 }
 
 /// Runs `coupler ARGS…` and asserts that it succeeded; returns its stderr.
-fn coupler_ok(args: &[&str]) -> String {
+pub(crate) fn coupler_ok(args: &[&str]) -> String {
     let done = coupler(args);
     let err = stderr(&done);
     println!("{err}");
