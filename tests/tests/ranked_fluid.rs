@@ -1,6 +1,7 @@
 //! Issue 39: the fluid on MPI ranks inside the three-process stack (`ranks = 2` in its section;
 //! the fluid solver built with its `mpi` feature). The coupler starts it through the section's
-//! launcher and sees one participant: rank 0 serves the coupler, rank 1 follows it.
+//! launcher and sees one participant: rank 0 serves the coupler, rank 1 follows it; replayed
+//! against its recording, it gives the recorded answers.
 //!
 //! The two ranks step as the case in two slabs of one process, which `fluid-solver`'s `ranks.rs`
 //! holds within the round-off spread of the undivided fluid (a body's loads within 6.3e-13 N of
@@ -148,6 +149,25 @@ fn a_floating_box_with_its_fluid_on_two_ranks_follows_the_one_rank_run() {
     assert!(
         probes <= ROUND_OFF,
         "the probes on two ranks are {probes:.2e} off the one-rank run"
+    );
+
+    // the fluid on its ranks replayed against the recording: the same answers
+    let replay = Command::new(binary("coupler"))
+        .args([
+            "replay",
+            &two.join("recording.rec").display().to_string(),
+            "--participant",
+            "water",
+        ])
+        .args(["--out", &two.with_file_name("replay").display().to_string()])
+        .output()
+        .unwrap_or_else(|e| panic!("{e}"));
+    let text = format!("{}{}", String::from_utf8_lossy(&replay.stdout), stderr(&replay));
+    println!("{text}");
+    assert!(replay.status.success() && text.contains("PASS"), "{text}");
+    assert!(
+        text.contains("-np 2"),
+        "the replay starts the fluid on its ranks: {text}"
     );
 
     // the frames: one index per frame naming both pieces, each piece written

@@ -55,11 +55,23 @@ pub fn work(case: &Case, out: &Path) -> Work {
     }
 }
 
-/// Particles in a fluid's first VTU frame (`NAME_00000.vtu`, `NumberOfPoints`).
+/// Particles in a fluid's first VTU frame (`NAME_00000.vtu`, `NumberOfPoints`), or in its
+/// pieces when the fluid ran on MPI ranks (`NAME_00000_rRRRR.vtu`).
 fn first_frame_points(dir: &Path, name: &str) -> Option<u64> {
+    if let Some(n) = vtu_points(&dir.join(format!("{name}_00000.vtu"))) {
+        return Some(n);
+    }
+    let pieces: Vec<u64> = (0..)
+        .map_while(|r| vtu_points(&dir.join(format!("{name}_00000_r{r:04}.vtu"))))
+        .collect();
+    (!pieces.is_empty()).then(|| pieces.iter().sum())
+}
+
+/// `NumberOfPoints` of a VTU file.
+fn vtu_points(path: &Path) -> Option<u64> {
     use std::io::Read;
     let mut head = [0u8; 4096];
-    let mut file = std::fs::File::open(dir.join(format!("{name}_00000.vtu"))).ok()?;
+    let mut file = std::fs::File::open(path).ok()?;
     let n = file.read(&mut head).ok()?;
     let text = String::from_utf8_lossy(&head[..n]);
     let at = text.find("NumberOfPoints=\"")? + "NumberOfPoints=\"".len();
@@ -82,4 +94,28 @@ fn ledger_sweeps(path: &Path) -> (f64, f64) {
             .unwrap_or(0.0);
         (w + 1.0, s + it)
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_first_frames_particles_are_read_from_the_file_or_summed_over_its_pieces() {
+        let dir = std::env::temp_dir().join(format!("coupler-work-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+        let head =
+            |n: u64| format!("<VTKFile><UnstructuredGrid><Piece NumberOfPoints=\"{n}\" NumberOfCells=\"0\">");
+        std::fs::write(dir.join("one_00000.vtu"), head(120)).unwrap_or_else(|e| panic!("{e}"));
+        std::fs::write(dir.join("ranked_00000_r0000.vtu"), head(70)).unwrap_or_else(|e| panic!("{e}"));
+        std::fs::write(dir.join("ranked_00000_r0001.vtu"), head(50)).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(first_frame_points(&dir, "one"), Some(120));
+        assert_eq!(
+            first_frame_points(&dir, "ranked"),
+            Some(120),
+            "the pieces of a run on ranks"
+        );
+        assert_eq!(first_frame_points(&dir, "none"), None);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }
