@@ -207,28 +207,7 @@ impl FluidParticipant {
     /// Hands the point reactions of `f` to the solver (6 per reaction; their paired sample
     /// points, when given, 3 per reaction; their members' widths, when given, 1 per reaction).
     fn set_point_reactions(&mut self, f: &Fields) -> Result<(), String> {
-        if !f.reaction.len().is_multiple_of(6) || !f.sample_point.len().is_multiple_of(3) {
-            return Err(format!(
-                "fluid `{}`: reaction needs 6 values per point and sample_point 3, got {} and {}",
-                self.name,
-                f.reaction.len(),
-                f.sample_point.len()
-            ));
-        }
-        if !f.reaction_width.is_empty() && 6 * f.reaction_width.len() != f.reaction.len() {
-            return Err(format!(
-                "fluid `{}`: reaction_width needs 1 value per reaction (or none), got {} for {} reactions",
-                self.name,
-                f.reaction_width.len(),
-                f.reaction.len() / 6
-            ));
-        }
-        if let Some(w) = f.reaction_width.iter().find(|w| !(w.is_finite() && **w >= 0.0)) {
-            return Err(format!(
-                "fluid `{}`: reaction_width must be finite and ≥ 0 m, got {w}",
-                self.name
-            ));
-        }
+        check_point_reactions(&self.name, f)?;
         self.solver
             .set_point_reactions(&f.reaction, &f.sample_point, &f.reaction_width);
         Ok(())
@@ -290,6 +269,31 @@ impl FluidParticipant {
         }
         Ok(())
     }
+}
+
+/// Checks the point reactions of `f` for fluid `name`: 6 values per reaction, 3 per paired
+/// sample point, and one finite width ≥ 0 per reaction (or none).
+pub(crate) fn check_point_reactions(name: &str, f: &Fields) -> Result<(), String> {
+    if !f.reaction.len().is_multiple_of(6) || !f.sample_point.len().is_multiple_of(3) {
+        return Err(format!(
+            "fluid `{name}`: reaction needs 6 values per point and sample_point 3, got {} and {}",
+            f.reaction.len(),
+            f.sample_point.len()
+        ));
+    }
+    if !f.reaction_width.is_empty() && 6 * f.reaction_width.len() != f.reaction.len() {
+        return Err(format!(
+            "fluid `{name}`: reaction_width needs 1 value per reaction (or none), got {} for {} reactions",
+            f.reaction_width.len(),
+            f.reaction.len() / 6
+        ));
+    }
+    if let Some(w) = f.reaction_width.iter().find(|w| !(w.is_finite() && **w >= 0.0)) {
+        return Err(format!(
+            "fluid `{name}`: reaction_width must be finite and ≥ 0 m, got {w}"
+        ));
+    }
+    Ok(())
 }
 
 impl Frames {

@@ -46,7 +46,9 @@ fn command(case: &Path, out: &Path, ranks: usize) -> Command {
         1 => Command::new(solver),
         n => {
             let mut c = Command::new("mpirun");
-            c.args(["-np", &n.to_string(), "--oversubscribe", solver]);
+            c.args(["-np", &n.to_string(), "--oversubscribe"]);
+            // waiting ranks yield their core: CI runs several tests' ranks on 2 cores
+            c.args(["--mca", "mpi_yield_when_idle", "1", solver]);
             c
         }
     };

@@ -535,7 +535,8 @@ pub fn pool_level(vtu: &Path) -> (f64, f64, usize) {
 /// A box floating across the cut of two slabs in a tank whose gravity leans 6 m/s² along x, so
 /// the water flows under it (Δs = 0.02 m, 7 200 fluid particles, one fluid step per window,
 /// 0.05 s): the fluid on `ranks` MPI ranks through OpenMPI's `mpirun` (as root, with more ranks
-/// than cores allowed, as CI runs), its probes on both sides of the cut, and the box's history
+/// than cores allowed, waiting ranks yielding their core, as CI runs several tests' ranks on 2
+/// cores), its probes on both sides of the cut, and the box's history
 /// at every window. `coupling` is added to the `[coupling]` section.
 pub fn ranked_floating_box(dir: &Path, ranks: usize, coupling: &str) -> PathBuf {
     let text = format!(
@@ -553,7 +554,7 @@ output_interval = 0.025
 probe_interval = 0.005
 tank = {{ min = [0.0, 0.0, 0.0], max = [1.6, 0.2, 0.4], lid = true }}
 ranks = {ranks}
-launcher = "mpirun --allow-run-as-root --oversubscribe -np {{ranks}}"
+launcher = "mpirun --allow-run-as-root --oversubscribe --mca mpi_yield_when_idle 1 -np {{ranks}}"
 
 [[fluid.water.block]]
 min = [0.0, 0.0, 0.0]

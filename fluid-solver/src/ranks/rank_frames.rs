@@ -30,12 +30,21 @@ impl RankFrames {
         }
     }
 
-    /// Continues after `next` frames, rank 0's `series` (time, index) already written.
-    pub fn continue_after(&mut self, next: u64, series: Vec<(f64, String)>) -> Result<(), String> {
+    /// Continues after `next` frames, rank 0's `series` (time, index) already written: rank 0
+    /// writes the PVD again with them (the others never touch it).
+    pub fn continue_after(
+        &mut self,
+        link: &RankLink,
+        next: u64,
+        series: Vec<(f64, String)>,
+    ) -> Result<(), String> {
+        self.next = next;
+        if link.rank() != 0 {
+            return Ok(());
+        }
         let pvd = self.dir.join(format!("{}.pvd", self.name));
         self.series = Collection::resumed(pvd.clone(), series)
             .map_err(|e| format!("cannot continue {}: {e}", pvd.display()))?;
-        self.next = next;
         Ok(())
     }
 

@@ -7,7 +7,10 @@
 //!
 //! What the coupler gets is the whole fluid's: the bodies' loads and reactions summed over the
 //! ranks (each reports the share of the fluid it owns and of the walls between its cuts), at
-//! t = 0 those of the undivided layout. Frames are written as a standalone run on ranks writes
+//! t = 0 those of the undivided layout; the flow at the drag law's sample points from the rank
+//! whose slab holds each point. Every rank spreads every point reaction over the particles it
+//! holds (its owned particles' shares are the undivided fluid's when the member is narrow enough
+//! for the halo: [`RankParticipant::widest_member`]). Frames are written as a standalone run on ranks writes
 //! them ([`super::rank_frames`]; the first after the gates are lifted), probe rows by rank 0, both
 //! once the window is accepted, as one process does. A checkpoint is one file per rank, rank r's
 //! beside rank 0's (`NAME-W.bin`, `NAME.rR-W.bin`), and resumes on as many ranks.
@@ -15,8 +18,8 @@
 //! A failure every rank learns of (a step that went unstable on one rank, a file one rank
 //! cannot write) reaches the coupler from rank 0 naming the rank; a failure of the ranks' own
 //! link stops every rank at once (`MPI_Abort`), and the coupler names the participant whose
-//! process ended. Not on ranks yet: the drag coupling (point reactions and sample points), which
-//! the case check refuses.
+//! process ended. The participant's log gets no momentum budget and no warning of reactions
+//! left unapplied from the ranks (each rank's account covers the particles it holds).
 
 use super::mpi_link::RankLink;
 use super::rank_frames::RankFrames;
@@ -64,6 +67,8 @@ pub struct RankParticipant<'a> {
     me: RankSlab<'a>,
     /// The whole fluid's outputs now (the bodies' loads and reactions summed over the ranks).
     current: Fields,
+    /// The samples answered at the end of the last window stepped (time, velocity, λ_min).
+    end_samples: Option<(f64, F64s, F64s)>,
     saved: Option<WindowStart>,
     frames: Option<RankFrames>,
     /// The state due for a frame in the last window (time, this rank's piece), written once the
@@ -108,6 +113,7 @@ struct SavedRank {
     run: RunState,
     whole: (Option<f64>, f64, bool),
     current: (Vec<f64>, Vec<f64>),
+    end_samples: Option<(f64, Vec<f64>, Vec<f64>)>,
     moved: (u64, u64),
     /// Where the slabs were cut, how many times they were cut again, and the step of the last
     /// count.
@@ -232,6 +238,7 @@ impl<'a> RankParticipant<'a> {
                 counted_at: 0,
             },
             current,
+            end_samples: None,
             saved: None,
             frames: None,
             pending_frame: None,
@@ -356,6 +363,74 @@ impl<'a> RankParticipant<'a> {
         }
     }
 
+    /// The widest member whose reactions the ranks spread as one process does: a slab that owns
+    /// a particle within a reaction's reach (`a + R` of its centroid or its sample point, a
+    /// member width upstream; `a = (D − Δs)/2`, `R` the drag kernel's support) must hold every
+    /// particle within that reach of both, so `2 D + 2 R − Δs` must fit in the halo.
+    fn widest_member(&self) -> f64 {
+        let ds = self.me.slab.solver.kernel().spacing;
+        let support = schemas::case::drag::KERNEL_SUPPORT_IN_SPACINGS * ds;
+        0.5 * (self.me.recut.halo - 2.0 * support + ds)
+    }
+
+    /// Hands the point reactions of `f` to this rank's slab (every rank spreads every reaction
+    /// over the particles it holds; the halo copies' shares are dropped with them, the owned
+    /// particles' are the undivided fluid's), after the checks one process makes and that of
+    /// the members' width against the halo ([`RankParticipant::widest_member`]).
+    fn set_point_reactions(&mut self, f: &Fields) -> Result<(), String> {
+        crate::participant::check_point_reactions(&self.name, f)?;
+        let widest = self.widest_member();
+        if let Some(w) = f.reaction_width.iter().find(|&&w| w > widest) {
+            return Err(format!(
+                "fluid `{}` on {} MPI ranks: a member {w} m wide spreads its reactions farther than the ranks' halo of {:.4} m covers (at most {widest:.4} m wide here); set the fluid's ranks = 1 for this case",
+                self.name,
+                self.me.link.size(),
+                self.me.recut.halo
+            ));
+        }
+        self.me
+            .slab
+            .solver
+            .set_point_reactions(&f.reaction, &f.sample_point, &f.reaction_width);
+        Ok(())
+    }
+
+    /// The whole fluid's outputs now with the flow at the sample points of `inputs`: each
+    /// point is sampled by the rank whose slab holds it (its halo holds the point's support),
+    /// the others answer 0, and the sum goes to the coupler (every rank).
+    fn outputs_at(&self, inputs: Option<&Fields>) -> Fields {
+        let mut out = self.current.clone();
+        if let Some(f) = inputs.filter(|f| !f.sample_point.is_empty()) {
+            let s = &self.me.slab;
+            let (mut v, mut lambda) =
+                s.solver
+                    .sample_points_for(&f.sample_point, &f.reaction, &f.reaction_width);
+            for (k, x) in f.sample_point.chunks_exact(3).enumerate() {
+                if !(s.lo <= x[0] && x[0] < s.hi) {
+                    v[3 * k..3 * k + 3].fill(0.0);
+                    lambda[k] = 0.0;
+                }
+            }
+            out.sampled_velocity = F64s(self.me.link.sum_each(&v));
+            out.sampled_lambda_min = F64s(self.me.link.sum_each(&lambda));
+        }
+        out
+    }
+
+    /// The outputs at a window start, as [`crate::participant::FluidParticipant`] gives them:
+    /// the last window's end samples when it ended here with as many points, else sampled now.
+    fn window_start_outputs(&self, inputs: Option<&Fields>) -> Fields {
+        let points = inputs.map_or(0, |f| f.sample_point.len());
+        match &self.end_samples {
+            Some((t, v, lambda)) if *t == self.time() && 3 * lambda.len() == points => Fields {
+                sampled_velocity: v.clone(),
+                sampled_lambda_min: lambda.clone(),
+                ..self.current.clone()
+            },
+            _ => self.outputs_at(inputs),
+        }
+    }
+
     /// At a window's start, before anything of it is stepped or kept: the slabs cut again when
     /// the water has moved ([`RankSlab::rebalance`]; every rank). A failure of the ranks' own
     /// link stops every rank.
@@ -384,26 +459,16 @@ impl<'a> RankParticipant<'a> {
                 self.name
             ));
         }
-        if inputs
-            .samples
-            .iter()
-            .any(|s| !s.reaction.is_empty() || !s.sample_point.is_empty())
-        {
-            return Err(format!(
-                "fluid `{}` on {} MPI ranks does not take point reactions or sample points (the drag coupling) yet",
-                self.name,
-                self.me.link.size()
-            ));
-        }
         self.commit()?;
         let bodies = self.me.slab.solver.body_names().len();
+        let reactions = inputs.samples.iter().any(|s| !s.reaction.is_empty());
         let motion_at_end = std::mem::take(&mut self.iterated);
         if !motion_at_end {
             // an explicit window's start (an implicit one is cut again before it is saved)
             self.rebalance_if_due();
         }
-        let mut outputs = vec![self.current.clone()];
-        for &t in inputs.times.iter().skip(1) {
+        let mut outputs = vec![self.window_start_outputs(inputs.samples.first())];
+        for (j, &t) in inputs.times.iter().enumerate().skip(1) {
             while let Some(dt) = self.me.slab.solver.next_step_towards(t) {
                 if bodies > 0 {
                     let (read_at, lead) = match motion_at_end {
@@ -417,6 +482,9 @@ impl<'a> RankParticipant<'a> {
                         }
                         self.me.slab.solver.set_body_motion(&pose, &velocity, lead)?;
                     }
+                }
+                if bodies > 0 || reactions {
+                    self.set_point_reactions(&inputs.at(self.time())?)?;
                 }
                 self.step(dt)?;
                 progress.step_done(self.time());
@@ -437,7 +505,7 @@ impl<'a> RankParticipant<'a> {
             }
             self.me.slab.solver.land_on(t);
             self.current = self.summed_outputs();
-            outputs.push(self.current.clone());
+            outputs.push(self.outputs_at(inputs.samples.get(j)));
             if self.probes.as_ref().is_some_and(|p| p.due(t)) {
                 self.sample_probes();
             }
@@ -448,6 +516,16 @@ impl<'a> RankParticipant<'a> {
                 self.pending_frame = Some((t, self.me.piece()));
             }
         }
+        self.end_samples = outputs
+            .last()
+            .filter(|o| !o.sampled_lambda_min.is_empty())
+            .map(|o| {
+                (
+                    self.time(),
+                    o.sampled_velocity.clone(),
+                    o.sampled_lambda_min.clone(),
+                )
+            });
         Ok(outputs)
     }
 
@@ -498,6 +576,10 @@ impl<'a> RankParticipant<'a> {
                 self.current.body_force.0.clone(),
                 self.current.body_reaction.0.clone(),
             ),
+            end_samples: self
+                .end_samples
+                .as_ref()
+                .map(|(t, v, l)| (*t, v.0.clone(), l.0.clone())),
             moved: (self.me.handed_over, self.me.copied),
             cuts: self.me.cuts.clone(),
             recuts: (self.me.recuts, self.me.counted_at),
@@ -542,6 +624,7 @@ impl<'a> RankParticipant<'a> {
             ..Fields::default()
         };
         (self.me.handed_over, self.me.copied) = saved.moved;
+        self.end_samples = saved.end_samples.map(|(t, v, l)| (t, F64s(v), F64s(l)));
         (self.me.recuts, self.me.counted_at) = saved.recuts;
         // the probes over the slabs as they were cut then
         let (combine, mut sets) = SlabProbes::new(&self.me.recut.probes, &saved.cuts);
@@ -551,7 +634,7 @@ impl<'a> RankParticipant<'a> {
         }
         self.me.cuts = saved.cuts;
         if let (Some(frames), Some((next, series))) = (&mut self.frames, saved.frames) {
-            frames.continue_after(next, series)?;
+            frames.continue_after(self.me.link, next, series)?;
         }
         if let (Some(probes), Some(saved)) = (&mut self.probes, saved.probes) {
             probes.written = saved.written;

@@ -112,28 +112,15 @@ pub fn square_prism_drag() -> Vec<[f64; 2]> {
 impl DragLink {
     /// Checks the link against the case: a fluid and a structure with a frame, sound settings.
     pub fn validate(&self, case: &Case, key: &str) -> Result<(), FieldError> {
-        match case.fluid.get(&self.fluid) {
-            None => {
-                let names: Vec<&String> = case.fluid.keys().collect();
-                return Err(FieldError::new(
-                    format!("{key}.fluid"),
-                    format!(
-                        "`{}` is not a fluid participant; fluid participants are: {names:?}",
-                        self.fluid
-                    ),
-                ));
-            }
-            Some(f) if f.rank_count() > 1 => {
-                return Err(FieldError::new(
-                    format!("{key}.fluid"),
-                    format!(
-                        "fluid `{}` runs on {} MPI ranks, which do not sample and spread the drag coupling yet: set its ranks = 1 for this case",
-                        self.fluid,
-                        f.rank_count()
-                    ),
-                ));
-            }
-            Some(_) => {}
+        if !case.fluid.contains_key(&self.fluid) {
+            let names: Vec<&String> = case.fluid.keys().collect();
+            return Err(FieldError::new(
+                format!("{key}.fluid"),
+                format!(
+                    "`{}` is not a fluid participant; fluid participants are: {names:?}",
+                    self.fluid
+                ),
+            ));
         }
         match case.structure.get(&self.structure) {
             None => {

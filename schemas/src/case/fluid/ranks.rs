@@ -74,7 +74,7 @@ impl FluidConfig {
             Some(f) => Err(FieldError::new(
                 format!("{key}.ranks"),
                 format!(
-                    "the fluid on {} MPI ranks runs E-MPS on CPU threads with walls, blocks, gates, solids, terrains, bodies, damping zones, probes, inflow and outflow; not yet {f}: set ranks = 1 (or leave it out) for this case",
+                    "the fluid on {} MPI ranks runs E-MPS on CPU threads with walls, blocks, gates, solids, terrains, bodies, the drag coupling, damping zones, probes, inflow and outflow; not yet {f}: set ranks = 1 (or leave it out) for this case",
                     self.rank_count()
                 ),
             )),
