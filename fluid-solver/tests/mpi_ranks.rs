@@ -397,9 +397,18 @@ fn a_case_the_ranks_do_not_run_is_refused_once_and_nothing_runs() {
     );
 }
 
+/// The case's end time.
+fn cfg_end_time(path: &Path) -> f64 {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{e}"));
+    Case::parse(path, text)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .info
+        .end_time
+}
+
 /// Cut again on ranks as on the slabs of one process: `ranks.rs`' tilted dam break, whose cut
-/// follows the water at step 250 (x = 0.4 → 0.46 m, past a pressure probe and a filtered floor
-/// sensor), on 2 ranks to 0.15 s: the ranks count the fluid by bins (an all-reduce), move the
+/// follows the water at step 150 (x = 0.4 → 0.46 m, past a pressure probe and a filtered floor
+/// sensor), on 2 ranks to 0.1 s: the ranks count the fluid by bins (an all-reduce), move the
 /// cut, hand over the fluid, and pass the sensor's window to its new reader, so the run equals
 /// the 2 slabs of one process bit for bit, and rank 0's probe rows equal theirs to the digit.
 #[test]
@@ -425,7 +434,8 @@ fn two_ranks_cut_again_as_the_water_moves_step_as_two_slabs_bit_for_bit() {
     let mut slabs = DecomposedFluid::new(&cfg, 2).unwrap_or_else(|e| panic!("{e}"));
     let interval = cfg.probe_interval.unwrap_or(cfg.output_interval);
     let mut rows = vec![slabs.probe_row()];
-    for k in 1..=30 {
+    let rows_to_end = (cfg_end_time(&case) / interval).round() as usize;
+    for k in 1..=rows_to_end {
         let t = k as f64 * interval;
         while let Some(dt) = slabs.parts()[0].solver.next_step_towards(t) {
             slabs.step(dt).unwrap_or_else(|e| panic!("{e}"));

@@ -307,20 +307,20 @@ fn slabs_step_as_the_whole_domain_within_its_round_off_spread() {
 
 /// A dam break that moves the fluid's mass along x: a 2.0 × 0.06 × 0.4 m tank with a lid, a
 /// column 0.8 m long and 0.3 m high at its left end (1 800 fluid particles at Δs = 0.02 m), the
-/// two slabs first cut at x = 0.4 m, gravity leaning 6 m/s² towards +x. As the column slides and
-/// collapses the right slab fills and the cut follows the water (to x = 0.46 m at step 250). A
+/// two slabs first cut at x = 0.4 m, gravity leaning 20 m/s² towards +x. As the column slides and
+/// collapses the right slab fills and the cut follows the water (to x = 0.46 m at step 150). A
 /// pressure probe and a filtered sensor on the floor at x = 0.43 m change their reader when the
 /// cut passes them; the surge front is read by both slabs.
 pub(crate) const DAM: &str = r#"[case]
 name = "slab-dam-break"
-end_time = 0.15
+end_time = 0.1
 
 [fluid.water]
 spacing = 0.02
 time_step = 5.0e-4
 sound_speed = 12.1
-gravity = [6.0, 0.0, -9.8]
-output_interval = 0.15
+gravity = [20.0, 0.0, -9.8]
+output_interval = 0.1
 probe_interval = 0.005
 tank = { min = [0.0, 0.0, 0.0], max = [2.0, 0.06, 0.4], lid = true }
 
@@ -347,8 +347,8 @@ kind = "surge-front"
 axis = "x"
 "#;
 
-/// Steps of [`DAM`]: 0.15 s.
-const DAM_STEPS: usize = 300;
+/// Steps of [`DAM`]: 0.1 s.
+const DAM_STEPS: usize = 200;
 
 /// [`DAM`]'s fluid section.
 pub(crate) fn dam() -> FluidConfig {
@@ -402,7 +402,7 @@ fn slabs_cut_again_as_a_dam_break_moves_stay_within_the_undivided_runs_spread() 
     );
     let total: u64 = owned.iter().sum();
     assert_eq!(total, 1800, "each particle owned once");
-    // the last step is a count's (300 is a multiple of CHECK_EVERY): the slabs are within the
+    // the last step is a count's (200 is a multiple of CHECK_EVERY): the slabs are within the
     // limit, or were cut again there into shares equal to a bin's particles
     assert!((DAM_STEPS as u64).is_multiple_of(rebalance::CHECK_EVERY));
     assert!(
@@ -420,7 +420,7 @@ fn slabs_cut_again_as_a_dam_break_moves_stay_within_the_undivided_runs_spread() 
     positions_within_the_spread(Positions {
         id: "emps-slabs-2-cut-again-vs-undivided".into(),
         capability: "E-MPS fluid in slabs cut again as the water moves (rebalancing by fluid count)",
-        case: "dam break on a tilted tank: 2.0 × 0.06 × 0.4 m, column 0.8 × 0.3 m (1 800 fluid particles), gravity 6 m/s² along x, 0.15 s",
+        case: "dam break on a tilted tank: 2.0 × 0.06 × 0.4 m, column 0.8 × 0.3 m (1 800 fluid particles), gravity 20 m/s² along x, 0.1 s",
         resolution: format!(
             "E-MPS, Δs = 0.02 m, {DAM_STEPS} steps, 2 slabs cut again {} times (the cut from x = {first_cut} m to {:.2} m)",
             d.recuts(),
@@ -535,8 +535,8 @@ fn inflow_and_outflow_run_in_the_end_slabs_and_the_balance_closes_exactly() {
 }
 
 /// A slab's state kept and restored, as an implicit coupling window does on each rank
-/// (`rank_participant.rs`): after 100 steps in which fluid crossed the cut, the slabs restored
-/// to their state before them step the same 100 steps again to the same bits, each particle
+/// (`rank_participant.rs`): after 60 steps in which fluid crossed the cut, the slabs restored
+/// to their state before them step the same 60 steps again to the same bits, each particle
 /// owned once. (A restore that kept the later ownership heals in the first exchange: a particle
 /// that crossed is a halo copy on the other side, exact to the bit, and goes back to the slab
 /// it lies in; the slabs restore the ownership with the particles all the same.)
@@ -549,16 +549,16 @@ fn slabs_restored_after_fluid_crossed_their_cut_step_again_to_the_same_bits() {
             d.step(cfg.time_step).unwrap_or_else(|e| panic!("{e}"));
         }
     };
-    steps(&mut d, 100);
+    steps(&mut d, 60);
     let saved = d.save();
     let (handed, time) = (d.handed_over(), d.time());
-    steps(&mut d, 100);
+    steps(&mut d, 60);
     let first = by_id(&d.fluid());
     let crossed = d.handed_over() - handed;
     assert!(crossed > 0, "fluid crosses the cut in the steps repeated");
     d.restore(&saved);
     assert_eq!(d.time(), time, "the clock goes back");
-    steps(&mut d, 100);
+    steps(&mut d, 60);
     let again = by_id(&d.fluid());
     println!(
         "{crossed} particles crossed the cut; again: {} fluid particles",

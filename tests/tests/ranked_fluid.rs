@@ -42,7 +42,11 @@ fn run(case: &Path, out: &Path) -> Output {
 /// Runs the floating box with `coupling` on one rank and on two; returns their output folders
 /// and the two-rank run's stderr, after checking that both ran and that the ledger balanced
 /// every window of the two-rank run.
-fn one_and_two_ranks(name: &str, coupling: &str) -> (std::path::PathBuf, std::path::PathBuf, String, f64) {
+fn one_and_two_ranks(
+    name: &str,
+    coupling: &str,
+    windows: usize,
+) -> (std::path::PathBuf, std::path::PathBuf, String, f64) {
     let dir = out_dir(name);
     let mut outs = Vec::new();
     let mut two = (String::new(), 0.0);
@@ -50,6 +54,9 @@ fn one_and_two_ranks(name: &str, coupling: &str) -> (std::path::PathBuf, std::pa
         let case_dir = dir.join(format!("ranks-{ranks}"));
         std::fs::create_dir_all(&case_dir).unwrap_or_else(|e| panic!("{e}"));
         let case = ranked_floating_box(&case_dir, ranks, coupling);
+        let text = std::fs::read_to_string(&case).unwrap_or_default();
+        let end = format!("end_time = {}", windows as f64 / 2000.0);
+        std::fs::write(&case, text.replacen("end_time = 0.05", &end, 1)).unwrap_or_else(|e| panic!("{e}"));
         let out = case_dir.join("out");
         let started = Instant::now();
         let result = run(&case, &out);
@@ -71,7 +78,7 @@ fn one_and_two_ranks(name: &str, coupling: &str) -> (std::path::PathBuf, std::pa
     assert!(log.contains("on 2 ranks, 7200 fluid particles"), "{log}");
     let ledger = std::fs::read_to_string(outs[1].join("ledger.csv")).unwrap_or_default();
     let rows: Vec<&str> = ledger.lines().skip(1).collect();
-    assert_eq!(rows.len(), 100, "one ledger row per window:\n{ledger}");
+    assert_eq!(rows.len(), windows, "one ledger row per window:\n{ledger}");
     assert!(
         rows.iter().all(|r| r.ends_with(",ok")),
         "action = −reaction in every window on two ranks:\n{ledger}"
@@ -114,7 +121,7 @@ fn largest_difference(a: &Path, b: &Path, relative: bool) -> f64 {
 
 #[test]
 fn a_floating_box_with_its_fluid_on_two_ranks_follows_the_one_rank_run() {
-    let (one, two, _, run_time_s) = one_and_two_ranks("ranked-floating-box", "scheme = \"explicit\"");
+    let (one, two, _, run_time_s) = one_and_two_ranks("ranked-floating-box", "scheme = \"explicit\"", 100);
     let history = largest_difference(
         &one.join("floater/body-box.csv"),
         &two.join("floater/body-box.csv"),
@@ -191,11 +198,11 @@ fn a_floating_box_with_its_fluid_on_two_ranks_follows_the_one_rank_run() {
 }
 
 /// Implicit coupling saves and restores the fluid's state in every window (three sweeps per
-/// window here): on two ranks each rank restores its own slab and its ownership.
+/// window here, 20 windows): on two ranks each rank restores its own slab and its ownership.
 #[test]
 fn an_implicit_window_on_two_ranks_iterates_as_on_one() {
     let coupling = "scheme = \"implicit\"\nacceleration = \"iqn-ils\"\ntolerance = 1.0e-6";
-    let (one, two, _, _) = one_and_two_ranks("ranked-floating-box-implicit", coupling);
+    let (one, two, _, _) = one_and_two_ranks("ranked-floating-box-implicit", coupling, 20);
     let sweeps =
         |out: &Path| -> Vec<f64> { csv_rows(&out.join("ledger.csv")).iter().map(|r| r[2]).collect() };
     assert!(
@@ -293,21 +300,21 @@ fn a_rank_killed_stops_the_stack_naming_the_fluid_and_the_window() {
 }
 
 /// A dam break on a tilted tank (`fluid-solver`'s `ranks.rs` scene: 2.0 × 0.06 × 0.4 m, a column
-/// 0.8 × 0.3 m, 1 800 fluid particles at Δs = 0.02 m, gravity leaning 6 m/s² along x) whose
-/// water moves enough for the two ranks to cut their slabs again (at step 250, 0.125 s), coupled
-/// to a 0.1 × 0.04 × 0.04 m box resting on the floor at the far end: the fluid on `ranks`,
-/// checkpoints every 0.05 s, 0.15 s.
+/// 0.8 × 0.3 m, 1 800 fluid particles at Δs = 0.02 m, gravity leaning 20 m/s² along x) whose
+/// water moves enough for the two ranks to cut their slabs again (at the start of window 151,
+/// 0.075 s), coupled to a 0.1 × 0.04 × 0.04 m box resting on the floor at the far end: the fluid
+/// on `ranks`, checkpoints every 0.05 s, 0.1 s.
 fn ranked_dam_break(dir: &Path, ranks: usize) -> std::path::PathBuf {
     let text = format!(
         r#"[case]
 name = "ranked-dam-break"
-end_time = 0.15
+end_time = 0.1
 
 [fluid.water]
 spacing = 0.02
 time_step = 5.0e-4
 sound_speed = 12.1
-gravity = [6.0, 0.0, -9.8]
+gravity = [20.0, 0.0, -9.8]
 output_interval = 0.05
 probe_interval = 0.005
 tank = {{ min = [0.0, 0.0, 0.0], max = [2.0, 0.06, 0.4], lid = true }}
@@ -338,7 +345,7 @@ axis = "x"
 
 [structure.block]
 max_step = 1.0e-4
-gravity = [6.0, 0.0, -9.8]
+gravity = [20.0, 0.0, -9.8]
 
 [[structure.block.body]]
 name = "box"
@@ -369,8 +376,8 @@ structure = "block/box"
 }
 
 /// The ranks cut their slabs again in a coupled run (at a window's start), and the checkpoint
-/// at 0.15 s, taken after that, keeps the cuts: a run on two ranks to 0.15 s extended to 0.2 s
-/// from its checkpoint writes the same bytes as one run to 0.2 s, and follows the one-rank run
+/// at 0.1 s, taken after that, keeps the cuts: a run on two ranks to 0.1 s extended to 0.125 s
+/// from its checkpoint writes the same bytes as one run to 0.125 s, and follows the one-rank run
 /// within [`ROUND_OFF`] (the box's history, the probes).
 #[test]
 fn two_ranks_cut_again_in_a_coupled_run_extend_from_their_checkpoint_and_follow_one_rank() {
@@ -384,18 +391,18 @@ fn two_ranks_cut_again_in_a_coupled_run_extend_from_their_checkpoint_and_follow_
         "--out",
         &straight.display().to_string(),
         "--end-time",
-        "0.2",
+        "0.125",
     ]);
     let extended = dir.join("extended");
     let e = extended.display().to_string();
     crate::resume::coupler_ok(&["run", &path, "--out", &e]);
     let log = std::fs::read_to_string(extended.join("water.log")).unwrap_or_default();
     assert!(
-        log.contains("slabs cut again 1 times"),
-        "the ranks cut again before the checkpoint at 0.15 s: {log}"
+        log.contains("slabs cut again") && !log.contains("slabs cut again 0 times"),
+        "the ranks cut again before the checkpoint at 0.1 s: {log}"
     );
-    let err = crate::resume::coupler_ok(&["run", &path, "--resume", &e, "--end-time", "0.2"]);
-    assert!(err.contains("(t = 0.15 s)"), "extended from its end: {err}");
+    let err = crate::resume::coupler_ok(&["run", &path, "--resume", &e, "--end-time", "0.125"]);
+    assert!(err.contains("(t = 0.1 s)"), "extended from its end: {err}");
     crate::resume::assert_same_outputs(&straight, &extended);
 
     let one_case = ranked_dam_break(&dir.join("ranks-1"), 1);
@@ -406,7 +413,7 @@ fn two_ranks_cut_again_in_a_coupled_run_extend_from_their_checkpoint_and_follow_
         "--out",
         &one.display().to_string(),
         "--end-time",
-        "0.2",
+        "0.125",
     ]);
     let history = largest_difference(
         &one.join("block/body-box.csv"),
@@ -438,59 +445,21 @@ fn ranked_drag_column(dir: &Path, ranks: usize) -> std::path::PathBuf {
     let start = text.find("[[fluid.water.body]]").unwrap_or(0);
     let probes = text.find("[[fluid.water.probe]]").unwrap_or(0);
     let structure = text.find("[structure.block]").unwrap_or(0);
-    let column = r#"[structure.column]
-max_step = 5.0e-4
-
-[structure.column.frame]
-time_step = 5.0e-4
-gravity = [6.0, 0.0, -9.8]
-
-[structure.column.frame.material]
-young_modulus = 2.0e11
-poisson = 0.3
-density = 7850.0
-yield_stress = 2.35e8
-
-[[structure.column.frame.section]]
-name = "bar"
-kind = "rectangle"
-width = 0.002
-depth = 0.002
-
-[[structure.column.frame.node]]
-id = 1
-position = [0.405, 0.03, 0.0]
-
-[[structure.column.frame.node]]
-id = 2
-position = [0.405, 0.03, 0.2]
-
-[[structure.column.frame.member]]
-nodes = [1, 2]
-section = "bar"
-orientation = [1.0, 0.0, 0.0]
-
-[[structure.column.frame.support]]
-node = 1
-fixed = ["x", "y", "z", "rx", "ry", "rz"]
-
-[[structure.column.frame.support]]
-node = 2
-fixed = ["x", "y", "z", "rx", "ry", "rz"]
-
-[coupling]
-window = 5.0e-4
-scheme = "explicit"
-order = ["water", "column"]
-predictor = "constant"
-
-[[coupling.drag]]
-fluid = "water"
-structure = "column"
-initial_flow = [1.0, 0.0, 0.0]
-"#;
+    // the drag column of DRAG_COLUMN_CASE, moved to 5 mm from the cut, under the tank's gravity
+    let lib = stack_tests::DRAG_COLUMN_CASE;
+    let mut column = lib[lib.find("[structure.column]").unwrap_or(0)..]
+        .replace("SCHEME", "explicit")
+        .replace("TOLERANCE", "");
+    for (from, to) in [
+        ("gravity = [0.0, 0.0, -9.8]", "gravity = [20.0, 0.0, -9.8]"),
+        ("position = [0.25, 0.05, 0.0]", "position = [0.405, 0.03, 0.0]"),
+        ("position = [0.25, 0.05, 0.15]", "position = [0.405, 0.03, 0.2]"),
+    ] {
+        assert!(column.contains(from), "DRAG_COLUMN_CASE has changed: no `{from}`");
+        column = column.replacen(from, to, 1);
+    }
     let text = format!("{}{}{}", &text[..start], &text[probes..structure], column)
-        .replace("end_time = 0.15", "end_time = 0.05");
+        .replace("end_time = 0.1", "end_time = 0.05");
     std::fs::write(&case, text).unwrap_or_else(|e| panic!("{e}"));
     case
 }

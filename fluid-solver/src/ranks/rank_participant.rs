@@ -27,7 +27,7 @@ use super::rank_run::{RankRunError, RankRunSummary};
 use super::rank_slab::RankSlab;
 use super::slab_plan::SlabPlan;
 use super::slab_probes::SlabProbes;
-use super::subdomain::{SlabState, Subdomain};
+use super::subdomain::SlabState;
 use crate::output::progress::Progress;
 use crate::participant::body_motion;
 use crate::participant::probe_rows::ProbeRows;
@@ -212,7 +212,7 @@ impl<'a> RankParticipant<'a> {
         let SlabPlan {
             everything,
             cuts,
-            halo,
+            halo: _,
             probes: combine,
             mut probe_sets,
             whole,
@@ -221,22 +221,12 @@ impl<'a> RankParticipant<'a> {
         } = plan;
         let mut slab_solver = FluidSolver::new(cfg);
         slab_solver.remove_gates();
-        let slab = Subdomain::of(slab_solver, &everything, cuts[rank], cuts[rank + 1], halo);
+        let me = RankSlab::new(slab_solver, &everything, link, whole, cuts, recut);
         drop(everything);
         let set = probe_sets.swap_remove(rank);
         let mut p = RankParticipant {
             name: name.to_string(),
-            me: RankSlab {
-                slab,
-                link,
-                whole,
-                handed_over: 0,
-                copied: 0,
-                cuts,
-                recut,
-                recuts: 0,
-                counted_at: 0,
-            },
+            me,
             current,
             end_samples: None,
             saved: None,

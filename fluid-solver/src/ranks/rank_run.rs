@@ -15,7 +15,6 @@ use super::rank_frames::RankFrames;
 use super::rank_slab::RankSlab;
 use super::slab_plan::{PlanError, SlabPlan};
 use super::slab_probes::SlabProbes;
-use super::subdomain::Subdomain;
 use crate::boundaries::open_boundary::BalanceFile;
 use crate::output::progress::Progress;
 use crate::run::{fluid_only, RunError};
@@ -130,7 +129,7 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
     let SlabPlan {
         everything,
         cuts,
-        halo,
+        halo: _,
         probes: mut slab_probes,
         mut probe_sets,
         whole,
@@ -138,17 +137,7 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
         recut,
     } = plan;
     let mut probes = probe_sets.swap_remove(rank);
-    let mut me = RankSlab {
-        slab: Subdomain::of(solver, &everything, cuts[rank], cuts[rank + 1], halo),
-        link,
-        whole,
-        handed_over: 0,
-        copied: 0,
-        cuts,
-        recut,
-        recuts: 0,
-        counted_at: 0,
-    };
+    let mut me = RankSlab::new(solver, &everything, link, whole, cuts, recut);
     drop(everything);
 
     let mut frames = RankFrames::new(out, name);

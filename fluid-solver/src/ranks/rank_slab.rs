@@ -39,7 +39,31 @@ fn link_error(message: String) -> RankRunError {
     RankRunError::Here(RunError::Ranks { message })
 }
 
-impl RankSlab<'_> {
+impl<'a> RankSlab<'a> {
+    /// Rank `link.rank()`'s slab of `everything` (the whole layout, gates lifted) cut at `cuts`,
+    /// stepped by `solver`, with the whole fluid's monitor `whole` and what cutting again needs.
+    pub(super) fn new(
+        solver: crate::solver::FluidSolver,
+        everything: &crate::particles::Particles,
+        link: &'a RankLink,
+        whole: StabilityMonitor,
+        cuts: Vec<f64>,
+        recut: Recut,
+    ) -> RankSlab<'a> {
+        let r = link.rank();
+        RankSlab {
+            slab: Subdomain::of(solver, everything, cuts[r], cuts[r + 1], recut.halo),
+            link,
+            whole,
+            handed_over: 0,
+            copied: 0,
+            cuts,
+            recut,
+            recuts: 0,
+            counted_at: 0,
+        }
+    }
+
     /// One step of `dt`, the exchanges, and the whole fluid's energy check. Every rank leaves
     /// together: when one rank's step fails, the others learn it from the same reduction.
     pub(super) fn step(&mut self, dt: f64) -> Result<(), RankRunError> {
