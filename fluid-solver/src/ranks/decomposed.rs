@@ -42,7 +42,7 @@ impl DecomposedFluid {
     /// the case's probes; an error naming what the slabs do not support yet, a probe that cannot
     /// be placed, or a slab thinner than the halo.
     pub fn new(cfg: &FluidConfig, parts: usize) -> Result<DecomposedFluid, String> {
-        if let Some(what) = unsupported(cfg) {
+        if let Some(what) = cfg.unsupported_in_slabs() {
             return Err(format!(
                 "the fluid in slabs supports E-MPS on CPU threads with walls, blocks, gates, solids, bodies, damping zones, inflow and outflow; not yet {what}"
             ));
@@ -325,12 +325,6 @@ pub(super) fn check_whole_energy(
             "the fluid's energy per unit particle mass, summed over {parts} {what}, grew to {e:.6e}, past the allowed {limit:.6e}, with no source (step of {dt} s)"
         ),
     })
-}
-
-/// The first feature of `cfg` the slabs do not support yet, by its case-file name
-/// ([`FluidConfig::unsupported_on_ranks`]).
-pub fn unsupported(cfg: &FluidConfig) -> Option<&'static str> {
-    cfg.unsupported_on_ranks()
 }
 
 /// The element-wise sum of equally long vectors.

@@ -179,10 +179,7 @@ impl<'a> RankParticipant<'a> {
             )
         })?;
         let (rank, ranks) = (link.rank(), link.size());
-        let feature = cfg
-            .unsupported_on_ranks()
-            .or(cfg.surface_mesh.then_some("surface_mesh = true"));
-        if let Some(f) = feature {
+        if let Some(f) = cfg.unsupported_on_ranks() {
             return Err(format!(
                 "{}: fluid `{name}` on {ranks} MPI ranks: not yet {f}",
                 case.path.display()

@@ -9,7 +9,6 @@
 //! `probe_interval` each rank reads the probes it owns ([`super::slab_probes`]) and rank 0 writes
 //! the whole fluid's row to `NAME_probes.csv`, as a run in one process does.
 
-use super::decomposed::unsupported;
 use super::mpi_link::RankLink;
 use super::rank_frames::RankFrames;
 use super::rank_slab::RankSlab;
@@ -101,11 +100,8 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
             message: format!("a run on MPI ranks supports E-MPS on CPU threads with walls, blocks, gates, solids, damping zones, inflow and outflow; not yet {what}"),
         })
     };
-    if let Some(what) = unsupported(cfg) {
+    if let Some(what) = cfg.unsupported_on_ranks() {
         return Err(refuse(what));
-    }
-    if cfg.surface_mesh {
-        return Err(refuse("surface_mesh = true"));
     }
     if !cfg.body.is_empty() {
         // the slabs of one process carry bodies; on ranks they wait for the coupler's `ranks`

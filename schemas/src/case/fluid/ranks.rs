@@ -30,9 +30,9 @@ impl FluidConfig {
             .collect()
     }
 
-    /// The first feature of this section the fluid on ranks does not run yet, by its case-file
-    /// name.
-    pub fn unsupported_on_ranks(&self) -> Option<&'static str> {
+    /// The first feature of this section the fluid in slabs (one process or MPI ranks) does not
+    /// run yet, by its case-file name.
+    pub fn unsupported_in_slabs(&self) -> Option<&'static str> {
         [
             (self.method != FluidMethodName::Emps, "method = \"isph\""),
             (self.backend != FluidBackend::Cpu, "backend = \"gpu\""),
@@ -40,6 +40,14 @@ impl FluidConfig {
         ]
         .into_iter()
         .find_map(|(on, what)| on.then_some(what))
+    }
+
+    /// The first feature of this section the fluid on MPI ranks does not run yet: those of
+    /// [`FluidConfig::unsupported_in_slabs`], and free-surface meshes (the ranks write frames in
+    /// pieces).
+    pub fn unsupported_on_ranks(&self) -> Option<&'static str> {
+        self.unsupported_in_slabs()
+            .or(self.surface_mesh.then_some("surface_mesh = true"))
     }
 
     /// Checks `ranks` and `launcher`: at least one rank, a launcher that says where the number
@@ -65,12 +73,7 @@ impl FluidConfig {
         if self.rank_count() == 1 {
             return Ok(());
         }
-        let feature = match self.unsupported_on_ranks() {
-            Some(f) => Some(f),
-            None if self.surface_mesh => Some("surface_mesh = true"),
-            None => None,
-        };
-        match feature {
+        match self.unsupported_on_ranks() {
             Some(f) => Err(FieldError::new(
                 format!("{key}.ranks"),
                 format!(
