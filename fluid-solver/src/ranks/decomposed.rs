@@ -4,7 +4,8 @@
 //! the slabs' own particles.
 
 use super::rebalance;
-use super::slab_plan::{Recut, SlabPlan};
+use super::rebalance::Recut;
+use super::slab_plan::SlabPlan;
 use super::slab_probes::SlabProbes;
 use super::subdomain::{SlabState, Subdomain, ToNeighbours};
 use crate::boundaries::open_boundary::ParticleBalance;
@@ -235,11 +236,7 @@ impl DecomposedFluid {
             .map(|s| bins.histogram(s.solver.particles(), |i| s.owned(i)))
             .reduce(|a, b| a.iter().zip(&b).map(|(x, y)| x + y).collect())
             .unwrap_or_default();
-        let slabs = self.parts.len();
-        if rebalance::imbalance(&rebalance::slab_counts(bins, &counts, &self.cuts)) <= rebalance::LIMIT {
-            return;
-        }
-        let Some(cuts) = bins.cuts(&counts, slabs, self.recut.halo, self.recut.planes) else {
+        let Some(cuts) = self.recut.new_cuts(&counts, &self.cuts) else {
             return;
         };
         let fixed = &self.recut.fixed;
@@ -251,16 +248,7 @@ impl DecomposedFluid {
         while self.hand_over() > 0 {}
         self.send_halos();
         let windows: Vec<rebalance::Windows> = self.probe_sets.iter().map(|p| p.windows().to_vec()).collect();
-        let mut rules = None;
-        for (r, set) in self.probe_sets.iter_mut().enumerate() {
-            let (new_rules, new_set) =
-                rebalance::probes_after_recut(&self.recut.probes, &self.probes, &windows, &cuts, r);
-            *set = new_set;
-            rules = Some(new_rules);
-        }
-        if let Some(rules) = rules {
-            self.probes = rules;
-        }
+        (self.probes, self.probe_sets) = self.recut.probes_after(&self.probes, &windows, &cuts);
         self.cuts = cuts;
         self.recuts += 1;
     }

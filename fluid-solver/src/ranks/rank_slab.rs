@@ -7,7 +7,7 @@ use super::decomposed::check_whole_energy;
 use super::mpi_link::RankLink;
 use super::rank_run::RankRunError;
 use super::rebalance;
-use super::slab_plan::Recut;
+use super::rebalance::Recut;
 use super::slab_probes::SlabProbes;
 use super::subdomain::{Subdomain, ToNeighbours};
 use crate::boundaries::open_boundary::ParticleBalance;
@@ -126,10 +126,7 @@ impl<'a> RankSlab<'a> {
         let (link, rank) = (self.link, self.link.rank());
         let bins = &self.recut.bins;
         let counts = link.sum_each(&bins.histogram(self.slab.solver.particles(), |i| self.slab.owned(i)));
-        if rebalance::imbalance(&rebalance::slab_counts(bins, &counts, &self.cuts)) <= rebalance::LIMIT {
-            return Ok(false);
-        }
-        let Some(cuts) = bins.cuts(&counts, link.size(), self.recut.halo, self.recut.planes) else {
+        let Some(cuts) = self.recut.new_cuts(&counts, &self.cuts) else {
             return Ok(false);
         };
         self.slab.recut(cuts[rank], cuts[rank + 1], &self.recut.fixed);
@@ -150,9 +147,8 @@ impl<'a> RankSlab<'a> {
                         "rank {rank}: the probes' readings from a rank are damaged: {e}"
                     ))
                 })?;
-            let (new_rules, new_set) =
-                rebalance::probes_after_recut(&self.recut.probes, rules, &windows, &cuts, rank);
-            (*rules, *set) = (new_rules, new_set);
+            let (new_rules, mut sets) = self.recut.probes_after(rules, &windows, &cuts);
+            (*rules, *set) = (new_rules, sets.swap_remove(rank));
         } else {
             *rules = SlabProbes::new(&self.recut.probes, &cuts).0;
         }

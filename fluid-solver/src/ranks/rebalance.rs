@@ -111,28 +111,48 @@ pub fn slab_counts(bins: &XBins, counts: &[u64], cuts: &[f64]) -> Vec<u64> {
     per_slab
 }
 
-/// Slab `r`'s probes after the slabs were cut again at `new` (from `template`, the probes as
-/// built on the whole domain): the rules that combine the slabs' rows, and slab r's set with
-/// the filters' readings it needs from `old_windows` (every slab's, by slab, under `old`): a
-/// probe read around a point takes its reader's readings, a probe over the whole fluid keeps
-/// slab r's own.
-pub fn probes_after_recut(
-    template: &ProbeSet,
-    old: &SlabProbes,
-    old_windows: &[Windows],
-    new: &[f64],
-    r: usize,
-) -> (SlabProbes, ProbeSet) {
-    let (rules, mut sets) = SlabProbes::new(template, new);
-    let windows = (0..template.names().len())
-        .map(|k| {
-            let from = old.reader(k).unwrap_or(r);
-            old_windows[from][k].clone()
-        })
-        .collect();
-    let mut set = sets.swap_remove(r);
-    set.set_windows(windows);
-    (rules, set)
+/// What cutting the slabs again needs: the fluid's bins, the whole domain's walls, the probes as
+/// built on it, and the open boundaries' planes (inflow, outflow).
+#[derive(Debug, Clone)]
+pub struct Recut {
+    pub bins: XBins,
+    pub fixed: Particles,
+    pub probes: ProbeSet,
+    pub planes: (Option<f64>, Option<f64>),
+    pub halo: f64,
+}
+
+impl Recut {
+    /// The new cuts of the slabs now cut at `cuts`, for the fluid counted by bin in `counts`
+    /// (summed over the slabs): `None` when the fullest slab holds no more than [`LIMIT`] times
+    /// the mean, or when no even cuts fit ([`XBins::cuts`]).
+    pub fn new_cuts(&self, counts: &[u64], cuts: &[f64]) -> Option<Vec<f64>> {
+        if imbalance(&slab_counts(&self.bins, counts, cuts)) <= LIMIT {
+            return None;
+        }
+        self.bins.cuts(counts, cuts.len() - 1, self.halo, self.planes)
+    }
+
+    /// The probes over the slabs cut again at `new` (from the probes as built on the whole
+    /// domain): the rules that combine the slabs' rows, and every slab's set with the filters'
+    /// readings it needs from `old_windows` (every slab's, by slab, under the rules `old`): a
+    /// probe read around a point takes its reader's readings, a probe over the whole fluid keeps
+    /// the slab's own.
+    pub fn probes_after(
+        &self,
+        old: &SlabProbes,
+        old_windows: &[Windows],
+        new: &[f64],
+    ) -> (SlabProbes, Vec<ProbeSet>) {
+        let (rules, mut sets) = SlabProbes::new(&self.probes, new);
+        for (r, set) in sets.iter_mut().enumerate() {
+            let windows = (0..self.probes.names().len())
+                .map(|k| old_windows[old.reader(k).unwrap_or(r)][k].clone())
+                .collect();
+            set.set_windows(windows);
+        }
+        (rules, sets)
+    }
 }
 
 #[cfg(test)]

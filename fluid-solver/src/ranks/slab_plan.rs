@@ -3,7 +3,7 @@
 //! gates lifted, where it is cut, the halo, the case's probes over the slabs, the whole fluid's
 //! energy reference and its fluid particles at the start.
 
-use super::rebalance::XBins;
+use super::rebalance::{Recut, XBins};
 use super::slab_probes::SlabProbes;
 use super::slabs::{cuts, halo_width, open_boundaries_fit};
 use crate::particles::kind::{Kind, FLUID};
@@ -28,17 +28,6 @@ pub struct SlabPlan {
     pub fluid_at_start: u64,
     /// What the slabs are cut again from as the water moves ([`super::rebalance`]).
     pub recut: Recut,
-}
-
-/// What cutting the slabs again needs: the fluid's bins, the whole domain's walls, the probes as
-/// built on it, and the open boundaries' planes (inflow, outflow).
-#[derive(Debug, Clone)]
-pub struct Recut {
-    pub bins: XBins,
-    pub fixed: Particles,
-    pub probes: ProbeSet,
-    pub planes: (Option<f64>, Option<f64>),
-    pub halo: f64,
 }
 
 /// Why a case's slabs cannot start.
