@@ -132,7 +132,7 @@ impl FluidParticipant {
                 let file = ProbeFile::create(&path, &probes.names())
                     .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
                 let interval = cfg.probe_interval.unwrap_or(cfg.output_interval);
-                let mut rows = ProbeRows::new(path, Some(file), probes, interval, 0);
+                let mut rows = ProbeRows::new(path, Some(file), probes, interval);
                 rows.sample(&solver);
                 rows.commit()?;
                 Some(rows)

@@ -4,39 +4,44 @@
 
 use crate::sensors::probes::{ProbeFile, ProbeSet};
 use crate::solver::FluidSolver;
+use serde::{Deserialize, Serialize};
+use std::collections::VecDeque;
 use std::path::PathBuf;
+
+/// What a checkpoint keeps of the probe rows: rows written, and the filtered probes' readings
+/// (time, value) in their windows.
+#[derive(Serialize, Deserialize)]
+pub(crate) struct SavedProbes {
+    written: u64,
+    windows: Vec<Option<VecDeque<(f64, f64)>>>,
+}
 
 /// Probe rows of a participant and where they go.
 pub(crate) struct ProbeRows {
-    pub path: PathBuf,
+    path: PathBuf,
     /// The file (none on the MPI ranks other than 0, which only read their probes).
-    pub file: Option<ProbeFile>,
+    file: Option<ProbeFile>,
     pub probes: ProbeSet,
     /// The filters' readings at the window's start (an implicit window's checkpoint).
     saved: Option<ProbeSet>,
     interval: f64,
     /// Rows written so far.
-    pub written: u64,
+    written: u64,
     /// Rows sampled in the window not yet accepted: time, values, fluid removed.
     pending: Vec<(f64, Vec<f64>, u64)>,
 }
 
 impl ProbeRows {
-    /// Rows of `probes` into `file` at `path` every `interval`, `written` of them already there.
-    pub fn new(
-        path: PathBuf,
-        file: Option<ProbeFile>,
-        probes: ProbeSet,
-        interval: f64,
-        written: u64,
-    ) -> ProbeRows {
+    /// Rows of `probes` into `file` at `path` every `interval`, from the first (a resumed run
+    /// continues from its checkpoint's: [`ProbeRows::continue_from`]).
+    pub fn new(path: PathBuf, file: Option<ProbeFile>, probes: ProbeSet, interval: f64) -> ProbeRows {
         ProbeRows {
             path,
             file,
             probes,
             saved: None,
             interval,
-            written,
+            written: 0,
             pending: Vec::new(),
         }
     }
@@ -73,6 +78,20 @@ impl ProbeRows {
             self.written += 1;
         }
         Ok(())
+    }
+
+    /// What a checkpoint keeps of these rows (after the accepted window's rows are written).
+    pub fn saved(&self) -> SavedProbes {
+        SavedProbes {
+            written: self.written,
+            windows: self.probes.windows().to_vec(),
+        }
+    }
+
+    /// Continues from a checkpoint's `saved` rows (a resumed run).
+    pub fn continue_from(&mut self, saved: SavedProbes) {
+        self.written = saved.written;
+        self.probes.set_windows(saved.windows);
     }
 
     /// Keeps the filters' readings (the window's start).

@@ -4,6 +4,7 @@
 //! (frames written and their series, probe rows written and the filters' readings), so that the
 //! resumed run writes the same bytes as a run that never stopped.
 
+use super::probe_rows::SavedProbes;
 use super::{FluidParticipant, Frames, ProbeRows};
 use crate::output::vtp::SurfaceFrames;
 use crate::sensors::probes::{ProbeFile, ProbeSet};
@@ -13,7 +14,6 @@ use schemas::f64s::F64s;
 use schemas::participant::ProgressSink;
 use schemas::pvd::Collection;
 use serde::{Deserialize, Serialize};
-use std::collections::VecDeque;
 use std::path::Path;
 
 /// Everything a fluid participant's checkpoint holds.
@@ -35,13 +35,6 @@ struct SavedFrames {
     next: u64,
     series: Vec<(f64, String)>,
     surfaces: Option<Vec<(f64, String)>>,
-}
-
-/// Probe rows written, and the filtered probes' readings (time, value) in their windows.
-#[derive(Serialize, Deserialize)]
-struct SavedProbes {
-    written: u64,
-    windows: Vec<Option<VecDeque<(f64, f64)>>>,
 }
 
 impl FluidParticipant {
@@ -68,10 +61,7 @@ impl FluidParticipant {
                 series: f.series.frames().to_vec(),
                 surfaces: f.surfaces.as_ref().map(|s| s.series().frames().to_vec()),
             }),
-            probes: self.probes.as_ref().map(|p| SavedProbes {
-                written: p.written,
-                windows: p.probes.windows().to_vec(),
-            }),
+            probes: self.probes.as_ref().map(ProbeRows::saved),
         };
         schemas::checkpoint::write(path, &saved, progress).map_err(|e| {
             format!(
@@ -135,14 +125,13 @@ impl FluidParticipant {
                     .map_err(|e| io(dir, e))?,
             });
         }
-        if let (Some(dir), Some(mut probes), Some(SavedProbes { written, windows })) =
-            (out, probe_set, saved.probes)
-        {
+        if let (Some(dir), Some(probes), Some(saved)) = (out, probe_set, saved.probes) {
             let path = dir.join(format!("{name}_probes.csv"));
-            probes.set_windows(windows);
             let interval = cfg.probe_interval.unwrap_or(cfg.output_interval);
             let file = ProbeFile::append(&path).map_err(|e| io(&path, e))?;
-            p.probes = Some(ProbeRows::new(path, Some(file), probes, interval, written));
+            let mut rows = ProbeRows::new(path, Some(file), probes, interval);
+            rows.continue_from(saved);
+            p.probes = Some(rows);
         }
         eprintln!(
             "fluid `{name}`: resumed from {} at t = {} s (step {})",

@@ -30,7 +30,7 @@ use super::slab_probes::SlabProbes;
 use super::subdomain::SlabState;
 use crate::output::progress::Progress;
 use crate::participant::body_motion;
-use crate::participant::probe_rows::ProbeRows;
+use crate::participant::probe_rows::{ProbeRows, SavedProbes};
 use crate::particles::Particles;
 use crate::run::RunError;
 use crate::sensors::probes::ProbeFile;
@@ -42,7 +42,6 @@ use schemas::f64s::F64s;
 use schemas::message::{Fields, InterfaceDecl, Role, Waveform};
 use schemas::participant::{DiscardProgress, Participant, ProgressSink};
 use serde::{Deserialize, Serialize};
-use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -96,13 +95,6 @@ struct WindowStart {
     energy: (Option<f64>, f64, bool),
 }
 
-/// Probe rows written, and this rank's filters' readings (time, value) in their windows.
-#[derive(Serialize, Deserialize)]
-struct SavedProbes {
-    written: u64,
-    windows: Vec<Option<VecDeque<(f64, f64)>>>,
-}
-
 /// What one rank's checkpoint file holds.
 #[derive(Serialize, Deserialize)]
 struct SavedRank {
@@ -121,6 +113,7 @@ struct SavedRank {
     recuts: (u64, u64),
     /// Frames written and rank 0's series of indexes.
     frames: Option<(u64, Vec<(f64, String)>)>,
+    /// Probe rows written and this rank's filters' readings.
     probes: Option<SavedProbes>,
 }
 
@@ -260,7 +253,7 @@ impl<'a> RankParticipant<'a> {
             .transpose()
             .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
             let interval = cfg.probe_interval.unwrap_or(cfg.output_interval);
-            p.probes = Some(ProbeRows::new(path, file, set, interval, 0));
+            p.probes = Some(ProbeRows::new(path, file, set, interval));
         }
         if first_frame {
             // a collective step: every rank builds the same, so none is missing here
@@ -571,10 +564,7 @@ impl<'a> RankParticipant<'a> {
             cuts: self.me.cuts.clone(),
             recuts: (self.me.recuts, self.me.counted_at),
             frames: self.frames.as_ref().map(|f| (f.next(), f.series().to_vec())),
-            probes: self.probes.as_ref().map(|p| SavedProbes {
-                written: p.written,
-                windows: p.probes.windows().to_vec(),
-            }),
+            probes: self.probes.as_ref().map(ProbeRows::saved),
         };
         let file = rank_file(path, rank);
         let written = schemas::checkpoint::write(&file, &saved, progress).map_err(|e| {
@@ -624,8 +614,7 @@ impl<'a> RankParticipant<'a> {
             frames.continue_after(self.me.link, next, series)?;
         }
         if let (Some(probes), Some(saved)) = (&mut self.probes, saved.probes) {
-            probes.written = saved.written;
-            probes.probes.set_windows(saved.windows);
+            probes.continue_from(saved);
         }
         if rank == 0 {
             eprintln!(
