@@ -16,7 +16,7 @@
 //! Measured 30 Nov 2026 on this 2-core machine: 1.1e-14 rad/s (angular velocity), the
 //! positions and probes equal to every printed digit.
 
-use schemas::validation::{record, Record};
+use schemas::validation::{largest, largest_abs, record, Record};
 use stack_tests::{binary, csv_rows, out_dir, ranked_floating_box, stderr};
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
@@ -89,7 +89,8 @@ fn one_and_two_ranks(
 }
 
 /// The largest difference between two CSV files' rows, column by column (each column scaled by
-/// its largest magnitude when `relative`), after checking they hold as many rows.
+/// its largest magnitude when `relative`), after checking they hold as many rows; NaN when
+/// either file holds a NaN, but for a text column (the ledger's status), NaN in every row of both.
 fn largest_difference(a: &Path, b: &Path, relative: bool) -> f64 {
     let (x, y) = (csv_rows(a), csv_rows(b));
     assert!(!x.is_empty(), "{} has rows", a.display());
@@ -100,23 +101,18 @@ fn largest_difference(a: &Path, b: &Path, relative: bool) -> f64 {
         a.display(),
         b.display()
     );
-    let columns = x[0].len();
-    (0..columns)
-        .map(|c| {
+    let text = |c: usize| x.iter().chain(&y).all(|r| r[c].is_nan());
+    let numbers = (0..x[0].len()).filter(|&c| !text(c));
+    largest(
+        numbers.map(|c| {
             let scale = match relative {
-                true => x.iter().map(|r| r[c].abs()).fold(1e-300, f64::max),
+                true => largest(x.iter().map(|r| r[c].abs()), 1e-300),
                 false => 1.0,
             };
-            // a text column (the ledger's status) reads NaN in both: no difference
-            x.iter()
-                .zip(&y)
-                .map(|(p, q)| match p[c].is_nan() && q[c].is_nan() {
-                    true => 0.0,
-                    false => (p[c] - q[c]).abs() / scale,
-                })
-                .fold(0.0, |m, d| if d.is_nan() || d > m { d } else { m })
-        })
-        .fold(0.0, |m, d| if d.is_nan() || d > m { d } else { m })
+            largest_abs(x.iter().zip(&y).map(|(p, q)| (p[c] - q[c]) / scale))
+        }),
+        0.0,
+    )
 }
 
 #[test]
@@ -495,10 +491,13 @@ fn the_drag_coupling_with_the_fluid_on_two_ranks_follows_the_one_rank_run() {
         .iter()
         .position(|h| *h == "column_fx")
         .unwrap_or_else(|| panic!("{header:?}"));
-    let largest = rows.iter().map(|r| r[fx].abs()).fold(0.0, f64::max);
-    let ledger = ledger / largest;
-    println!("drag on two ranks against one: ledger {ledger:.2e}, probes {probes:.2e} (relative); largest drag {largest:.3e} N");
-    assert!(largest > 1e-4, "the water drags the column: {largest} N");
+    let largest_drag = largest_abs(rows.iter().map(|r| r[fx]));
+    let ledger = ledger / largest_drag;
+    println!("drag on two ranks against one: ledger {ledger:.2e}, probes {probes:.2e} (relative); largest drag {largest_drag:.3e} N");
+    assert!(
+        largest_drag > 1e-4,
+        "the water drags the column: {largest_drag} N"
+    );
     assert!(
         ledger <= ROUND_OFF,
         "the drag on two ranks is {ledger:.2e} off the one-rank run"
