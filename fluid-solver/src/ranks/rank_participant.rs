@@ -209,9 +209,9 @@ impl<'a> RankParticipant<'a> {
             fluid_at_start,
             recut,
         } = plan;
-        let mut slab_solver = FluidSolver::new(cfg);
-        slab_solver.remove_gates();
-        let me = RankSlab::new(slab_solver, &everything, link, whole, cuts, recut);
+        // the whole layout's solver, its gates lifted by the plan, steps this rank's slab (as
+        // the standalone rank run's does)
+        let me = RankSlab::new(solver, &everything, link, whole, cuts, recut);
         drop(everything);
         let set = probe_sets.swap_remove(rank);
         let mut p = RankParticipant {
