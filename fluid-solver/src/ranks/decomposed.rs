@@ -60,7 +60,7 @@ impl DecomposedFluid {
                     &plan.everything,
                     plan.cuts[r],
                     plan.cuts[r + 1],
-                    plan.halo,
+                    plan.recut.halo,
                 )
             })
             .collect();

@@ -202,7 +202,6 @@ impl<'a> RankParticipant<'a> {
         let SlabPlan {
             everything,
             cuts,
-            halo: _,
             probes: combine,
             mut probe_sets,
             whole,

@@ -125,7 +125,6 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
     let SlabPlan {
         everything,
         cuts,
-        halo: _,
         probes: mut slab_probes,
         mut probe_sets,
         whole,

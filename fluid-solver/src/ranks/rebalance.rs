@@ -119,6 +119,8 @@ pub struct Recut {
     pub fixed: Particles,
     pub probes: ProbeSet,
     pub planes: (Option<f64>, Option<f64>),
+    /// The halo's width [m] (`slabs::halo_width`): each slab sees this far past its cuts, and no
+    /// slab is cut thinner nor an open boundary nearer a cut.
     pub halo: f64,
 }
 

@@ -19,7 +19,6 @@ pub struct SlabPlan {
     pub everything: Particles,
     /// Slab r owns `cuts[r] ≤ x < cuts[r + 1]`.
     pub cuts: Vec<f64>,
-    pub halo: f64,
     /// How the slabs' probe rows make the whole's, and each slab's probes.
     pub probes: SlabProbes,
     pub probe_sets: Vec<ProbeSet>,
@@ -78,7 +77,6 @@ impl SlabPlan {
         Ok(SlabPlan {
             everything,
             cuts,
-            halo,
             probes: slab_probes,
             probe_sets,
             whole: monitor,
