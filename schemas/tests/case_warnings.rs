@@ -64,3 +64,48 @@ fn long_sub_members_a_section_axis_along_the_member_and_a_free_frame_are_named()
         println!("warning: {w}");
     }
 }
+
+/// ISPH steps landing on times closer than its step are all short steps, each removing only its
+/// share of the divergence (`isph_landing_warning`): probes, outputs and coupling exchanges
+/// closer than ISPH's time_step are named; at or beyond it, and with E-MPS, nothing is said.
+#[test]
+fn intervals_shorter_than_isphs_step_are_named() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../cases/dam-break-obstacle/case-ci.toml");
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let warnings = |edit: &dyn Fn(&str) -> String| {
+        let case = Case::parse(&path, edit(&text)).unwrap_or_else(|e| panic!("{e}"));
+        case.warnings()
+    };
+    let isph_at = |dt: &str| {
+        let dt = dt.to_string();
+        move |t: &str| {
+            t.replace(
+                "time_step = 0.0012",
+                &format!("method = \"isph\"\ntime_step = {dt}"),
+            )
+        }
+    };
+    let long = warnings(&isph_at("0.0034"));
+    assert!(
+        long.iter().any(|w| w.starts_with(
+            "fluid.tank: `probe_interval` = 0.0012 s is shorter than ISPH's time_step = 0.0034 s"
+        ) && w.contains("set time_step ≤ 0.0012 s")),
+        "{long:?}"
+    );
+    assert!(!long.iter().any(|w| w.contains("`output_interval`")), "{long:?}");
+    let quiet = |w: &[String]| !w.iter().any(|w| w.contains("shorter than ISPH's time_step"));
+    assert!(quiet(&warnings(&isph_at("0.0012"))));
+    assert!(
+        quiet(&warnings(&|t: &str| t.to_string())),
+        "E-MPS lands on probes at no cost"
+    );
+
+    // the prism's coupling exchanges every 2e-4 s, its fluid switched to ISPH at 4e-4 s
+    let coupled = prism(|t| t.replacen("time_step = 2.0e-4", "method = \"isph\"\ntime_step = 4.0e-4", 1));
+    assert!(
+        coupled.iter().any(|w| w.starts_with(
+            "fluid.water: `coupling.window` = 0.0002 s is shorter than ISPH's time_step = 0.0004 s"
+        )),
+        "{coupled:?}"
+    );
+}
