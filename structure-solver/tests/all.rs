@@ -2,11 +2,11 @@
 //! that CI compiles and links the package's tests once (`cargo test -p structure-solver --test all` runs
 //! them; `-- NAME::` picks one file's tests).
 
-mod frame_common;
-
 mod bad_input;
 mod frame_accuracy_warning;
+mod frame_common;
 mod frame_condensation;
+mod frame_condensed_system;
 mod frame_config_errors;
 mod frame_contact;
 mod frame_damping;
@@ -23,7 +23,9 @@ mod frame_one_solve_step;
 mod frame_plastic_collapse;
 mod frame_static;
 mod frame_step_load;
+mod frame_stress_states;
 mod frame_yield_functions;
+mod load_history;
 mod mesh_inertia;
 mod participant_adapter;
 mod rigid_body;

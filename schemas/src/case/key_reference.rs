@@ -215,7 +215,7 @@ fn one_line(s: &str) -> String {
 }
 
 /// Rustdoc links (`` [`Type`] ``, `` [`Type::method`] ``) as plain code spans.
-fn plain_links(s: &str) -> String {
+pub fn plain_links(s: &str) -> String {
     let mut out = String::with_capacity(s.len());
     let mut rest = s;
     while let Some(i) = rest.find("[`") {
@@ -476,7 +476,7 @@ fn description(v: &Value) -> String {
 }
 
 /// `WHO only: the rest` → `(WHO, The rest)` (an ASCII first letter capitalised, α kept).
-fn split_used_by(doc: &str) -> Option<(String, String)> {
+pub fn split_used_by(doc: &str) -> Option<(String, String)> {
     let (who, rest) = doc.split_once(" only: ")?;
     let mut chars = rest.chars();
     let rest = chars.next().map_or(String::new(), |c| {
@@ -486,7 +486,7 @@ fn split_used_by(doc: &str) -> Option<(String, String)> {
 }
 
 /// The sentence `Range: …` out of a doc comment → `(range, the rest)`.
-fn split_range(doc: &str) -> (String, String) {
+pub fn split_range(doc: &str) -> (String, String) {
     let Some(i) = doc.find("Range: ") else {
         return (String::new(), doc.to_string());
     };
@@ -505,7 +505,7 @@ fn split_range(doc: &str) -> (String, String) {
 }
 
 /// The first bracketed unit of a doc comment (`[m/s]`), or empty.
-fn unit(doc: &str) -> String {
+pub fn unit(doc: &str) -> String {
     doc.match_indices('[')
         .filter_map(|(i, _)| {
             let inner = &doc[i + 1..];
@@ -533,38 +533,5 @@ fn plain(v: &Value) -> String {
         Value::String(s) => format!("\"{s}\""),
         Value::Array(a) => format!("[{}]", a.iter().map(plain).collect::<Vec<_>>().join(", ")),
         other => other.to_string(),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn units_ranges_and_used_by_come_out_of_the_doc_comment() {
-        assert_eq!(unit("Sound speed c [m/s]; default u_max / 0.2"), "m/s");
-        assert_eq!(unit("`[x, y]` of the probe [m]"), "m");
-        assert_eq!(unit("`[x, y]` of the probe"), "");
-        assert_eq!(
-            split_used_by("E-MPS only: α of Monaghan's viscosity."),
-            Some(("E-MPS".into(), "α of Monaghan's viscosity.".into()))
-        );
-        assert_eq!(
-            split_used_by("ISPH only: the ISPH settings."),
-            Some(("ISPH".into(), "The ISPH settings.".into()))
-        );
-        assert_eq!(split_used_by("Only with `method = \"isph\"`: x"), None);
-        assert_eq!(
-            split_range("Density [kg/m³]. Range: > 0."),
-            ("> 0".into(), "Density [kg/m³].".into())
-        );
-        assert_eq!(
-            split_range("α. Range: [1.5, wall_layers − 0.5]. Then more."),
-            ("[1.5, wall_layers − 0.5]".into(), "α. Then more.".into())
-        );
-        assert_eq!(
-            plain_links("see [`FluidConfig::gpu_support`] and [a](b)"),
-            "see `FluidConfig::gpu_support` and [a](b)"
-        );
     }
 }

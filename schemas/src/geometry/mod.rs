@@ -16,7 +16,7 @@ pub mod mesh_checks;
 pub mod mesh_file;
 pub mod site_set;
 pub mod triangle_mesh;
-mod vec3;
+pub mod vec3;
 
 pub use ascii_grid::{read_height_grid, write_ascii_grid};
 pub use error::{EdgeFault, GridError, MeshError, MeshProblem};

@@ -15,9 +15,11 @@ mod liveness;
 mod names;
 
 pub use channel::{Link, MAX_WAIT};
-pub use codec::{bincode_config, LinkConfig, MAX_MESSAGE_BYTES};
+pub use codec::{
+    bincode_config, decode_exact, encode_into_uninit, encoded_len, LinkConfig, MAX_MESSAGE_BYTES,
+};
 pub use error::LinkError;
-pub use handshake::PROTOCOL_VERSION;
+pub use handshake::{Hello, PROTOCOL_VERSION};
 pub use iceoryx_config::{INITIAL_MAX_SLICE_LEN, SUBSCRIBER_BUFFER};
 pub use liveness::process_alive;
 pub use names::{ServiceNames, Side, MAX_NAME_LEN};

@@ -208,6 +208,3 @@ impl std::fmt::Display for RecordingError {
 }
 
 impl std::error::Error for RecordingError {}
-
-#[cfg(test)]
-mod tests;

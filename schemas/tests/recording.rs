@@ -1,6 +1,8 @@
-use super::*;
-use crate::link::bincode_config;
-use crate::message::{Checkpoint, Fields, Header, Waveform};
+//! Tests of `schemas::recording`.
+
+use schemas::link::bincode_config;
+use schemas::message::{Checkpoint, Fields, Header, Waveform};
+use schemas::recording::*;
 
 fn header() -> RecordingHeader {
     RecordingHeader {
@@ -21,7 +23,7 @@ fn advance(window: u64) -> Message {
         time: 0.1 * window as f64,
     };
     let inputs = Waveform::constant(vec![0.0, 0.1], &Fields::default());
-    Message::To(crate::message::ToParticipant::Advance {
+    Message::To(schemas::message::ToParticipant::Advance {
         header: h,
         checkpoint: Checkpoint::None,
         inputs,
@@ -144,7 +146,7 @@ fn the_decode_limit_grows_with_the_frame_and_stops_at_the_link_maximum() {
     assert_eq!(decode_limit(0), 1 << 20);
     assert_eq!(decode_limit(16 << 10), 1 << 20);
     assert_eq!(decode_limit((16 << 10) + 1), 1 << 24);
-    assert_eq!(decode_limit(usize::MAX), crate::link::MAX_MESSAGE_BYTES);
+    assert_eq!(decode_limit(usize::MAX), schemas::link::MAX_MESSAGE_BYTES);
 }
 
 #[test]
@@ -265,7 +267,7 @@ fn a_version_2_recording_is_judged_by_its_last_messages() {
     let finished = |participant: &str| Frame {
         participant: participant.into(),
         wall_time: 1.0,
-        message: Message::From(crate::message::FromParticipant::Finished),
+        message: Message::From(schemas::message::FromParticipant::Finished),
     };
     for frame in [
         Frame {
