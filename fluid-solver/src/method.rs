@@ -41,21 +41,23 @@ pub enum FluidMethod {
 }
 
 impl FluidMethod {
-    /// Advances the particles by `dt` (see each method's step) as step number `step` ending at
-    /// `time` (for diagnostics); `bodies` is handed each pair law with the state it acts in.
+    /// Advances the particles by `dt` (see each method's step), where the flow allows steps of at
+    /// most `longest` (ISPH's advective limit, [`crate::isph::step_length`]), as step number
+    /// `step` ending at `time` (for diagnostics); `bodies` is handed each pair law with the state
+    /// it acts in.
     pub fn advance(
         &mut self,
         p: &mut Particles,
         grid: &mut CellGrid,
         state: &mut MethodState,
-        (dt, step, time): (f64, u64, f64),
+        (dt, longest, step, time): (f64, f64, u64, f64),
         bodies: impl FnMut(Exchange, &PairLaw, &CellGrid, &Particles),
     ) -> Result<StepTotals, Instability> {
         match (self, state) {
             (FluidMethod::Emps(s), _) => Ok(s.advance(p, grid, dt, bodies)),
             (FluidMethod::Isph(s), MethodState::Isph(st)) => {
                 let tol = s.settings.ppe_tolerance;
-                s.advance(p, grid, st, dt, bodies)
+                s.advance(p, grid, st, (dt, longest), bodies)
                     .map_err(|f| ppe_failure(f, tol, step, time))
             }
             (FluidMethod::Isph(_), MethodState::Emps) => unreachable!("ISPH is always built with its state"),
@@ -86,10 +88,11 @@ impl FluidMethod {
     }
 
     /// The pressure pair law on the present state: the bodies' load before a step.
-    pub fn pressure_law<'a>(&'a self, p: &'a Particles) -> PairLaw<'a> {
-        match self {
-            FluidMethod::Emps(s) => s.pressure_law(p),
-            FluidMethod::Isph(s) => s.pressure_law(p),
+    pub fn pressure_law<'a>(&'a self, p: &'a Particles, state: &MethodState) -> PairLaw<'a> {
+        match (self, state) {
+            (FluidMethod::Emps(s), _) => s.pressure_law(p),
+            (FluidMethod::Isph(s), MethodState::Isph(st)) => s.pressure_law(p, st),
+            (FluidMethod::Isph(_), MethodState::Emps) => unreachable!("ISPH is always built with its state"),
         }
     }
 

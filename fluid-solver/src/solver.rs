@@ -247,7 +247,7 @@ impl FluidSolver {
     /// what the bodies feel before the first step.
     fn refresh_body_exchange(&mut self) {
         let st = &mut self.state;
-        let law = self.method.pressure_law(&st.particles);
+        let law = self.method.pressure_law(&st.particles, &st.method);
         let (loads, reaction) = self.bodies.exchange(&st.grid, &st.particles, &st.body_pose, &law);
         st.body_exchange = BodyExchange { loads, reaction };
     }
@@ -276,7 +276,7 @@ impl FluidSolver {
     /// The method's pressure pair law on the present state (force on a solid particle from a
     /// fluid one): what wall-pressure sensors read.
     pub fn pressure_law(&self) -> PairLaw<'_> {
-        self.method.pressure_law(self.particles())
+        self.method.pressure_law(self.particles(), &self.state.method)
     }
 
     /// The inflow and outflow boundaries and their particle balance.
@@ -441,7 +441,7 @@ impl FluidSolver {
         if !self.state.gates_removed {
             self.remove_gates();
         }
-        self.count_advective_cut(dt);
+        let longest = self.longest_step(dt);
         let st = &mut self.state;
         if !self.started {
             self.monitor.start(&st.particles);
@@ -462,24 +462,27 @@ impl FluidSolver {
             self.moved();
         }
         self.apply_point_reactions(dt, reordered);
-        let totals = self.step_on_host(dt);
+        let totals = self.step_on_host(dt, longest);
         self.moved();
         totals
     }
 
-    /// Counts a step of `dt` that is ISPH's advective limit cutting Δt short
-    /// ([`FluidSolver::next_step_towards`]).
-    fn count_advective_cut(&mut self, dt: f64) {
+    /// The longest step the flow allows now (the case's Δt, or ISPH's advective limit,
+    /// [`FluidSolver::next_step_towards`]); counts a step of `dt` that is that limit cutting Δt
+    /// short.
+    fn longest_step(&mut self, dt: f64) -> f64 {
         let Some(limit) = &self.advective else {
-            return;
+            return self.time_step;
         };
-        if let (longest, Some(fastest)) = limit.longest_step(&self.state.particles) {
+        let (longest, fastest) = limit.longest_step(&self.state.particles);
+        if let Some(fastest) = fastest {
             if (dt - longest).abs() <= self.time_step * LANDING_SLACK {
                 let totals = &mut self.state.totals;
                 totals.advective_cuts += 1;
                 totals.fastest_cut = totals.fastest_cut.max(fastest);
             }
         }
+        longest
     }
 
     /// The particles may have changed: shares found before are not used again.
@@ -525,15 +528,16 @@ impl FluidSolver {
         Ok(())
     }
 
-    /// The rest of [`FluidSolver::step`] on the CPU.
-    fn step_on_host(&mut self, dt: f64) -> Result<StepTotals, Instability> {
+    /// The rest of [`FluidSolver::step`] on the CPU, where the flow allows steps of at most
+    /// `longest`.
+    fn step_on_host(&mut self, dt: f64, longest: f64) -> Result<StepTotals, Instability> {
         let st = &mut self.state;
         let scales = self.method.scales(dt);
         let (bodies, pose, exchange) = (&self.bodies, &st.body_pose, &mut st.body_exchange);
         let zeros = vec![0.0; 6 * bodies.names().len()];
         exchange.loads.clone_from(&zeros);
         exchange.reaction.clone_from(&zeros);
-        let clock = (dt, st.steps + 1, st.time + dt);
+        let clock = (dt, longest, st.steps + 1, st.time + dt);
         let totals = self.method.advance(
             &mut st.particles,
             &mut st.grid,

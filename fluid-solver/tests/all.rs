@@ -48,6 +48,7 @@ mod isph;
 mod isph_bodies;
 mod isph_dam_break;
 mod isph_divergence;
+mod isph_landing_steps;
 mod isph_lattice_modes;
 mod isph_momentum;
 mod isph_step_length;

@@ -13,9 +13,9 @@
 //! S2-8's difference divergence with each solid counted twice (the mirror of the wall's factor 2
 //! in G), the solids' own velocity u_w entering as the known part. So the pressure does no work on
 //! a velocity D calls divergence-free, and `v = v* − (Δt/ρ) G p` with
-//! `D v = −α_d (1 − ρ̂/ρ0)/Δt_case` (S2-5's relaxation) is, with `D = −G_xᵀ` on the unknowns,
+//! `D v = −α_d (1 − ρ̂/ρ0)/Δt_p` (S2-5's relaxation) is, with `D = −G_xᵀ` on the unknowns,
 //!
-//! `G_xᵀ G_x x = G_xᵀ ((ρ/Δt) v* − c) − (ρ/Δt) Σ_w 2 V u_w·∇W_kw − (ρ/Δt) α_d (1 − ρ̂_k/ρ0)/Δt_case`:
+//! `G_xᵀ G_x x = G_xᵀ ((ρ/Δt) v* − c) − (ρ/Δt) Σ_w 2 V u_w·∇W_kw − (ρ/Δt) α_d (1 − ρ̂_k/ρ0)/Δt_p`:
 //!
 //! the normal equations of the least-squares fit of `G p` to `ρ v*/Δt` over every fluid particle.
 //! `G_xᵀ G_x` is symmetric positive semidefinite; it is blind to the lattice's checkerboard

@@ -4,7 +4,8 @@
 //! 1. neighbour search and list;
 //! 2. density ratio ρ̂/ρ0 (S2-7) and free-surface flags ([`super::free_surface`], S2-10 … S2-13);
 //! 3. `v* = v^n + (ν∇²v^n + g)Δt` (S2-3, S2-9);
-//! 4. the PPE `∇²p = (ρ/Δt)∇·v* + α_d(ρ0 − ρ̂)/(Δt Δt_case)` (S2-5), ∇·v* corrected in Marrone's
+//! 4. the PPE `∇²p = (ρ/Δt_p)∇·v* + α_d(ρ0 − ρ̂)/Δt_p²` (S2-5; Δt_p = Δt but in a short step,
+//!    below), ∇·v* corrected in Marrone's
 //!    band by the moment matrix, as the gradient is ([`operators::DivergenceSum`]), with p = 0 on
 //!    the free surface
 //!    (half a spacing beyond the surface particles, [`free_surface::surface_pressure`]) and
@@ -12,15 +13,17 @@
 //!    with `pressure_gradient = "conservative"` the equation is instead built from the gradient
 //!    of stage 6 ([`super::exact_projection`], S2-9's assembled equation blended in);
 //!    a negative solution is written as 0 (no tension, [`IsphStep::solve_ppe`] says why).
-//!    S2-5 has Δt² (Δt_case = Δt): the projection then sets `∇·v^{n+1} = −α_d(1 − ρ̂/ρ0)/Δt`,
-//!    a relaxation by the fraction α_d per step, whatever the step's length. The steps that land
-//!    on an output, probe or coupling-window time are shorter (down to 1e-9 Δt), and there that
-//!    velocity grew as 1/Δt and its pressure as 1/Δt²: one step of 1e-4 Δt in the CI dam break at
-//!    t = 0.15 s threw a particle to 38 m/s (`tests/isph.rs`), and the final step of 0.28 Δt of
-//!    the `isph_vs_emps` scene (Δs = L/20, to 0.32 s) raised the far-wall probe by 20 kPa. So a
-//!    short step runs stages 3–6 at the case's Δt_case from the step's start and takes only its
-//!    share Δt/Δt_case of the velocity change ([`IsphStep::short_step`]): its pressure is a whole
-//!    step's (that probe 4.3 → 3.0 kPa at that step, 7.6 kPa before);
+//!    The projection then sets `∇·v^{n+1} = −α_d(1 − ρ̂/ρ0)/Δt_p`, a relaxation by the fraction
+//!    α_d per step. A step that lands on an output, probe or coupling-window time after whole
+//!    steps is shorter (down to 1e-9 Δt), and there that velocity grew as 1/Δt and its pressure as
+//!    1/Δt²: one step of 1e-4 Δt in the CI dam break at t = 0.15 s threw a particle to 38 m/s
+//!    (`tests/isph.rs`), and the final step of 0.28 Δt of the `isph_vs_emps` scene (Δs = L/20, to
+//!    0.32 s) raised the far-wall probe by 20 kPa. So a step shorter than the step whose pressure
+//!    the one before it took (and a step the advective limit cut) runs stages 3–6 at that step's
+//!    length Δt_p ([`super::step_length::pressure_step`]) from the step's start and takes only its
+//!    share Δt/Δt_p of the velocity change
+//!    ([`IsphStep::short_step`]): its pressure is a whole step's (that probe 4.3 → 3.0 kPa at
+//!    that step, 7.6 kPa before);
 //! 5. the walls' pressure by Adami's extrapolation (for outputs and probes; the gradient reads the
 //!    per-pair wall pressure of [`super::walls`]);
 //! 6. `v^{n+1} = v* − (Δt/ρ)∇p` (S2-4), `x^{n+1} = x^n + v^{n+1}Δt`; bodies move with their own
@@ -43,6 +46,7 @@ use super::pair_laws;
 use super::ppe::{PpeFailure, PpeReport, PpeSystem, NOT_AN_UNKNOWN};
 use super::ppe_two_level;
 use super::shifting;
+use super::step_length::pressure_step;
 use super::walls::{self, NeumannPair, WallFields};
 use crate::bodies::pair_law::{Exchange, ExchangeScales, PairLaw};
 use crate::method::StepTotals;
@@ -80,6 +84,9 @@ pub struct IsphState {
     pub surface: Vec<u8>,
     /// How the last PPE solve went.
     pub ppe: PpeReport,
+    /// The length of the step whose pressure the last step took (its own, or a longer one's
+    /// over a short step; [`super::step_length::pressure_step`]).
+    pub last_pressure_step: Option<f64>,
 }
 
 /// The ISPH step: parameters, work buffers and stage times.
@@ -185,9 +192,11 @@ impl IsphStep {
     }
 
     /// The pressure pair law on the present pressures (at rest: the fluid's velocities are
-    /// taken as the step's start).
-    pub fn pressure_law<'a>(&'a self, p: &'a Particles) -> PairLaw<'a> {
-        pair_laws::pressure(&self.kernel, self.neumann(p, self.time_step), &self.faces)
+    /// taken as the step's start), with the walls' Neumann differences of the step whose pressure
+    /// the last step took (the case's Δt before the first).
+    pub fn pressure_law<'a>(&'a self, p: &'a Particles, state: &IsphState) -> PairLaw<'a> {
+        let dt = state.last_pressure_step.unwrap_or(self.time_step);
+        pair_laws::pressure(&self.kernel, self.neumann(p, dt), &self.faces)
     }
 
     /// The solids turned rigidly from rest at the present positions (a flap paddle), whose kept
@@ -202,14 +211,15 @@ impl IsphStep {
             .pair(&self.physics, self.kernel.spacing, &self.list, p, dt)
     }
 
-    /// Advances the particles by `dt` through the stages of the module doc; `bodies` is handed
-    /// each pair law with the state it acts in. A PPE that misses its tolerance stops the step.
+    /// Advances the particles by `dt` through the stages of the module doc, where the flow allows
+    /// steps of at most `longest`; `bodies` is handed each pair law with the state it acts in. A
+    /// PPE that misses its tolerance stops the step.
     pub fn advance(
         &mut self,
         p: &mut Particles,
         grid: &mut CellGrid,
         state: &mut IsphState,
-        dt: f64,
+        (dt, longest): (f64, f64),
         mut bodies: impl FnMut(Exchange, &PairLaw, &CellGrid, &Particles),
     ) -> Result<StepTotals, PpeFailure> {
         let mut totals = StepTotals::default();
@@ -233,9 +243,9 @@ impl IsphStep {
                 );
             }
         }
-        // The pressure stages' step: the case's over a short step (`IsphStep::short_step`).
-        let short = dt < self.time_step;
-        let pdt = if short { self.time_step } else { dt };
+        // The pressure stages' step: a longer one's over a short step (`IsphStep::short_step`).
+        let pdt = pressure_step(dt, self.time_step, longest, state.last_pressure_step);
+        let short = pdt > dt;
         if short {
             keep(p, &mut self.start_velocity);
         }
@@ -293,7 +303,7 @@ impl IsphStep {
             t
         };
         if short {
-            self.short_step(p, dt);
+            self.short_step(p, dt / pdt);
         }
         self.correct(p, dt); // S2-4
         let t = self.times.lap(t, "pressure gradient and correction");
@@ -312,6 +322,7 @@ impl IsphStep {
         totals.collisions = collision::kicked(&self.accel);
         self.apply_collisions(p, dt);
         self.times.lap(t, "collision");
+        state.last_pressure_step = Some(pdt);
         Ok(totals)
     }
 
@@ -339,17 +350,17 @@ impl IsphStep {
         Ok(())
     }
 
-    /// A step shorter than the case's Δt (one that lands on an output, probe or window time)
-    /// takes the pressure of a whole step: v*, the PPE (S2-5), the walls' and bodies' pressure and
-    /// the gradient are those of the case's Δt_case from the step's start, and only then is the
-    /// predicted velocity cut back to the short step's, `v* = v^n + (Δt/Δt_case)(v*_case − v^n)`,
-    /// before the correction `v^{n+1} = v* − (Δt/ρ)∇p` (S2-4). So a short step removes its share
-    /// Δt/Δt_case of the divergence the particles carry into it, and leaves the rest to the next
-    /// step. (Removed in one short step, that divergence, which does not shrink with the step,
-    /// drew a pressure ∝ 1/Δt: the final step of 0.28 Δt to 0.6 s of `isph_vs_emps` at L/30
-    /// raised the far-wall probe from 960 to 2 298 Pa.)
-    fn short_step(&self, p: &mut Particles, dt: f64) {
-        let r = dt / self.time_step;
+    /// A short step (one that lands on an output, probe or window time after whole steps, or one
+    /// the advective limit cut: [`pressure_step`]) takes the pressure of a longer step Δt_p:
+    /// v*, the PPE (S2-5), the walls' and bodies' pressure and the gradient are those of Δt_p from
+    /// the step's start, and only then is the predicted velocity cut back to the short step's,
+    /// `v* = v^n + r (v*_p − v^n)` with the share `r = Δt/Δt_p`, before the correction
+    /// `v^{n+1} = v* − (Δt/ρ)∇p` (S2-4). So a short step removes its share r of the divergence the
+    /// particles carry into it, and leaves the rest to the next step. (Removed in one short step,
+    /// that divergence, which does not shrink with the step, drew a pressure ∝ 1/Δt: the final
+    /// step of 0.28 Δt to 0.6 s of `isph_vs_emps` at L/30 raised the far-wall probe from 960 to
+    /// 2 298 Pa.)
+    fn short_step(&self, p: &mut Particles, r: f64) {
         let v0 = &self.start_velocity;
         (&mut p.vx, &mut p.vy, &mut p.vz, &p.kind)
             .into_par_iter()
@@ -468,9 +479,8 @@ impl IsphStep {
         let pair = self
             .walls
             .pair(&self.physics, self.kernel.spacing, &self.list, p, dt);
-        // The density relaxation's rate α_d/Δt is the case's, whatever this step's length (module
-        // doc, 4).
-        let (rho, alpha, relax) = (self.physics.density, self.settings.alpha_d, self.time_step);
+        // The density relaxation's Δt_p is the pressure's step (module doc, 4).
+        let (rho, alpha, relax) = (self.physics.density, self.settings.alpha_d, dt);
         let (form, lambda) = (self.settings.pressure_gradient, &self.lambda);
         let (row_of, ratio, dirichlet) = (&ppe.row_of, &self.ratio, &self.dirichlet);
         // Rows in blocks of ROW_BLOCK unknowns, each block's entries contiguous in its own
@@ -569,7 +579,7 @@ impl IsphStep {
                 &walls,
                 &self.dirichlet,
                 &self.ratio,
-                (self.settings.alpha_d, self.time_step),
+                (self.settings.alpha_d, dt),
                 dt,
                 (&self.pair_gradients, &self.faces),
                 &mut self.ppe,

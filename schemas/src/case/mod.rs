@@ -184,23 +184,14 @@ impl Case {
     }
 
     /// Each fluid section's warnings ([`fluid::FluidConfig::warnings`]: settings its method leaves
-    /// unused, ISPH settings that misread a load in its geometry, intervals shorter than ISPH's
-    /// step), and an ISPH section's coupling exchanges closer than its step, as `fluid.NAME: …`
-    /// for a `warning: ` line.
+    /// unused, ISPH settings that misread a load in its geometry), as `fluid.NAME: …` for a
+    /// `warning: ` line.
     pub fn fluid_warnings(&self) -> Vec<String> {
         self.fluid
             .iter()
             .flat_map(|(name, cfg)| {
-                let exchanges = self.coupling.as_ref().and_then(|c| {
-                    let what = match c.samples {
-                        1 => "`coupling.window`".to_string(),
-                        n => format!("`coupling.window` / `coupling.samples` ({} s / {n})", c.window),
-                    };
-                    cfg.isph_landing_warning(&what, c.window / f64::from(c.samples))
-                });
                 cfg.warnings()
                     .into_iter()
-                    .chain(exchanges)
                     .map(move |u| format!("fluid.{name}: {u}"))
             })
             .collect()

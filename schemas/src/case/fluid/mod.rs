@@ -472,9 +472,8 @@ impl FluidConfig {
     }
 
     /// What a run tells the user before it starts, one sentence each (runs print each as a
-    /// `warning: ` line): the settings the method leaves unused ([`FluidConfig::unused_by_method`]),
-    /// the ISPH settings known to misread a load in this case's geometry, and output or probe
-    /// intervals shorter than ISPH's step ([`FluidConfig::isph_landing_warning`]).
+    /// `warning: ` line): the settings the method leaves unused ([`FluidConfig::unused_by_method`])
+    /// and the ISPH settings known to misread a load in this case's geometry.
     pub fn warnings(&self) -> Vec<String> {
         let mut warnings = self.unused_by_method();
         let isph = self.isph_settings();
@@ -490,27 +489,7 @@ impl FluidConfig {
                 "`isph.pressure_gradient` = \"{name}\" with a `body`: that gradient has no face normals at a body's convex edges (with them a held box read +9.6 % of ρgV), and the still water at a held box's corners moves (0.2 m/s at a 12 cm box, where the default's stays below 1e-3 m/s); without them, on the wall box of the MARIN dam break's CI twin (cases/dam-break-obstacle, Δs = 0.04 m), the sensor 2 cm under the box's top edge read a pull (−169 … −204 % of the measured mean over 0.6–0.8 s; −20 … −23 % with them); for loads near a body's edges use the default pressure_gradient = \"corrected-difference\""
             ));
         }
-        let probes = self.probe_interval.map(|p| ("probe_interval", p));
-        for (key, interval) in [("output_interval", self.output_interval)]
-            .into_iter()
-            .chain(probes)
-        {
-            warnings.extend(self.isph_landing_warning(&format!("`{key}`"), interval));
-        }
         warnings
-    }
-
-    /// ISPH: times to land on every `interval` [s] (named `what`) shorter than `time_step` make
-    /// every step a short one, and a short step removes only its share Δt_short/Δt of the
-    /// divergence the particles carry into it (`IsphStep::short_step` in the fluid solver), so
-    /// the flow is no longer held incompressible. `None` for E-MPS or an interval ≥ Δt.
-    pub fn isph_landing_warning(&self, what: &str, interval: f64) -> Option<String> {
-        (self.method == FluidMethodName::Isph && interval < self.time_step).then(|| {
-            format!(
-                "{what} = {interval} s is shorter than ISPH's time_step = {} s: every step is cut short to land on it, and a short step removes only its share of the divergence the projection should remove, so the flow is no longer held incompressible (the MARIN dam break's CI twin at Δs = 0.04 m, time_step = 3.4e-3 s and probes every 1.2e-3 s, read its P1 sensor 71 % above the experiment over 0.6–0.8 s, against 8 % at time_step = 1.2e-3 s); set time_step ≤ {interval} s, or {what} ≥ time_step",
-                self.time_step
-            )
-        })
     }
 
     /// The ISPH settings: the `[isph]` table or its defaults.
