@@ -4,11 +4,10 @@
 //! change; steps that are all short (intervals closer than Δt, the advective cut) are whole steps
 //! of their own length.
 
-use crate::common;
+use crate::isph_step_length::block_in_a_tank;
 
 use fluid_solver::isph::step_length::pressure_step;
 use fluid_solver::{FluidSolver, Kind};
-use schemas::case::fluid::{FluidConfig, FluidMethodName};
 
 #[test]
 fn a_step_takes_its_own_pressure_unless_it_is_shorter_than_the_one_before_it() {
@@ -34,17 +33,9 @@ fn a_step_takes_its_own_pressure_unless_it_is_shorter_than_the_one_before_it() {
     assert_eq!(pressure_step(0.2 * dt, dt, 0.5 * dt, Some(dt)), dt);
 }
 
-/// A dam break of ISPH (a 0.1 m cube of water at Δs = 0.01 m in a 0.3 m tank, 4 Δs wide) at
-/// `time_step`.
+/// The dam break of [`block_in_a_tank`] at `time_step`.
 fn dam_break(time_step: f64) -> FluidSolver {
-    let (_, mut cfg): (_, FluidConfig) = common::load_case("hydrostatic-tank");
-    cfg.method = FluidMethodName::Isph;
-    cfg.sound_speed = None;
-    cfg.spacing = 0.01;
-    cfg.tank.max = [0.3, 0.04, 0.25];
-    cfg.block[0].min = [0.0, 0.0, 0.0];
-    cfg.block[0].max = [0.1, 0.04, 0.1];
-    cfg.probe.clear();
+    let mut cfg = block_in_a_tank();
     cfg.time_step = time_step;
     cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
     FluidSolver::new(&cfg)

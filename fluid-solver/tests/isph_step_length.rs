@@ -13,11 +13,9 @@ use schemas::case::fluid::{FluidConfig, FluidMethodName, MAX_ADVECTIVE_COURANT};
 /// (`fluid_solver::stability::MAX_STEP_DISPLACEMENT`).
 const DETECTOR_LIMIT: f64 = fluid_solver::stability::MAX_STEP_DISPLACEMENT;
 
-/// A block of water 0.1 m deep and long, 4 Δs wide (Δs = 0.01 m), thrown at 1.5 times the
-/// check's velocity scale 2√(g·0.1) = 1.98 m/s against the far wall of a 0.3 m tank, at the
-/// longest Δt the check accepts (0.4 Δs / 1.98 m/s = 2.02e-3 s). Uncut, the first step would move
-/// it 0.6 Δs, past the detector's 0.5 Δs: the detector stops the run at the first step.
-fn thrown_block() -> (FluidSolver, f64) {
+/// ISPH's dam break of a block of water 0.1 m deep and long, 4 Δs wide (Δs = 0.01 m), in a
+/// 0.3 m tank, at the case's time step (to be set).
+pub fn block_in_a_tank() -> FluidConfig {
     let (_, mut cfg): (_, FluidConfig) = common::load_case("hydrostatic-tank");
     cfg.method = FluidMethodName::Isph;
     cfg.sound_speed = None;
@@ -26,6 +24,15 @@ fn thrown_block() -> (FluidSolver, f64) {
     cfg.block[0].min = [0.0, 0.0, 0.0];
     cfg.block[0].max = [0.1, 0.04, 0.1];
     cfg.probe.clear();
+    cfg
+}
+
+/// [`block_in_a_tank`] thrown at 1.5 times the check's velocity scale 2√(g·0.1) = 1.98 m/s
+/// against the tank's far wall, at the longest Δt the check accepts (0.4 Δs / 1.98 m/s =
+/// 2.02e-3 s). Uncut, the first step would move it 0.6 Δs, past the detector's 0.5 Δs: the
+/// detector stops the run at the first step.
+fn thrown_block() -> (FluidSolver, f64) {
+    let mut cfg = block_in_a_tank();
     let scale = cfg.advective_velocity();
     cfg.time_step = 0.999 * cfg.isph_time_step_limit();
     cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
