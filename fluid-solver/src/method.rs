@@ -41,23 +41,22 @@ pub enum FluidMethod {
 }
 
 impl FluidMethod {
-    /// Advances the particles by `dt` (see each method's step), where the flow allows steps of at
-    /// most `longest` (ISPH's advective limit, [`crate::isph::step_length`]), as step number
-    /// `step` ending at `time` (for diagnostics); `bodies` is handed each pair law with the state
-    /// it acts in.
+    /// Advances the particles by `dt` (see each method's step; `cut`: ISPH's advective limit cut
+    /// it short, [`crate::isph::step_length`]) as step number `step` ending at `time` (for
+    /// diagnostics); `bodies` is handed each pair law with the state it acts in.
     pub fn advance(
         &mut self,
         p: &mut Particles,
         grid: &mut CellGrid,
         state: &mut MethodState,
-        (dt, longest, step, time): (f64, f64, u64, f64),
+        (dt, cut, step, time): (f64, bool, u64, f64),
         bodies: impl FnMut(Exchange, &PairLaw, &CellGrid, &Particles),
     ) -> Result<StepTotals, Instability> {
         match (self, state) {
             (FluidMethod::Emps(s), _) => Ok(s.advance(p, grid, dt, bodies)),
             (FluidMethod::Isph(s), MethodState::Isph(st)) => {
                 let tol = s.settings.ppe_tolerance;
-                s.advance(p, grid, st, (dt, longest), bodies)
+                s.advance(p, grid, st, (dt, cut), bodies)
                     .map_err(|f| ppe_failure(f, tol, step, time))
             }
             (FluidMethod::Isph(_), MethodState::Emps) => unreachable!("ISPH is always built with its state"),

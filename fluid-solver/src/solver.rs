@@ -441,7 +441,7 @@ impl FluidSolver {
         if !self.state.gates_removed {
             self.remove_gates();
         }
-        let longest = self.longest_step(dt);
+        let cut = self.advective_cut(dt);
         let st = &mut self.state;
         if !self.started {
             self.monitor.start(&st.particles);
@@ -462,27 +462,26 @@ impl FluidSolver {
             self.moved();
         }
         self.apply_point_reactions(dt, reordered);
-        let totals = self.step_on_host(dt, longest);
+        let totals = self.step_on_host(dt, cut);
         self.moved();
         totals
     }
 
-    /// The longest step the flow allows now (the case's Δt, or ISPH's advective limit,
-    /// [`FluidSolver::next_step_towards`]); counts a step of `dt` that is that limit cutting Δt
-    /// short.
-    fn longest_step(&mut self, dt: f64) -> f64 {
+    /// Whether a step of `dt` is ISPH's advective limit cutting Δt short
+    /// ([`FluidSolver::next_step_towards`]); counts it.
+    fn advective_cut(&mut self, dt: f64) -> bool {
         let Some(limit) = &self.advective else {
-            return self.time_step;
+            return false;
         };
-        let (longest, fastest) = limit.longest_step(&self.state.particles);
-        if let Some(fastest) = fastest {
+        if let (longest, Some(fastest)) = limit.longest_step(&self.state.particles) {
             if (dt - longest).abs() <= self.time_step * LANDING_SLACK {
                 let totals = &mut self.state.totals;
                 totals.advective_cuts += 1;
                 totals.fastest_cut = totals.fastest_cut.max(fastest);
+                return true;
             }
         }
-        longest
+        false
     }
 
     /// The particles may have changed: shares found before are not used again.
@@ -528,16 +527,15 @@ impl FluidSolver {
         Ok(())
     }
 
-    /// The rest of [`FluidSolver::step`] on the CPU, where the flow allows steps of at most
-    /// `longest`.
-    fn step_on_host(&mut self, dt: f64, longest: f64) -> Result<StepTotals, Instability> {
+    /// The rest of [`FluidSolver::step`] on the CPU (`cut`: ISPH's advective limit cut the step).
+    fn step_on_host(&mut self, dt: f64, cut: bool) -> Result<StepTotals, Instability> {
         let st = &mut self.state;
         let scales = self.method.scales(dt);
         let (bodies, pose, exchange) = (&self.bodies, &st.body_pose, &mut st.body_exchange);
         let zeros = vec![0.0; 6 * bodies.names().len()];
         exchange.loads.clone_from(&zeros);
         exchange.reaction.clone_from(&zeros);
-        let clock = (dt, longest, st.steps + 1, st.time + dt);
+        let clock = (dt, cut, st.steps + 1, st.time + dt);
         let totals = self.method.advance(
             &mut st.particles,
             &mut st.grid,

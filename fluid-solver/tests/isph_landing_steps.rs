@@ -12,7 +12,7 @@ use fluid_solver::{FluidSolver, Kind};
 #[test]
 fn a_step_takes_its_own_pressure_unless_it_is_shorter_than_the_one_before_it() {
     let dt = 1e-3;
-    let at = |step: f64, last: Option<f64>| pressure_step(step, dt, dt, last);
+    let at = |step: f64, last: Option<f64>| pressure_step(step, dt, false, last);
     // a whole step, and the first step of a run, whatever its length
     assert_eq!(at(dt, Some(dt)), dt);
     assert_eq!(at(1e-4, None), 1e-4);
@@ -26,11 +26,11 @@ fn a_step_takes_its_own_pressure_unless_it_is_shorter_than_the_one_before_it() {
     assert_eq!(at(rounded, Some(0.4 * dt)), rounded);
     // shorter than the step whose pressure the step before took: that step's
     assert_eq!(at(0.2 * dt, Some(0.4 * dt)), 0.4 * dt);
-    // a step the advective limit cut shares Δt's pressure, first or not; a landing step shorter
-    // than the cut shares it too
-    assert_eq!(pressure_step(0.5 * dt, dt, 0.5 * dt, None), dt);
-    assert_eq!(pressure_step(0.5 * dt, dt, 0.5 * dt, Some(0.5 * dt)), dt);
-    assert_eq!(pressure_step(0.2 * dt, dt, 0.5 * dt, Some(dt)), dt);
+    // a step the advective limit cut shares Δt's pressure, first or not; a landing step after
+    // a cut shares it too
+    assert_eq!(pressure_step(0.5 * dt, dt, true, None), dt);
+    assert_eq!(pressure_step(0.5 * dt, dt, true, Some(0.5 * dt)), dt);
+    assert_eq!(at(0.2 * dt, Some(dt)), dt);
 }
 
 /// The dam break of [`block_in_a_tank`] at `time_step`.

@@ -362,7 +362,7 @@ pub fn apply_operator(
 
 /// Blends the exact projection's right-hand side into `ppe.rhs`, which holds S2-9's `b_S2` of
 /// the same unknowns: `(1 − ε) b + ε b_S2` (module doc), with v* in the particles, the step's
-/// `dt`, ρ̂/ρ0 in `ratio` and the density relaxation's `alpha_d` over the case's step `relax`.
+/// `dt` (the pressure's step Δt_p), ρ̂/ρ0 in `ratio` and the density relaxation's `alpha_d`.
 #[allow(clippy::too_many_arguments)]
 pub fn blend_right_hand_side(
     k: &Wendland,
@@ -370,7 +370,7 @@ pub fn blend_right_hand_side(
     walls: &NeumannPair,
     dirichlet: &[f64],
     ratio: &[f64],
-    (alpha_d, relax): (f64, f64),
+    alpha_d: f64,
     dt: f64,
     (pairs, faces): (&PairGradients, &BodyFaces),
     ppe: &mut PpeSystem,
@@ -416,7 +416,7 @@ pub fn blend_right_hand_side(
         .zip(&ppe.particle)
         .with_min_len(4096)
         .for_each(|((r, b), &i)| {
-            let relaxation = s * alpha_d * (1.0 - ratio[i as usize]) / relax;
+            let relaxation = s * alpha_d * (1.0 - ratio[i as usize]) / dt;
             *r = (1.0 - eps) * (b - relaxation) + eps * *r;
         });
 }

@@ -211,15 +211,15 @@ impl IsphStep {
             .pair(&self.physics, self.kernel.spacing, &self.list, p, dt)
     }
 
-    /// Advances the particles by `dt` through the stages of the module doc, where the flow allows
-    /// steps of at most `longest`; `bodies` is handed each pair law with the state it acts in. A
-    /// PPE that misses its tolerance stops the step.
+    /// Advances the particles by `dt` through the stages of the module doc (`cut`: the advective
+    /// limit cut this step short, [`super::step_length`]); `bodies` is handed each pair law with
+    /// the state it acts in. A PPE that misses its tolerance stops the step.
     pub fn advance(
         &mut self,
         p: &mut Particles,
         grid: &mut CellGrid,
         state: &mut IsphState,
-        (dt, longest): (f64, f64),
+        (dt, cut): (f64, bool),
         mut bodies: impl FnMut(Exchange, &PairLaw, &CellGrid, &Particles),
     ) -> Result<StepTotals, PpeFailure> {
         let mut totals = StepTotals::default();
@@ -244,7 +244,7 @@ impl IsphStep {
             }
         }
         // The pressure stages' step: a longer one's over a short step (`IsphStep::short_step`).
-        let pdt = pressure_step(dt, self.time_step, longest, state.last_pressure_step);
+        let pdt = pressure_step(dt, self.time_step, cut, state.last_pressure_step);
         let short = pdt > dt;
         if short {
             keep(p, &mut self.start_velocity);
@@ -479,8 +479,8 @@ impl IsphStep {
         let pair = self
             .walls
             .pair(&self.physics, self.kernel.spacing, &self.list, p, dt);
-        // The density relaxation's Δt_p is the pressure's step (module doc, 4).
-        let (rho, alpha, relax) = (self.physics.density, self.settings.alpha_d, dt);
+        // `dt` is the pressure's step Δt_p, the density relaxation's too (module doc, 4).
+        let (rho, alpha) = (self.physics.density, self.settings.alpha_d);
         let (form, lambda) = (self.settings.pressure_gradient, &self.lambda);
         let (row_of, ratio, dirichlet) = (&ppe.row_of, &self.ratio, &self.dirichlet);
         // Rows in blocks of ROW_BLOCK unknowns, each block's entries contiguous in its own
@@ -530,7 +530,7 @@ impl IsphStep {
                     out.diag.push(diag);
                     out.anchored.push(anchored);
                     out.rhs
-                        .push(rhs - (rho / dt * div + alpha * rho * (1.0 - ratio[i]) / (dt * relax)));
+                        .push(rhs - (rho / dt * div + alpha * rho * (1.0 - ratio[i]) / (dt * dt)));
                 }
             });
         let rows = ppe.particle.len();
@@ -579,7 +579,7 @@ impl IsphStep {
                 &walls,
                 &self.dirichlet,
                 &self.ratio,
-                (self.settings.alpha_d, dt),
+                self.settings.alpha_d,
                 dt,
                 (&self.pair_gradients, &self.faces),
                 &mut self.ppe,

@@ -54,10 +54,9 @@ impl AdvectiveLimit {
 const SAME_LENGTH: f64 = 1e-9;
 
 /// The length of the step whose pressure a step of `dt` takes (`IsphStep::short_step`), for a
-/// case's `time_step` where the flow allows steps of at most `longest` now: `dt` itself (a whole
+/// case's `time_step`: Δt for a step the advective limit cut (`cut`); else `dt` itself (a whole
 /// step) when it is the case's Δt, at the run's start (`last` none), or when it is no shorter than
-/// the step whose pressure the step before took (`last`); else that step, at most Δt; and Δt for
-/// a step the advective limit cut (`dt = longest < Δt`).
+/// the step whose pressure the step before took (`last`); else that step, at most Δt.
 ///
 /// A whole step's projection removes the divergence the particles carry into it, which the steps
 /// before made (a short step removes only its share of it) and which does not shrink with this
@@ -70,16 +69,15 @@ const SAME_LENGTH: f64 = 1e-9;
 /// 1.2e-3 s). Cut steps stay shares of Δt: as whole steps, the thrown block of
 /// `tests/isph_step_length.rs` sent a run-up jet at 5.43 m/s (thrown at 2.97) 0.500 Δs in one
 /// step at its impact, and the detector stopped it.
-pub fn pressure_step(dt: f64, time_step: f64, longest: f64, last: Option<f64>) -> f64 {
-    let whole = time_step * (1.0 - SAME_LENGTH);
-    if longest < whole && dt >= longest * (1.0 - SAME_LENGTH) {
+pub fn pressure_step(dt: f64, time_step: f64, cut: bool, last: Option<f64>) -> f64 {
+    if cut {
         return time_step;
     }
     let Some(last) = last else {
         return dt;
     };
     let before = last.min(time_step);
-    if dt >= whole || before <= dt * (1.0 + SAME_LENGTH) {
+    if dt >= time_step * (1.0 - SAME_LENGTH) || before <= dt * (1.0 + SAME_LENGTH) {
         dt
     } else {
         before
