@@ -47,6 +47,9 @@ struct Measured {
     rate: String,
     /// Whole copies of the particles from the GPU and their time (frames; empty on the CPU).
     copies: String,
+    /// The device steps' time and the open boundaries' (with the host's strip rule) (empty on
+    /// the CPU).
+    device_time: String,
     wall: f64,
 }
 
@@ -134,11 +137,18 @@ fn run(
         steps: before(done, " steps").to_string(),
         fluid_wall: between(done, " steps, ", " wall").to_string(),
         rate: before(done, " particle-steps/s").to_string(),
-        copies: done.rsplit_once("; ").map_or(String::new(), |(_, c)| {
-            c.replace(" whole copies from the GPU", "")
-        }),
+        copies: segment(done, " whole copies from the GPU").replace(" whole copies from the GPU", ""),
+        device_time: segment(done, "GPU steps ").replace("GPU steps ", ""),
         wall,
     })
+}
+
+/// The `; `-separated part of `line` that holds `label` (empty when none does).
+fn segment(line: &str, label: &str) -> String {
+    line.split("; ")
+        .find(|s| s.contains(label))
+        .unwrap_or("")
+        .to_string()
 }
 
 /// The number on the first `key = …` line of `text`.
@@ -157,8 +167,8 @@ fn row(case: &str, spacing: Option<f64>, end: Option<f64>, backend: &str, scratc
     match run(case, spacing, end, backend, scratch) {
         Ok(m) => {
             println!(
-                "| {case} | {ds} | {backend} | {} | {} | {} | {} | {} | {:.1} |",
-                m.particles, m.steps, m.fluid_wall, m.rate, m.copies, m.wall
+                "| {case} | {ds} | {backend} | {} | {} | {} | {} | {} | {} | {:.1} |",
+                m.particles, m.steps, m.fluid_wall, m.rate, m.copies, m.device_time, m.wall
             );
             m.device
         }
@@ -179,8 +189,8 @@ fn main() {
         .collect();
     let both = ["gpu", "cpu"];
     let backends: &[&str] = if only.is_empty() { &both } else { &only };
-    println!("| case | Δs [m] | fluid on | particles | fluid steps | fluid wall | particle-steps/s | whole copies from the GPU | whole run [s] |");
-    println!("|---|---|---|---|---|---|---|---|---|");
+    println!("| case | Δs [m] | fluid on | particles | fluid steps | fluid wall | particle-steps/s | whole copies from the GPU | GPU steps, open boundaries (host's strip rule) | whole run [s] |");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
     // the small scene first: it checks the bench, and its log names the GPU
     let device = row("bridge-washout-small", None, Some(1.2), "gpu", &scratch);
     row("bridge-washout-small", None, Some(1.2), "cpu", &scratch);

@@ -482,6 +482,7 @@ impl Participant for FluidParticipant {
             escaped: s.escaped(),
             outflow_removed: s.open_boundaries().balance().removed,
             host_copies: s.host_copies(),
+            device_seconds: s.device_seconds(),
             advective_cuts: (s.totals().advective_cuts, s.totals().fastest_cut),
         };
         eprintln!("fluid `{}`: done: {summary}", self.name);

@@ -194,6 +194,7 @@ pub fn run_case(case: &Case, out: &Path, terminal: bool) -> Result<RunSummary, R
         escaped: solver.escaped(),
         outflow_removed: solver.open_boundaries().balance().removed,
         host_copies: solver.host_copies(),
+        device_seconds: solver.device_seconds(),
         advective_cuts: (solver.totals().advective_cuts, solver.totals().fastest_cut),
     })
 }

@@ -110,6 +110,8 @@ pub struct FluidSolver {
     pub(crate) escape_pending: Option<u64>,
     /// Whole copies from the device to the host so far, and their wall seconds.
     pub(crate) host_copies: (u64, f64),
+    /// Where the device steps' wall time went.
+    pub(crate) device_seconds: crate::gpu::DeviceSeconds,
 }
 
 impl FluidSolver {
@@ -238,6 +240,7 @@ impl FluidSolver {
             host_dirty: false,
             escape_pending: None,
             host_copies: (0, 0.0),
+            device_seconds: Default::default(),
         };
         solver.refresh_body_exchange();
         solver

@@ -36,6 +36,16 @@ impl fmt::Display for GpuStartError {
 
 impl std::error::Error for GpuStartError {}
 
+/// Where a GPU run's steps spent their wall time so far [s]: the device step (its passes and
+/// the wait for its reduction), the open boundaries (the device's pass with its counts and
+/// appended rows, and the host's rule on its copy of the strip within it).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct DeviceSeconds {
+    pub steps: f64,
+    pub open_boundaries: f64,
+    pub strip_rule: f64,
+}
+
 /// Books the step's point reactions (6 each: centroid, force) by the states the device found
 /// for them ([`crate::gpu::drag`]): the impulse of those it spread as handed to the fluid, of
 /// those with no fluid near as not applied (as [`FluidSolver`]'s CPU step books them).
@@ -189,6 +199,11 @@ impl FluidSolver {
         self.host_copies
     }
 
+    /// Where the device steps' wall time went so far (zeros on the CPU path).
+    pub fn device_seconds(&self) -> DeviceSeconds {
+        self.device_seconds
+    }
+
     /// The device step when its particles are ahead of the host's copy (`None` on the CPU path
     /// and right after [`FluidSolver::sync_host`]).
     pub(crate) fn device_ahead(&self) -> Option<&GpuEmps> {
@@ -242,7 +257,12 @@ impl FluidSolver {
         // the CPU's rule, the device converts, moves and removes by it (`gpu/open_boundary.rs`)
         if self.state.open_boundaries.is_active() {
             let st = &mut self.state;
-            let plan = dev.strip.plan(&mut st.open_boundaries, st.time, dt);
+            let started = std::time::Instant::now();
+            let plan = dev
+                .strip
+                .plan(&mut st.open_boundaries, st.time, dt)
+                .map_err(|m| device_error(st.time, st.steps, "inflow strip", m))?;
+            self.device_seconds.strip_rule += started.elapsed().as_secs_f64();
             let [entered, removed, withdrawn] = dev
                 .open_boundaries(&plan.pass, &plan.rows)
                 .map_err(|m| device_error(st.time, st.steps, "GPU arrays", m))?;
@@ -258,6 +278,7 @@ impl FluidSolver {
                 ));
             }
             st.open_boundaries.add_removed(removed);
+            self.device_seconds.open_boundaries += started.elapsed().as_secs_f64();
         }
         // the paddle where the CPU path places it before its step from t to t + dt
         if let Some(paddle) = &self.paddle {
@@ -268,7 +289,9 @@ impl FluidSolver {
         if !r.reactions.is_empty() || dev.spreads_reactions() {
             dev.set_point_reactions(&r.reactions, &r.sample_points, &r.widths);
         }
+        let started = std::time::Instant::now();
         let report = dev.advance(dt);
+        self.device_seconds.steps += started.elapsed().as_secs_f64();
         let n = dev.len() as u64;
         self.host_stale = true;
         let st = &mut self.state;

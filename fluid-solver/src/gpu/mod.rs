@@ -49,4 +49,5 @@ pub mod solids;
 pub mod step;
 
 pub use device::{GpuDevice, NoAdapter};
+pub use driver::DeviceSeconds;
 pub use step::GpuEmps;

@@ -21,7 +21,6 @@
 use crate::boundaries::open_boundary::OpenBoundaries;
 use crate::particles::kind::Kind;
 use crate::particles::Particles;
-use std::collections::HashMap;
 
 /// What the device's pass needs for one step (see the module doc); `f64::INFINITY`: nothing of
 /// that kind this step.
@@ -62,9 +61,10 @@ impl StripCopy {
         let keep: Vec<u32> = (0..p.len() as u32)
             .filter(|&i| p.kind[i as usize] == Kind::Inflow.code())
             .collect();
-        let mut strip = p.clone();
-        strip.permute(&keep, &mut Vec::new());
-        StripCopy { strip, spacing }
+        StripCopy {
+            strip: p.subset(&keep),
+            spacing,
+        }
     }
 
     /// Strip particles in the copy.
@@ -79,10 +79,13 @@ impl StripCopy {
 
     /// Runs the boundaries' part of the step from `t` to `t + dt` on the copy (updating `open`'s
     /// strip and balance as the CPU step does, its `removed` aside) and says what the device must
-    /// do.
-    pub fn plan(&mut self, open: &mut OpenBoundaries, t: f64, dt: f64) -> OpenPlan {
+    /// do. The rule keeps the order of the particles it keeps and appends its new rows with ids
+    /// past every existing one, so one walk along the copy before and after it pairs each
+    /// particle with its past (an error, which stops the run, if it ever did not).
+    pub fn plan(&mut self, open: &mut OpenBoundaries, t: f64, dt: f64) -> Result<OpenPlan, String> {
         let s = &mut self.strip;
-        let before: HashMap<u32, (f64, f64)> = (0..s.len()).map(|i| (s.id[i], (s.x[i], s.z[i]))).collect();
+        let before: Vec<(u32, f64, f64)> = (0..s.len()).map(|i| (s.id[i], s.x[i], s.z[i])).collect();
+        let newest = before.iter().map(|b| b.0).max();
         let removed = open.balance().removed;
         open.apply(s, t, dt);
         // the copy holds no fluid but what entered this step, which lies short of the outflow
@@ -90,34 +93,42 @@ impl StripCopy {
         debug_assert_eq!(open.balance().removed, removed);
         let (mut crossed, mut stay_x) = (f64::INFINITY, f64::NEG_INFINITY);
         let (mut kept_z, mut gone_z) = (f64::NEG_INFINITY, f64::INFINITY);
-        let (mut entered, mut u) = (0, 0.0);
-        let mut now: HashMap<u32, usize> = HashMap::with_capacity(s.len());
+        let (mut entered, mut withdrawn, mut u) = (0, 0, 0.0);
         let mut fresh = Vec::new();
+        // `next`: the first particle of `before` not yet paired; those skipped were withdrawn
+        let mut next = 0;
         for i in 0..s.len() {
-            now.insert(s.id[i], i);
-            match before.get(&s.id[i]) {
-                Some(&(x, _)) if s.kind[i] == Kind::Fluid.code() => {
-                    crossed = crossed.min(x);
-                    entered += 1;
-                }
-                Some(&(x, z)) => {
-                    stay_x = stay_x.max(x);
-                    kept_z = kept_z.max(z);
-                    u = s.vx[i];
-                }
-                None => {
-                    fresh.push(i as u32);
-                    u = s.vx[i];
-                }
+            if newest.is_none_or(|m| s.id[i] > m) {
+                fresh.push(i as u32);
+                u = s.vx[i];
+                continue;
             }
-        }
-        let mut withdrawn = 0;
-        for (id, &(x, z)) in &before {
-            if !now.contains_key(id) {
+            let Some(k) = before[next..].iter().position(|b| b.0 == s.id[i]) else {
+                return Err(format!(
+                    "the host's copy of the inflow strip lost particle {}'s order",
+                    s.id[i]
+                ));
+            };
+            for &(_, x, z) in &before[next..next + k] {
                 withdrawn += 1;
                 gone_z = gone_z.min(z);
                 stay_x = stay_x.max(x);
             }
+            let (_, x, z) = before[next + k];
+            next += k + 1;
+            if s.kind[i] == Kind::Fluid.code() {
+                crossed = crossed.min(x);
+                entered += 1;
+            } else {
+                stay_x = stay_x.max(x);
+                kept_z = kept_z.max(z);
+                u = s.vx[i];
+            }
+        }
+        for &(_, x, z) in &before[next..] {
+            withdrawn += 1;
+            gone_z = gone_z.min(z);
+            stay_x = stay_x.max(x);
         }
         let half = 0.5 * self.spacing;
         let between = |lo: f64, hi: f64| match (lo.is_finite(), hi.is_finite()) {
@@ -125,10 +136,9 @@ impl StripCopy {
             (true, true) => 0.5 * (lo + hi),
             (false, true) => hi - half,
         };
-        let mut rows = s.clone();
-        rows.permute(&fresh, &mut Vec::new());
+        let rows = s.subset(&fresh);
         s.remove_kind(Kind::Fluid);
-        OpenPlan {
+        Ok(OpenPlan {
             pass: OpenPass {
                 u,
                 dx: u * dt,
@@ -139,6 +149,6 @@ impl StripCopy {
             rows,
             entered,
             withdrawn,
-        }
+        })
     }
 }

@@ -132,6 +132,8 @@ pub struct RunSummary {
     pub outflow_removed: u64,
     /// On the GPU path: whole copies of the particles to the host, and their wall seconds.
     pub host_copies: (u64, f64),
+    /// On the GPU path: where the steps' wall time went.
+    pub device_seconds: crate::gpu::DeviceSeconds,
     /// ISPH's steps cut short because the fluid outran the case's Δt, and the fastest fluid
     /// speed that cut one [m/s] (`isph::step_length`).
     pub advective_cuts: (u64, f64),
@@ -158,6 +160,18 @@ impl fmt::Display for RunSummary {
         let (copies, seconds) = self.host_copies;
         if copies > 0 {
             write!(f, "; {copies} whole copies from the GPU in {}", duration(seconds))?;
+        }
+        let d = self.device_seconds;
+        if d.steps > 0.0 {
+            write!(f, "; GPU steps {}", duration(d.steps))?;
+        }
+        if d.open_boundaries > 0.0 {
+            write!(
+                f,
+                ", open boundaries {} (the host's strip rule {})",
+                duration(d.open_boundaries),
+                duration(d.strip_rule)
+            )?;
         }
         match self.advective_cuts {
             (0, _) => Ok(()),
