@@ -4,7 +4,8 @@
 //! `mpirun -np N fluid-solver run` (one rank: the undivided solver in this process, on one
 //! thread, as `mpirun -np 1` runs it). Prints per rank count: fluid particles per rank, time per
 //! step (rank 0's stepping, exchanges included; frames and set-up left out), weak-scaling
-//! efficiency t(1)/t(N), halo copies and bytes sent between ranks per step. With more ranks than
+//! efficiency t(1)/t(N), the slowest rank's own step and the longest a rank spent a step in its
+//! exchanges and waits, halo copies and bytes sent between ranks per step. With more ranks than
 //! cores (`--oversubscribe`) the times show correctness and communication volume, not speed.
 //! Then, on paper from the one-rank rate and the efficiency measured with a core per rank, the
 //! ranks and hours for 10⁸ and 10⁹ particles over 10⁴ steps, ranks of 10⁶ particles each.
@@ -59,6 +60,9 @@ struct Run {
     copies: f64,
     bytes: f64,
     step_seconds: f64,
+    /// The most a rank spent in its own steps, and in its exchanges and waits [s].
+    own_most: f64,
+    exchange_most: f64,
     wall: f64,
 }
 
@@ -71,6 +75,13 @@ fn number_before(line: &str, label: &str) -> Option<f64> {
         .trim_start_matches('(')
         .parse()
         .ok()
+}
+
+/// The upper end of the range `A–B` that follows `label` in `line`.
+fn range_end_after(line: &str, label: &str) -> Option<f64> {
+    let rest = &line[line.find(label)? + label.len()..];
+    let range = rest.split_whitespace().next()?;
+    range.split('–').nth(1)?.parse().ok()
 }
 
 /// One rank: the undivided solver stepped here on a pool of one thread.
@@ -96,6 +107,8 @@ fn undivided() -> Result<Run, String> {
             copies: 0.0,
             bytes: 0.0,
             step_seconds: stepping.elapsed().as_secs_f64(),
+            own_most: stepping.elapsed().as_secs_f64(),
+            exchange_most: 0.0,
             wall: started.elapsed().as_secs_f64(),
         })
     })
@@ -135,6 +148,10 @@ fn run(ranks: usize, dir: &Path) -> Result<Run, String> {
         copies: field("halo copies")?,
         bytes: field("bytes sent")?,
         step_seconds: field("s in the steps")?,
+        own_most: range_end_after(done, "own steps ")
+            .ok_or_else(|| format!("{ranks} ranks: no own steps' range in: {done}"))?,
+        exchange_most: range_end_after(done, "exchanges and waits ")
+            .ok_or_else(|| format!("{ranks} ranks: no exchanges' range in: {done}"))?,
         wall,
     })
 }
@@ -156,9 +173,9 @@ fn main() {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     println!("Weak scaling on MPI ranks: {SLAB} m of water per rank at Δs = 0.01 m, {STEPS} steps, one thread per rank, {cores} cores here");
     println!(
-        "| ranks | fluid per rank | time per step | efficiency t(1)/t(N) | halo copies per step | bytes sent per step | wall (with set-up) |"
+        "| ranks | fluid per rank | time per step | efficiency t(1)/t(N) | a rank's own step (slowest) | exchanges and waits (longest) | halo copies per step | bytes sent per step | wall (with set-up) |"
     );
-    println!("|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|");
     let mut runs: Vec<Run> = Vec::new();
     for &n in &counts {
         match run(n, &dir) {
@@ -166,11 +183,13 @@ fn main() {
                 let per_step = r.step_seconds / r.steps;
                 let base = runs.first().map_or(per_step, |b| b.step_seconds / b.steps);
                 println!(
-                    "| {} | {:.0} | {:.1} ms | {:.0} % | {:.0} | {:.2} MB | {:.1} s |",
+                    "| {} | {:.0} | {:.1} ms | {:.0} % | {:.1} ms | {:.1} ms | {:.0} | {:.2} MB | {:.1} s |",
                     r.ranks,
                     r.fluid / r.ranks as f64,
                     1e3 * per_step,
                     100.0 * base / per_step,
+                    1e3 * r.own_most / r.steps,
+                    1e3 * r.exchange_most / r.steps,
                     r.copies / r.steps,
                     r.bytes / r.steps / 1e6,
                     r.wall

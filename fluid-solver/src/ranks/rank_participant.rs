@@ -634,6 +634,7 @@ impl<'a> RankParticipant<'a> {
             lines.finish();
         }
         let link = self.me.link;
+        let [own_step_seconds, exchange_seconds] = self.me.time_split(self.step_seconds);
         let summary = RankRunSummary {
             ranks: link.size(),
             time: self.time(),
@@ -646,6 +647,8 @@ impl<'a> RankParticipant<'a> {
             recuts: self.me.recuts,
             wall_seconds: self.started.elapsed().as_secs_f64(),
             step_seconds: self.step_seconds,
+            own_step_seconds,
+            exchange_seconds,
         };
         if self.rank() == 0 {
             eprintln!("fluid `{}`: done: {summary}", self.name);

@@ -44,13 +44,17 @@ pub struct RankRunSummary {
     /// Wall time of the steps with their exchanges and checks (rank 0's; frames, probes and
     /// the set-up left out).
     pub step_seconds: f64,
+    /// The least and the most a rank spent in its own steps, and in its exchanges, the halo's
+    /// sort, reductions and waits ([`super::rank_slab::RankSlab::time_split`]).
+    pub own_step_seconds: [f64; 2],
+    pub exchange_seconds: [f64; 2],
 }
 
 impl std::fmt::Display for RankRunSummary {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "t = {:.4} s in {} steps on {} ranks, {} fluid particles, {} frames, {} particles handed over, {} halo copies, {} bytes sent between ranks, slabs cut again {} times, {:.1} s ({:.3} s in the steps)",
+            "t = {:.4} s in {} steps on {} ranks, {} fluid particles, {} frames, {} particles handed over, {} halo copies, {} bytes sent between ranks, slabs cut again {} times, {:.1} s ({:.3} s in the steps; a rank's own steps {:.3}–{:.3} s, its exchanges and waits {:.3}–{:.3} s)",
             self.time,
             self.steps,
             self.ranks,
@@ -61,7 +65,11 @@ impl std::fmt::Display for RankRunSummary {
             self.sent_bytes,
             self.recuts,
             self.wall_seconds,
-            self.step_seconds
+            self.step_seconds,
+            self.own_step_seconds[0],
+            self.own_step_seconds[1],
+            self.exchange_seconds[0],
+            self.exchange_seconds[1]
         )
     }
 }
@@ -223,6 +231,7 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
         p.finish();
     }
     let owned = me.slab.owned_count();
+    let [own_step_seconds, exchange_seconds] = me.time_split(step_seconds);
     Ok(RankRunSummary {
         ranks,
         time: me.slab.solver.time(),
@@ -235,5 +244,7 @@ pub fn run_on_ranks(case: &Case, out: &Path, link: &RankLink) -> Result<RankRunS
         recuts: me.recuts,
         wall_seconds: started.elapsed().as_secs_f64(),
         step_seconds,
+        own_step_seconds,
+        exchange_seconds,
     })
 }

@@ -33,6 +33,9 @@ pub(super) struct RankSlab<'a> {
     /// How many times the slabs were cut again, and the step of the last count.
     pub(super) recuts: u64,
     pub(super) counted_at: u64,
+    /// Wall seconds of this rank's own steps (its solver's, without the exchanges, reductions
+    /// and waits that follow them).
+    pub(super) own_step_seconds: f64,
 }
 
 fn link_error(message: String) -> RankRunError {
@@ -61,13 +64,16 @@ impl<'a> RankSlab<'a> {
             recut,
             recuts: 0,
             counted_at: 0,
+            own_step_seconds: 0.0,
         }
     }
 
     /// One step of `dt`, the exchanges, and the whole fluid's energy check. Every rank leaves
     /// together: when one rank's step fails, the others learn it from the same reduction.
     pub(super) fn step(&mut self, dt: f64) -> Result<(), RankRunError> {
+        let started = std::time::Instant::now();
         let stepped = self.slab.solver.step(dt).map(|_| ());
+        self.own_step_seconds += started.elapsed().as_secs_f64();
         let failed_rank = self
             .link
             .max(stepped.as_ref().err().map_or(-1.0, |_| self.link.rank() as f64));
@@ -103,6 +109,22 @@ impl<'a> RankSlab<'a> {
         let halo = self.link.exchange(&copies, HALO).map_err(link_error)?;
         self.slab.take_halo(&halo);
         Ok(())
+    }
+
+    /// Over the ranks (every rank calls it): the least and the most time a rank spent in its own
+    /// steps, and in the rest of `step_seconds` (this rank's steps with their exchanges, the
+    /// halo's sort, reductions and waits).
+    pub(super) fn time_split(&self, step_seconds: f64) -> [[f64; 2]; 2] {
+        let rows = self
+            .link
+            .all_rows(&[self.own_step_seconds, step_seconds - self.own_step_seconds]);
+        [0, 1].map(|k| {
+            let column = rows.iter().map(|r| r[k]);
+            [
+                schemas::validation::smallest(column.clone(), f64::INFINITY),
+                schemas::validation::largest(column, 0.0),
+            ]
+        })
     }
 
     /// Whether [`rebalance::CHECK_EVERY`] steps have passed since the slabs' fluid was last
