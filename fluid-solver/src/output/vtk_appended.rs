@@ -7,8 +7,8 @@ use std::io::{self, Write};
 use std::path::Path;
 
 /// One data array: its VTK type, name, components per item, and its values, which are written
-/// straight into the file (a frame's arrays are never copied into byte buffers first: for the
-/// bridge case that was about 50 MB at each output).
+/// into the file a chunk at a time (a frame's arrays are never copied into byte buffers whole:
+/// for the bridge case that was about 50 MB at each output).
 pub struct Array<'a> {
     pub ty: &'static str,
     pub name: &'static str,
@@ -17,6 +17,10 @@ pub struct Array<'a> {
     bytes: usize,
     write_values: ValueWriter<'a>,
 }
+
+/// An array's values go to the file in chunks of this many bytes (one write through the
+/// writers' layers per chunk, not per value: 3–4× faster for a frame).
+const CHUNK_BYTES: usize = 64 * 1024;
 
 /// Writes an array's values as little-endian bytes.
 type ValueWriter<'a> = Box<dyn Fn(&mut dyn Write) -> io::Result<()> + 'a>;
@@ -40,7 +44,17 @@ impl<'a> Array<'a> {
             name,
             components,
             bytes: count * N,
-            write_values: Box::new(move |out| values().try_for_each(|v| out.write_all(&to_le(v)))),
+            write_values: Box::new(move |out| {
+                let mut chunk = Vec::with_capacity(CHUNK_BYTES + N);
+                for v in values() {
+                    chunk.extend_from_slice(&to_le(v));
+                    if chunk.len() >= CHUNK_BYTES {
+                        out.write_all(&chunk)?;
+                        chunk.clear();
+                    }
+                }
+                out.write_all(&chunk)
+            }),
         }
     }
 }
