@@ -19,7 +19,8 @@ pub struct Array<'a> {
 }
 
 /// An array's values go to the file in chunks of this many bytes (one write through the
-/// writers' layers per chunk, not per value: 3–4× faster for a frame).
+/// writers' layers per chunk, not per value: a 4 M-particle frame in 0.6 s instead of 0.9–1.1 s
+/// on the 2-core machine, whose disk then sets the pace).
 const CHUNK_BYTES: usize = 64 * 1024;
 
 /// Writes an array's values as little-endian bytes.
