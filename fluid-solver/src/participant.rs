@@ -426,8 +426,7 @@ impl Participant for FluidParticipant {
             if let Some(f) = &mut self.frames {
                 let due = f.next as f64 * f.interval - 1e-9 * f.interval;
                 if f.pending.is_none() && t >= due {
-                    self.solver.sync_host();
-                    f.pending = Some(self.solver.particles().clone());
+                    f.pending = Some(self.solver.frame_particles().into_owned());
                     f.pending_time = t;
                 }
             }

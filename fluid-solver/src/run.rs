@@ -112,19 +112,22 @@ pub fn run_case(case: &Case, out: &Path, terminal: bool) -> Result<RunSummary, R
     let mut surfaces = cfg
         .surface_mesh
         .then(|| SurfaceFrames::new(out, name, cfg.spacing));
-    let mut write_frame = |solver: &FluidSolver, series: &mut Collection| -> Result<(), RunError> {
+    // the GPU path: a whole copy for a frame (`FluidSolver::frame_particles`), the last one into
+    // the host's own particles
+    let mut write_frame = |solver: &mut FluidSolver, series: &mut Collection| -> Result<(), RunError> {
         let file = format!("{name}_{frames:05}.vtu");
         let path = out.join(&file);
-        vtu::write_vtu(&path, solver.particles(), &mut DiscardProgress).map_err(io_err(&path))?;
-        series.add(solver.time(), &file).map_err(io_err(&pvd_path))?;
+        let time = solver.time();
+        if time >= end {
+            // the last frame: the host's copy is brought up to date for the summary anyway
+            solver.sync_host();
+        }
+        let particles = solver.frame_particles();
+        vtu::write_vtu(&path, &particles, &mut DiscardProgress).map_err(io_err(&path))?;
+        series.add(time, &file).map_err(io_err(&pvd_path))?;
         if let Some(s) = &mut surfaces {
-            s.write(
-                frames as u64,
-                solver.time(),
-                solver.particles(),
-                &mut DiscardProgress,
-            )
-            .map_err(|(path, error)| RunError::Output { path, error })?;
+            s.write(frames as u64, time, &particles, &mut DiscardProgress)
+                .map_err(|(path, error)| RunError::Output { path, error })?;
         }
         frames += 1;
         Ok(())
@@ -146,7 +149,7 @@ pub fn run_case(case: &Case, out: &Path, terminal: bool) -> Result<RunSummary, R
             file.row(solver.time(), &values, solver.removed())
                 .map_err(io_err(&probe_path))
         };
-    write_frame(&solver, &mut series)?;
+    write_frame(&mut solver, &mut series)?;
     solver.remove_gates();
     sample(&solver, &mut probes, &mut probe_file)?;
     let (mut next_frame, mut next_probe) = (1u64, 1u64);
@@ -175,8 +178,7 @@ pub fn run_case(case: &Case, out: &Path, terminal: bool) -> Result<RunSummary, R
             next_probe += 1;
         }
         if solver.time() >= at(next_frame, cfg.output_interval) {
-            solver.sync_host(); // the GPU path: a whole copy only for a frame
-            write_frame(&solver, &mut series)?;
+            write_frame(&mut solver, &mut series)?;
             next_frame += 1;
         }
     }

@@ -1,7 +1,8 @@
 //! The solver's step on the device: the GPU path of [`FluidSolver::step`]. The host keeps the
 //! clock, the totals and the instability detector's thresholds; the particles stay on the device
-//! and are copied back whole only when a frame, a checkpoint or a diagnostic needs them
-//! ([`FluidSolver::sync_host`]); probes read them without a whole copy ([`crate::sensors::view`]).
+//! and are copied back whole only when a frame ([`FluidSolver::frame_particles`]), a checkpoint
+//! or a diagnostic ([`FluidSolver::sync_host`]) needs them; probes read them without a whole copy
+//! ([`crate::sensors::view`]).
 
 use super::device::{GpuDevice, NoAdapter};
 use super::drag::{NOT_APPLIED, SPREAD_AT_CENTROID, SPREAD_AT_SAMPLE_POINT};
@@ -176,9 +177,9 @@ impl FluidSolver {
         self.device.as_deref_mut()
     }
 
-    /// Copies the device's particles to the host when the device is ahead (frames, checkpoints,
-    /// the detector's findings), re-sorting the host's cell list for its point queries. Nothing
-    /// on the CPU path.
+    /// Copies the device's particles to the host when the device is ahead (checkpoints, the
+    /// detector's findings, the end of a run), re-sorting the host's cell list for its point
+    /// queries. Nothing on the CPU path.
     pub fn sync_host(&mut self) {
         if let (Some(dev), true) = (self.device.as_deref_mut(), self.host_stale) {
             let started = std::time::Instant::now();
@@ -189,6 +190,24 @@ impl FluidSolver {
             self.host_stale = false;
             self.host_copies.0 += 1;
             self.host_copies.1 += started.elapsed().as_secs_f64();
+        }
+    }
+
+    /// The particles as they are now, for a frame: the host's own when they are current (the CPU
+    /// path), else a whole copy from the device into a set of its own, in the device's order
+    /// (counted with [`FluidSolver::host_copies`]); the host's copy stays behind the device, so
+    /// no host cell sort follows, and no second copy is made when the frame is kept back.
+    pub fn frame_particles(&mut self) -> std::borrow::Cow<'_, Particles> {
+        match (self.device.as_deref_mut(), self.host_stale) {
+            (Some(dev), true) => {
+                let started = std::time::Instant::now();
+                let mut copy = Particles::default();
+                dev.download(&mut copy);
+                self.host_copies.0 += 1;
+                self.host_copies.1 += started.elapsed().as_secs_f64();
+                std::borrow::Cow::Owned(copy)
+            }
+            _ => std::borrow::Cow::Borrowed(&self.state.particles),
         }
     }
 
