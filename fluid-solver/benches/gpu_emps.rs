@@ -1,5 +1,6 @@
-//! Speed of the GPU path (src/gpu) on the seed's dam-break tank: particle-steps per second, pair
-//! candidates examined per second (the GPIPS-like count, with the pairs beyond the kernel's reach), time
+//! Speed of the GPU path (src/gpu) on the seed's dam-break tank: particle-steps per second, GPIPS
+//! (interacting pairs per second, as GPU SPH codes report it) and pair candidates examined per
+//! second (with the pairs beyond the kernel's reach), time
 //! per stage (each stage submitted and waited for, so the sum is above the plain step) and the
 //! bytes crossing between host and device per step and per probe window (0.01 s).
 //!
@@ -11,6 +12,7 @@
 //! GPU speed.
 
 use fluid_solver::gpu::GpuDevice;
+use fluid_solver::neighbours::interacting_pairs::interacting_pairs;
 use fluid_solver::FluidSolver;
 use schemas::case::fluid::FluidConfig;
 use schemas::case::Case;
@@ -72,6 +74,7 @@ fn run(base: &FluidConfig, ds: f64, depth: f64, steps: u64, wide: bool) {
     }
     let plain = start.elapsed().as_secs_f64();
     let candidates = solver.totals().candidates - before;
+    let interactions = interactions_per_step(&mut solver, &cfg);
     let Some(d) = solver.device_mut() else { return };
     let (up0, down0) = d.bytes_moved();
     d.set_profile(true);
@@ -91,9 +94,10 @@ fn run(base: &FluidConfig, ds: f64, depth: f64, steps: u64, wide: bool) {
         false => "plain f32 positions",
     };
     println!(
-        "Δs = {ds} m ({positions}), {n} particles, {steps} steps: {:.3e} particle-steps/s ({:.2} ms/step); {:.3} G pair candidates/s (every pair examined in the step's passes, those beyond the kernel's reach included: the GPIPS peers print counts pairs of interacting particles, at most this)",
+        "Δs = {ds} m ({positions}), {n} particles, {steps} steps: {:.3e} particle-steps/s ({:.2} ms/step); {:.3} GPIPS ({interactions} interacting pairs a step: a fluid particle and a neighbour within r_e, in the number density, pressure gradient and, when on, viscous passes, counted at the run's end); {:.3} G pair candidates/s (every pair the passes examine, those beyond r_e included)",
         (n * steps) as f64 / plain,
         1e3 * plain / steps as f64,
+        (interactions * steps) as f64 / plain / 1e9,
         candidates as f64 / plain / 1e9
     );
     println!(
@@ -113,6 +117,18 @@ fn run(base: &FluidConfig, ds: f64, depth: f64, steps: u64, wide: bool) {
     for (name, s) in d.stage_times().stages().iter().filter(|(n, _)| *n != "step") {
         println!("    {name:<24} {:8.3}", 1e3 * s / profiled as f64);
     }
+}
+
+/// The pairs the step's pair passes sum over, counted on the particles as they are now (a whole
+/// copy from the device): the number density's (r_e), the pressure gradient's (r_e of the
+/// gradient), and the viscous term's (r_e) when it is on; the collision stage's few close pairs
+/// are left out.
+fn interactions_per_step(solver: &mut FluidSolver, cfg: &FluidConfig) -> u64 {
+    solver.sync_host();
+    let (p, grid, k) = (solver.particles(), solver.cell_grid(), solver.kernel());
+    let density = interacting_pairs(p, grid, k.re);
+    let gradient = interacting_pairs(p, grid, k.re_grad);
+    density * (1 + u64::from(cfg.viscosity_term)) + gradient
 }
 
 fn main() {

@@ -59,6 +59,7 @@ mod lattice;
 mod mesh_bodies;
 #[cfg(feature = "mpi")]
 mod mpi_ranks;
+mod neighbours_interacting_pairs;
 mod open_top;
 mod operators;
 mod output;
