@@ -1,15 +1,16 @@
 //! Time to solution of `cases/solitary-runup` (a solitary wave, H/d = 0.2, running up a 1:3
-//! beach; ISPH with Lind's shifting) on this machine's CPU threads: the run-up R the probe reads
-//! against Synolakis' (1987) law R/d = 2.831 √(cot β) (H/d)^{5/4}, the wall time, and
-//! particle-steps per second, in a table.
+//! beach; ISPH with Lind's shifting, as shipped, or E-MPS) on this machine's CPU threads: the
+//! run-up R the probe reads against Synolakis' (1987) law R/d = 2.831 √(cot β) (H/d)^{5/4}, the
+//! wall time, and particle-steps per second, in a table.
 //!
 //! `cargo bench -p fluid-solver --bench solitary_runup` runs the shipped resolution (d/16,
 //! about 3.5 min on 2 cores); `… -- 16 24` runs d/16 and d/24 (Δt scaled with Δs, as the case's
-//! c Δt/Δs); `… -- 8` a quick d/8 to check the bench itself.
+//! c Δt/Δs); `… -- 8` a quick d/8 to check the bench itself; `emps` among the arguments runs
+//! E-MPS instead (at c Δt/Δs = 0.5, c the case's default sound speed).
 
 use fluid_solver::probes::ProbeSet;
 use fluid_solver::FluidSolver;
-use schemas::case::fluid::FluidConfig;
+use schemas::case::fluid::{FluidConfig, FluidMethodName};
 use schemas::case::Case;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -19,12 +20,20 @@ const DEPTH: f64 = 0.1;
 const HEIGHT: f64 = 0.02;
 const COT_BETA: f64 = 3.0;
 
-/// One run at Δs = d/`n`: (R [m], wall time [s], particles, steps).
-fn run(base: &FluidConfig, n: f64) -> Result<(f64, f64, usize, u64), String> {
+/// E-MPS's acoustic Courant number c Δt/Δs in this bench.
+const EMPS_COURANT: f64 = 0.5;
+
+/// One run at Δs = d/`n` with `method`: (R [m], wall time [s], particles, steps).
+fn run(base: &FluidConfig, n: f64, method: FluidMethodName) -> Result<(f64, f64, usize, u64), String> {
     let mut cfg = base.clone();
     let scale = (DEPTH / n) / base.spacing;
     cfg.spacing = DEPTH / n;
     cfg.time_step = base.time_step * scale;
+    if method == FluidMethodName::Emps {
+        cfg.method = method;
+        cfg.isph = None;
+        cfg.time_step = EMPS_COURANT * cfg.spacing / cfg.sound_speed();
+    }
     cfg.validate("fluid.flume").map_err(|e| format!("{e:?}"))?;
     let started = Instant::now();
     let mut solver = FluidSolver::new(&cfg);
@@ -41,7 +50,7 @@ fn run(base: &FluidConfig, n: f64) -> Result<(f64, f64, usize, u64), String> {
     while t < end - 1e-9 {
         t = (t + interval).min(end);
         solver.advance_to(t).map_err(|e| e.to_string())?;
-        highest = highest.max(probes.row(&solver)[column]);
+        highest = schemas::validation::max_or_nan(highest, probes.row(&solver)[column]);
     }
     Ok((
         highest - DEPTH,
@@ -68,16 +77,24 @@ fn main() {
     if sizes.is_empty() {
         sizes.push(16.0);
     }
+    let method = match std::env::args().any(|a| a == "emps") {
+        true => FluidMethodName::Emps,
+        false => FluidMethodName::Isph,
+    };
     let law = DEPTH * 2.831 * COT_BETA.sqrt() * (HEIGHT / DEPTH).powf(1.25);
     println!(
-        "solitary-runup, ISPH + Lind shifting, to t = 1.3 s on {} threads; Synolakis' law R = {:.1} mm",
+        "solitary-runup, {}, to t = 1.3 s on {} threads; Synolakis' law R = {:.1} mm",
+        match method {
+            FluidMethodName::Emps => "E-MPS (c Δt/Δs = 0.5)",
+            FluidMethodName::Isph => "ISPH + Lind shifting",
+        },
         rayon::current_num_threads(),
         1e3 * law
     );
     println!("| Δs | particles | steps | R [mm] | R / law | wall time [s] | particle-steps/s |");
     println!("|---|---|---|---|---|---|---|");
     for n in sizes {
-        match run(&base, n) {
+        match run(&base, n, method) {
             Ok((r, wall, particles, steps)) => println!(
                 "| d/{n} | {particles} | {steps} | {:.1} | {:.2} | {wall:.1} | {:.3e} |",
                 1e3 * r,
