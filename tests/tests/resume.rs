@@ -2,7 +2,8 @@
 //! uninterrupted, and once killed (SIGKILL to the coupler and both participants, at a random moment
 //! after the first checkpoint) and resumed with `coupler run CASE --resume OUT`; every output file of
 //! the two runs must then be equal byte for byte. The fracturing frame is also resumed from each of
-//! its two checkpoints, one before and one after the fracture. Excluded, because they hold wall-clock time or
+//! its two checkpoints, one before and one after the fracture; the floating pool is also resumed
+//! with its fluid on the GPU. Excluded, because they hold wall-clock time or
 //! the run's identity: the logs (`NAME.log`, appended to by the resumed run), the checkpoint folder,
 //! and in `recording.rec` each frame's wall time, the run id (header, `Welcome`) and the pid in each `Hello`
 //! (the recording is compared frame by frame on everything else).
@@ -10,8 +11,8 @@
 use schemas::message::{FromParticipant, ToParticipant};
 use schemas::recording::{Message, Recording};
 use stack_tests::{
-    binary, breakable_drag_column_case, case_from, coupler, coupler_run, csv_rows, out_dir, stderr,
-    DRAG_COLUMN_CASE,
+    binary, breakable_drag_column_case, case_from, coupler, coupler_run, csv_rows, gpu_coupler_run, out_dir,
+    replaced, stderr, DRAG_COLUMN_CASE, FLOATING_POOL_CASE,
 };
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -216,14 +217,20 @@ fn resume(case: &Path, out: &Path) -> String {
 /// Runs `case` uninterrupted into `dir/whole`, then killed and resumed into `dir/resumed`, and
 /// compares the two.
 fn killed_and_resumed_equals_uninterrupted(dir: &Path, case: &Path) {
-    let whole = dir.join("whole");
-    let run = coupler_run(case, &whole);
+    let run = coupler_run(case, &dir.join("whole"));
     let err = stderr(&run);
     assert!(run.status.success(), "{err}");
     assert!(
         err.contains("checkpoints "),
         "the output estimate counts the checkpoints: {err}"
     );
+    killed_and_resumed_equals(dir, case);
+}
+
+/// Runs `case` killed and resumed into `dir/resumed` and compares it with the uninterrupted run
+/// in `dir/whole`.
+fn killed_and_resumed_equals(dir: &Path, case: &Path) {
+    let whole = dir.join("whole");
     // Killed anywhere in the next 1.5 checkpoint intervals after the first checkpoint; a run
     // that ended before its kill tested no kill, so it is run again killed sooner (a quarter of
     // the interval each time), until a kill lands.
@@ -236,6 +243,29 @@ fn killed_and_resumed_equals_uninterrupted(dir: &Path, case: &Path) {
     }
     resume(case, &resumed);
     assert_same_outputs(&whole, &resumed);
+}
+
+/// The floating pool with its fluid on the GPU (lavapipe in CI): a checkpoint copies the
+/// particles back while the device steps on in its own order, and the resumed run uploads the
+/// host's copy; the f32 sums must still come out in the same order, every frame and CSV equal.
+#[test]
+fn a_floating_box_on_the_gpu_killed_and_resumed_writes_the_same_outputs() {
+    let dir = out_dir("resume-gpu-floating-pool");
+    let case = dir.join("case.toml");
+    let text = replaced(
+        FLOATING_POOL_CASE,
+        &[
+            ("end_time = 2.0", "end_time = 0.048"),
+            ("[fluid.pool]\n", "[fluid.pool]\nbackend = \"gpu\"\n"),
+            ("output_interval = 0.5", "output_interval = 0.008"),
+        ],
+    );
+    std::fs::write(&case, text).unwrap_or_else(|e| panic!("{e}"));
+    with_checkpoints(&case, "0.016");
+    if gpu_coupler_run(&case, &dir.join("whole"), "gpu").is_none() {
+        return;
+    }
+    killed_and_resumed_equals(&dir, &case);
 }
 
 #[test]
