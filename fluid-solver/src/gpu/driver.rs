@@ -211,9 +211,10 @@ impl FluidSolver {
         }
     }
 
-    /// Whole copies of the particles from the device so far ([`FluidSolver::sync_host`]: frames,
-    /// checkpoints, the detector's findings), and their wall seconds with the host's cell sort
-    /// after each.
+    /// Whole copies of the particles from the device so far (frames through
+    /// [`FluidSolver::frame_particles`]; checkpoints, the detector's findings and a run's end
+    /// through [`FluidSolver::sync_host`]), and their wall seconds (with the host's cell sort
+    /// after those of `sync_host`).
     pub fn host_copies(&self) -> (u64, f64) {
         self.host_copies
     }

@@ -1,9 +1,9 @@
 //! The device's particles in a box, copied back without the rest: what a filtered wall-pressure
 //! sensor reads after every step on the GPU path ([`crate::sensors::probes::ProbeSet::observe`])
 //! and a local probe at a row ([`crate::sensors::view`]); a standalone run's inflow balance (and
-//! a global probe with wide positions) reads all of them, as light ([`GpuEmps::particles_all`]). The whole copy
-//! ([`crate::FluidSolver::sync_host`]) comes only for frames, checkpoints and the detector's
-//! findings.
+//! a global probe with wide positions) reads all of them, as light ([`GpuEmps::particles_all`]). A whole copy
+//! comes only for frames ([`crate::FluidSolver::frame_particles`]), checkpoints and the
+//! detector's findings ([`crate::FluidSolver::sync_host`]).
 //!
 //! The device keeps its particles in the order of the step's last cell sort (at r*): the
 //! particles of cell c are the slots `cell_start[c] .. cell_start[c + 1]`, and a row of cells
