@@ -214,7 +214,7 @@ fn main() {
     let bytes_per_copy = runs.iter().map(|r| r.bytes).sum::<f64>() / copies.max(1.0);
     println!();
     println!(
-        "On paper: ranks of {RANK_SIZE:.0e} fluid particles, each at the one-rank rate ({rate:.3e} particle-steps/s on a core) and the {:.0} % efficiency measured on {} ranks with a core each: {:.2} s a step. A halo copy costs {bytes_per_copy:.0} B; a rank sends about 2 × 17.5 lattice planes of its cross-section a step.",
+        "On paper: ranks of {RANK_SIZE:.0e} fluid particles, each at the one-rank rate ({rate:.3e} particle-steps/s on a core) and the {:.0} % efficiency measured on {} ranks with a core each: {:.2} s a step. A halo copy costs {bytes_per_copy:.0} B; a rank sends the fluid within a halo (8.0 Δs in this flume without the viscous term, docs/guide/ranks.md) of each inner face a step.",
         100.0 * efficiency,
         last.ranks,
         per_step

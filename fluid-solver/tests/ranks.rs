@@ -28,7 +28,8 @@ const SPREADS: f64 = 100.0;
 
 /// A 1.6 × 0.06 × 0.3 m tank with a lid at Δs = 0.02 m (three particles deep) and a water
 /// column 1.2 m wide and 0.24 m high on its left (2 160 fluid particles): long enough for three
-/// slabs of at least the halo (5 × 3.1 Δs + 2 Δs = 0.35 m). Gravity leans 6 m/s² towards +x (a
+/// slabs of at least the halo (with the viscous term 0.8 Δs + 2.1 Δs + 2 × 3.1 Δs + 2 Δs =
+/// 11.1 Δs = 0.222 m). Gravity leans 6 m/s² towards +x (a
 /// tilted tank), so the whole column moves along x from the start, ½ 6 t² = 1.7 cm by 0.075 s,
 /// and the water crosses the cuts inside it, not only at its front.
 pub(crate) const TANK: &str = r#"[case]
@@ -436,7 +437,7 @@ fn slabs_cut_again_as_a_dam_break_moves_stay_within_the_undivided_runs_spread() 
 /// A channel 3.8 m long at Δs = 0.05 m (4 × 4 particles of water across, 0.2 m deep): a strip
 /// feeds water in at 0.5 m/s through the plane x = 0.4 m and water leaves behind x = 3.4 m;
 /// gravity leans 3 m/s² towards +x (½ 3 t² = 0.24 m by 0.4 s), so the water crosses the cuts. Two
-/// slabs cut it at 1.9 m, three at 1.4 and 2.4 m: every boundary more than the halo (0.875 m)
+/// slabs cut it at 1.9 m, three at 1.4 and 2.4 m: every boundary more than the halo (8.0 Δs = 0.4 m, the viscous term off)
 /// from the nearest cut.
 pub(crate) const CHANNEL: &str = r#"[case]
 name = "slab-channel"
@@ -695,10 +696,10 @@ fn a_body_across_a_cut_takes_the_undivided_runs_loads() {
 #[test]
 fn slabs_thinner_than_the_halo_and_unsupported_scenes_are_refused() {
     let cfg = tank();
-    let e = DecomposedFluid::new(&cfg, 4).err().unwrap_or_default();
+    let e = DecomposedFluid::new(&cfg, 6).err().unwrap_or_default();
     assert!(
         e.contains("use fewer slabs"),
-        "four slabs of 0.3 m against a 0.35 m halo: {e}"
+        "six slabs of 0.2 m against a 0.222 m halo: {e}"
     );
     let mut isph = cfg.clone();
     isph.method = schemas::case::fluid::FluidMethodName::Isph;

@@ -52,7 +52,7 @@ impl SlabPlan {
     pub fn new(whole: &mut FluidSolver, probes: &[ProbeConfig], parts: usize) -> Result<SlabPlan, PlanError> {
         let probes = ProbeSet::new(probes, whole).map_err(PlanError::Probe)?;
         whole.remove_gates();
-        let halo = halo_width(whole.kernel());
+        let halo = halo_width(whole.kernel(), whole.physics().viscous());
         let cuts = cuts(whole.particles(), parts, halo).map_err(PlanError::Slabs)?;
         let open = whole.open_boundaries();
         open_boundaries_fit(open.inflow_plane(), open.outflow_plane(), &cuts, halo)

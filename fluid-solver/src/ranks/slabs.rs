@@ -1,24 +1,30 @@
 //! Where the fluid is cut into slabs, and the halo each slab needs.
 
 use crate::emps::kernel::Kernel;
+use crate::neighbours::collision::COLLISION_DISTANCE;
 use crate::particles::kind::FLUID;
 use crate::particles::Particles;
 
-/// Neighbour passes whose results an owned particle's step depends on in a chain: the viscous
-/// term (at r^k), the number density at r*, the pressure gradient (and the artificial viscosity)
-/// at r*, the collisions, and the number density at the step's end (crate::emps::step). A
-/// particle within this many kernel reaches of an owned one can change its step; one farther
-/// cannot.
-pub const CHAINED_PASSES: f64 = 5.0;
-
-/// Spacings added to the halo for what the particles move in a step (the detector stops a step
-/// that moves one farther than a spacing).
+/// Spacings added to the halo for what the particles move in a step: the detector stops a step
+/// that moves a particle more than half a spacing (`crate::stability::MAX_STEP_DISPLACEMENT`),
+/// and a chain of passes (see [`halo_width`]) is measured at positions up to that far from
+/// those the halo is taken at: at its two ends, and twice where it turns from the positions
+/// after S1-11 to those after S1-13.
 pub const MOTION_SPACINGS: f64 = 2.0;
 
-/// The halo's thickness: every particle within it of a slab's faces is copied to the slab, so
-/// that the owned particles' step is the whole domain's (see [`CHAINED_PASSES`]).
-pub fn halo_width(k: &Kernel) -> f64 {
-    CHAINED_PASSES * k.re.max(k.re_grad) + MOTION_SPACINGS * k.spacing
+/// The halo's thickness: every fluid particle within it of a slab's faces is copied to the
+/// slab, so that the owned particles' step is the whole domain's. It is the sum of the reaches
+/// of the neighbour passes an owned particle's step depends on in a chain (`crate::emps::step`),
+/// plus [`MOTION_SPACINGS`]: the collisions (0.8 Δs) of velocities set by the pressure gradient
+/// and the artificial viscosity (r_e,grad) from pressures of the number density at r* (r_e),
+/// and, with the viscous term on, r* set by the viscous term at r^k (r_e). At E-MPS's radii that
+/// is 6.0 Δs + 2 Δs, 9.1 Δs + 2 Δs with the viscous term. What reads the halo (probes, the drag
+/// coupling's sampling and spreading, frames) reads it after the exchange that ends a step, when
+/// every copy is its owner's state.
+pub fn halo_width(k: &Kernel, viscous: bool) -> f64 {
+    let viscous_term = if viscous { k.re } else { 0.0 };
+    let chain = COLLISION_DISTANCE * k.spacing + k.re_grad + k.re + viscous_term;
+    chain + MOTION_SPACINGS * k.spacing
 }
 
 /// The cuts of `parts` slabs along x: slab r owns `cuts[r] ≤ x < cuts[r + 1]` (the first and

@@ -228,8 +228,8 @@ pub struct FluidConfig {
     /// MPI ranks that step the fluid, each a slab along x balanced by fluid particles (the
     /// fluid solver built with its `mpi` feature; `coupler run` starts them through
     /// `launcher`). Default 1: one process. More than one runs E-MPS on CPU threads, without
-    /// a wave maker or surface meshes (the drag coupling's members at most about 6 Δs wide).
-    /// Range: ≥ 1.
+    /// a wave maker or surface meshes (the drag coupling's members at most 2.1 Δs wide, 3.65 Δs
+    /// with the viscous term). Range: ≥ 1.
     #[serde(default)]
     pub ranks: Option<usize>,
     /// The command that starts `ranks` processes, `{ranks}` where their number goes (e.g.
