@@ -64,3 +64,44 @@ fn long_sub_members_a_section_axis_along_the_member_and_a_free_frame_are_named()
         println!("warning: {w}");
     }
 }
+
+/// A shipped case's text with `edit` applied, parsed, and its warnings.
+fn shipped(case: &str, edit: impl Fn(String) -> String) -> Vec<String> {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("../cases/{case}/case.toml"));
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let case = Case::parse(&path, edit(text)).unwrap_or_else(|e| panic!("{e}"));
+    case.warnings()
+}
+
+#[test]
+fn e_mps_asked_to_carry_a_wave_is_warned_and_isph_is_not() {
+    let damps = |w: &Vec<String>| {
+        w.iter()
+            .any(|w| w.contains("E-MPS damps gravity waves") && w.contains("shifting = \"lind\""))
+    };
+    // a wave maker (the solitary wave over a flat bed) and an initial wave (the run-up), as
+    // shipped with ISPH and switched to E-MPS
+    for case in ["solitary-wave-flat", "solitary-runup"] {
+        let isph = shipped(case, |t| t);
+        assert!(!damps(&isph), "{case} with ISPH: {isph:?}");
+        // without ISPH's table, and E-MPS's sound speed needs a shorter step (c Δt/Δs ≤ 1)
+        let emps = shipped(case, |t| {
+            t.replace("method = \"isph\"", "method = \"emps\"")
+                .lines()
+                .filter(|l| !l.starts_with("isph ="))
+                .map(|l| {
+                    if l.starts_with("time_step =") {
+                        "time_step = 2.5e-4"
+                    } else {
+                        l
+                    }
+                })
+                .collect::<Vec<_>>()
+                .join("\n")
+        });
+        assert!(damps(&emps), "{case} with E-MPS: {emps:?}");
+    }
+    // E-MPS without a wave (the dam break of seed 000's tank) is not
+    let tank = shipped("dam-break-floating-box", |t| t);
+    assert!(!damps(&tank), "{tank:?}");
+}

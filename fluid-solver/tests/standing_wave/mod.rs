@@ -15,7 +15,7 @@
 //! reaches A but crosses L/2 first 12 % of a half period early and its next swing grows to
 //! 1.3–1.8 A; with Lind's shifting it follows the first half period within 5 %, grows to 1.2 A at
 //! d/16 and keeps 0.97–1.04 A at d/32 (the setting `cases/solitary-wave-flat` uses); E-MPS
-//! is dominated by its own settling noise.
+//! damps it (`docs/notes/emps-gravity-waves.md`).
 
 use crate::common;
 use fluid_solver::{FluidSolver, Kind};
@@ -194,7 +194,7 @@ fn a_standing_wave_keeps_its_amplitude_and_period_with_default_isph_and_shifting
 }
 
 #[test]
-#[ignore = "fails today: E-MPS's settling noise swamps the wave (docs/notes/standing-wave.md)"]
+#[ignore = "fails today: E-MPS damps the wave, 0.45 A at the second swing at d/8, less at d/16 (docs/notes/emps-gravity-waves.md)"]
 fn a_standing_wave_keeps_its_amplitude_and_period_with_emps() {
     let s = swing(
         FluidMethodName::Emps,

@@ -472,8 +472,9 @@ impl FluidConfig {
     }
 
     /// What a run tells the user before it starts, one sentence each (runs print each as a
-    /// `warning: ` line): the settings the method leaves unused ([`FluidConfig::unused_by_method`])
-    /// and the ISPH settings known to misread a load in this case's geometry.
+    /// `warning: ` line): the settings the method leaves unused ([`FluidConfig::unused_by_method`]),
+    /// the ISPH settings known to misread a load in this case's geometry, and E-MPS asked to carry
+    /// a wave (docs/notes/emps-gravity-waves.md).
     pub fn warnings(&self) -> Vec<String> {
         let mut warnings = self.unused_by_method();
         let isph = self.isph_settings();
@@ -488,6 +489,12 @@ impl FluidConfig {
             warnings.push(format!(
                 "`isph.pressure_gradient` = \"{name}\" with a `body`: that gradient has no face normals at a body's convex edges (with them a held box read +9.6 % of ρgV), and the still water at a held box's corners moves (0.2 m/s at a 12 cm box, where the default's stays below 1e-3 m/s); without them, on the wall box of the MARIN dam break's CI twin (cases/dam-break-obstacle, Δs = 0.04 m), the sensor 2 cm under the box's top edge read a pull (−169 … −204 % of the measured mean over 0.6–0.8 s; −20 … −23 % with them); for loads near a body's edges use the default pressure_gradient = \"corrected-difference\""
             ));
+        }
+        if self.method == FluidMethodName::Emps && (self.wave_maker.is_some() || self.initial_wave.is_some())
+        {
+            warnings.push(
+                "`method` = \"emps\" with a `wave_maker` or an `initial_wave`: E-MPS damps gravity waves (a standing wave keeps 0.45 of its amplitude after one period at d/8, less at d/16; a solitary wave of H/d = 0.2 keeps 0.84 H after 10 depths at d/16 and travels about a quarter slow, and its run-up on a 1:3 beach reaches 0.30–0.33 of Synolakis' law), so read loads only where the wave has travelled a few depths; for waves use method = \"isph\" with isph = { shifting = \"lind\" } (docs/notes/emps-gravity-waves.md)".into(),
+            );
         }
         warnings
     }
