@@ -26,9 +26,9 @@ pub(crate) mod probe_rows;
 mod resume;
 
 use crate::gpu::GpuDevice;
+use crate::output::background::BackgroundWriter;
+use crate::output::frame_files::FrameFiles;
 use crate::output::progress::{peak_memory_bytes, Progress, RunSummary};
-use crate::output::vtp::SurfaceFrames;
-use crate::output::vtu;
 use crate::sensors::probes::{ProbeFile, ProbeSet};
 use crate::solver::FluidSolver;
 use crate::state::FluidState;
@@ -38,24 +38,20 @@ use schemas::case::Case;
 use schemas::f64s::F64s;
 use schemas::message::{Fields, InterfaceDecl, Role, Waveform};
 use schemas::participant::{DiscardProgress, Participant, ProgressSink};
-use schemas::pvd::Collection;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// A window may start this far (relative to max(1, t)) from the time the fluid is at.
 const TIME_MATCH: f64 = 1e-9;
 
 /// VTU frames of a participant: where, how often, and the frame due next.
 struct Frames {
-    dir: PathBuf,
-    name: String,
     interval: f64,
-    series: Collection,
     next: u64,
     /// A state due for a frame in the last window, written once the window is accepted.
     pending: Option<crate::particles::Particles>,
     pending_time: f64,
-    /// Free-surface meshes written with each frame (`surface_mesh = true`).
-    surfaces: Option<SurfaceFrames>,
+    /// The frames' files, written on a thread of their own while the solver steps on.
+    files: BackgroundWriter<FrameFiles>,
 }
 
 /// One fluid participant of a case, with its checkpoint.
@@ -96,20 +92,15 @@ impl FluidParticipant {
         let frames = match out {
             Some(dir) => {
                 std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-                let mut f = Frames {
-                    dir: dir.to_path_buf(),
-                    name: name.to_string(),
+                let mut files = FrameFiles::new(dir.to_path_buf(), name, cfg.spacing, cfg.surface_mesh);
+                files.write(0, 0.0, solver.particles(), &mut DiscardProgress)?;
+                Some(Frames {
                     interval: cfg.output_interval,
-                    series: Collection::new(dir.join(format!("{name}.pvd"))),
                     next: 1,
                     pending: None,
                     pending_time: 0.0,
-                    surfaces: cfg
-                        .surface_mesh
-                        .then(|| SurfaceFrames::new(dir, name, cfg.spacing)),
-                };
-                f.write(0, 0.0, solver.particles(), &mut DiscardProgress)?;
-                Some(f)
+                    files: BackgroundWriter::new(files),
+                })
             }
             None => None,
         };
@@ -254,20 +245,31 @@ impl FluidParticipant {
         );
     }
 
-    /// Writes the frame and probe rows kept back from the last window (that window was accepted),
-    /// telling `progress` of the bytes written.
+    /// Writes the probe rows kept back from the last window (that window was accepted) and
+    /// starts writing its frame on the frames' thread, telling `progress` of the bytes written
+    /// while it waits for the frame before.
     fn commit(&mut self, progress: &mut dyn ProgressSink) -> Result<(), String> {
         if let Some(p) = &mut self.probes {
             p.commit()?;
         }
         if let Some(f) = &mut self.frames {
             if let Some(p) = f.pending.take() {
-                let k = f.next;
-                f.write(k, f.pending_time, &p, progress)?;
+                let (k, time) = (f.next, f.pending_time);
+                f.files.start(progress, move |files, progress| {
+                    files.write(k, time, &p, progress)
+                })?;
                 f.next += 1;
             }
         }
         Ok(())
+    }
+
+    /// Waits until every frame committed so far is written.
+    fn flush_frames(&mut self, progress: &mut dyn ProgressSink) -> Result<(), String> {
+        match &mut self.frames {
+            Some(f) => f.files.wait(progress).map(|_| ()),
+            None => Ok(()),
+        }
     }
 }
 
@@ -294,27 +296,6 @@ pub(crate) fn check_point_reactions(name: &str, f: &Fields) -> Result<(), String
         ));
     }
     Ok(())
-}
-
-impl Frames {
-    fn write(
-        &mut self,
-        k: u64,
-        time: f64,
-        p: &crate::particles::Particles,
-        progress: &mut dyn ProgressSink,
-    ) -> Result<(), String> {
-        let file = format!("{}_{k:05}.vtu", self.name);
-        let path = self.dir.join(&file);
-        vtu::write_vtu(&path, p, progress).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        if let Some(s) = &mut self.surfaces {
-            s.write(k, time, p, progress)
-                .map_err(|(path, e)| format!("cannot write {}: {e}", path.display()))?;
-        }
-        self.series
-            .add(time, &file)
-            .map_err(|e| format!("cannot write the PVD in {}: {e}", self.dir.display()))
-    }
 }
 
 impl Participant for FluidParticipant {
@@ -468,6 +449,7 @@ impl Participant for FluidParticipant {
         }
         self.report_momentum();
         self.commit(progress)?;
+        self.flush_frames(progress)?;
         let s = &self.solver;
         let summary = RunSummary {
             time: s.time(),

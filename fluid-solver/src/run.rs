@@ -6,17 +6,16 @@
 
 use crate::boundaries::open_boundary::BalanceFile;
 use crate::gpu::driver::GpuStartError;
+use crate::output::background::BackgroundWriter;
+use crate::output::frame_files::FrameFiles;
 pub use crate::output::progress::RunSummary;
 use crate::output::progress::{peak_memory_bytes, Progress};
-use crate::output::vtp::SurfaceFrames;
-use crate::output::vtu;
 use crate::sensors::probes::{ProbeFile, ProbeSet};
 use crate::sensors::view::ParticleView;
 use crate::solver::FluidSolver;
 use crate::stability::Instability;
 use schemas::case::{Case, FluidConfig};
 use schemas::participant::DiscardProgress;
-use schemas::pvd::Collection;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -27,6 +26,8 @@ pub enum RunError {
     NotFluidOnly { file: PathBuf, message: String },
     /// An output could not be written.
     Output { path: PathBuf, error: std::io::Error },
+    /// A frame could not be written (the message names its file).
+    Frames(String),
     /// A probe cannot be placed where the case puts it.
     Probe { file: PathBuf, message: String },
     /// The run became unstable; the frames written so far are kept.
@@ -46,6 +47,7 @@ impl fmt::Display for RunError {
             RunError::Unstable(i) => write!(f, "{i}"),
             RunError::Gpu { file, error } => write!(f, "{}: {error}", file.display()),
             RunError::Ranks { message } => write!(f, "{message}"),
+            RunError::Frames(message) => write!(f, "{message}"),
         }
     }
 }
@@ -100,8 +102,6 @@ pub fn run_case(case: &Case, out: &Path, terminal: bool) -> Result<RunSummary, R
         file: case.path.clone(),
         message,
     })?;
-    let pvd_path = out.join(format!("{name}.pvd"));
-    let mut series = Collection::new(pvd_path.clone());
     let probe_path = out.join(format!("{name}_probes.csv"));
     let mut probe_file = ProbeFile::create(&probe_path, &probes.names()).map_err(io_err(&probe_path))?;
     let probe_interval = cfg.probe_interval.unwrap_or(cfg.output_interval);
@@ -109,26 +109,28 @@ pub fn run_case(case: &Case, out: &Path, terminal: bool) -> Result<RunSummary, R
     let mut progress = Progress::new(name, end, cfg.progress_interval, terminal);
 
     let mut frames = 0usize;
-    let mut surfaces = cfg
-        .surface_mesh
-        .then(|| SurfaceFrames::new(out, name, cfg.spacing));
-    // the GPU path: a whole copy for a frame (`FluidSolver::frame_particles`), the last one into
-    // the host's own particles
-    let mut write_frame = |solver: &mut FluidSolver, series: &mut Collection| -> Result<(), RunError> {
-        let file = format!("{name}_{frames:05}.vtu");
-        let path = out.join(&file);
+    let mut frame_files = BackgroundWriter::new(FrameFiles::new(
+        out.to_path_buf(),
+        name,
+        cfg.spacing,
+        cfg.surface_mesh,
+    ));
+    // a frame's particles are copied (on the GPU path downloaded by `FluidSolver::frame_particles`,
+    // the last frame into the host's own particles) and written on the frames' thread while the
+    // solver steps on
+    let mut write_frame = |solver: &mut FluidSolver| -> Result<(), RunError> {
         let time = solver.time();
         if time >= end {
             // the last frame: the host's copy is brought up to date for the summary anyway
             solver.sync_host();
         }
-        let particles = solver.frame_particles();
-        vtu::write_vtu(&path, &particles, &mut DiscardProgress).map_err(io_err(&path))?;
-        series.add(time, &file).map_err(io_err(&pvd_path))?;
-        if let Some(s) = &mut surfaces {
-            s.write(frames as u64, time, &particles, &mut DiscardProgress)
-                .map_err(|(path, error)| RunError::Output { path, error })?;
-        }
+        let particles = solver.frame_particles().into_owned();
+        let k = frames as u64;
+        frame_files
+            .start(&mut DiscardProgress, move |files, progress| {
+                files.write(k, time, &particles, progress)
+            })
+            .map_err(RunError::Frames)?;
         frames += 1;
         Ok(())
     };
@@ -149,7 +151,7 @@ pub fn run_case(case: &Case, out: &Path, terminal: bool) -> Result<RunSummary, R
             file.row(solver.time(), &values, solver.removed())
                 .map_err(io_err(&probe_path))
         };
-    write_frame(&mut solver, &mut series)?;
+    write_frame(&mut solver)?;
     solver.remove_gates();
     sample(&solver, &mut probes, &mut probe_file)?;
     let (mut next_frame, mut next_probe) = (1u64, 1u64);
@@ -178,10 +180,11 @@ pub fn run_case(case: &Case, out: &Path, terminal: bool) -> Result<RunSummary, R
             next_probe += 1;
         }
         if solver.time() >= at(next_frame, cfg.output_interval) {
-            write_frame(&mut solver, &mut series)?;
+            write_frame(&mut solver)?;
             next_frame += 1;
         }
     }
+    frame_files.wait(&mut DiscardProgress).map_err(RunError::Frames)?;
     progress.finish();
     solver.sync_host();
     Ok(RunSummary {

@@ -63,6 +63,7 @@ mod neighbours_interacting_pairs;
 mod open_top;
 mod operators;
 mod output;
+mod output_background;
 mod participant;
 mod probes;
 mod ranks;

@@ -4,8 +4,12 @@
 //! - [`vtu`]: particle frames (VTU) and their PVD series;
 //! - [`surface_mesh`]: the free-surface mesh, and [`vtp`]: its frames (VTP);
 //! - [`vtk_appended`]: the VTK XML layout with raw appended data both writers share;
-//! - [`progress`]: progress lines and the run's summary.
+//! - [`progress`]: progress lines and the run's summary;
+//! - [`frame_files`]: a frame's files and series, and [`background`]: frames written on a
+//!   thread of their own while the solver steps on.
 
+pub mod background;
+pub mod frame_files;
 pub mod progress;
 pub mod surface_mesh;
 pub mod vtk_appended;

@@ -6,6 +6,8 @@
 
 use super::probe_rows::SavedProbes;
 use super::{FluidParticipant, Frames, ProbeRows};
+use crate::output::background::BackgroundWriter;
+use crate::output::frame_files::FrameFiles;
 use crate::output::vtp::SurfaceFrames;
 use crate::sensors::probes::{ProbeFile, ProbeSet};
 use crate::state::{FluidState, RunState};
@@ -46,6 +48,18 @@ impl FluidParticipant {
         progress: &mut dyn ProgressSink,
     ) -> Result<u64, String> {
         self.commit(progress)?;
+        let frames = match &mut self.frames {
+            Some(f) => {
+                let next = f.next;
+                let files = f.files.wait(progress)?;
+                Some(SavedFrames {
+                    next,
+                    series: files.series.frames().to_vec(),
+                    surfaces: files.surfaces.as_ref().map(|s| s.series().frames().to_vec()),
+                })
+            }
+            None => None,
+        };
         self.solver.sync_host();
         let saved = Saved {
             name: self.name.clone(),
@@ -56,11 +70,7 @@ impl FluidParticipant {
                 .end_samples
                 .as_ref()
                 .map(|(t, v, l)| (*t, v.0.clone(), l.0.clone())),
-            frames: self.frames.as_ref().map(|f| SavedFrames {
-                next: f.next,
-                series: f.series.frames().to_vec(),
-                surfaces: f.surfaces.as_ref().map(|s| s.series().frames().to_vec()),
-            }),
+            frames,
             probes: self.probes.as_ref().map(ProbeRows::saved),
         };
         schemas::checkpoint::write(path, &saved, progress).map_err(|e| {
@@ -111,18 +121,21 @@ impl FluidParticipant {
         ) = (out, saved.frames)
         {
             let pvd = dir.join(format!("{name}.pvd"));
-            p.frames = Some(Frames {
+            let files = FrameFiles {
                 dir: dir.to_path_buf(),
                 name: name.to_string(),
-                interval: cfg.output_interval,
                 series: Collection::resumed(pvd.clone(), series).map_err(|e| io(&pvd, e))?,
-                next,
-                pending: None,
-                pending_time: 0.0,
                 surfaces: surfaces
                     .map(|s| SurfaceFrames::resumed(dir, name, cfg.spacing, s))
                     .transpose()
                     .map_err(|e| io(dir, e))?,
+            };
+            p.frames = Some(Frames {
+                interval: cfg.output_interval,
+                next,
+                pending: None,
+                pending_time: 0.0,
+                files: BackgroundWriter::new(files),
             });
         }
         if let (Some(dir), Some(probes), Some(saved)) = (out, probe_set, saved.probes) {
