@@ -6,15 +6,20 @@ use super::vtu;
 use crate::particles::Particles;
 use schemas::participant::ProgressSink;
 use schemas::pvd::Collection;
+use std::io;
 use std::path::PathBuf;
 
 /// The frame files of fluid `name` in `dir`.
 pub struct FrameFiles {
-    pub dir: PathBuf,
-    pub name: String,
-    pub series: Collection,
-    pub surfaces: Option<SurfaceFrames>,
+    dir: PathBuf,
+    name: String,
+    series: Collection,
+    surfaces: Option<SurfaceFrames>,
 }
+
+/// The (time, file) lists of a fluid's frame series and of its surface meshes' series, as a
+/// checkpoint keeps them.
+pub type SeriesLists = (Vec<(f64, String)>, Option<Vec<(f64, String)>>);
 
 impl FrameFiles {
     /// Frames of fluid `name` into `dir`, with surface meshes at `spacing` [m] when `surfaces`.
@@ -25,6 +30,35 @@ impl FrameFiles {
             name: name.to_string(),
             dir,
         }
+    }
+
+    /// Frames that continue the series `lists` of a resumed run (their `.pvd` files rewritten to
+    /// list them); an error names the file or folder that could not be written.
+    pub fn resumed(
+        dir: PathBuf,
+        name: &str,
+        spacing: f64,
+        lists: SeriesLists,
+    ) -> Result<FrameFiles, (PathBuf, io::Error)> {
+        let (series, surfaces) = lists;
+        let pvd = dir.join(format!("{name}.pvd"));
+        Ok(FrameFiles {
+            series: Collection::resumed(pvd.clone(), series).map_err(|e| (pvd, e))?,
+            surfaces: surfaces
+                .map(|s| SurfaceFrames::resumed(&dir, name, spacing, s))
+                .transpose()
+                .map_err(|e| (dir.clone(), e))?,
+            name: name.to_string(),
+            dir,
+        })
+    }
+
+    /// The series' lists so far, for a checkpoint.
+    pub fn series_lists(&self) -> SeriesLists {
+        (
+            self.series.frames().to_vec(),
+            self.surfaces.as_ref().map(|s| s.series().frames().to_vec()),
+        )
     }
 
     /// Frame `k` of the particles `p` at `time`: its VTU, its surface mesh, then its series

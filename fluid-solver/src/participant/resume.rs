@@ -8,13 +8,11 @@ use super::probe_rows::SavedProbes;
 use super::{FluidParticipant, Frames, ProbeRows};
 use crate::output::background::BackgroundWriter;
 use crate::output::frame_files::FrameFiles;
-use crate::output::vtp::SurfaceFrames;
 use crate::sensors::probes::{ProbeFile, ProbeSet};
 use crate::state::{FluidState, RunState};
 use schemas::case::Case;
 use schemas::f64s::F64s;
 use schemas::participant::ProgressSink;
-use schemas::pvd::Collection;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -51,11 +49,11 @@ impl FluidParticipant {
         let frames = match &mut self.frames {
             Some(f) => {
                 let next = f.next;
-                let files = f.files.wait(progress)?;
+                let (series, surfaces) = f.files.wait(progress)?.series_lists();
                 Some(SavedFrames {
                     next,
-                    series: files.series.frames().to_vec(),
-                    surfaces: files.surfaces.as_ref().map(|s| s.series().frames().to_vec()),
+                    series,
+                    surfaces,
                 })
             }
             None => None,
@@ -120,16 +118,8 @@ impl FluidParticipant {
             }),
         ) = (out, saved.frames)
         {
-            let pvd = dir.join(format!("{name}.pvd"));
-            let files = FrameFiles {
-                dir: dir.to_path_buf(),
-                name: name.to_string(),
-                series: Collection::resumed(pvd.clone(), series).map_err(|e| io(&pvd, e))?,
-                surfaces: surfaces
-                    .map(|s| SurfaceFrames::resumed(dir, name, cfg.spacing, s))
-                    .transpose()
-                    .map_err(|e| io(dir, e))?,
-            };
+            let files = FrameFiles::resumed(dir.to_path_buf(), name, cfg.spacing, (series, surfaces))
+                .map_err(|(path, e)| io(&path, e))?;
             p.frames = Some(Frames {
                 interval: cfg.output_interval,
                 next,
