@@ -41,16 +41,17 @@ fn isph_symmetric_gradient_box_load_does_not_depend_on_the_fluid_body_gap() {
     load_does_not_depend_on_the_gap(symmetric());
 }
 
-/// The exact projection of `pressure_gradient = "conservative"` at 2.0 Δs: the bodies' face law
-/// enters the projection (`isph::exact_projection`); the box at its lattice site reads ρgV
-/// (measured −0.09 %, 28 Nov 2026), its water is not still (0.22 m/s at the box's bottom corner,
-/// reported below).
+/// The exact projection of `pressure_gradient = "conservative"` at 2.0 Δs: the box completes
+/// its water's kernel sums (`isph::body_completion`), which enter the projection; the box at its
+/// lattice site reads ρgV (measured −0.00 %) and its water stays still (1.21e-3 m/s, bound below;
+/// with the face law before, −0.09 % and 0.22 m/s at the box's bottom corner; 30 Nov 2026).
 #[test]
 fn isph_conservative_projection_box_at_its_site_feels_rho_g_v() {
     at_its_site(conservative());
 }
 
-/// The same box 5 mm above its site: measured +4.81 % (28 Nov 2026).
+/// The same box 5 mm above its site: measured −0.01 %, its water at 1.4e-2 m/s at most (with the
+/// face law before, +4.81 % and 0.27 m/s; 30 Nov 2026).
 #[test]
 fn isph_conservative_projection_box_load_does_not_depend_on_the_fluid_body_gap() {
     load_does_not_depend_on_the_gap(conservative());
@@ -285,13 +286,18 @@ fn submerged_box_load(offset: f64, settings: IsphConfig) -> (f64, f64) {
     );
     // The hydrostatic tank's bound (issue 12): nothing moves faster than 1e-3 √(gH), H = 0.3 m
     // the water's depth; for the box at its lattice site (the water starts in equilibrium) with
-    // S2-8's gradient, the default: measured 9.1e-4 m/s. Reported, not bounded: the box 5 mm off
-    // its site, where the water first rearranges round it (2.6e-2 m/s at most over 0.05 … 0.2 s;
-    // 8.9e-2 before the faces' normals at convex solids, `isph::walls`), and the symmetric
-    // gradient, whose water at the box's edges moves at up to 0.2 m/s at the site and 0.44 m/s off
-    // it (measured 25 Nov 2026; open, README).
+    // S2-8's gradient, the default: measured 9.1e-4 m/s, and with the exact projection 1.21e-3
+    // m/s. Reported, not bounded: the box 5 mm off its site, where the water first rearranges
+    // round it (2.6e-2 m/s at most over 0.05 … 0.2 s with S2-8's gradient, 1.4e-2 with the exact
+    // projection; 8.9e-2 before the faces' normals at convex solids, `isph::walls`), and the
+    // symmetric gradient, whose water at the box's edges moves at up to 0.2 m/s at the site and
+    // 0.44 m/s off it (measured 25 Nov 2026; open, README).
     let still = 1e-3 * (cfg.gravity_magnitude() * water.max[2]).sqrt();
-    if settings.pressure_gradient == PressureGradient::CorrectedDifference && offset == 0.0 {
+    let still_at_site = matches!(
+        settings.pressure_gradient,
+        PressureGradient::CorrectedDifference | PressureGradient::Conservative
+    );
+    if still_at_site && offset == 0.0 {
         assert!(
             fastest < still,
             "a fluid particle moves at {fastest:.3e} m/s beside the held box (bound {still:.3e})"

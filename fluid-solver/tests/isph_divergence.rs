@@ -50,13 +50,14 @@ use crate::common;
 use crate::isph_slab;
 
 use fluid_solver::collision::COLLISION_DISTANCE;
+use fluid_solver::isph::body_completion::BodyCompletion;
 use fluid_solver::isph::exact_projection;
 use fluid_solver::isph::free_surface::{self, SURFACE};
 use fluid_solver::isph::kernel::Wendland;
 use fluid_solver::isph::neighbour_list::NeighbourList;
 use fluid_solver::isph::operators;
 use fluid_solver::isph::pair_gradients::PairGradients;
-use fluid_solver::isph::pair_laws::{self, BodyFaces};
+use fluid_solver::isph::pair_laws::BodyFaces;
 use fluid_solver::isph::walls::{self, NeumannPair};
 use fluid_solver::method::MethodState;
 use fluid_solver::neighbour_search::CellGrid;
@@ -119,7 +120,6 @@ struct Stepped {
     result: HashMap<u32, ([f64; 3], f64, bool)>,
     ratio: Vec<f64>,
     lambda: Vec<f64>,
-    takes_part: Vec<u8>,
     normals: VectorField,
     depth: Vec<f64>,
     convex: Vec<u8>,
@@ -192,7 +192,6 @@ impl Stepped {
             result,
             ratio,
             lambda,
-            takes_part,
             normals,
             depth,
             convex,
@@ -239,7 +238,7 @@ fn check_step(cfg: &FluidConfig, t: f64) -> Terms {
         q,
         &pair,
         settings.pressure_gradient,
-        &Default::default(),
+        (&Default::default(), None),
         &mut grad,
     );
 
@@ -491,6 +490,7 @@ fn exact_projection_divergence(cfg: &FluidConfig, t: f64) -> [f64; 3] {
     let (k, q, list) = (st.k, &st.q, &st.list);
     let pair = st.pair(cfg);
     let faces = BodyFaces::default();
+    let bodies = BodyCompletion::default();
     let mut pairs = PairGradients::default();
     pairs.build(&k, list, q);
     let fluid = |i: usize| q.kind[i] == Kind::Fluid.code();
@@ -512,20 +512,26 @@ fn exact_projection_divergence(cfg: &FluidConfig, t: f64) -> [f64; 3] {
     let adjoint = |y: &VectorField, s: f64| {
         let mut out = vec![0.0; rows.len()];
         exact_projection::adjoint_at_unknowns(
-            &k,
             list,
             q,
-            (&pairs, exact_projection::wet(&faces)),
+            (&pairs, exact_projection::near(&bodies)),
             &rows,
             (y, s),
-            &mut Vec::new(),
             &mut out,
         );
         out
     };
     // G p as the step moved the fluid by, and v^{n+1} = v* − (Δt/ρ) G p.
     let mut grad = VectorField::default();
-    operators::pressure_gradient(&k, list, q, &pair, settings.pressure_gradient, &faces, &mut grad);
+    operators::pressure_gradient(
+        &k,
+        list,
+        q,
+        &pair,
+        settings.pressure_gradient,
+        (&faces, exact_projection::near(&bodies)),
+        &mut grad,
+    );
     let star = field(&|i| [q.vx[i], q.vy[i], q.vz[i]]);
     let projected = field(&|i| {
         [
@@ -540,15 +546,7 @@ fn exact_projection_divergence(cfg: &FluidConfig, t: f64) -> [f64; 3] {
         .map(|i| if is_row(i) { 0.0 } else { q.pressure[i] })
         .collect();
     let mut c = VectorField::default();
-    exact_projection::known_gradient(
-        &k,
-        list,
-        &pair,
-        &faces,
-        (&row_of, &known),
-        &mut Vec::new(),
-        &mut c,
-    );
+    exact_projection::known_gradient(&k, list, &pair, &bodies, (&row_of, &known), &mut c);
     let h = field(&|i| {
         [
             rho / dt * q.vx[i] - c.x[i],
@@ -647,7 +645,7 @@ fn conservative(cfg: FluidConfig) -> FluidConfig {
 /// `D = −Gᵀ` holds as the transpose: the operator's two passes
 /// (`exact_projection::gradient_of_unknowns` and `adjoint_at_unknowns`) satisfy
 /// `Σ_i y_i·(G_x x)_i = Σ_k x_k (G_xᵀ y)_k` for any x on the PPE rows and y on the fluid, here on
-/// a held box in still water (walls, the box's face law and the free surface all in the sums),
+/// a held box in still water (walls, the box's completion and the free surface all in the sums),
 /// to round-off (1e-12 of the terms' size). The identity of the two tests above uses the same
 /// passes on both of its sides, so it cannot see a transpose that is not one; this does.
 #[test]
@@ -665,14 +663,15 @@ fn exact_projection_divergence_is_the_gradients_transpose() {
     let cfg = conservative(cfg);
     let st = Stepped::new(&cfg, 0.01);
     let (k, q, list) = (st.k, &st.q, &st.list);
-    let pair = st.pair(&cfg);
-    let mut faces = BodyFaces::default();
-    pair_laws::body_faces(&k, list, &pair, &st.takes_part, &mut faces);
-    let faces = exact_projection::wet(&faces);
-    assert!(faces.is_some(), "the box is wet");
+    let mut bodies = BodyCompletion::default();
+    let rho_g = [0.0, 0.0, -cfg.density * cfg.gravity_magnitude()];
+    let unknown = |i: usize| q.kind[i] == Kind::Fluid.code() && st.result[&q.id[i]].2;
+    bodies.update(&k, list, q, rho_g, unknown);
+    let bodies = exact_projection::near(&bodies);
+    assert!(bodies.is_some(), "the box has water beside it");
     let mut pairs = PairGradients::default();
     pairs.build(&k, list, q);
-    let operator = (&pairs, faces);
+    let operator = (&pairs, bodies);
     let fluid = |i: usize| q.kind[i] == Kind::Fluid.code();
     let rows: Vec<u32> = (0..q.len())
         .filter(|&i| fluid(i) && st.result[&q.id[i]].2)
@@ -693,18 +692,9 @@ fn exact_projection_divergence_is_the_gradients_transpose() {
         [y.x[i], y.y[i], y.z[i]] = [next(), next(), next()];
     }
     let mut gx = VectorField::default();
-    exact_projection::gradient_of_unknowns(
-        &k,
-        list,
-        q,
-        operator,
-        (&rows, &x),
-        &mut Vec::new(),
-        &mut Vec::new(),
-        &mut gx,
-    );
+    exact_projection::gradient_of_unknowns(list, q, operator, (&rows, &x), &mut Vec::new(), &mut gx);
     let mut gty = vec![0.0; rows.len()];
-    exact_projection::adjoint_at_unknowns(&k, list, q, operator, &rows, (&y, 0.0), &mut Vec::new(), &mut gty);
+    exact_projection::adjoint_at_unknowns(list, q, operator, &rows, (&y, 0.0), &mut gty);
     let terms: Vec<f64> = (0..q.len())
         .filter(|&i| fluid(i))
         .map(|i| y.x[i] * gx.x[i] + y.y[i] * gx.y[i] + y.z[i] * gx.z[i])
@@ -723,38 +713,11 @@ fn exact_projection_divergence_is_the_gradients_transpose() {
     // The solver's one-pass product is `(1 − ε) G_xᵀ G_x x + ε A x`, A S2-9's matrix with its
     // weights rounded to f32 as the PPE stores them, x = 0 off the rows.
     let mut full = Vec::new();
-    exact_projection::gradient_of_unknowns(
-        &k,
-        list,
-        q,
-        operator,
-        (&rows, &x),
-        &mut full,
-        &mut Vec::new(),
-        &mut gx,
-    );
+    exact_projection::gradient_of_unknowns(list, q, operator, (&rows, &x), &mut full, &mut gx);
     let mut product = vec![0.0; rows.len()];
-    exact_projection::apply_operator(
-        &k,
-        list,
-        q,
-        operator,
-        &rows,
-        (&gx, &full),
-        &mut Vec::new(),
-        &mut product,
-    );
+    exact_projection::apply_operator(list, operator, &rows, (&gx, &full), &mut product);
     let mut gtgx = vec![0.0; rows.len()];
-    exact_projection::adjoint_at_unknowns(
-        &k,
-        list,
-        q,
-        operator,
-        &rows,
-        (&gx, 0.0),
-        &mut Vec::new(),
-        &mut gtgx,
-    );
+    exact_projection::adjoint_at_unknowns(list, q, operator, &rows, (&gx, 0.0), &mut gtgx);
     let eps = exact_projection::CHECKERBOARD_SHARE;
     let worst = largest_abs(rows.iter().enumerate().map(|(r, &i)| {
         let i = i as usize;

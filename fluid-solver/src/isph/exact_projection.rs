@@ -30,17 +30,15 @@
 //! `G_x x`, then `G_xᵀ` of it), preconditioned by the two-level method built on L
 //! ([`super::ppe_two_level`]), to which it is spectrally close on smooth fields.
 //!
-//! A body's load, and the fluid's reaction to it, is the face law of [`super::pair_laws`]: each
-//! wet body particle's force `−π_j E_j − H_j` from the pressure `π_j` it reads from its fluid
-//! neighbours (Adami's weights), shared among them by the same weights. Without the faces'
-//! clamp at 0 that is linear in the fluid's pressures too, so it enters G_x, c and D as it is
-//! (a two-hop coupling through the body particle); where a face's clamp acts (a face above the
-//! water) the projection is not exact.
+//! A body's load, and the fluid's reaction to it, is the completion of
+//! [`super::body_completion`]: fluid particle i's body term `2 p_i B_i + h_i`, linear in its own
+//! pressure, so it enters G_x (`2 x_i B_i`), c (h_i, and `2 p_i B_i` of a surface particle) and
+//! D (`2 (u_i − ū_i)·B_i`) as it is.
 
+use super::body_completion::BodyCompletion;
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
 use super::pair_gradients::PairGradients;
-use super::pair_laws::BodyFaces;
 use super::ppe::{jacobi, pcg, PpeFailure, PpeReport, PpeSystem, NOT_AN_UNKNOWN};
 use super::ppe_two_level::{self, Form};
 use super::walls::NeumannPair;
@@ -50,62 +48,35 @@ use crate::particles::Particles;
 use rayon::prelude::*;
 use schemas::case::fluid::PpeSolver;
 
-/// The bodies' face laws if any body particle is wet (the passes over the bodies are skipped
-/// otherwise).
-pub fn wet(faces: &BodyFaces) -> Option<&BodyFaces> {
-    faces.weight.iter().any(|&w| w > 0.0).then_some(faces)
+/// The bodies' completion if any fluid particle has a body neighbour (the body terms are
+/// skipped otherwise).
+pub fn near(bodies: &BodyCompletion) -> Option<&BodyCompletion> {
+    bodies.any().then_some(bodies)
 }
 
 /// ε of the blend `(1 − ε) G_xᵀ G_x + ε L` (module doc).
 pub const CHECKERBOARD_SHARE: f64 = 0.1;
 
-/// Each wet body particle's reading of a fluid field through its face law,
-/// `π_j = Σ_f W_fj value(f, j) / Σ_f W_fj` over its fluid neighbours f (0 elsewhere).
-fn body_means(
+/// `c_i`: the symmetric gradient at every fluid particle i (0 elsewhere) of the known pressures
+/// alone, the surface particles' `dirichlet` values, the walls' differences Δp_iw of `walls`
+/// and the bodies' terms `2 p_i B_i + h_i` ([`BodyCompletion::term`]), with the unknowns at 0.
+pub fn known_gradient(
     k: &Wendland,
     list: &NeighbourList,
-    p: &Particles,
-    faces: Option<&BodyFaces>,
-    value: impl Fn(usize, usize) -> f64 + Sync,
-    out: &mut Vec<f64>,
-) {
-    let Some(faces) = faces else {
-        return;
-    };
-    out.resize(p.len(), 0.0);
-    out.par_iter_mut()
-        .enumerate()
-        .with_min_len(4096)
-        .for_each(|(j, o)| {
-            *o = 0.0;
-            let den = faces.weight.get(j).copied().unwrap_or(0.0);
-            if den > 0.0 {
-                let num: f64 = list
-                    .pairs(j)
-                    .filter(|&(f, _)| p.kind[f] == FLUID)
-                    .map(|(f, q)| k.w_at(q) * value(f, j))
-                    .sum();
-                *o = num / den;
-            }
-        });
-}
-
-/// The gradient at every fluid particle i (0 elsewhere) of `pressure(i)` on the fluid, of the
-/// walls' pressure `2 pressure(i) + wall(i, w)` per pair, and of the bodies' face laws through
-/// the readings `means` ([`body_means`]) with the faces' heads if `hydro`: the symmetric form
-/// of [`super::pair_laws::symmetric_term`] and [`super::pair_laws::face_share`] without the
-/// faces' clamp.
-#[allow(clippy::too_many_arguments)]
-fn symmetric_gradient(
-    k: &Wendland,
-    list: &NeighbourList,
-    p: &Particles,
-    faces: Option<&BodyFaces>,
-    pressure: impl Fn(usize) -> f64 + Sync,
-    wall: impl Fn(usize, usize) -> f64 + Sync,
-    (means, hydro): (&[f64], bool),
+    walls: &NeumannPair,
+    bodies: &BodyCompletion,
+    (row_of, dirichlet): (&[u32], &[f64]),
     out: &mut VectorField,
 ) {
+    let p = walls.p;
+    let known = |i: usize| {
+        if row_of[i] == NOT_AN_UNKNOWN {
+            dirichlet[i]
+        } else {
+            0.0
+        }
+    };
+    let bodies = near(bodies);
     let body = Kind::Body.code();
     out.resize(p.len());
     (&mut out.x, &mut out.y, &mut out.z)
@@ -115,68 +86,41 @@ fn symmetric_gradient(
         .for_each(|(i, (ox, oy, oz))| {
             let mut g = [0.0; 3];
             if p.kind[i] == FLUID {
-                let pi = pressure(i);
+                let pi = known(i);
                 for (j, q) in list.pairs(i) {
                     if p.kind[j] == body {
                         continue;
                     }
                     let pij = if p.kind[j] == FLUID {
-                        pi + pressure(j)
+                        pi + known(j)
                     } else {
-                        2.0 * pi + wall(i, j)
+                        2.0 * pi + walls.difference(i, j)
                     };
                     let c = k.volume * k.dw_over_r_at(q) * pij;
                     g[0] += c * (p.x[i] - p.x[j]);
                     g[1] += c * (p.y[i] - p.y[j]);
                     g[2] += c * (p.z[i] - p.z[j]);
                 }
-                if let Some(faces) = faces {
-                    add_face_terms(k, list, p, faces, i, (means, hydro), &mut g);
+                if let Some(bodies) = bodies {
+                    let t = bodies.term(i, pi);
+                    (0..3).for_each(|a| g[a] += t[a]);
                 }
             }
             (*ox, *oy, *oz) = (g[0], g[1], g[2]);
         });
 }
 
-/// Adds to fluid particle i's gradient `g` its body neighbours' face-law terms `F_ij / V`,
-/// `F_ij = (W_ij / Σ_f W_fj)(−π_j E_j − H_j)` ([`super::pair_laws::face_share`] without the
-/// faces' clamp), π_j the readings `means` and H_j only if `hydro`.
-#[inline(always)]
-fn add_face_terms(
-    k: &Wendland,
-    list: &NeighbourList,
-    p: &Particles,
-    faces: &BodyFaces,
-    i: usize,
-    (means, hydro): (&[f64], bool),
-    g: &mut [f64; 3],
-) {
-    let body = Kind::Body.code();
-    for (j, q) in list.pairs(i) {
-        let den = faces.weight[j];
-        if p.kind[j] == body && den > 0.0 {
-            let share = k.w_at(q) / (den * k.volume);
-            let (e, h) = (faces.area[j], faces.hydro[j]);
-            let h = if hydro { h } else { [0.0; 3] };
-            (0..3).for_each(|a| g[a] -= share * (means[j] * e[a] + h[a]));
-        }
-    }
-}
-
 /// `(G_x x)_i` for every fluid particle i (0 elsewhere): the linear part of the symmetric
 /// gradient with the unknowns' pressures `x` (unknown r is particle `particle[r]`) and 0
 /// everywhere else, `Σ_j (x_i + x_j) c_ij` with the step's `pairs` ([`PairGradients`]) plus the
-/// bodies' face-law terms; `full` holds x by particle (0 elsewhere: only the unknowns' entries
-/// are ever written).
-#[allow(clippy::too_many_arguments)]
+/// bodies' `2 x_i B_i`; `full` holds x by particle (0 elsewhere: only the unknowns' entries are
+/// ever written).
 pub fn gradient_of_unknowns(
-    k: &Wendland,
     list: &NeighbourList,
     p: &Particles,
-    (pairs, faces): (&PairGradients, Option<&BodyFaces>),
+    (pairs, bodies): (&PairGradients, Option<&BodyCompletion>),
     (particle, x): (&[u32], &[f64]),
     full: &mut Vec<f64>,
-    means: &mut Vec<f64>,
     out: &mut VectorField,
 ) {
     full.resize(p.len(), 0.0);
@@ -184,8 +128,6 @@ pub fn gradient_of_unknowns(
         full[i as usize] = v;
     }
     let full = &*full;
-    body_means(k, list, p, faces, |f, _| full[f], means);
-    let means = &*means;
     out.resize(p.len());
     (&mut out.x, &mut out.y, &mut out.z)
         .into_par_iter()
@@ -199,54 +141,39 @@ pub fn gradient_of_unknowns(
                     let s = xi + full[j as usize];
                     (0..3).for_each(|a| g[a] += s * f64::from(c[a]));
                 }
-                if let Some(faces) = faces {
-                    add_face_terms(k, list, p, faces, i, (means, false), &mut g);
+                if let Some(bodies) = bodies {
+                    let b = bodies.zero[i];
+                    (0..3).for_each(|a| g[a] += 2.0 * xi * b[a]);
                 }
             }
             (*ox, *oy, *oz) = (g[0], g[1], g[2]);
         });
 }
 
-/// `c_i`: the symmetric gradient at every fluid particle i (0 elsewhere) of the known pressures
-/// alone, the surface particles' `dirichlet` values, the walls' differences Δp_iw of `walls`
-/// and the bodies' faces' heads, with the unknowns at 0.
-pub fn known_gradient(
-    k: &Wendland,
-    list: &NeighbourList,
-    walls: &NeumannPair,
-    faces: &BodyFaces,
-    (row_of, dirichlet): (&[u32], &[f64]),
-    means: &mut Vec<f64>,
-    out: &mut VectorField,
-) {
-    let p = walls.p;
-    let known = |i: usize| {
-        if row_of[i] == NOT_AN_UNKNOWN {
-            dirichlet[i]
-        } else {
-            0.0
+/// The bodies' part of `(G_xᵀ y)_k − s (solids' velocities)` at fluid particle k:
+/// `2 (y_k − s ū_k)·B_k` ([`BodyCompletion`]).
+#[inline(always)]
+fn body_adjoint(bodies: Option<&BodyCompletion>, k: usize, y: [f64; 3], s: f64) -> f64 {
+    match bodies {
+        Some(b) => {
+            let (z, u) = (b.zero[k], b.velocity[k]);
+            2.0 * ((y[0] - s * u[0]) * z[0] + (y[1] - s * u[1]) * z[1] + (y[2] - s * u[2]) * z[2])
         }
-    };
-    let faces = wet(faces);
-    body_means(k, list, p, faces, |f, j| known(f) + walls.difference(f, j), means);
-    let wall = |i: usize, j: usize| walls.difference(i, j);
-    symmetric_gradient(k, list, p, faces, known, wall, (means, true), out);
+        None => 0.0,
+    }
 }
 
 /// `out_r = (G_xᵀ y)_k − s (Σ_w 2 V u_w·∇W_kw + the bodies' part)` for each unknown
 /// k = `particle[r]` (module doc), with y a field on the fluid particles (0 elsewhere) and `s` =
 /// 0 for the operator, ρ/Δt for the right-hand side's solid velocities u: `Σ_j (y_k − y_j)·c_kj`
 /// over the step's `pairs` ([`PairGradients`]: fluid neighbours, and walls with their factor 2),
-/// minus `s Σ_w u_w·c_kw`, plus the bodies' part ([`add_body_adjoint`]).
-#[allow(clippy::too_many_arguments)]
+/// minus `s Σ_w u_w·c_kw`, plus the bodies' part ([`body_adjoint`]).
 pub fn adjoint_at_unknowns(
-    k: &Wendland,
     list: &NeighbourList,
     p: &Particles,
-    (pairs, faces): (&PairGradients, Option<&BodyFaces>),
+    (pairs, bodies): (&PairGradients, Option<&BodyCompletion>),
     particle: &[u32],
     (y, solid_velocity_scale): (&VectorField, f64),
-    eta: &mut Vec<f64>,
     out: &mut [f64],
 ) {
     let s = solid_velocity_scale;
@@ -265,77 +192,19 @@ pub fn adjoint_at_unknowns(
                 }
                 sum += dy[0] * f64::from(c[0]) + dy[1] * f64::from(c[1]) + dy[2] * f64::from(c[2]);
             }
-            *o = sum;
-        });
-    if let Some(faces) = faces {
-        add_body_adjoint(k, list, p, faces, particle, (y, s, 1.0), eta, out);
-    }
-}
-
-/// Adds `scale` times the bodies' part of [`adjoint_at_unknowns`] to `out`: over the wet body
-/// neighbours j of unknown k, `(W_kj / Σ_f W_fj) η_j` with
-/// `η_j = −Σ_{fluid i} (W_ij / Σ_f W_fj) E_j·(y_i − s u_j) / V` (the adjoint of the face law's
-/// share; a body moving with the water adds no divergence).
-#[allow(clippy::too_many_arguments)]
-fn add_body_adjoint(
-    k: &Wendland,
-    list: &NeighbourList,
-    p: &Particles,
-    faces: &BodyFaces,
-    particle: &[u32],
-    (y, s, scale): (&VectorField, f64, f64),
-    eta: &mut Vec<f64>,
-    out: &mut [f64],
-) {
-    let body = Kind::Body.code();
-    eta.resize(p.len(), 0.0);
-    eta.par_iter_mut()
-        .enumerate()
-        .with_min_len(4096)
-        .for_each(|(j, o)| {
-            *o = 0.0;
-            let den = faces.weight.get(j).copied().unwrap_or(0.0);
-            if den > 0.0 {
-                let e = faces.area[j];
-                let u = [s * p.vx[j], s * p.vy[j], s * p.vz[j]];
-                let sum: f64 = list
-                    .pairs(j)
-                    .filter(|&(f, _)| p.kind[f] == FLUID)
-                    .map(|(f, q)| {
-                        k.w_at(q) * (e[0] * (y.x[f] - u[0]) + e[1] * (y.y[f] - u[1]) + e[2] * (y.z[f] - u[2]))
-                    })
-                    .sum();
-                *o = -sum / (den * k.volume);
-            }
-        });
-    let eta = &*eta;
-    out.par_iter_mut()
-        .zip(particle)
-        .with_min_len(512)
-        .for_each(|(o, &kk)| {
-            let i = kk as usize;
-            for (j, q) in list.pairs(i) {
-                let den = faces.weight[j];
-                if p.kind[j] == body && den > 0.0 {
-                    *o += scale * k.w_at(q) / den * eta[j];
-                }
-            }
+            *o = sum + body_adjoint(bodies, i, yi, s);
         });
 }
 
-/// `out = (1 − ε) G_xᵀ y + ε A x` for the unknowns, the fluid and wall terms in one pass over
-/// their pairs: y = G_x x (from [`gradient_of_unknowns`], which also wrote x by particle into
-/// `full`), A S2-9's matrix of the PPE ([`super::ppe`]) from the weights of `pairs`,
-/// `(A x)_k = Σ_{fluid j} F_kj (x_k − x_j)` with x = 0 off the unknowns; then the bodies' part.
-#[allow(clippy::too_many_arguments)]
+/// `out = (1 − ε) G_xᵀ y + ε A x` for the unknowns in one pass over their pairs: y = G_x x
+/// (from [`gradient_of_unknowns`], which also wrote x by particle into `full`), A S2-9's matrix
+/// of the PPE ([`super::ppe`]) from the weights of `pairs`, `(A x)_k = Σ_{fluid j} F_kj (x_k − x_j)`
+/// with x = 0 off the unknowns, and the bodies' part ([`body_adjoint`]).
 pub fn apply_operator(
-    k: &Wendland,
     list: &NeighbourList,
-    p: &Particles,
-    (pairs, faces): (&PairGradients, Option<&BodyFaces>),
+    (pairs, bodies): (&PairGradients, Option<&BodyCompletion>),
     particle: &[u32],
     (y, full): (&VectorField, &[f64]),
-    eta: &mut Vec<f64>,
     out: &mut [f64],
 ) {
     let eps = CHECKERBOARD_SHARE;
@@ -345,7 +214,7 @@ pub fn apply_operator(
         .for_each(|(o, &kk)| {
             let i = kk as usize;
             let (yi, xi) = ([y.x[i], y.y[i], y.z[i]], full[i]);
-            let (mut adjoint, mut laplacian) = (0.0, 0.0);
+            let (mut adjoint, mut laplacian) = (body_adjoint(bodies, i, yi, 0.0), 0.0);
             for (c, &j) in pairs.of(i).iter().zip(list.of(i)) {
                 let j = j as usize;
                 adjoint += (yi[0] - y.x[j]) * f64::from(c[0])
@@ -355,9 +224,6 @@ pub fn apply_operator(
             }
             *o = (1.0 - eps) * adjoint + eps * laplacian;
         });
-    if let Some(faces) = faces {
-        add_body_adjoint(k, list, p, faces, particle, (y, 0.0, 1.0 - eps), eta, out);
-    }
 }
 
 /// Blends the exact projection's right-hand side into `ppe.rhs`, which holds S2-9's `b_S2` of
@@ -372,22 +238,13 @@ pub fn blend_right_hand_side(
     ratio: &[f64],
     alpha_d: f64,
     dt: f64,
-    (pairs, faces): (&PairGradients, &BodyFaces),
+    (pairs, bodies): (&PairGradients, &BodyCompletion),
     ppe: &mut PpeSystem,
     scratch: &mut VectorField,
 ) {
     let p = walls.p;
     let rho = walls.density;
-    let mut bodies = Vec::new();
-    known_gradient(
-        k,
-        list,
-        walls,
-        faces,
-        (&ppe.row_of, dirichlet),
-        &mut bodies,
-        scratch,
-    );
+    known_gradient(k, list, walls, bodies, (&ppe.row_of, dirichlet), scratch);
     let s = rho / dt;
     (&mut scratch.x, &mut scratch.y, &mut scratch.z)
         .into_par_iter()
@@ -400,13 +257,11 @@ pub fn blend_right_hand_side(
         });
     let mut b = vec![0.0; ppe.len()];
     adjoint_at_unknowns(
-        k,
         list,
         p,
-        (pairs, wet(faces)),
+        (pairs, near(bodies)),
         &ppe.particle,
         (scratch, s),
-        &mut bodies,
         &mut b,
     );
     let eps = CHECKERBOARD_SHARE;
@@ -426,31 +281,21 @@ pub fn blend_right_hand_side(
 /// and by L's diagonal with the others.
 #[allow(clippy::too_many_arguments)]
 pub fn solve(
-    k: &Wendland,
     list: &NeighbourList,
     p: &Particles,
-    (pairs, faces): (&PairGradients, &BodyFaces),
+    (pairs, bodies): (&PairGradients, &BodyCompletion),
     ppe: &PpeSystem,
     solver: PpeSolver,
     x: &mut [f64],
     tol: f64,
     max_iterations: u32,
 ) -> Result<PpeReport, PpeFailure> {
-    let operator = (pairs, wet(faces));
+    let operator = (pairs, near(bodies));
     let mut y = VectorField::default();
-    let (mut full, mut bodies) = (Vec::new(), Vec::new());
+    let mut full = Vec::new();
     let apply = |d: &[f64], out: &mut [f64]| {
-        gradient_of_unknowns(
-            k,
-            list,
-            p,
-            operator,
-            (&ppe.particle, d),
-            &mut full,
-            &mut bodies,
-            &mut y,
-        );
-        apply_operator(k, list, p, operator, &ppe.particle, (&y, &full), &mut bodies, out);
+        gradient_of_unknowns(list, p, operator, (&ppe.particle, d), &mut full, &mut y);
+        apply_operator(list, operator, &ppe.particle, (&y, &full), out);
     };
     match solver {
         PpeSolver::TwoLevelPcg => {

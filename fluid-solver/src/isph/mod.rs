@@ -11,9 +11,11 @@
 //! - [`ppe_two_level`]: its CG with a two-level (aggregation) preconditioner;
 //! - [`pair_gradients`]: the pairs' kernel gradients the exact projection's operator reads;
 //! - [`pair_laws`]: the fluid–body pair forces;
+//! - [`body_completion`]: the bodies' pressure law of the exact projection;
 //! - [`shifting`]: particle shifting (Lind et al. 2012), a case option;
 //! - [`step`]: one time step, S2-3 … S2-5, as a list of named stages.
 
+pub mod body_completion;
 pub mod exact_projection;
 pub mod free_surface;
 pub mod kernel;

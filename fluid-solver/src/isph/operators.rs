@@ -3,6 +3,7 @@
 //! weight is `F_ij = 2 V (x_j − x_i)·∇W_ij / r² = −2 V W'(r)/r ≥ 0`. Each pass is a gather
 //! (particle i writes its own slot), in parallel without locks.
 
+use super::body_completion::BodyCompletion;
 use super::free_surface::{LAMBDA_INNER, LAMBDA_SPLASH};
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
@@ -274,19 +275,20 @@ pub fn laplacian(
 /// over every fluid–solid pair, bodies included (their load is V times the same terms). It holds
 /// the hydrostatic tank only at a support of 2.0 Δs, where the lattice sums that its zero-order
 /// part `2 p_i Σ_j V ∇W_ij` acts on are restoring (docs/notes/isph-symmetric-gradient-and-shifting.md); at 2.4 Δs the tank's edge columns run away (above).
-/// [`PressureGradient::Conservative`] moves the fluid by the same symmetric form; only its PPE
-/// differs ([`super::exact_projection`]).
+/// [`PressureGradient::Conservative`] moves the fluid by the same symmetric form with the
+/// bodies' completion ([`super::body_completion`]) in place of the face law, and builds its PPE
+/// from it ([`super::exact_projection`]).
 pub fn pressure_gradient(
     k: &Wendland,
     list: &NeighbourList,
     p: &Particles,
     walls: &NeumannPair,
     form: PressureGradient,
-    faces: &BodyFaces,
+    bodies: (&BodyFaces, Option<&BodyCompletion>),
     out: &mut VectorField,
 ) -> PassTotals {
     if form.is_symmetric() {
-        return symmetric_gradient(k, list, p, walls, faces, out);
+        return symmetric_gradient(k, list, p, walls, bodies, out);
     }
     out.resize(p.len());
     let body = Kind::Body.code();
@@ -346,13 +348,14 @@ pub fn pressure_gradient(
 /// [`pair_laws::symmetric_term`] over every listed fluid and wall neighbour, for fluid i (0
 /// elsewhere), no moment-matrix correction; a body neighbour j adds `F_ij / V`, its face-law
 /// share [`pair_laws::face_share`] (the force on i from j is then `−F_ij`, the reverse of the
-/// body's load from i); `from_non_fluid` is the sum over the solid neighbours.
+/// body's load from i), or with `completion` (the exact projection) i's body term
+/// [`BodyCompletion::term`] once; `from_non_fluid` is the sum over the solid neighbours.
 fn symmetric_gradient(
     k: &Wendland,
     list: &NeighbourList,
     p: &Particles,
     walls: &NeumannPair,
-    faces: &BodyFaces,
+    (faces, completion): (&BodyFaces, Option<&BodyCompletion>),
     out: &mut VectorField,
 ) -> PassTotals {
     let body = Kind::Body.code();
@@ -365,10 +368,20 @@ fn symmetric_gradient(
             let mut g = [0.0; 3];
             let mut solids = [0.0; 3];
             if p.kind[i] == FLUID {
+                if let Some(c) = completion {
+                    let t = c.term(i, p.pressure[i]);
+                    (0..3).for_each(|a| {
+                        g[a] += t[a];
+                        solids[a] += t[a];
+                    });
+                }
                 for (j, q) in list.pairs(i) {
                     let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
                     let t = if p.kind[j] == body {
-                        pair_laws::face_share(k, faces, j, q).map(|f| f / k.volume)
+                        match completion {
+                            Some(_) => continue,
+                            None => pair_laws::face_share(k, faces, j, q).map(|f| f / k.volume),
+                        }
                     } else {
                         pair_laws::symmetric_term(k, walls, i, j, d, q)
                     };

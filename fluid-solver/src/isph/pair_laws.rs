@@ -26,7 +26,10 @@
 //! V), so a body's load and the fluid's reaction are still one function, and the load does not
 //! depend on the fluid–body gap: with the symmetric term there too, a box held 0.25 Δs above its
 //! lattice site read ρgV −14.7 % (its site −0.00 %); with the face share +0.86 % (site −0.08 %).
+//! With `"conservative"` (the exact projection) a body's law is instead its completion of the
+//! water's kernel sums ([`super::body_completion`]).
 
+use super::body_completion::BodyCompletion;
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
 use super::walls::NeumannPair;
@@ -180,7 +183,14 @@ pub fn body_faces(
 /// fluid's pair term with j); on a wall particle `V t_ij` of [`symmetric_term`],
 /// `V² (p_i + p_j^(i)) ∇_i W_ij` with p_j^(i) = p_i + Δp_ij the wall particle's pressure as fluid
 /// particle i's PPE saw it ([`super::walls`]).
-pub fn pressure<'a>(k: &Wendland, walls: NeumannPair<'a>, faces: &'a BodyFaces) -> PairLaw<'a> {
+/// With the exact projection (`completion` given) a body particle j takes instead its share
+/// `V t_i W_ij / Σ_w W_iw` of fluid particle i's body term ([`BodyCompletion`]).
+pub fn pressure<'a>(
+    k: &Wendland,
+    walls: NeumannPair<'a>,
+    faces: &'a BodyFaces,
+    completion: Option<&'a BodyCompletion>,
+) -> PairLaw<'a> {
     let k = *k;
     let p = walls.p;
     let body = Kind::Body.code();
@@ -191,7 +201,14 @@ pub fn pressure<'a>(k: &Wendland, walls: NeumannPair<'a>, faces: &'a BodyFaces) 
             return None;
         }
         if p.kind[j] == body {
-            return Some(face_share(&k, faces, j, k.q(r2.sqrt())));
+            let q = k.q(r2.sqrt());
+            return Some(match completion {
+                Some(c) => {
+                    let share = k.volume * c.share(&k, i, q);
+                    c.term(i, p.pressure[i]).map(|t| share * t)
+                }
+                None => face_share(&k, faces, j, q),
+            });
         }
         let t = symmetric_term(&k, &walls, i, j, d, k.q(r2.sqrt()));
         Some(t.map(|v| k.volume * v))

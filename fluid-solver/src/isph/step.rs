@@ -36,6 +36,7 @@
 //!    (E-MPS 3.4 %; `isph_vs_emps`, column `kicked/step`). Without its fluid–fluid part that run
 //!    stops at 0.33 s (energy growth).
 
+use super::body_completion::BodyCompletion;
 use super::exact_projection;
 use super::free_surface::{self, SURFACE};
 use super::kernel::Wendland;
@@ -118,6 +119,8 @@ pub struct IsphStep {
     solution: Vec<f64>,
     /// The bodies' face forces of the last pressure solve ([`pair_laws::body_faces`]).
     faces: pair_laws::BodyFaces,
+    /// The bodies' completion of the exact projection ([`BodyCompletion`]).
+    completion: BodyCompletion,
     /// The Dirichlet pressure of each surface particle ([`free_surface::surface_pressure`]).
     dirichlet: Vec<f64>,
     /// The exact projection's `(ρ/Δt) v* − c` ([`exact_projection::blend_right_hand_side`]).
@@ -161,6 +164,7 @@ impl IsphStep {
             known_gradient: VectorField::default(),
             pair_gradients: PairGradients::default(),
             faces: pair_laws::BodyFaces::default(),
+            completion: BodyCompletion::default(),
             pockets_tied: 0,
             times: StageTimes::default(),
         }
@@ -196,7 +200,12 @@ impl IsphStep {
     /// the last step took (the case's Δt before the first).
     pub fn pressure_law<'a>(&'a self, p: &'a Particles, state: &IsphState) -> PairLaw<'a> {
         let dt = state.last_pressure_step.unwrap_or(self.time_step);
-        pair_laws::pressure(&self.kernel, self.neumann(p, dt), &self.faces)
+        pair_laws::pressure(&self.kernel, self.neumann(p, dt), &self.faces, self.completion())
+    }
+
+    /// The bodies' completion where the exact projection uses it (`"conservative"`).
+    fn completion(&self) -> Option<&BodyCompletion> {
+        (self.settings.pressure_gradient == PressureGradient::Conservative).then_some(&self.completion)
     }
 
     /// The solids turned rigidly from rest at the present positions (a flap paddle), whose kept
@@ -270,7 +279,10 @@ impl IsphStep {
             p,
             &walls,
             form,
-            &self.faces,
+            (
+                &self.faces,
+                (form == PressureGradient::Conservative).then_some(&self.completion),
+            ),
             &mut self.accel,
         );
         (0..3).for_each(|a| totals.force_from_walls[a] -= self.kernel.volume * pass.from_non_fluid[a]);
@@ -282,7 +294,7 @@ impl IsphStep {
         }
         bodies(
             Exchange::Pressure,
-            &pair_laws::pressure(&self.kernel, self.neumann(p, pdt), &self.faces),
+            &pair_laws::pressure(&self.kernel, self.neumann(p, pdt), &self.faces, self.completion()),
             grid,
             p,
         );
@@ -567,8 +579,10 @@ impl IsphStep {
             r.copy_from_slice(&b.rhs);
         });
         if self.settings.pressure_gradient == PressureGradient::Conservative {
-            // The faces' geometry and Adami's weights, for the bodies' part of the operator.
-            self.update_body_faces(p, dt);
+            let rho_g = self.physics.gravity.map(|g| self.physics.density * g);
+            let row_of = &self.ppe.row_of;
+            let unknown = |i: usize| row_of[i] != NOT_AN_UNKNOWN;
+            self.completion.update(&k, &self.list, p, rho_g, unknown);
             self.pair_gradients.build(&k, &self.list, p);
             let walls = self
                 .walls
@@ -581,7 +595,7 @@ impl IsphStep {
                 &self.ratio,
                 self.settings.alpha_d,
                 dt,
-                (&self.pair_gradients, &self.faces),
+                (&self.pair_gradients, &self.completion),
                 &mut self.ppe,
                 &mut self.known_gradient,
             );
@@ -618,10 +632,9 @@ impl IsphStep {
         let s = &self.settings;
         let report = if s.pressure_gradient == PressureGradient::Conservative {
             exact_projection::solve(
-                &self.kernel,
                 &self.list,
                 p,
-                (&self.pair_gradients, &self.faces),
+                (&self.pair_gradients, &self.completion),
                 ppe,
                 s.ppe_solver,
                 &mut self.solution,

@@ -58,7 +58,9 @@ pub enum PressureGradient {
     /// PPE's divergence is the adjoint of the gradient (`D = −Gᵀ`) and its matrix is `GᵀG`, so
     /// the projection removes the divergence it measures and the pressure force is
     /// antisymmetric pair by pair; the lattice's checkerboard, which `G` does not see, is held by
-    /// a small share of S2-9's Laplacian (`fluid_solver::isph::exact_projection`). Accepted with
+    /// a small share of S2-9's Laplacian (`fluid_solver::isph::exact_projection`). A body
+    /// completes the kernel sums of the water beside it (`fluid_solver::isph::body_completion`),
+    /// so its load does not depend on where it stands on the lattice. Accepted with
     /// `influence_radius` in [`SYMMETRIC_SUPPORT`], as `"symmetric"`.
     Conservative,
 }
