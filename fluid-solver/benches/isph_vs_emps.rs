@@ -27,7 +27,7 @@
 //! [--radius=r_e/Δs] [--shifting=lind] [--shifting-coefficient=A] [--isph-courant=C]`; defaults Δs = L/20 = 0.0073 m (8 000 fluid particles), 0.5 s (past
 //! the impact on the far wall at about 0.3 s), "additive-two-level-pcg" (or "two-level-pcg", "jacobi-pcg", "sgs-pcg", "faer-cholesky"), S2's α_d = 5e-3, ISPH's
 //! pressure gradient "corrected-difference" (`--gradient=symmetric`: the case key
-//! `isph.pressure_gradient`) at a support of 2.4 Δs (`--radius`: `isph.influence_radius`), no shifting (`--shifting=lind`: `isph.shifting`, with
+//! `isph.pressure_gradient`) at its default support (2.4 Δs, 2.0 with the symmetric gradients; `--radius`: `isph.influence_radius`), no shifting (`--shifting=lind`: `isph.shifting`, with
 //! `--shifting-coefficient`: `isph.shifting_coefficient`, default 0.5), ISPH's Δt at advective
 //! Courant 0.3 (`--isph-courant`; 0.1275 gives E-MPS's Δt at L/20, for the probe at equal
 //! steps). `--s2` is S2's
@@ -218,7 +218,13 @@ fn main() {
         Some("conservative") => PressureGradient::Conservative,
         _ => PressureGradient::CorrectedDifference,
     };
-    let influence_radius = number(&all, "--radius", IsphConfig::default().influence_radius);
+    let support = IsphConfig {
+        pressure_gradient,
+        ..IsphConfig::default()
+    }
+    .support();
+    let support = number(&all, "--radius", support);
+    let influence_radius = Some(support);
     let shifting = match flag(&all, "--shifting") {
         Some("lind") => Shifting::Lind,
         _ => Shifting::Off,
@@ -247,7 +253,7 @@ fn main() {
         }
     }
     println!(
-        "dam break, Δs = {ds} m, slab {layers} Δs deep, end {end} s, ISPH gradient {pressure_gradient:?} at a support of {influence_radius} Δs, shifting {shifting:?} (A = {shifting_coefficient}), {} threads, load average {}",
+        "dam break, Δs = {ds} m, slab {layers} Δs deep, end {end} s, ISPH gradient {pressure_gradient:?} at a support of {support} Δs, shifting {shifting:?} (A = {shifting_coefficient}), {} threads, load average {}",
         rayon::current_num_threads(),
         load_average()
     );

@@ -136,9 +136,7 @@ impl FluidSolver {
         };
         let cell = match cfg.method {
             FluidMethodName::Emps => CELL_IN_SPACINGS * cfg.spacing,
-            FluidMethodName::Isph => {
-                neighbour_list::cell_edge(cfg.spacing, cfg.isph_settings().influence_radius)
-            }
+            FluidMethodName::Isph => neighbour_list::cell_edge(cfg.spacing, cfg.isph_settings().support()),
         };
         let grid = CellGrid::with_cell(layout.grid_box.lo, layout.grid_box.hi, cell);
         let centres: Vec<[f64; 3]> = cfg.body.iter().map(|b| b.centre()).collect();

@@ -171,15 +171,29 @@ fn other_bad_keys_name_what_is_allowed() {
         assert!(default.fluid["water"].warnings().is_empty());
     }
     parse(&isph("corrected-difference")).unwrap_or_else(|e| panic!("{e}"));
+    // The symmetric forms' support is 2.0 Δs unless given, S2-8's 2.4 (S2, Table 1).
+    let support = |form: &str| {
+        parse(&isph(form)).unwrap_or_else(|e| panic!("{e}")).fluid["water"]
+            .isph_settings()
+            .support()
+    };
+    assert_eq!(
+        [
+            support("corrected-difference"),
+            support("symmetric"),
+            support("conservative")
+        ],
+        [2.4, 2.0, 2.0]
+    );
     // The symmetric form only where the lattice is restored (S2's 2.4 spacings is not).
-    let e = error_of(&isph("symmetric"));
+    let e = error_of(&(isph("symmetric") + "influence_radius = 2.4\n"));
     assert!(
         e.contains("`fluid.water.isph.influence_radius`")
             && e.contains("[1.95, 2.15]")
             && e.contains("got 2.4"),
         "{e}"
     );
-    let e = error_of(&isph("conservative"));
+    let e = error_of(&(isph("conservative") + "influence_radius = 2.4\n"));
     assert!(
         e.contains("`fluid.water.isph.influence_radius`")
             && e.contains("\"conservative\"")

@@ -42,7 +42,7 @@ fn the_ci_twin_runs_with_isph_and_the_box_face_is_pressed_where_the_water_runs_u
 #[ignore = "non-default ISPH setting (35 s on 2 cores); run with --ignored"]
 fn the_ci_twin_with_the_symmetric_isph_gradient_presses_the_box_face() {
     let settings = IsphConfig {
-        influence_radius: 2.0,
+        influence_radius: Some(2.0),
         pressure_gradient: PressureGradient::Symmetric,
         shifting: Shifting::Lind,
         ..IsphConfig::default()

@@ -34,7 +34,7 @@ fn isph_tank() -> FluidConfig {
 fn isph_tank_symmetric() -> FluidConfig {
     let mut cfg = isph_tank();
     cfg.isph = Some(IsphConfig {
-        influence_radius: 2.0,
+        influence_radius: Some(2.0),
         pressure_gradient: PressureGradient::Symmetric,
         ..IsphConfig::default()
     });

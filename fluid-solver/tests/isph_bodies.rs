@@ -88,7 +88,7 @@ fn shifted() -> IsphConfig {
 
 fn symmetric() -> IsphConfig {
     IsphConfig {
-        influence_radius: 2.0,
+        influence_radius: Some(2.0),
         pressure_gradient: PressureGradient::Symmetric,
         ..IsphConfig::default()
     }
@@ -244,7 +244,7 @@ fn submerged_box_load(offset: f64, settings: IsphConfig) -> (f64, f64) {
     let error = mean[2] / buoyancy - 1.0;
     println!(
         "box {offset} m above its site, ISPH ({:?}, support {} Δs, shifting {:?}) mean load over {steps} steps: F = [{:.4}, {:.4}, {:.4}] N; ρgV = {buoyancy:.4} N; error {:+.2} %; worst |load + reaction| {worst_balance:.2e}; fastest fluid particle {fastest:.2e} m/s",
-        settings.pressure_gradient, settings.influence_radius, settings.shifting, mean[0], mean[1], mean[2], 100.0 * error
+        settings.pressure_gradient, settings.support(), settings.shifting, mean[0], mean[1], mean[2], 100.0 * error
     );
     let (method, test) = labels(settings);
     let (name, settings_text) = names(settings);

@@ -272,7 +272,7 @@ fn conservative() -> schemas::case::fluid::IsphConfig {
 /// `pressure_gradient = "symmetric"` at a support of 2.0 Δs.
 fn symmetric() -> schemas::case::fluid::IsphConfig {
     schemas::case::fluid::IsphConfig {
-        influence_radius: 2.0,
+        influence_radius: Some(2.0),
         pressure_gradient: schemas::case::fluid::PressureGradient::Symmetric,
         ..schemas::case::fluid::IsphConfig::default()
     }

@@ -93,7 +93,7 @@ fn isph(cfg: FluidConfig) -> FluidConfig {
 /// `pressure_gradient = "symmetric"` at a support of 2.0 Δs.
 fn symmetric(cfg: FluidConfig) -> FluidConfig {
     let settings = IsphConfig {
-        influence_radius: 2.0,
+        influence_radius: Some(2.0),
         pressure_gradient: PressureGradient::Symmetric,
         ..IsphConfig::default()
     };
@@ -133,7 +133,7 @@ impl Stepped {
     fn new(cfg: &FluidConfig, t: f64) -> Stepped {
         let settings = cfg.isph.unwrap_or_default();
         let (ds, g) = (cfg.spacing, cfg.gravity);
-        let k = Wendland::new(ds, settings.influence_radius);
+        let k = Wendland::new(ds, settings.support());
         let mut solver = FluidSolver::new(cfg);
         solver.advance_to(t).unwrap_or_else(|e| panic!("{e}"));
         let before = solver.particles().clone();
@@ -635,7 +635,7 @@ fn exact_projection_removes_the_divergence_in_the_hydrostatic_tank() {
 /// `pressure_gradient = "conservative"` at a support of 2.0 Δs.
 fn conservative(cfg: FluidConfig) -> FluidConfig {
     let settings = IsphConfig {
-        influence_radius: 2.0,
+        influence_radius: Some(2.0),
         pressure_gradient: PressureGradient::Conservative,
         ..IsphConfig::default()
     };

@@ -43,7 +43,7 @@ fn isph(cfg: FluidConfig) -> FluidConfig {
 /// `pressure_gradient = "symmetric"` at a support of 2.0 Δs.
 fn symmetric() -> IsphConfig {
     IsphConfig {
-        influence_radius: 2.0,
+        influence_radius: Some(2.0),
         pressure_gradient: PressureGradient::Symmetric,
         ..IsphConfig::default()
     }

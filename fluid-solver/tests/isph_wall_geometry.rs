@@ -16,7 +16,7 @@ use std::collections::HashSet;
 #[test]
 fn kept_wall_normals_and_depths_equal_fresh_ones_after_the_water_moved() {
     let cfg = isph_slab::isph_slab();
-    let radius = cfg.isph.as_ref().map_or(2.4, |s| s.influence_radius);
+    let radius = cfg.isph.as_ref().map_or(2.4, |s| s.support());
     let k = Wendland::new(cfg.spacing, radius);
     let mut solver = FluidSolver::new(&cfg);
     let mut fields = WallFields::default();

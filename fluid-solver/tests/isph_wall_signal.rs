@@ -57,7 +57,7 @@ fn isph() -> FluidConfig {
     cfg.sound_speed = None;
     cfg.isph = Some(IsphConfig {
         pressure_gradient: PressureGradient::Symmetric,
-        influence_radius: 2.0,
+        influence_radius: Some(2.0),
         shifting: Shifting::Lind,
         ..IsphConfig::default()
     });

@@ -173,7 +173,7 @@ fn a_plane_beach_gives_isph_wall_normals_along_the_plane_normal_and_water_fills_
         "{deepest}"
     );
 
-    let radius = cfg.isph_settings().influence_radius;
+    let radius = cfg.isph_settings().support();
     let k = Wendland::new(ds, radius);
     let mut q = p.clone();
     let d = solver.domain();

@@ -242,7 +242,7 @@ fn the_flap_turns_about_its_hinge_with_both_methods() {
 #[test]
 fn the_flaps_isph_wall_normals_turn_with_it() {
     let (cfg, flap) = short_flap(FluidMethodName::Isph);
-    let radius = cfg.isph.as_ref().map_or(2.4, |s| s.influence_radius);
+    let radius = cfg.isph.as_ref().map_or(2.4, |s| s.support());
     let k = Wendland::new(cfg.spacing, radius);
     let mut solver = FluidSolver::new(&cfg);
     let rest = paddle_at_rest(&solver);

@@ -134,7 +134,7 @@ pub struct IsphStep {
 }
 
 impl IsphStep {
-    /// A step with kernel support `settings.influence_radius` Δs.
+    /// A step with kernel support `settings.support()` Δs.
     pub fn new(
         spacing: f64,
         physics: Physics,
@@ -143,7 +143,7 @@ impl IsphStep {
         time_step: f64,
     ) -> IsphStep {
         IsphStep {
-            kernel: Wendland::new(spacing, settings.influence_radius),
+            kernel: Wendland::new(spacing, settings.support()),
             physics,
             settings,
             n0_mps,

@@ -92,12 +92,12 @@ pub enum Shifting {
 /// ```toml
 /// [fluid.tank.isph]
 /// alpha_d = 5e-3            # α_d of S2-5 (density relaxation)
-/// influence_radius = 2.4    # kernel support in spacings (S2, Table 1)
+/// influence_radius = 2.4    # kernel support in spacings (S2, Table 1; 2.0 by default with "symmetric", "conservative")
 /// ppe_tolerance = 1e-6      # relative residual |r|/|b| the PPE must reach every step
 /// ppe_max_iterations = 1000 # beyond this the run stops with the residual
 /// ppe_solver = "additive-two-level-pcg" # or "two-level-pcg", "jacobi-pcg", "faer-cholesky", "sgs-pcg"
 /// wall_slip = "free-slip"   # or "no-slip"
-/// pressure_gradient = "corrected-difference" # or "symmetric", "conservative" (with influence_radius = 2.0)
+/// pressure_gradient = "corrected-difference" # or "symmetric", "conservative"
 /// shifting = "off"          # or "lind" (particle shifting)
 /// shifting_coefficient = 0.5 # A of D = A h |u|_max Δt (Skillen et al. 2013), with "lind"
 /// ```
@@ -107,10 +107,12 @@ pub struct IsphConfig {
     /// α_d of S2-5, the relaxation of the density towards ρ0 [–]. Range: [0, 1].
     #[serde(default = "default_alpha_d")]
     pub alpha_d: f64,
-    /// Kernel support in spacings [Δs] (S2, Table 1). Range: [1.5, wall_layers − 0.5]; [1.95,
-    /// 2.15] with `pressure_gradient = "symmetric"` or `"conservative"`.
-    #[serde(default = "default_influence_radius")]
-    pub influence_radius: f64,
+    /// Kernel support in spacings [Δs]: by default 2.4 with `pressure_gradient =
+    /// "corrected-difference"` (S2, Table 1) and 2.0 with `"symmetric"` or `"conservative"`
+    /// ([`IsphConfig::support`]). Range: [1.5, wall_layers − 0.5]; [1.95, 2.15] with
+    /// `"symmetric"` or `"conservative"`.
+    #[serde(default)]
+    pub influence_radius: Option<f64>,
     /// Relative residual |r|/|b| the pressure Poisson equation must reach every step [–].
     /// Range: (0, 1).
     #[serde(default = "default_ppe_tolerance")]
@@ -143,7 +145,7 @@ impl Default for IsphConfig {
     fn default() -> IsphConfig {
         IsphConfig {
             alpha_d: default_alpha_d(),
-            influence_radius: default_influence_radius(),
+            influence_radius: None,
             ppe_tolerance: default_ppe_tolerance(),
             ppe_max_iterations: default_ppe_max_iterations(),
             ppe_solver: PpeSolver::default(),
@@ -157,9 +159,6 @@ impl Default for IsphConfig {
 
 fn default_alpha_d() -> f64 {
     5.0e-3
-}
-fn default_influence_radius() -> f64 {
-    2.4
 }
 fn default_ppe_tolerance() -> f64 {
     1.0e-6
@@ -179,6 +178,16 @@ fn default_shifting_coefficient() -> f64 {
 pub const MAX_SHIFTING_COEFFICIENT: f64 = 6.0;
 
 impl IsphConfig {
+    /// The kernel support in spacings: `influence_radius`, or by default 2.4 with S2-8's
+    /// gradient (S2, Table 1) and 2.0 with the symmetric ones, the middle of
+    /// [`SYMMETRIC_SUPPORT`].
+    pub fn support(&self) -> f64 {
+        self.influence_radius.unwrap_or(match self.pressure_gradient {
+            PressureGradient::CorrectedDifference => 2.4,
+            PressureGradient::Symmetric | PressureGradient::Conservative => 2.0,
+        })
+    }
+
     /// Checks every key; `key` is the section's dotted path.
     pub fn validate(&self, key: &str, wall_layers: u32) -> Result<(), FieldError> {
         let k = |s: &str| format!("{key}.{s}");
@@ -190,25 +199,24 @@ impl IsphConfig {
             ));
         }
         let layers = f64::from(wall_layers);
-        if !(self.influence_radius >= 1.5 && self.influence_radius <= layers - 0.5) {
+        let support = self.support();
+        if !(support >= 1.5 && support <= layers - 0.5) {
             return Err(FieldError::new(
                 k("influence_radius"),
                 format!(
                     "must be in [1.5, wall_layers − 0.5 = {}] spacings (a fluid particle half a spacing off a wall must see only wall particles behind it), got {}",
                     layers - 0.5,
-                    self.influence_radius
+                    support
                 ),
             ));
         }
         let (lo, hi) = SYMMETRIC_SUPPORT;
-        if self.pressure_gradient.is_symmetric()
-            && !(self.influence_radius >= lo && self.influence_radius <= hi)
-        {
+        if self.pressure_gradient.is_symmetric() && !(support >= lo && support <= hi) {
             return Err(FieldError::new(
                 k("influence_radius"),
                 format!(
-                    "must be in [{lo}, {hi}] spacings with pressure_gradient = \"symmetric\" or \"conservative\" (outside it a sliding column or plane of particles is not pushed back and a tank at rest comes apart: at S2's 2.4 the 1 s tank's edge columns rose at 0.12 m/s), got {}; set influence_radius = 2.0 or use pressure_gradient = \"corrected-difference\"",
-                    self.influence_radius
+                    "must be in [{lo}, {hi}] spacings with pressure_gradient = \"symmetric\" or \"conservative\" (outside it a sliding column or plane of particles is not pushed back and a tank at rest comes apart: at S2's 2.4 the 1 s tank's edge columns rose at 0.12 m/s), got {}; set influence_radius = 2.0 (or leave it out) or use pressure_gradient = \"corrected-difference\"",
+                    support
                 ),
             ));
         }
