@@ -7,8 +7,8 @@ usage: python3 cases/prism-dam-break/sweep.py [--spacing DS] [--end T] [--out DI
 
 --spacing: particle size (default 0.005, S2 Table 1); the time steps scale with it (Δt = 2e-4 s
 at 5 mm: c Δt/Δs = 0.6) and the water column keeps its size (so 0.01 gives 16 000 particles).
---method isph: the fluid as S2 ran it, ISPH at S2's Δt = 5e-4 s at 5 mm (Table 1), scaled alike,
-with the coupling window and the frame's step the same.
+--method isph: the fluid as S2 ran it, ISPH with S2-8's gradient (named) at S2's Δt = 5e-4 s at
+5 mm (Table 1), scaled alike, with the coupling window and the frame's step the same.
 Writes into DIR (default out/prism-dam-break): one coupler run per width (w0.0005/, …) and
 resolved/, force-per-width.csv (time, F_x/D of each run), force-per-width.png (drawn by
 `coupler plot`), and prints each
@@ -36,7 +36,10 @@ def scaled(text, spacing, end, method):
     fluid method `method` ("emps": the case's; "isph": S2's method and Δt)."""
     step = {"emps": BASE_STEP_EMPS, "isph": BASE_STEP_ISPH}[method] * spacing / BASE_SPACING
     if method == "isph":
-        text = text.replace("sound_speed = 15.0", 'method = "isph"')
+        text = text.replace(
+            "sound_speed = 15.0",
+            'method = "isph"\nisph = { pressure_gradient = "corrected-difference" }',
+        )
     text = text.replace("spacing = 0.005", "spacing = %g" % spacing)
     text = text.replace(BASE_STEP, "%.6g" % step)
     if end is not None:

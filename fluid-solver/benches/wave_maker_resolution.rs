@@ -27,7 +27,7 @@ end_time = 4.6
 
 [fluid.flume]
 method = "isph"
-isph = {{ shifting = "lind" }}
+isph = {{ shifting = "lind", pressure_gradient = "corrected-difference" }}
 spacing = {spacing}
 time_step = {dt}
 viscosity_term = false

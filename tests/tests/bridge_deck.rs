@@ -68,13 +68,16 @@ fn columns(path: &Path, names: &[&str]) -> Vec<Vec<f64>> {
         .collect()
 }
 
-/// The case file at d/8 for `method` (`"emps"`, as shipped, or `"isph"` with Lind's shifting),
+/// The case file at d/8 for `method` (`"emps"`, as shipped, or `"isph"` with S2-8's gradient and Lind's shifting, the case's wave setting),
 /// written with its mesh into `dir`.
 fn ci_twin(dir: &Path, method: &str) -> PathBuf {
     // E-MPS: c Δt/Δs = 0.8 as shipped; ISPH: u_max Δt/Δs = 0.32 (its limit is 0.4).
     let (method, time_step) = match method {
         "emps" => ("\"emps\"", "1.25e-3"),
-        _ => ("\"isph\"\nisph = { shifting = \"lind\" }", "2.5e-3"),
+        _ => (
+            "\"isph\"\nisph = { shifting = \"lind\", pressure_gradient = \"corrected-difference\" }",
+            "2.5e-3",
+        ),
     };
     let case = case_from(
         "bridge-deck-solitary",

@@ -489,7 +489,7 @@ impl FluidConfig {
         if self.method == FluidMethodName::Emps && (self.wave_maker.is_some() || self.initial_wave.is_some())
         {
             warnings.push(
-                "`method` = \"emps\" with a `wave_maker` or an `initial_wave`: E-MPS damps gravity waves (a standing wave keeps 0.45 of its amplitude after one period at d/8, less at d/16; a solitary wave of H/d = 0.2 keeps 0.84 H after 10 depths at d/16 and travels about a quarter slow, and its run-up on a 1:3 beach reaches 0.30–0.33 of Synolakis' law), so read loads only where the wave has travelled a few depths; for waves use method = \"isph\" with isph = { shifting = \"lind\" } (docs/notes/emps-gravity-waves.md)".into(),
+                "`method` = \"emps\" with a `wave_maker` or an `initial_wave`: E-MPS damps gravity waves (a standing wave keeps 0.45 of its amplitude after one period at d/8, less at d/16; a solitary wave of H/d = 0.2 keeps 0.84 H after 10 depths at d/16 and travels about a quarter slow, and its run-up on a 1:3 beach reaches 0.30–0.33 of Synolakis' law), so read loads only where the wave has travelled a few depths; for waves use method = \"isph\" with isph = { shifting = \"lind\", pressure_gradient = \"corrected-difference\" } (docs/notes/emps-gravity-waves.md)".into(),
             );
         }
         warnings
