@@ -165,18 +165,10 @@ fn the_isph_floating_box_with_the_symmetric_gradient_rises_towards_its_draft() {
 /// (`isph::shifting`); measured 0.1995 … 0.2092 m, mean 0.2041 m over 0.5 … 1 s.
 #[test]
 fn the_isph_floating_box_with_shifting_rises_towards_its_draft() {
-    let text = replaced(
-        &symmetric_case("1.0"),
-        &[(
-            "pressure_gradient = \"symmetric\"\n",
-            "pressure_gradient = \"symmetric\"\nshifting = \"lind\"\n",
-        )],
+    let (z_lo, z_hi, mean, run_time_s) = one_second(
+        "isph-floating-shifting",
+        "pressure_gradient = \"symmetric\"\nshifting = \"lind\"\n",
     );
-    let started = Instant::now();
-    let (rows, z_lo, z_hi) = run_text("isph-floating-shifting", &text);
-    let run_time_s = started.elapsed().as_secs_f64();
-    let late: Vec<f64> = rows.iter().filter(|r| r[0] >= 0.5).map(|r| r[3]).collect();
-    let mean = late.iter().sum::<f64>() / late.len() as f64;
     println!("mean centre z over 0.5 … 1 s: {mean:.4} m (equilibrium 0.2067 m)");
     record_band(
         (
@@ -197,18 +189,10 @@ fn the_isph_floating_box_with_shifting_rises_towards_its_draft() {
 /// draft 1.3 % shallow (30 Nov 2026).
 #[test]
 fn the_isph_floating_box_with_the_exact_projection_floats_at_its_draft() {
-    let text = replaced(
-        &symmetric_case("1.0"),
-        &[(
-            "pressure_gradient = \"symmetric\"\n",
-            "pressure_gradient = \"conservative\"\n",
-        )],
+    let (z_lo, z_hi, mean, run_time_s) = one_second(
+        "isph-floating-exact-projection",
+        "pressure_gradient = \"conservative\"\n",
     );
-    let started = Instant::now();
-    let (rows, z_lo, z_hi) = run_text("isph-floating-exact-projection", &text);
-    let run_time_s = started.elapsed().as_secs_f64();
-    let late: Vec<f64> = rows.iter().filter(|r| r[0] >= 0.5).map(|r| r[3]).collect();
-    let mean = late.iter().sum::<f64>() / late.len() as f64;
     // The draft is the equilibrium's (0.4 × 8 cm) less what the centre sits above it.
     let draft = DENSITY_RATIO * HEIGHT - (mean - SETTLED_Z);
     let error = draft / (DENSITY_RATIO * HEIGHT) - 1.0;
@@ -238,6 +222,21 @@ fn the_isph_floating_box_with_the_exact_projection_floats_at_its_draft() {
         "draft {draft} m: {:+.2} % (bound 5 %)",
         100.0 * error
     );
+}
+
+/// The 1 s run of [`symmetric_case`] with its gradient line replaced by `settings`: the lowest
+/// and highest centre, the mean centre over 0.5 … 1 s and the run's wall time.
+fn one_second(test: &str, settings: &str) -> (f64, f64, f64, f64) {
+    let text = replaced(
+        &symmetric_case("1.0"),
+        &[("pressure_gradient = \"symmetric\"\n", settings)],
+    );
+    let started = Instant::now();
+    let (rows, z_lo, z_hi) = run_text(test, &text);
+    let run_time_s = started.elapsed().as_secs_f64();
+    let late: Vec<f64> = rows.iter().filter(|r| r[0] >= 0.5).map(|r| r[3]).collect();
+    let mean = late.iter().sum::<f64>() / late.len() as f64;
+    (z_lo, z_hi, mean, run_time_s)
 }
 
 /// The ISPH floating-box case to `end` with the symmetric gradient at 2.0 Δs.
