@@ -78,6 +78,12 @@ impl BodyCompletion {
         self.weight.resize(n, 0.0);
         self.velocity.resize(n, [0.0; 3]);
         let body = Kind::Body.code();
+        if !p.kind.par_iter().any(|&c| c == body) {
+            self.zero.fill([0.0; 3]);
+            self.first.fill([0.0; 3]);
+            self.any = false;
+            return;
+        }
         self.any = (
             &mut self.zero,
             &mut self.first,
@@ -89,7 +95,7 @@ impl BodyCompletion {
             .with_min_len(512)
             .map(|(i, (zero, first, weight, velocity))| {
                 (*zero, *first, *weight, *velocity) = ([0.0; 3], [0.0; 3], 0.0, [0.0; 3]);
-                if p.kind[i] != FLUID {
+                if p.kind[i] != FLUID || !list.of(i).iter().any(|&j| p.kind[j as usize] == body) {
                     return false;
                 }
                 let mut sums = Sums::default();
