@@ -133,6 +133,13 @@ pub struct IsphStep {
     times: StageTimes,
 }
 
+/// `completion` where the exact projection uses it (`"conservative"`): the other gradients
+/// load bodies by the face law. (A function of the two fields, so that a pass writing another
+/// field of the step can borrow it.)
+fn completion_of<'a>(settings: &IsphConfig, completion: &'a BodyCompletion) -> Option<&'a BodyCompletion> {
+    (settings.pressure_gradient == PressureGradient::Conservative).then_some(completion)
+}
+
 impl IsphStep {
     /// A step with kernel support `settings.support()` Δs.
     pub fn new(
@@ -203,9 +210,9 @@ impl IsphStep {
         pair_laws::pressure(&self.kernel, self.neumann(p, dt), &self.faces, self.completion())
     }
 
-    /// The bodies' completion where the exact projection uses it (`"conservative"`).
+    /// The bodies' completion where the exact projection uses it ([`completion_of`]).
     fn completion(&self) -> Option<&BodyCompletion> {
-        (self.settings.pressure_gradient == PressureGradient::Conservative).then_some(&self.completion)
+        completion_of(&self.settings, &self.completion)
     }
 
     /// The solids turned rigidly from rest at the present positions (a flap paddle), whose kept
@@ -279,10 +286,7 @@ impl IsphStep {
             p,
             &walls,
             form,
-            (
-                &self.faces,
-                (form == PressureGradient::Conservative).then_some(&self.completion),
-            ),
+            (&self.faces, completion_of(&self.settings, &self.completion)),
             &mut self.accel,
         );
         (0..3).for_each(|a| totals.force_from_walls[a] -= self.kernel.volume * pass.from_non_fluid[a]);

@@ -10,6 +10,9 @@ use schemas::participant::ProgressSink;
 use std::sync::mpsc::{channel, Receiver, Sender};
 use std::thread::JoinHandle;
 
+/// The error once a panicked write took the writer's state with it.
+const LOST: &str = "the output writer lost its files when its thread panicked";
+
 /// A write under way: its thread (which hands the writer's state back with its result) and the
 /// bytes it reports.
 struct Running<S> {
@@ -58,9 +61,7 @@ impl<S: Send + 'static> BackgroundWriter<S> {
             self.idle = Some(state);
             result?;
         }
-        self.idle
-            .as_mut()
-            .ok_or_else(|| "the output writer lost its files when its thread panicked".to_string())
+        self.idle.as_mut().ok_or_else(|| LOST.to_string())
     }
 
     /// Starts `write` on the state on a thread of its own, once the write before it is done
@@ -71,10 +72,7 @@ impl<S: Send + 'static> BackgroundWriter<S> {
         write: impl FnOnce(&mut S, &mut dyn ProgressSink) -> Result<(), String> + Send + 'static,
     ) -> Result<(), String> {
         self.wait(progress)?;
-        let mut state = self
-            .idle
-            .take()
-            .ok_or_else(|| "the output writer lost its files when its thread panicked".to_string())?;
+        let mut state = self.idle.take().ok_or_else(|| LOST.to_string())?;
         let (sender, bytes) = channel();
         let thread = std::thread::Builder::new()
             .name("output writer".into())
