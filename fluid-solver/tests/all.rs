@@ -52,6 +52,7 @@ mod isph_landing_steps;
 mod isph_lattice_modes;
 mod isph_momentum;
 mod isph_step_length;
+mod isph_thin_sheet;
 mod isph_two_level;
 mod isph_wall_geometry;
 mod isph_wall_signal;

@@ -58,6 +58,7 @@ use fluid_solver::isph::neighbour_list::NeighbourList;
 use fluid_solver::isph::operators;
 use fluid_solver::isph::pair_gradients::PairGradients;
 use fluid_solver::isph::pair_laws::BodyFaces;
+use fluid_solver::isph::surface_walls;
 use fluid_solver::isph::walls::{self, NeumannPair};
 use fluid_solver::method::MethodState;
 use fluid_solver::neighbour_search::CellGrid;
@@ -130,6 +131,7 @@ struct Stepped {
     depth: Vec<f64>,
     convex: Vec<u8>,
     surface: Vec<u8>,
+    surface_completion: Vec<[[f64; 3]; 3]>,
     unknowns: usize,
     residual: f64,
 }
@@ -190,6 +192,11 @@ impl Stepped {
                 }
             })
             .collect();
+        // The walls' completion of the surface water the PPE does not hold (symmetric forms).
+        let mut surface_completion = Vec::new();
+        if settings.pressure_gradient.is_symmetric() {
+            surface_walls::completions(&k, &list, &q, &surface, &mut surface_completion);
+        }
         Stepped {
             k,
             q,
@@ -202,6 +209,7 @@ impl Stepped {
             depth,
             convex,
             surface,
+            surface_completion,
             unknowns: state.ppe.unknowns,
             residual: state.ppe.residual,
         }
@@ -218,6 +226,7 @@ impl Stepped {
             normals: &self.normals,
             convex: &self.convex,
             surface: &self.surface,
+            surface_completion: &self.surface_completion,
             depth: &self.depth,
             spacing: cfg.spacing,
         }

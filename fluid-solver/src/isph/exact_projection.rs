@@ -91,15 +91,15 @@ pub fn known_gradient(
                     if p.kind[j] == body {
                         continue;
                     }
-                    let pij = if p.kind[j] == FLUID {
-                        pi + known(j)
+                    let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
+                    let t = if p.kind[j] == FLUID {
+                        let c = k.volume * k.dw_over_r_at(q) * (pi + known(j));
+                        d.map(|v| c * v)
                     } else {
-                        2.0 * pi + walls.difference(i, j)
+                        let c = k.volume * k.dw_over_r_at(q) * (2.0 * pi + walls.difference(i, j));
+                        walls.completed(i, d.map(|v| c * v))
                     };
-                    let c = k.volume * k.dw_over_r_at(q) * pij;
-                    g[0] += c * (p.x[i] - p.x[j]);
-                    g[1] += c * (p.y[i] - p.y[j]);
-                    g[2] += c * (p.z[i] - p.z[j]);
+                    (0..3).for_each(|a| g[a] += t[a]);
                 }
                 if let Some(bodies) = bodies {
                     let t = bodies.term(i, pi);

@@ -12,6 +12,7 @@
 //! - [`pair_gradients`]: the pairs' kernel gradients the exact projection's operator reads;
 //! - [`pair_laws`]: the fluid–body pair forces;
 //! - [`body_completion`]: the bodies' pressure law of the exact projection;
+//! - [`surface_walls`]: the walls complete surface water the PPE does not hold (symmetric forms);
 //! - [`shifting`]: particle shifting (Lind et al. 2012), a case option;
 //! - [`step`]: one time step, S2-3 … S2-5, as a list of named stages.
 
@@ -28,4 +29,5 @@ pub mod ppe_two_level;
 pub mod shifting;
 pub mod step;
 pub mod step_length;
+pub mod surface_walls;
 pub mod walls;

@@ -44,7 +44,8 @@ use rayon::prelude::*;
 /// [`super::walls`]). The fluid's `⟨∇p⟩_i = Σ_j t_ij` ([`super::operators::pressure_gradient`]),
 /// so the force on i from j is `−(m/ρ) t_ij = −V t_ij`, and the force on a solid j from i is
 /// `V t_ij` ([`pressure`]); for two fluid particles `t_ij = −t_ji`, so momentum closes pair by
-/// pair.
+/// pair. The wall terms of surface water the PPE does not hold are completed by the walls
+/// ([`super::surface_walls`]; with the symmetric forms only).
 #[inline(always)]
 pub fn symmetric_term(
     k: &Wendland,
@@ -55,13 +56,12 @@ pub fn symmetric_term(
     q: f64,
 ) -> [f64; 3] {
     let p = walls.p;
-    let pij = if p.kind[j] == FLUID {
-        p.pressure[i] + p.pressure[j]
-    } else {
-        2.0 * p.pressure[i] + walls.difference(i, j)
-    };
-    let c = k.volume * k.dw_over_r_at(q) * pij;
-    d.map(|v| c * v)
+    if p.kind[j] == FLUID {
+        let c = k.volume * k.dw_over_r_at(q) * (p.pressure[i] + p.pressure[j]);
+        return d.map(|v| c * v);
+    }
+    let c = k.volume * k.dw_over_r_at(q) * (2.0 * p.pressure[i] + walls.difference(i, j));
+    walls.completed(i, d.map(|v| c * v))
 }
 
 /// Fluid particle i's share of body particle j's face force at `q = r / r_e`,

@@ -48,6 +48,7 @@ use super::ppe::{PpeFailure, PpeReport, PpeSystem, NOT_AN_UNKNOWN};
 use super::ppe_two_level;
 use super::shifting;
 use super::step_length::pressure_step;
+use super::surface_walls;
 use super::walls::{self, NeumannPair, WallFields};
 use crate::bodies::pair_law::{Exchange, ExchangeScales, PairLaw};
 use crate::method::StepTotals;
@@ -482,6 +483,11 @@ impl IsphStep {
             &mut self.dirichlet,
         );
         self.walls.surface.clone_from(surface);
+        if self.settings.pressure_gradient.is_symmetric() {
+            surface_walls::completions(&k, list, p, surface, &mut self.walls.surface_completion);
+        } else {
+            self.walls.surface_completion.clear();
+        }
         let ppe = &mut self.ppe;
         ppe.row_of.clear();
         ppe.row_of.resize(p.len(), NOT_AN_UNKNOWN);

@@ -271,6 +271,9 @@ fn turn(n: [f64; 3], (sin, cos): (f64, f64)) -> [f64; 3] {
 pub struct WallFields {
     pub normals: VectorField,
     pub surface: Vec<u8>,
+    /// The walls' completion of the surface particles the PPE does not hold, with the symmetric
+    /// gradients ([`super::surface_walls`]; empty: none).
+    pub surface_completion: Vec<[[f64; 3]; 3]>,
     pub depth: Vec<f64>,
     pub convex: Vec<u8>,
     /// The solids moved from rest at the present positions (a wave maker's paddle), if any.
@@ -378,6 +381,7 @@ impl WallFields {
             normals: &self.normals,
             convex: &self.convex,
             surface: &self.surface,
+            surface_completion: &self.surface_completion,
             depth: &self.depth,
             spacing,
         }
@@ -398,6 +402,8 @@ pub struct NeumannPair<'a> {
     pub convex: &'a [u8],
     /// [`SURFACE`] for the fluid particles on the free surface (empty: none).
     pub surface: &'a [u8],
+    /// The walls' completion of the surface particles ([`super::surface_walls`]; empty: none).
+    pub surface_completion: &'a [[[f64; 3]; 3]],
     /// Each solid particle's depth behind its wall's face ([`depths`]; empty: none).
     pub depth: &'a [f64],
     /// Δs [m].
@@ -432,6 +438,16 @@ impl NeumannPair<'_> {
             un = (un + gap / self.dt).min(0.0);
         }
         hydro + self.density / self.dt * un * dn
+    }
+
+    /// Fluid particle f's wall term `t`, completed by the walls if f is surface water the PPE
+    /// does not hold ([`super::surface_walls`]).
+    #[inline(always)]
+    pub fn completed(&self, f: usize, t: [f64; 3]) -> [f64; 3] {
+        match self.surface_completion.get(f) {
+            Some(m) => super::surface_walls::completed(t, m),
+            None => t,
+        }
     }
 
     /// The normal of the face that fluid particle f stands in front of, for a solid w on a convex
