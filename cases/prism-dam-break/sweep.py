@@ -3,12 +3,14 @@ the resolved 0.05 m prism, the X force per unit width against time of each, and 
 
 usage: python3 cases/prism-dam-break/sweep.py [--spacing DS] [--end T] [--out DIR]
                                                [--coupler PATH] [--widths W,W,...] [--no-run]
-                                               [--method isph]
+                                               [--method isph] [--gradient NAME]
 
 --spacing: particle size (default 0.005, S2 Table 1); the time steps scale with it (Δt = 2e-4 s
 at 5 mm: c Δt/Δs = 0.6) and the water column keeps its size (so 0.01 gives 16 000 particles).
---method isph: the fluid as S2 ran it, ISPH with S2-8's gradient (named) at S2's Δt = 5e-4 s at
-5 mm (Table 1), scaled alike, with the coupling window and the frame's step the same.
+--method isph: the fluid as S2 ran it, ISPH (its default settings) at S2's Δt = 5e-4 s at 5 mm
+(Table 1), scaled alike, with the coupling window and the frame's step the same.
+--gradient NAME: with --method isph, the case key isph.pressure_gradient ("corrected-difference"
+is S2-8's own gradient; default: ISPH's default, "conservative").
 Writes into DIR (default out/prism-dam-break): one coupler run per width (w0.0005/, …) and
 resolved/, force-per-width.csv (time, F_x/D of each run), force-per-width.png (drawn by
 `coupler plot`), and prints each
@@ -31,15 +33,16 @@ BASE_STEP_EMPS = 2.0e-4
 BASE_STEP_ISPH = 5.0e-4
 
 
-def scaled(text, spacing, end, method):
+def scaled(text, spacing, end, method, gradient=None):
     """The case text at particle size `spacing` (time steps scaled alike), end time `end` and
-    fluid method `method` ("emps": the case's; "isph": S2's method and Δt)."""
+    fluid method `method` ("emps": the case's; "isph": S2's method and Δt, with the pressure
+    gradient `gradient` or ISPH's default)."""
     step = {"emps": BASE_STEP_EMPS, "isph": BASE_STEP_ISPH}[method] * spacing / BASE_SPACING
     if method == "isph":
-        text = text.replace(
-            "sound_speed = 15.0",
-            'method = "isph"\nisph = { pressure_gradient = "corrected-difference" }',
-        )
+        settings = 'method = "isph"'
+        if gradient:
+            settings += '\nisph = { pressure_gradient = "%s" }' % gradient
+        text = text.replace("sound_speed = 15.0", settings)
     text = text.replace("spacing = 0.005", "spacing = %g" % spacing)
     text = text.replace(BASE_STEP, "%.6g" % step)
     if end is not None:
@@ -94,11 +97,12 @@ def main():
     ap.add_argument("--widths", default=",".join("%g" % w for w in WIDTHS))
     ap.add_argument("--no-run", action="store_true")
     ap.add_argument("--method", choices=["emps", "isph"], default="emps")
+    ap.add_argument("--gradient", choices=["conservative", "corrected-difference", "symmetric"], default=None)
     a = ap.parse_args()
     widths = [float(w) for w in a.widths.split(",")]
     os.makedirs(a.out, exist_ok=True)
-    base = scaled(open(os.path.join(HERE, "case.toml")).read(), a.spacing, a.end, a.method)
-    resolved = scaled(open(os.path.join(HERE, "resolved.toml")).read(), a.spacing, a.end, a.method)
+    base = scaled(open(os.path.join(HERE, "case.toml")).read(), a.spacing, a.end, a.method, a.gradient)
+    resolved = scaled(open(os.path.join(HERE, "resolved.toml")).read(), a.spacing, a.end, a.method, a.gradient)
     # the unresolved cases name resolved.toml as their [reference] case: it must exist first
     with open(os.path.join(a.out, "resolved.toml"), "w") as f:
         f.write(resolved)

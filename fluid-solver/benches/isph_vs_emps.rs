@@ -23,11 +23,11 @@
 //! themselves).
 //!
 //! `cargo bench -p fluid-solver --bench isph_vs_emps -- [spacing] [end time] [ppe solver]
-//! [--s2] [--only=isph|emps] [--probe-log=PREFIX] [--alpha-d=α] [--gradient=symmetric|conservative]
+//! [--s2] [--only=isph|emps] [--probe-log=PREFIX] [--alpha-d=α] [--gradient=corrected-difference|symmetric]
 //! [--radius=r_e/Δs] [--shifting=lind] [--shifting-coefficient=A] [--isph-courant=C]`; defaults Δs = L/20 = 0.0073 m (8 000 fluid particles), 0.5 s (past
 //! the impact on the far wall at about 0.3 s), "additive-two-level-pcg" (or "two-level-pcg", "jacobi-pcg", "sgs-pcg", "faer-cholesky"), S2's α_d = 5e-3, ISPH's
-//! pressure gradient "corrected-difference" (`--gradient=symmetric`: the case key
-//! `isph.pressure_gradient`) at its default support (2.4 Δs, 2.0 with the symmetric gradients; `--radius`: `isph.influence_radius`), no shifting (`--shifting=lind`: `isph.shifting`, with
+//! default pressure gradient "conservative" (`--gradient=corrected-difference`, S2-8, or `symmetric`: the case key
+//! `isph.pressure_gradient`) at its default support (2.0 Δs, 2.4 with S2-8's gradient; `--radius`: `isph.influence_radius`), no shifting (`--shifting=lind`: `isph.shifting`, with
 //! `--shifting-coefficient`: `isph.shifting_coefficient`, default 0.5), ISPH's Δt at advective
 //! Courant 0.3 (`--isph-courant`; 0.1275 gives E-MPS's Δt at L/20, for the probe at equal
 //! steps). `--s2` is S2's
@@ -215,8 +215,8 @@ fn main() {
     let alpha_d = number(&all, "--alpha-d", IsphConfig::default().alpha_d);
     let pressure_gradient = match flag(&all, "--gradient") {
         Some("symmetric") => PressureGradient::Symmetric,
-        Some("conservative") => PressureGradient::Conservative,
-        _ => PressureGradient::CorrectedDifference,
+        Some("corrected-difference") => PressureGradient::CorrectedDifference,
+        _ => IsphConfig::default().pressure_gradient,
     };
     let support = IsphConfig {
         pressure_gradient,

@@ -22,7 +22,7 @@ fn isph_surge_front_follows_the_experiments() {
         &e,
         "isph",
         "ISPH dam-break front",
-        "ISPH (S2-8 gradient, support 2.4 Δs)",
+        "ISPH (default: exact projection, support 2.0 Δs)",
         "isph_surge_front_follows_the_experiments",
         started,
     );
@@ -48,21 +48,21 @@ fn isph_symmetric_gradient_surge_front_follows_the_experiments() {
     assert_within_the_e_mps_bounds(&e, true);
 }
 
-/// The same with `pressure_gradient = "conservative"` (the symmetric gradient with the exact
-/// projection, `isph::exact_projection`) at a support of 2.0 Δs, same bounds.
+/// The same with S2-8's gradient (`pressure_gradient = "corrected-difference"`) at its support
+/// of 2.4 Δs, same bounds.
 #[test]
-fn isph_conservative_projection_surge_front_follows_the_experiments() {
+fn isph_s2_8_gradient_surge_front_follows_the_experiments() {
     let mut cfg = isph_slab::isph_slab();
-    cfg.isph = Some(conservative());
+    cfg.isph = Some(s2_8());
     cfg.validate("fluid.water").unwrap_or_else(|e| panic!("{e:?}"));
     let started = Instant::now();
     let e = front_common::front_errors(&cfg, 0.006, 4);
     record_fronts(
         &e,
-        "isph-conservative",
-        "ISPH dam-break front, exact projection",
-        "ISPH, symmetric gradient with its exact projection at 2.0 Δs",
-        "isph_conservative_projection_surge_front_follows_the_experiments",
+        "isph-s2-8",
+        "ISPH dam-break front, S2-8 gradient",
+        "ISPH, S2-8 gradient at 2.4 Δs",
+        "isph_s2_8_gradient_surge_front_follows_the_experiments",
         started,
     );
     assert_within_the_e_mps_bounds(&e, true);
@@ -144,7 +144,7 @@ fn isph_dam_break_released_by_a_gate_follows_the_experiments() {
         &e,
         "isph-gate",
         "ISPH dam-break front, column released by a gate",
-        "ISPH (S2-8 gradient), a gate 2 Δs thick removed at t = 0",
+        "ISPH (default: exact projection), a gate 2 Δs thick removed at t = 0",
         "isph_dam_break_released_by_a_gate_follows_the_experiments",
         started,
     );
@@ -176,7 +176,8 @@ fn isph_dam_break_gains_no_energy_through_the_impact() {
         capability: "ISPH energy through a dam break's impact".into(),
         reference: "energy conservation: still walls, conservative gravity (the energy may only fall)".into(),
         case: "cases/dam-break-koshizuka (the case's tank, 5 particles wide), 0 … 0.3 s".into(),
-        resolution: "ISPH (S2-8 gradient), Δs = L/10 = 0.0146 m (1 000 fluid), Δt = 4e-4 s".into(),
+        resolution: "ISPH (default: exact projection), Δs = L/10 = 0.0146 m (1 000 fluid), Δt = 4e-4 s"
+            .into(),
         measure: "energy Σ ½|u|² + g z gained over the steps in which it grew / initial energy".into(),
         value: 100.0 * gained / e0,
         bound: Some(1.0),
@@ -194,25 +195,40 @@ fn isph_dam_break_gains_no_energy_through_the_impact() {
 }
 
 /// The L/20 rung of `cases/dam-break-koshizuka` (the case as written: Δs = 0.0073 m, the tank 10
-/// particles wide, 8 000 fluid particles) with ISPH at Δt = 6e-4 s, before the surge reaches the
-/// far wall: the energy `Σ ½|u|² + g z` gained over the steps in which it grows from t = 0.10 to
-/// 0.16 s (about 20 s in release). Nothing feeds it, so it may only fall; bound 1 % of the
-/// initial energy, the bound of `isph_dam_break_gains_no_energy_through_the_impact`.
+/// particles wide, 8 000 fluid particles) with ISPH's default at Δt = 6e-4 s, before the surge
+/// reaches the far wall: the energy `Σ ½|u|² + g z` gained over the steps in which it grows from
+/// t = 0.10 to 0.16 s (about 20 s in release). Nothing feeds it, so it may only fall; bound 1 %
+/// of the initial energy, the bound of `isph_dam_break_gains_no_energy_through_the_impact`.
+#[test]
+#[ignore]
+fn isph_dam_break_gains_no_energy_before_the_impact_at_l_20() {
+    let settings = schemas::case::fluid::IsphConfig::default();
+    assert_gains_no_energy_before_the_impact("default", None, 6e-4, settings);
+}
+
+/// The CI twin of the test above: the same window at Δs = L/10 (the case's tank, 1 000 fluid
+/// particles) and Δt = 1.2e-3 s (about 1 s in release).
+#[test]
+fn isph_dam_break_gains_no_energy_before_the_impact() {
+    let settings = schemas::case::fluid::IsphConfig::default();
+    assert_gains_no_energy_before_the_impact("default", Some(0.0146), 1.2e-3, settings);
+}
+
+/// The L/20 test with S2-8's gradient (`"corrected-difference"`), run in CI: at L/10 its
+/// uncorrected divergence gained only 10.9 of 1 431 J/kg (0.76 %, within the bound; now 2.81),
+/// so only this spacing tells its two divergences apart.
 ///
 /// Measured with S2-8's corrected difference-form gradient and the divergence corrected as it
 /// in Marrone's band (`isph::operators::DivergenceSum`): 11 446 J/kg at the start, 11 379 at
 /// 0.10 s, 11 388 at 0.16 s, 40.1 J/kg gained (0.35 %; 38.6 before a short landing step took
 /// a whole step's pressure, `IsphStep::short_step`). With the divergence uncorrected
 /// (before 25 Nov 2026): 11 385 at 0.10 s, 11 605 at 0.16 s, 220.4 J/kg gained (1.9 %), the
-/// pressure's work where D and the gradient disagree (the operator's doc). Run in CI, unlike its twins below: at
-/// Δs = L/10 the uncorrected divergence gained only 10.9 of 1 431 J/kg (0.76 %, within the
-/// bound; now 2.81), so only this spacing tells the two apart. With the uncorrected symmetric
-/// gradient `Σ_j V (p_i + p_j) ∇W_ij` (walls at p_i + Δp_ij), which conserves momentum
+/// pressure's work where D and the gradient disagree (the operator's doc). With the uncorrected
+/// symmetric gradient `Σ_j V (p_i + p_j) ∇W_ij` (walls at p_i + Δp_ij), which conserves momentum
 /// pairwise: 11 306 → 11 081 J/kg, nothing gained.
 #[test]
-fn isph_dam_break_gains_no_energy_before_the_impact_at_l_20() {
-    let settings = schemas::case::fluid::IsphConfig::default();
-    assert_gains_no_energy_before_the_impact("S2-8", None, 6e-4, settings);
+fn isph_s2_8_gradient_dam_break_gains_no_energy_before_the_impact_at_l_20() {
+    assert_gains_no_energy_before_the_impact("S2-8", None, 6e-4, s2_8());
 }
 
 /// The same with `pressure_gradient = "symmetric"` at a support of 2.0 Δs (about 20 s in
@@ -248,24 +264,11 @@ fn isph_shifting_dam_break_gains_no_energy_before_the_impact() {
     assert_gains_no_energy_before_the_impact("shifting", Some(0.0146), 1.2e-3, shifting());
 }
 
-/// The same with `pressure_gradient = "conservative"` at 2.0 Δs (about 20 s in release).
-#[test]
-#[ignore]
-fn isph_conservative_projection_dam_break_gains_no_energy_before_the_impact_at_l_20() {
-    assert_gains_no_energy_before_the_impact("conservative", None, 6e-4, conservative());
-}
-
-/// The CI twin of the test above, at Δs = L/10 as the symmetric one's.
-#[test]
-fn isph_conservative_projection_dam_break_gains_no_energy_before_the_impact() {
-    assert_gains_no_energy_before_the_impact("conservative", Some(0.0146), 1.2e-3, conservative());
-}
-
-/// `pressure_gradient = "conservative"` at a support of 2.0 Δs.
-fn conservative() -> schemas::case::fluid::IsphConfig {
+/// `pressure_gradient = "corrected-difference"` (S2-8) at its support of 2.4 Δs.
+fn s2_8() -> schemas::case::fluid::IsphConfig {
     schemas::case::fluid::IsphConfig {
-        pressure_gradient: schemas::case::fluid::PressureGradient::Conservative,
-        ..symmetric()
+        pressure_gradient: schemas::case::fluid::PressureGradient::CorrectedDifference,
+        ..schemas::case::fluid::IsphConfig::default()
     }
 }
 
@@ -297,20 +300,20 @@ fn assert_gains_no_energy_before_the_impact(
         "{label}: energy {e0:.1} at t = 0, {e1:.1} at 0.10 s, {last:.1} J/kg at 0.16 s; gained {gained:.2} in the steps it grew"
     );
     let (test, method, gradient) = match label {
-        "S2-8" => (
+        "default" => (
             "isph_dam_break_gains_no_energy_before_the_impact",
             "isph",
+            "the default: symmetric gradient with its exact projection at 2.0 Δs",
+        ),
+        "S2-8" => (
+            "isph_s2_8_gradient_dam_break_gains_no_energy_before_the_impact",
+            "isph-s2-8",
             "S2-8 gradient",
         ),
         "symmetric" => (
             "isph_symmetric_gradient_dam_break_gains_no_energy_before_the_impact",
             "isph-symmetric",
             "symmetric gradient at 2.0 Δs",
-        ),
-        "conservative" => (
-            "isph_conservative_projection_dam_break_gains_no_energy_before_the_impact",
-            "isph-conservative",
-            "symmetric gradient with its exact projection at 2.0 Δs",
         ),
         _ => (
             "isph_shifting_dam_break_gains_no_energy_before_the_impact",

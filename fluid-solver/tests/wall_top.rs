@@ -4,17 +4,21 @@
 //! stopped at t = 0.75 s on such a particle: landed on the top of the 4-layer side wall, the
 //! detector called it inside as soon as its centre was below the walls' top.
 //!
-//! With ISPH the pressure gradient takes in every solid neighbour, wet or dry
-//! (`isph::operators::pressure_gradient`): a drop put in the hollow between four dry top-layer
-//! wall particles rests with its centre 0.485 Δs above the walls' top face (z = 0.1697 m, the
-//! face at 0.16), where a particle standing for a cube Δs wide touches it, and stays there for
-//! 4 s (ignored test); E-MPS holds it with its centre 0.125 Δs below that face. Before, the
-//! gradient left out dry solids, the drop was held only by the collision stage and sank into
-//! the top layer after 2.27 s (in the CI dam break after 2.01 s). A drop put on top of a single
-//! wall particle has so few neighbours that it is a splash particle (λ_min ≤ 0.2, its gradient
-//! left uncorrected): it settles to the collision distance and slides off the inner edge into
-//! the tank within 0.5 s (before: it drifted 0.01 m towards the edge in 0.5 s); E-MPS holds it
-//! on top.
+//! With ISPH's default (the exact projection) a drop on the wall's top is surface water that no
+//! PPE unknown holds, and the walls complete its support (`isph::surface_walls`): put in the
+//! hollow between four top-layer wall particles or on top of a single one, it rests with its
+//! centre Δs/2 above the walls' top face (z = 0.1700 m, the face at 0.16), where a particle
+//! standing for a cube Δs wide touches it, for 4 s (ignored test; 1 Dec 2026); E-MPS holds it
+//! with its centre 0.125 Δs below that face. Without that completion the tank's own water, one
+//! particle deep, sank through the floor at 1.9 s (`isph_thin_sheet.rs`).
+//!
+//! With S2-8's gradient the pressure gradient takes in every solid neighbour, wet or dry
+//! (`isph::operators::pressure_gradient`): a drop in the hollow rested 0.485 Δs above the face
+//! (z = 0.1697 m) for 4 s. Before, the gradient left out dry solids, the drop was held only by
+//! the collision stage and sank into the top layer after 2.27 s (in the CI dam break after
+//! 2.01 s). A drop put on top of a single wall particle has so few neighbours that it is a
+//! splash particle there (λ_min ≤ 0.2, its gradient left uncorrected): it settled to the
+//! collision distance and slid off the inner edge into the tank within 0.5 s.
 //!
 //! The fix tried before (splash particles feel the dry solids they touch) threw the dam break's
 //! run-up over the walls (10 particles by 0.6 s, Martin & Moyce 0.046 → 0.052). The cause: the

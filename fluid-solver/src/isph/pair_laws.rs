@@ -21,7 +21,7 @@
 //! With `pressure_gradient = "symmetric"` (case key, `schemas::case::fluid::PressureGradient`)
 //! the fluid's gradient is the uncorrected symmetric form and [`symmetric_term`] is its pair term
 //! with fluid and wall neighbours: the fluid's gradient sums it, and the walls' loads are V times
-//! it (as in the default). The pair laws are the same for both gradients. With a body
+//! it (as with S2-8's). The pair laws are the same for both gradients. With a body
 //! neighbour the fluid's pair term is the face law's share instead ([`face_share`], divided by
 //! V), so a body's load and the fluid's reaction are still one function, and the load does not
 //! depend on the fluid–body gap: with the symmetric term there too, a box held 0.25 Δs above its

@@ -57,7 +57,7 @@
 //! tension at convex solids instead gave +0.2 / +0.5 kPa there, but biased a held box's load:
 //! fluctuations were then only pushed.) Beside a box held 5 mm off its lattice site in still
 //! water (`tests/isph_bodies.rs`) the fastest fluid particle over 0.05 – 0.2 s fell from 8.9e-2
-//! to 2.6e-2 m/s. This holds for walls and bodies with S2-8's corrected gradient, the default,
+//! to 2.6e-2 m/s. This holds for walls and bodies with S2-8's corrected gradient,
 //! and for walls only with the symmetric gradient: on the MARIN CI twin P4's mean over 0.6 –
 //! 0.8 s then reads −20 % of the experiment's (−23 % with shifting; S2-8's −36 %), against
 //! −204 % (−169 %) with the walls' own normals, and a wall box in still water leaves its water

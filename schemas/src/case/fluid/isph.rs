@@ -46,8 +46,9 @@ pub enum PpeSolver {
 #[serde(rename_all = "kebab-case")]
 pub enum PressureGradient {
     /// S2-8's difference form `Σ_j V (p_j − p_i) ∇W_ij` corrected by the moment matrix (Bonet &
-    /// Lok 1999); bodies loaded by the face law of `fluid_solver::isph::pair_laws::body_faces`.
-    #[default]
+    /// Lok 1999), the seed's own; bodies loaded by the face law of
+    /// `fluid_solver::isph::pair_laws::body_faces`. Its pair terms do not cancel, so momentum does
+    /// not close (kept by name to compare with S2).
     CorrectedDifference,
     /// The uncorrected symmetric form `Σ_j V (p_i + p_j) ∇W_ij` (walls `V (2p_i + Δp_ij) ∇W_ij`),
     /// whose pair term is also the walls' load; with a body neighbour the pair term is the body's
@@ -61,7 +62,8 @@ pub enum PressureGradient {
     /// a small share of S2-9's Laplacian (`fluid_solver::isph::exact_projection`). A body
     /// completes the kernel sums of the water beside it (`fluid_solver::isph::body_completion`),
     /// so its load does not depend on where it stands on the lattice. Accepted with
-    /// `influence_radius` in [`SYMMETRIC_SUPPORT`], as `"symmetric"`.
+    /// `influence_radius` in [`SYMMETRIC_SUPPORT`], as `"symmetric"`. The default.
+    #[default]
     Conservative,
 }
 
@@ -92,12 +94,12 @@ pub enum Shifting {
 /// ```toml
 /// [fluid.tank.isph]
 /// alpha_d = 5e-3            # α_d of S2-5 (density relaxation)
-/// influence_radius = 2.4    # kernel support in spacings (S2, Table 1; 2.0 by default with "symmetric", "conservative")
+/// influence_radius = 2.0    # kernel support in spacings (by default 2.0; 2.4 with "corrected-difference", S2 Table 1)
 /// ppe_tolerance = 1e-6      # relative residual |r|/|b| the PPE must reach every step
 /// ppe_max_iterations = 1000 # beyond this the run stops with the residual
 /// ppe_solver = "additive-two-level-pcg" # or "two-level-pcg", "jacobi-pcg", "faer-cholesky", "sgs-pcg"
 /// wall_slip = "free-slip"   # or "no-slip"
-/// pressure_gradient = "corrected-difference" # or "symmetric", "conservative"
+/// pressure_gradient = "conservative" # or "corrected-difference" (S2-8), "symmetric"
 /// shifting = "off"          # or "lind" (particle shifting)
 /// shifting_coefficient = 0.5 # A of D = A h |u|_max Δt (Skillen et al. 2013), with "lind"
 /// ```

@@ -483,7 +483,7 @@ impl FluidConfig {
             && !self.body.is_empty()
         {
             warnings.push(
-                "`isph.pressure_gradient` = \"symmetric\" with a `body`: that gradient has no face normals at a body's convex edges (with them a held box read +9.6 % of ρgV), and the still water at a held box's corners moves (0.2 m/s at a 12 cm box, where the default's stays below 1e-3 m/s); without them, on the wall box of the MARIN dam break's CI twin (cases/dam-break-obstacle, Δs = 0.04 m), the sensor 2 cm under the box's top edge read a pull (−169 … −204 % of the measured mean over 0.6–0.8 s; −20 … −23 % with them); for loads near a body's edges use the default pressure_gradient = \"corrected-difference\" or \"conservative\" (whose bodies complete the water's kernel sums: 0.0 % of ρgV, water still)".into(),
+                "`isph.pressure_gradient` = \"symmetric\" with a `body`: that gradient has no face normals at a body's convex edges (with them a held box read +9.6 % of ρgV), and the still water at a held box's corners moves (0.2 m/s at a 12 cm box, where the default's stays near 1e-3 m/s); without them, on the wall box of the MARIN dam break's CI twin (cases/dam-break-obstacle, Δs = 0.04 m), the sensor 2 cm under the box's top edge read a pull (−169 … −204 % of the measured mean over 0.6–0.8 s; −20 … −23 % with them); for loads near a body's edges use the default pressure_gradient = \"conservative\" (whose bodies complete the water's kernel sums: 0.0 % of ρgV, water still) or \"corrected-difference\"".into(),
             );
         }
         if self.method == FluidMethodName::Emps && (self.wave_maker.is_some() || self.initial_wave.is_some())
