@@ -121,8 +121,8 @@ fn isph_dam_break_runs_past_the_run_up() {
 /// The same dam break held by a gate (a partition board 2 Δs thick at the column's face, full
 /// height) that is removed at t = 0 (issue 12: gates with ISPH): the gate is built, removed, and
 /// the front follows Koshizuka & Oka within the bound of `isph_surge_front_follows_the_experiments`
-/// (0.33) and Martin & Moyce within that test's 0.05 (measured 0.218 and 0.026, as without the
-/// gate).
+/// (0.33) and Martin & Moyce within that test's 0.05 (measured with the default 0.208 and 0.018,
+/// as without the gate, 1 Dec 2026; with S2-8's gradient 0.218 and 0.026).
 ///
 /// With S2-12's ∇λ surface normal the gated front gave 0.070 against Martin & Moyce (0.046
 /// without the gate; KO 0.156 and 0.219; the cause was not found). With Marrone's normal
@@ -156,7 +156,8 @@ fn isph_dam_break_released_by_a_gate_follows_the_experiments() {
 /// t = 0.3 s (about 40 s in release): nothing feeds the fluid energy (still walls, gravity
 /// conservative), so the mechanical energy `Σ ½|u|² + g z` over the fluid particles may only
 /// fall. Bound: what it gains over the steps in which it grows stays below 1 % of its initial
-/// value (measured 0.43 %, 6.2 of 1 430 J/kg, with the divergence corrected in Marrone's band,
+/// value (measured with the default 0.00 J/kg, 1 Dec 2026; with S2-8's gradient 0.43 %, 6.2 of
+/// 1 430 J/kg, with the divergence corrected in Marrone's band,
 /// `isph::operators::DivergenceSum`, whose floor this test and the L/20 one below set; 0.08 %,
 /// 1.1 J/kg, before; 10 %, 144 J/kg, while the PPE's negative pressures pulled on parting water,
 /// `isph::step`; the detector's own allowance is 30 %).
