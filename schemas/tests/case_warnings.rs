@@ -105,3 +105,37 @@ fn e_mps_asked_to_carry_a_wave_is_warned_and_isph_is_not() {
     let tank = shipped("dam-break-floating-box", |t| t);
     assert!(!damps(&tank), "{tank:?}");
 }
+
+/// ISPH's defaults (the exact projection) asked to carry a wave are warned, naming the setting
+/// the wave cases use; that setting, as shipped, is not; ISPH's default without a wave is not.
+#[test]
+fn isph_defaults_asked_to_carry_a_wave_are_warned() {
+    let moves_it_out = |w: &Vec<String>| {
+        w.iter().any(|w| {
+            w.contains("move a gravity wave's energy out of the wave")
+                && w.contains("\"conservative\"")
+                && w.contains("pressure_gradient = \"corrected-difference\"")
+        })
+    };
+    for case in ["solitary-wave-flat", "solitary-runup"] {
+        let shipped_setting = shipped(case, |t| t);
+        assert!(
+            !moves_it_out(&shipped_setting),
+            "{case} as shipped: {shipped_setting:?}"
+        );
+        let defaults = shipped(case, |t| {
+            t.lines()
+                .filter(|l| !l.starts_with("isph ="))
+                .collect::<Vec<_>>()
+                .join("\n")
+        });
+        assert!(
+            moves_it_out(&defaults),
+            "{case} with ISPH's defaults: {defaults:?}"
+        );
+    }
+    let tank = shipped("dam-break-floating-box", |t| {
+        t.replacen("[fluid.tank]\n", "[fluid.tank]\nmethod = \"isph\"\n", 1)
+    });
+    assert!(!moves_it_out(&tank), "{tank:?}");
+}

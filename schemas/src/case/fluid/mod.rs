@@ -473,8 +473,9 @@ impl FluidConfig {
 
     /// What a run tells the user before it starts, one sentence each (runs print each as a
     /// `warning: ` line): the settings the method leaves unused ([`FluidConfig::unused_by_method`]),
-    /// the ISPH settings known to misread a load in this case's geometry, and E-MPS asked to carry
-    /// a wave (docs/notes/emps-gravity-waves.md).
+    /// the ISPH settings known to misread a load in this case's geometry, and E-MPS or ISPH's
+    /// symmetric gradients (the default included) asked to carry a wave
+    /// (docs/notes/emps-gravity-waves.md, docs/notes/standing-wave.md).
     pub fn warnings(&self) -> Vec<String> {
         let mut warnings = self.unused_by_method();
         let isph = self.isph_settings();
@@ -486,8 +487,17 @@ impl FluidConfig {
                 "`isph.pressure_gradient` = \"symmetric\" with a `body`: that gradient has no face normals at a body's convex edges (with them a held box read +9.6 % of ρgV), and the still water at a held box's corners moves (0.2 m/s at a 12 cm box, where the default's stays near 1e-3 m/s); without them, on the wall box of the MARIN dam break's CI twin (cases/dam-break-obstacle, Δs = 0.04 m), the sensor 2 cm under the box's top edge read a pull (−169 … −204 % of the measured mean over 0.6–0.8 s; −20 … −23 % with them); for loads near a body's edges use the default pressure_gradient = \"conservative\" (whose bodies complete the water's kernel sums: 0.0 % of ρgV, water still) or \"corrected-difference\"".into(),
             );
         }
-        if self.method == FluidMethodName::Emps && (self.wave_maker.is_some() || self.initial_wave.is_some())
-        {
+        let carries_a_wave = self.wave_maker.is_some() || self.initial_wave.is_some();
+        if self.method == FluidMethodName::Isph && isph.pressure_gradient.is_symmetric() && carries_a_wave {
+            warnings.push(format!(
+                "`isph.pressure_gradient` = \"{}\" with a `wave_maker` or an `initial_wave`: the symmetric gradients move a gravity wave's energy out of the wave (a standing wave loses a quarter of its amplitude in the first quarter period at d/8, d/16 and d/32; a solitary wave of H/d = 0.2 keeps 0.81 H after 10 depths at d/16), so read its height and loads only near where it starts; for waves use isph = {{ shifting = \"lind\", pressure_gradient = \"corrected-difference\" }} (docs/notes/standing-wave.md)",
+                match isph.pressure_gradient {
+                    PressureGradient::Symmetric => "symmetric",
+                    _ => "conservative",
+                }
+            ));
+        }
+        if self.method == FluidMethodName::Emps && carries_a_wave {
             warnings.push(
                 "`method` = \"emps\" with a `wave_maker` or an `initial_wave`: E-MPS damps gravity waves (a standing wave keeps 0.45 of its amplitude after one period at d/8, less at d/16; a solitary wave of H/d = 0.2 keeps 0.84 H after 10 depths at d/16 and travels about a quarter slow, and its run-up on a 1:3 beach reaches 0.30–0.33 of Synolakis' law), so read loads only where the wave has travelled a few depths; for waves use method = \"isph\" with isph = { shifting = \"lind\", pressure_gradient = \"corrected-difference\" } (docs/notes/emps-gravity-waves.md)".into(),
             );
