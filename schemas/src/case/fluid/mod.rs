@@ -490,7 +490,7 @@ impl FluidConfig {
         let carries_a_wave = self.wave_maker.is_some() || self.initial_wave.is_some();
         if self.method == FluidMethodName::Isph && isph.pressure_gradient.is_symmetric() && carries_a_wave {
             warnings.push(format!(
-                "`isph.pressure_gradient` = \"{}\" with a `wave_maker` or an `initial_wave`: the symmetric gradients move a gravity wave's energy out of the wave (a standing wave loses a quarter of its amplitude in the first quarter period at d/8, d/16 and d/32; a solitary wave of H/d = 0.2 keeps 0.81 H after 10 depths at d/16), so read its height and loads only near where it starts; for waves use isph = {{ shifting = \"lind\", pressure_gradient = \"corrected-difference\" }} (docs/notes/standing-wave.md)",
+                "`isph.pressure_gradient` = \"{}\" with a `wave_maker` or an `initial_wave`: the symmetric gradients move a gravity wave's energy out of the wave (a standing wave of a/d = 0.1 loses a quarter of its amplitude in the first quarter period at d/8, d/16 and d/32, one of a/d = 0.05 half of it; a solitary wave of H/d = 0.2 keeps 0.81 H after 10 depths at d/16), so read its height and loads only near where it starts; for waves use isph = {{ shifting = \"lind\", pressure_gradient = \"corrected-difference\" }} (docs/notes/standing-wave.md)",
                 match isph.pressure_gradient {
                     PressureGradient::Symmetric => "symmetric",
                     _ => "conservative",
