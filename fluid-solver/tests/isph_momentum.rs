@@ -12,7 +12,10 @@
 //! pair, so its fluid–fluid terms do not cancel, and no pair law for the walls or bodies can be
 //! the reaction of what the fluid feels; the fluid carries its own weight by those internal
 //! terms. With it, what holds is checked: the load the bodies get is exactly what the fluid's
-//! budget books for them; its gap in motion is measured by an ignored test.
+//! budget books for them. Its gap in motion on this file's two scenes (measured 24 Nov 2026, below)
+//! is not a test: it fails by construction. The conservative gradients tried before the exact
+//! projection, and why the symmetric form's columns rise at 2.4 Δs:
+//! docs/notes/isph-momentum-and-divergence.md.
 //!
 //! Measured with S2-8's gradient (gap = Δp − gravity − walls, z, against the gravity impulse):
 //! - tank at rest, 0.2 s: −4.3e-3 of 23.5 N s (1.8e-4);
@@ -289,29 +292,6 @@ fn isph_momentum_budget_closes_in_motion() {
         body.body_reaction[2] > 0.5 * 0.512 * 1.5,
         "the box was hardly hit: {:?} N s",
         body.body_reaction
-    );
-    for b in [floor, body] {
-        assert_budget_closes(&b);
-    }
-}
-
-/// The same budget with S2-8's pressure gradient (`"corrected-difference"`), which does not close
-/// (module doc): gaps +1.23 N s of 6.77 (drop on the floor) and −0.447 N s of 0.452 (drop on a
-/// box). Kept to measure the seed's gradient against the default; the conservative gradients
-/// tried before the exact projection, and why the symmetric form's columns rise at 2.4 Δs:
-/// docs/notes/isph-momentum-and-divergence.md.
-#[test]
-#[ignore = "fails by design: S2-8's difference-form gradient is not antisymmetric (measured, not the default)"]
-fn isph_s2_8_gradient_momentum_budget_closes_in_motion() {
-    let mut solver = FluidSolver::new(&drop_on_the_floor(s2_8()));
-    let floor = run(&mut solver, 0.4);
-    let body = run(&mut drop_on_a_box(s2_8()), 0.09);
-    record_in_motion(
-        &floor,
-        &body,
-        "isph-s2-8",
-        "ISPH (S2-8 gradient)",
-        "isph_s2_8_gradient_momentum_budget_closes_in_motion",
     );
     for b in [floor, body] {
         assert_budget_closes(&b);

@@ -240,22 +240,21 @@ fn mean_over_the_last_half(test: &str, text: &str) -> (f64, f64, f64, f64) {
 
 /// The ISPH floating-box case to `end` with S2-8's gradient (at its support of 2.4 Δs).
 fn s2_8_case(end: &str) -> String {
-    replaced(
-        &isph_case(end),
-        &[(
-            "[structure.float]\n",
-            "[fluid.pool.isph]\npressure_gradient = \"corrected-difference\"\n\n[structure.float]\n",
-        )],
-    )
+    with_isph_table(end, "pressure_gradient = \"corrected-difference\"\n")
 }
 
 /// The ISPH floating-box case to `end` with the symmetric gradient at 2.0 Δs.
 fn symmetric_case(end: &str) -> String {
+    with_isph_table(end, "influence_radius = 2.0\npressure_gradient = \"symmetric\"\n")
+}
+
+/// [`isph_case`] to `end` with a `[fluid.pool.isph]` table of `keys`.
+fn with_isph_table(end: &str, keys: &str) -> String {
     replaced(
         &isph_case(end),
         &[(
             "[structure.float]\n",
-            "[fluid.pool.isph]\ninfluence_radius = 2.0\npressure_gradient = \"symmetric\"\n\n[structure.float]\n",
+            &format!("[fluid.pool.isph]\n{keys}\n[structure.float]\n"),
         )],
     )
 }

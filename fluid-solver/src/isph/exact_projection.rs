@@ -39,6 +39,7 @@ use super::body_completion::BodyCompletion;
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
 use super::pair_gradients::PairGradients;
+use super::pair_laws;
 use super::ppe::{jacobi, pcg, PpeFailure, PpeReport, PpeSystem, NOT_AN_UNKNOWN};
 use super::ppe_two_level::{self, Form};
 use super::walls::NeumannPair;
@@ -96,8 +97,7 @@ pub fn known_gradient(
                         let c = k.volume * k.dw_over_r_at(q) * (pi + known(j));
                         d.map(|v| c * v)
                     } else {
-                        let c = k.volume * k.dw_over_r_at(q) * (2.0 * pi + walls.difference(i, j));
-                        walls.completed(i, d.map(|v| c * v))
+                        pair_laws::wall_term(k, walls, (i, j), d, q, pi)
                     };
                     (0..3).for_each(|a| g[a] += t[a]);
                 }

@@ -60,7 +60,22 @@ pub fn symmetric_term(
         let c = k.volume * k.dw_over_r_at(q) * (p.pressure[i] + p.pressure[j]);
         return d.map(|v| c * v);
     }
-    let c = k.volume * k.dw_over_r_at(q) * (2.0 * p.pressure[i] + walls.difference(i, j));
+    wall_term(k, walls, (i, j), d, q, p.pressure[i])
+}
+
+/// The wall part of [`symmetric_term`] with fluid particle i at pressure `pi`:
+/// `V (2 p_i + Δp_ij) ∇_i W_ij`, completed by the walls where i is surface water the PPE does
+/// not hold ([`NeumannPair::completed`]).
+#[inline(always)]
+pub fn wall_term(
+    k: &Wendland,
+    walls: &NeumannPair,
+    (i, j): (usize, usize),
+    d: [f64; 3],
+    q: f64,
+    pi: f64,
+) -> [f64; 3] {
+    let c = k.volume * k.dw_over_r_at(q) * (2.0 * pi + walls.difference(i, j));
     walls.completed(i, d.map(|v| c * v))
 }
 

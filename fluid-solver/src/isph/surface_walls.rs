@@ -33,7 +33,7 @@
 use super::free_surface::SURFACE;
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
-use crate::neighbours::moments::{inverse, smallest_eigenvalue};
+use crate::neighbours::moments::{inverse, smallest_eigenvalue, OuterSum};
 use crate::particles::kind::{Kind, FLUID};
 use crate::particles::Particles;
 use rayon::prelude::*;
@@ -62,7 +62,7 @@ pub fn completions(
             if p.kind[i] != FLUID || surface.get(i) != Some(&SURFACE) {
                 return;
             }
-            let (mut fluid, mut wall) = ([[0.0; 3]; 3], [[0.0; 3]; 3]);
+            let (mut fluid, mut wall) = (OuterSum::default(), OuterSum::default());
             for (j, q) in list.pairs(i) {
                 if p.kind[j] == FLUID && surface.get(j) != Some(&SURFACE) {
                     return; // the PPE holds it
@@ -71,14 +71,10 @@ pub fn completions(
                     continue;
                 }
                 let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
-                let c = k.volume * k.dw_over_r_at(q);
                 let sum = if p.kind[j] == FLUID { &mut fluid } else { &mut wall };
-                for (r, row) in sum.iter_mut().enumerate() {
-                    for (s, v) in row.iter_mut().enumerate() {
-                        *v -= c * d[r] * d[s];
-                    }
-                }
+                sum.add(-k.volume * k.dw_over_r_at(q), d);
             }
+            let (fluid, wall) = (fluid.matrix(), wall.matrix());
             if smallest_eigenvalue(&wall) < MIN_WALL_SHARE {
                 return;
             }
