@@ -6,11 +6,13 @@
 //! `cargo bench -p fluid-solver --bench solitary_runup` runs the shipped resolution (d/16,
 //! about 3.5 min on 2 cores); `… -- 16 24` runs d/16 and d/24 (Δt scaled with Δs, as the case's
 //! c Δt/Δs); `… -- 8` a quick d/8 to check the bench itself; `emps` among the arguments runs
-//! E-MPS instead (at c Δt/Δs = 0.5, c the case's default sound speed).
+//! E-MPS instead (at c Δt/Δs = 0.5, c the case's default sound speed); `isph-default` runs ISPH
+//! with its default settings (the exact projection with its kernel correction, no shifting)
+//! instead of the case's (S2-8's gradient with Lind's shifting).
 
 use fluid_solver::probes::ProbeSet;
 use fluid_solver::FluidSolver;
-use schemas::case::fluid::{FluidConfig, FluidMethodName};
+use schemas::case::fluid::{FluidConfig, FluidMethodName, IsphConfig};
 use schemas::case::Case;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -26,6 +28,9 @@ const EMPS_COURANT: f64 = 0.5;
 /// One run at Δs = d/`n` with `method`: (R [m], wall time [s], particles, steps).
 fn run(base: &FluidConfig, n: f64, method: FluidMethodName) -> Result<(f64, f64, usize, u64), String> {
     let mut cfg = base.clone();
+    if std::env::args().any(|a| a == "isph-default") {
+        cfg.isph = Some(IsphConfig::default());
+    }
     let scale = (DEPTH / n) / base.spacing;
     cfg.spacing = DEPTH / n;
     cfg.time_step = base.time_step * scale;
@@ -86,6 +91,8 @@ fn main() {
         "solitary-runup, {}, to t = 1.3 s on {} threads; Synolakis' law R = {:.1} mm",
         match method {
             FluidMethodName::Emps => "E-MPS (c Δt/Δs = 0.5)",
+            FluidMethodName::Isph if std::env::args().any(|a| a == "isph-default") =>
+                "ISPH, default settings",
             FluidMethodName::Isph => "ISPH + Lind shifting",
         },
         rayon::current_num_threads(),

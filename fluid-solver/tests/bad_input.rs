@@ -208,6 +208,22 @@ fn other_bad_keys_name_what_is_allowed() {
             && e.contains("conservative"),
         "{e}"
     );
+    // The kernel correction: only for the symmetric forms, and one of two names.
+    let e = error_of(&(isph("corrected-difference") + "kernel_correction = \"moment\"\n"));
+    assert!(
+        e.contains("`fluid.water.isph.kernel_correction`")
+            && e.contains("corrected-difference")
+            && e.contains("conservative"),
+        "{e}"
+    );
+    parse(&(isph("corrected-difference") + "kernel_correction = \"none\"\n"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    parse(&(isph("symmetric") + "kernel_correction = \"moment\"\n")).unwrap_or_else(|e| panic!("{e}"));
+    let e = error_of(&(isph("conservative") + "kernel_correction = \"bonet-lok\"\n"));
+    assert!(
+        e.contains("kernel_correction") && e.contains("none") && e.contains("moment"),
+        "{e}"
+    );
     // ISPH's particle shifting: one of two names, a coefficient in (0, 6].
     let shift = |line: &str| {
         GOOD.replace("time_step = 8.0e-4", "time_step = 8.0e-4\nmethod = \"isph\"")

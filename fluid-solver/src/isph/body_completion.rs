@@ -19,6 +19,9 @@
 //!   `β = max(0, −S_i·n_i)/|b_i|`, `h_i = α h_i^b`, `α = n_i·(I − N_i) n_i / n_i·N_b n_i` (N_b the
 //!   body's N); on the free surface itself (p = 0 there) `α = β = 1`.
 //!
+//! With `kernel_correction = "moment"` every sum takes the pairs' corrected vectors
+//! ([`super::kernel_correction`]), so the completion stays exact for the corrected gradient.
+//!
 //! The force on i is `−V t_i` and the body takes `+V t_i`, shared among i's body neighbours w by
 //! `W_iw / Σ_w' W_iw'`, so action equals reaction pair by pair. In the exact projection
 //! `2 p_i B_i` is the body's part of G and `(D u)_i` gains `2 (u_i − ū_i)·B_i` (ū_i the body
@@ -40,6 +43,7 @@
 //!   direction of the missing sums).
 
 use super::kernel::Wendland;
+use super::kernel_correction::PairVectors;
 use super::neighbour_list::NeighbourList;
 use crate::particles::kind::{Kind, FLUID};
 use crate::particles::Particles;
@@ -71,6 +75,7 @@ impl BodyCompletion {
         p: &Particles,
         rho_g: [f64; 3],
         unknown: impl Fn(usize) -> bool + Sync,
+        vectors: PairVectors,
     ) {
         let n = p.len();
         self.zero.resize(n, [0.0; 3]);
@@ -103,6 +108,7 @@ impl BodyCompletion {
                 for (j, q) in list.pairs(i) {
                     let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
                     let c = k.volume * k.dw_over_r_at(q);
+                    let v = vectors.pair(i, j, p.kind[j] == FLUID, d.map(|x| c * x));
                     if p.kind[j] == body {
                         let w = k.w_at(q);
                         sums.weight += w;
@@ -110,11 +116,11 @@ impl BodyCompletion {
                         sums.velocity[1] += w * p.vy[j];
                         sums.velocity[2] += w * p.vz[j];
                         let dp = -(rho_g[0] * d[0] + rho_g[1] * d[1] + rho_g[2] * d[2]);
-                        add(&mut sums.body, &mut sums.body_moment, c, d);
-                        (0..3).for_each(|a| sums.body_head[a] += c * dp * d[a]);
+                        add(&mut sums.body, &mut sums.body_moment, v, d);
+                        (0..3).for_each(|a| sums.body_head[a] += dp * v[a]);
                     } else {
                         near_air |= p.kind[j] == FLUID && !unknown(j);
-                        add(&mut sums.rest, &mut sums.rest_moment, c, d);
+                        add(&mut sums.rest, &mut sums.rest_moment, v, d);
                     }
                 }
                 if sums.weight <= 0.0 {
@@ -213,13 +219,14 @@ impl Sums {
     }
 }
 
-/// Adds a neighbour's `c d` to a zero-order sum and `−c d ⊗ d` to a moment.
+/// Adds a neighbour's kernel-gradient vector `v` (`V ∇W_ij = c d`, or its correction) to a
+/// zero-order sum and `−v ⊗ d` to a moment.
 #[inline(always)]
-fn add(sum: &mut [f64; 3], moment: &mut [[f64; 3]; 3], c: f64, d: [f64; 3]) {
+fn add(sum: &mut [f64; 3], moment: &mut [[f64; 3]; 3], v: [f64; 3], d: [f64; 3]) {
     for a in 0..3 {
-        sum[a] += c * d[a];
+        sum[a] += v[a];
         for e in 0..3 {
-            moment[a][e] -= c * d[a] * d[e];
+            moment[a][e] -= v[a] * d[e];
         }
     }
 }

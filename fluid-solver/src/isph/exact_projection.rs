@@ -30,6 +30,10 @@
 //! `G_x x`, then `G_xᵀ` of it), preconditioned by the two-level method built on L
 //! ([`super::ppe_two_level`]), to which it is spectrally close on smooth fields.
 //!
+//! With `kernel_correction = "moment"` (the default) every pair's `V ∇W` here, in G, c, D and the
+//! bodies' completion, is the corrected vector of [`super::kernel_correction`], so the projection
+//! stays exact (`tests/isph_divergence.rs`).
+//!
 //! A body's load, and the fluid's reaction to it, is the completion of
 //! [`super::body_completion`]: fluid particle i's body term `2 p_i B_i + h_i`, linear in its own
 //! pressure, so it enters G_x (`2 x_i B_i`), c (h_i, and `2 p_i B_i` of a surface particle) and
@@ -95,7 +99,7 @@ pub fn known_gradient(
                     let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
                     let t = if p.kind[j] == FLUID {
                         let c = k.volume * k.dw_over_r_at(q) * (pi + known(j));
-                        d.map(|v| c * v)
+                        walls.vectors.fluid(i, j, d.map(|v| c * v))
                     } else {
                         pair_laws::wall_term(k, walls, (i, j), d, q, pi)
                     };

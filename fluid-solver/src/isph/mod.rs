@@ -12,6 +12,7 @@
 //! - [`pair_gradients`]: the pairs' kernel gradients the exact projection's operator reads;
 //! - [`pair_laws`]: the fluid–body pair forces;
 //! - [`body_completion`]: the bodies' pressure law of the exact projection;
+//! - [`kernel_correction`]: the symmetric forms' pairs corrected by the moment matrices;
 //! - [`surface_walls`]: the walls complete surface water the PPE does not hold (symmetric forms);
 //! - [`shifting`]: particle shifting (Lind et al. 2012), a case option;
 //! - [`step`]: one time step, S2-3 … S2-5, as a list of named stages.
@@ -20,6 +21,7 @@ pub mod body_completion;
 pub mod exact_projection;
 pub mod free_surface;
 pub mod kernel;
+pub mod kernel_correction;
 pub mod neighbour_list;
 pub mod operators;
 pub mod pair_gradients;

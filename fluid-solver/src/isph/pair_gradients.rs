@@ -3,6 +3,9 @@
 //! `G_x` and `G_xᵀ` about twenty times a step: with them stored the two passes read one vector
 //! per pair instead of the neighbour's position and kind and the kernel.
 //!
+//! With `kernel_correction = "moment"` each vector is the corrected one of
+//! [`super::kernel_correction`], as the gradient's pair terms are.
+//!
 //! Each pair's vector carries the symmetric form's factor for its neighbour: 1 for a fluid
 //! neighbour, 2 for a wall (the `2 p_i` of the walls' term `V (2p_i + Δp_iw) ∇W_iw`), 0 for a body
 //! particle (whose term is the face law's, added apart). With the unknowns' pressure 0 on every
@@ -14,6 +17,7 @@
 //! passes are memory-bound.
 
 use super::kernel::Wendland;
+use super::kernel_correction::PairVectors;
 use super::neighbour_list::NeighbourList;
 use crate::particles::kind::{Kind, FLUID};
 use crate::particles::Particles;
@@ -29,7 +33,7 @@ pub struct PairGradients {
 
 impl PairGradients {
     /// Computes the vectors for the particles and list of the present step.
-    pub fn build(&mut self, k: &Wendland, list: &NeighbourList, p: &Particles) {
+    pub fn build(&mut self, k: &Wendland, list: &NeighbourList, p: &Particles, vectors: PairVectors) {
         let body = Kind::Body.code();
         self.start.clear();
         self.start.push(0);
@@ -66,12 +70,9 @@ impl PairGradients {
                     let w = k.volume * k.dw_over_r_at(q);
                     let laplacian = if fluid { (-2.0 * w) as f32 } else { 0.0 };
                     let w = factor * w;
-                    *o = [
-                        (w * (p.x[i] - p.x[j])) as f32,
-                        (w * (p.y[i] - p.y[j])) as f32,
-                        (w * (p.z[i] - p.z[j])) as f32,
-                        laplacian,
-                    ];
+                    let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
+                    let c = vectors.pair(i, j, fluid, d.map(|v| w * v));
+                    *o = [c[0] as f32, c[1] as f32, c[2] as f32, laplacian];
                 }
             });
     }

@@ -39,7 +39,8 @@ use crate::particles::Particles;
 use rayon::prelude::*;
 
 /// The symmetric form's term of fluid particle i's pressure gradient from neighbour j at
-/// `d = x_i − x_j`, `q = |d| / r_e`: `t_ij = V (p_i + p_j^(i)) ∇_i W_ij`, with p_j^(i) = p_j for a fluid
+/// `d = x_i − x_j`, `q = |d| / r_e`: `t_ij = V (p_i + p_j^(i)) ∇_i W_ij` (the kernel
+/// gradient corrected with `kernel_correction = "moment"`, [`super::kernel_correction`]), with p_j^(i) = p_j for a fluid
 /// j and p_i + Δp_ij for a solid j (wall or body: its pressure as i's PPE saw it,
 /// [`super::walls`]). The fluid's `⟨∇p⟩_i = Σ_j t_ij` ([`super::operators::pressure_gradient`]),
 /// so the force on i from j is `−(m/ρ) t_ij = −V t_ij`, and the force on a solid j from i is
@@ -58,7 +59,7 @@ pub fn symmetric_term(
     let p = walls.p;
     if p.kind[j] == FLUID {
         let c = k.volume * k.dw_over_r_at(q) * (p.pressure[i] + p.pressure[j]);
-        return d.map(|v| c * v);
+        return walls.vectors.fluid(i, j, d.map(|v| c * v));
     }
     wall_term(k, walls, (i, j), d, q, p.pressure[i])
 }
@@ -76,7 +77,7 @@ pub fn wall_term(
     pi: f64,
 ) -> [f64; 3] {
     let c = k.volume * k.dw_over_r_at(q) * (2.0 * pi + walls.difference(i, j));
-    walls.completed(i, d.map(|v| c * v))
+    walls.completed(i, walls.vectors.solid(i, d.map(|v| c * v)))
 }
 
 /// Fluid particle i's share of body particle j's face force at `q = r / r_e`,

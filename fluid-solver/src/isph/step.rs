@@ -40,6 +40,7 @@ use super::body_completion::BodyCompletion;
 use super::exact_projection;
 use super::free_surface::{self, SURFACE};
 use super::kernel::Wendland;
+use super::kernel_correction::{self, PairVectors};
 use super::neighbour_list::NeighbourList;
 use super::operators::{self, DivergenceSum};
 use super::pair_gradients::PairGradients;
@@ -60,7 +61,7 @@ use crate::particles::Particles;
 use crate::physics::Physics;
 use crate::stage_timer::StageTimes;
 use rayon::prelude::*;
-use schemas::case::fluid::{IsphConfig, PpeSolver, PressureGradient, Shifting, WallSlip};
+use schemas::case::fluid::{IsphConfig, KernelCorrection, PpeSolver, PressureGradient, Shifting, WallSlip};
 
 /// Unknowns per block of the parallel PPE assembly.
 const ROW_BLOCK: usize = 256;
@@ -488,6 +489,11 @@ impl IsphStep {
         } else {
             self.walls.surface_completion.clear();
         }
+        if self.settings.kernel_correction() == KernelCorrection::Moment {
+            kernel_correction::corrections(&k, list, p, surface, &mut self.walls.kernel_correction);
+        } else {
+            self.walls.kernel_correction.clear();
+        }
         let ppe = &mut self.ppe;
         ppe.row_of.clear();
         ppe.row_of.resize(p.len(), NOT_AN_UNKNOWN);
@@ -592,8 +598,9 @@ impl IsphStep {
             let rho_g = self.physics.gravity.map(|g| self.physics.density * g);
             let row_of = &self.ppe.row_of;
             let unknown = |i: usize| row_of[i] != NOT_AN_UNKNOWN;
-            self.completion.update(&k, &self.list, p, rho_g, unknown);
-            self.pair_gradients.build(&k, &self.list, p);
+            let vectors = PairVectors(&self.walls.kernel_correction);
+            self.completion.update(&k, &self.list, p, rho_g, unknown, vectors);
+            self.pair_gradients.build(&k, &self.list, p, vectors);
             let walls = self
                 .walls
                 .pair(&self.physics, self.kernel.spacing, &self.list, p, dt);

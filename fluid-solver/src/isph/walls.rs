@@ -69,6 +69,7 @@
 
 use super::free_surface::SURFACE;
 use super::kernel::Wendland;
+use super::kernel_correction::PairVectors;
 use super::neighbour_list::NeighbourList;
 use crate::neighbours::vector_field::VectorField;
 use crate::particles::kind::{Kind, DUMMY, FLUID, WALL};
@@ -274,6 +275,9 @@ pub struct WallFields {
     /// The walls' completion of the surface particles the PPE does not hold, with the symmetric
     /// gradients ([`super::surface_walls`]; empty: none).
     pub surface_completion: Vec<[[f64; 3]; 3]>,
+    /// The symmetric forms' corrections L_i of the pairs' kernel gradients
+    /// ([`super::kernel_correction`]; empty: none).
+    pub kernel_correction: Vec<[[f64; 3]; 3]>,
     pub depth: Vec<f64>,
     pub convex: Vec<u8>,
     /// The solids moved from rest at the present positions (a wave maker's paddle), if any.
@@ -382,6 +386,7 @@ impl WallFields {
             convex: &self.convex,
             surface: &self.surface,
             surface_completion: &self.surface_completion,
+            vectors: PairVectors(&self.kernel_correction),
             depth: &self.depth,
             spacing,
         }
@@ -404,6 +409,8 @@ pub struct NeumannPair<'a> {
     pub surface: &'a [u8],
     /// The walls' completion of the surface particles ([`super::surface_walls`]; empty: none).
     pub surface_completion: &'a [[[f64; 3]; 3]],
+    /// The pairs' kernel gradients, corrected or plain ([`super::kernel_correction`]).
+    pub vectors: PairVectors<'a>,
     /// Each solid particle's depth behind its wall's face ([`depths`]; empty: none).
     pub depth: &'a [f64],
     /// Δs [m].

@@ -9,9 +9,13 @@
 //! surface is then η = a cos(kx) sin(ωt), and the water's centre of mass moves along the tank as
 //! x̄ − L/2 = −A sin(ωt) with A = 2aL/(π²d), the only shape the first mode gives it.
 //!
-//! Every test here fails today (`docs/notes/standing-wave.md`): the symmetric gradients
-//! (`"symmetric"`, `"conservative"`) reach 0.71–0.76 A at the first swing at d/8, d/16 and
-//! d/32, whatever the time step, the checkerboard share or the shifting; the corrected difference
+//! The full check (two periods) fails today with every method (`docs/notes/standing-wave.md`):
+//! the default, the exact projection with its kernel correction (`isph::kernel_correction`),
+//! reaches 0.98 A at the first swing at d/16 and then loses about 5 % a swing (0.93, 0.88,
+//! 0.81 A), its half periods 3 % long; without the correction the symmetric gradients
+//! (`"symmetric"`, `"conservative"` with `kernel_correction = "none"`) reach 0.71–0.76 A at the
+//! first swing at d/8, d/16 and d/32, whatever the time step, the checkerboard share or the
+//! shifting, and 0.49 A at the second; the corrected difference
 //! reaches A but crosses L/2 first 12 % of a half period early and its next swing grows to
 //! 1.3–1.8 A; with Lind's shifting it follows the first half period within 5 %, grows to 1.2 A at
 //! d/16 and keeps 0.97–1.04 A at d/32 (the setting `cases/solitary-wave-flat` uses); E-MPS
@@ -19,8 +23,9 @@
 
 use crate::common;
 use fluid_solver::{FluidSolver, Kind};
-use schemas::case::fluid::{FluidMethodName, PressureGradient, Shifting};
+use schemas::case::fluid::{FluidMethodName, KernelCorrection, PressureGradient, Shifting};
 use schemas::case::FluidConfig;
+use schemas::validation::{record, Record};
 use std::f64::consts::PI;
 
 /// Depth d [m].
@@ -105,15 +110,20 @@ struct Swing {
 }
 
 fn swing(method: FluidMethodName, gradient: PressureGradient, shifting: Shifting, per_depth: f64) -> Swing {
-    let cfg = tank(method, gradient, shifting, per_depth);
-    let mut solver = FluidSolver::new(&cfg);
+    swing_of(&tank(method, gradient, shifting, per_depth), 2.1)
+}
+
+/// [`swing`] of the tank `cfg` over `periods` periods.
+fn swing_of(cfg: &FluidConfig, periods: f64) -> Swing {
+    let method = cfg.method;
+    let mut solver = FluidSolver::new(cfg);
     start_the_mode(&mut solver);
     let period = 2.0 * PI / omega();
     let big_a = 2.0 * AMPLITUDE * LENGTH / (PI * PI * DEPTH);
     let every = 2.5e-3;
     let (mut t, mut last, mut extremum) = (0.0, 0.0, 0.0_f64);
     let (mut extrema, mut crossings) = (Vec::new(), Vec::new());
-    while t < 2.1 * period {
+    while t < periods * period {
         t += every;
         solver.advance_to(t).unwrap_or_else(|e| panic!("{method:?}: {e}"));
         let x = centre_offset(&solver);
@@ -157,8 +167,70 @@ fn check(name: &str, s: &Swing) {
     }
 }
 
+/// The first swing of the default ISPH (the exact projection with its kernel correction) at
+/// d/16: its extremum within 5 % of A and its crossing of L/2 within 3 % of a period of π/ω,
+/// [`check`]'s bounds (from theory), over 0.6 of a period (about 12 s on 2 cores). Measured
+/// (1 Dec 2026): 0.981 A, crossing 0.4538 s against 0.4422 s (1.3 % of a period); without the
+/// kernel correction 0.757 A, 0.4087 s (the ignored test below has the rest).
 #[test]
-#[ignore = "fails today: the symmetric gradient keeps 0.76 A (docs/notes/standing-wave.md)"]
+fn the_default_isph_carries_a_standing_wave_through_its_first_swing() {
+    let cfg = tank(
+        FluidMethodName::Isph,
+        PressureGradient::default(),
+        Shifting::Off,
+        16.0,
+    );
+    let started = std::time::Instant::now();
+    let s = swing_of(&cfg, 0.6);
+    let period = 2.0 * PI / omega();
+    println!(
+        "ISPH default, d/16, first swing: {:.3?} A, crossing {:.4?} s",
+        s.extrema, s.crossings
+    );
+    let (Some(&x), Some(&t)) = (s.extrema.first(), s.crossings.first()) else {
+        panic!(
+            "the centre of mass did not cross L/2 in 0.6 periods: {:?}",
+            s.crossings
+        );
+    };
+    let row = Record {
+        case: "the first sloshing mode of a closed tank, L = 0.4 m, d = 0.1 m, a = 0.01 m (a/d = 0.1), started at its zero crossing".into(),
+        resolution: "ISPH defaults (exact projection, kernel correction), Δs = d/16, Δt = 0.2 Δs s".into(),
+        source: "fluid-solver/tests/standing_wave/mod.rs::the_default_isph_carries_a_standing_wave_through_its_first_swing".into(),
+        run_time_s: started.elapsed().as_secs_f64(),
+        bound_source: "standing_wave::check's bounds: second-order shift < 1 % at ka = 0.079, lattice modes ≈ Δs/L".into(),
+        ..Default::default()
+    };
+    record(Record {
+        id: "isph-standing-wave-first-swing".into(),
+        capability: "ISPH (default) gravity wave: standing wave's first swing".into(),
+        reference: "linear theory: the centre of mass swings to A = 2aL/(π²d)".into(),
+        measure: "|extremum of the first swing / A − 1|".into(),
+        value: (x - 1.0).abs(),
+        bound: Some(0.05),
+        unit: "".into(),
+        ..row.clone()
+    });
+    record(Record {
+        id: "isph-standing-wave-first-crossing".into(),
+        capability: "ISPH (default) gravity wave: standing wave's half period".into(),
+        reference: "linear theory: the centre of mass crosses L/2 at π/ω, ω² = g k tanh(kd)".into(),
+        measure: "|first crossing − π/ω| / period".into(),
+        value: (t - 0.5 * period).abs() / period,
+        bound: Some(0.03),
+        unit: "".into(),
+        ..row
+    });
+    assert!((x - 1.0).abs() < 0.05, "the first swing reaches {x:.3} A");
+    assert!(
+        (t - 0.5 * period).abs() < 0.03 * period,
+        "the first crossing at {t:.4} s against {:.4} s",
+        0.5 * period
+    );
+}
+
+#[test]
+#[ignore = "fails today: the default keeps 0.98 A at the first swing, then loses about 5 % a swing, its half periods 3 % long (docs/notes/standing-wave.md)"]
 fn a_standing_wave_keeps_its_amplitude_and_period_with_default_isph() {
     let s = swing(
         FluidMethodName::Isph,
@@ -166,7 +238,25 @@ fn a_standing_wave_keeps_its_amplitude_and_period_with_default_isph() {
         Shifting::Off,
         16.0,
     );
-    check("ISPH default (conservative), d/16", &s);
+    check("ISPH default (conservative, kernel correction), d/16", &s);
+}
+
+#[test]
+#[ignore = "fails today: the symmetric gradient without the kernel correction keeps 0.76 A at the first swing, 0.49 A at the second (docs/notes/standing-wave.md)"]
+fn a_standing_wave_keeps_its_amplitude_and_period_with_isph_without_the_kernel_correction() {
+    let mut cfg = tank(
+        FluidMethodName::Isph,
+        PressureGradient::Conservative,
+        Shifting::Off,
+        16.0,
+    );
+    if let Some(isph) = cfg.isph.as_mut() {
+        isph.kernel_correction = Some(KernelCorrection::None);
+    }
+    check(
+        "ISPH conservative without the kernel correction, d/16",
+        &swing_of(&cfg, 2.1),
+    );
 }
 
 #[test]
