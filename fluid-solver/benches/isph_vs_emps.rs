@@ -24,13 +24,15 @@
 //!
 //! `cargo bench -p fluid-solver --bench isph_vs_emps -- [spacing] [end time] [ppe solver]
 //! [--s2] [--only=isph|emps] [--probe-log=PREFIX] [--alpha-d=α] [--gradient=corrected-difference|symmetric]
-//! [--radius=r_e/Δs] [--shifting=lind] [--shifting-coefficient=A] [--isph-courant=C]`; defaults Δs = L/20 = 0.0073 m (8 000 fluid particles), 0.5 s (past
+//! [--radius=r_e/Δs] [--shifting=lind] [--shifting-coefficient=A] [--isph-courant=C]
+//! [--kernel-correction=none|moment]`; defaults Δs = L/20 = 0.0073 m (8 000 fluid particles), 0.5 s (past
 //! the impact on the far wall at about 0.3 s), "additive-two-level-pcg" (or "two-level-pcg", "jacobi-pcg", "sgs-pcg", "faer-cholesky"), S2's α_d = 5e-3, ISPH's
 //! default pressure gradient "conservative" (`--gradient=corrected-difference`, S2-8, or `symmetric`: the case key
 //! `isph.pressure_gradient`) at its default support (2.0 Δs, 2.4 with S2-8's gradient; `--radius`: `isph.influence_radius`), no shifting (`--shifting=lind`: `isph.shifting`, with
 //! `--shifting-coefficient`: `isph.shifting_coefficient`, default 0.5), ISPH's Δt at advective
 //! Courant 0.3 (`--isph-courant`; 0.1275 gives E-MPS's Δt at L/20, for the probe at equal
-//! steps). `--s2` is S2's
+//! steps), the gradient's default kernel correction (`--kernel-correction`:
+//! `isph.kernel_correction`). `--s2` is S2's
 //! scale (Table 1): Δs = 5 mm and a slab 76 Δs deep, 127 832 fluid particles (S2: 128 000).
 //! `--probe-log=PREFIX` writes `PREFIX-emps.csv` and `PREFIX-isph.csv`, one row per step: what the
 //! probe reads and where it comes from ([`probe_log`]).
@@ -39,7 +41,8 @@ use fluid_solver::probe_signal::{self, Series};
 use fluid_solver::probes::{self, ProbeSet};
 use fluid_solver::{FluidSolver, Kind};
 use schemas::case::fluid::{
-    FluidConfig, FluidMethodName, IsphConfig, PpeSolver, PressureGradient, ProbeConfig, ProbeKind, Shifting,
+    FluidConfig, FluidMethodName, IsphConfig, KernelCorrection, PpeSolver, PressureGradient, ProbeConfig,
+    ProbeKind, Shifting,
 };
 use schemas::case::Case;
 use std::path::PathBuf;
@@ -234,7 +237,13 @@ fn main() {
         "--shifting-coefficient",
         IsphConfig::default().shifting_coefficient,
     );
+    let kernel_correction = match flag(&all, "--kernel-correction") {
+        Some("none") => Some(KernelCorrection::None),
+        Some("moment") => Some(KernelCorrection::Moment),
+        _ => None,
+    };
     isph.isph = Some(IsphConfig {
+        kernel_correction,
         ppe_solver: solver,
         alpha_d,
         pressure_gradient,
@@ -253,7 +262,8 @@ fn main() {
         }
     }
     println!(
-        "dam break, Δs = {ds} m, slab {layers} Δs deep, end {end} s, ISPH gradient {pressure_gradient:?} at a support of {support} Δs, shifting {shifting:?} (A = {shifting_coefficient}), {} threads, load average {}",
+        "dam break, Δs = {ds} m, slab {layers} Δs deep, end {end} s, ISPH gradient {pressure_gradient:?} (kernel correction {:?}) at a support of {support} Δs, shifting {shifting:?} (A = {shifting_coefficient}), {} threads, load average {}",
+        isph.isph.map(|i| i.kernel_correction()),
         rayon::current_num_threads(),
         load_average()
     );

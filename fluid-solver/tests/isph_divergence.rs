@@ -203,7 +203,7 @@ impl Stepped {
         }
         let mut kernel_correction = Vec::new();
         if settings.kernel_correction() == KernelCorrection::Moment {
-            kernel_correction::corrections(&k, &list, &q, &surface, &mut kernel_correction);
+            kernel_correction::corrections(&k, &list, &q, &surface, &mut Vec::new(), &mut kernel_correction);
         }
         Stepped {
             k,

@@ -129,6 +129,8 @@ pub struct IsphStep {
     known_gradient: VectorField,
     /// The exact projection's kernel gradients of the step's pairs.
     pair_gradients: PairGradients,
+    /// Whether each particle has a body neighbour (the kernel correction's scratch).
+    beside_body: Vec<bool>,
     /// Pockets of water enclosed by solids whose pressure level was tied to the last step's
     /// ([`IsphStep::solve_with_pockets_tied`]), over the run.
     pockets_tied: u64,
@@ -172,6 +174,7 @@ impl IsphStep {
             dirichlet: Vec::new(),
             known_gradient: VectorField::default(),
             pair_gradients: PairGradients::default(),
+            beside_body: Vec::new(),
             faces: pair_laws::BodyFaces::default(),
             completion: BodyCompletion::default(),
             pockets_tied: 0,
@@ -490,7 +493,8 @@ impl IsphStep {
             self.walls.surface_completion.clear();
         }
         if self.settings.kernel_correction() == KernelCorrection::Moment {
-            kernel_correction::corrections(&k, list, p, surface, &mut self.walls.kernel_correction);
+            let scratch = &mut self.beside_body;
+            kernel_correction::corrections(&k, list, p, surface, scratch, &mut self.walls.kernel_correction);
         } else {
             self.walls.kernel_correction.clear();
         }

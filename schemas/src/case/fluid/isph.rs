@@ -83,7 +83,8 @@ pub enum KernelCorrection {
     None,
     /// Each pair's kernel gradient is corrected by the moment matrices of both particles,
     /// `½ (L_i + L_j) V ∇W_ij` (a solid's `L_i V ∇W_iw`), `L = m⁻¹` in the water's interior
-    /// (neither the particle nor a fluid neighbour on the free surface, λ_min > 0.9) and the
+    /// away from bodies (neither the particle nor a fluid neighbour on the free surface or beside
+    /// a body, λ_min > 0.9) and the
     /// identity elsewhere: the pair terms stay antisymmetric, so momentum still closes, and a
     /// hydrostatic pressure is read without the sideways force that a sheared lattice gives the
     /// plain form (a standing wave kept 0.76 A at its first swing with it, 0.98 A corrected).
