@@ -16,7 +16,7 @@
 //! with a sideways part of order ρ g times the strain: a force against the wave of the wave's own
 //! order, whatever the resolution. A standing wave (a/d = 0.1, d/16,
 //! `tests/standing_wave/mod.rs`) lost a quarter of its amplitude in the first quarter period and
-//! half by the second swing; with the correction it reaches 0.99 A and keeps 0.95 A at the
+//! half by the second swing; with the correction it reaches 0.98 A and keeps 0.93 A at the
 //! second swing. Where the support is cut (the free surface) m_i⁻¹ would multiply the zero-order
 //! term `2 p_i S_i` that holds the surface layer, as Bonet & Lok's correction everywhere did
 //! (the tank failed within 0.02 s at 2.4 Δs, docs/notes/isph-momentum-and-divergence.md): there
