@@ -501,7 +501,7 @@ impl FluidConfig {
             ));
         } else if isph_symmetric_wave {
             warnings.push(
-                "ISPH's exact projection with its kernel correction (the default) and a `wave_maker` or an `initial_wave`: it keeps 0.98 of a standing wave's amplitude at its first swing (a/d = 0.1, d/16) but then loses about 5 % a swing, its half periods 3 % long, and a solitary wave (H/d = 0.2) runs up a 1:3 beach to 0.55 of Synolakis' law at d/8 and 0.70 at d/16 (S2-8's gradient with Lind's shifting: 1.10 and 0.75, momentum not conserved), so read wave heights and run-up with their resolution, at 16 or more particles per depth (docs/notes/standing-wave.md, docs/notes/solitary-runup.md)".into(),
+                "ISPH's exact projection with its kernel correction (the default) and a `wave_maker` or an `initial_wave`: it keeps 0.98 of a standing wave's amplitude at its first swing (a/d = 0.1, d/16) but then loses about 5 % a swing, its half periods 3 % long, a piston's solitary wave (H/d = 0.2, d/16) keeps 1.03 H after 10 depths at 2.5 % below √(g(d + H)), and it runs up a 1:3 beach to 0.55 of Synolakis' law at d/8 and 0.70 at d/16 (S2-8's gradient with Lind's shifting: 0.97 H, 8.5 % slow, run-up 1.10 and 0.75, momentum not conserved), so read wave heights and run-up with their resolution, at 16 or more particles per depth (docs/notes/standing-wave.md, docs/notes/solitary-runup.md)".into(),
             );
         }
         if self.method == FluidMethodName::Emps && carries_a_wave {
