@@ -169,7 +169,7 @@ fn check(name: &str, s: &Swing) {
 
 /// The first swing of the default ISPH (the exact projection with its kernel correction) at
 /// d/16: its extremum within 5 % of A and its crossing of L/2 within 3 % of a period of π/ω,
-/// [`check`]'s bounds (from theory), over 0.6 of a period (about 12 s on 2 cores). Measured
+/// [`check`]'s bounds (from theory), over 0.6 of a period (about 16 s on 2 cores). Measured
 /// (1 Dec 2026): 0.981 A, crossing 0.4538 s against 0.4422 s (1.3 % of a period); without the
 /// kernel correction 0.757 A, 0.4087 s (the ignored test below has the rest).
 #[test]
