@@ -45,6 +45,7 @@
 use super::kernel::Wendland;
 use super::kernel_correction::PairVectors;
 use super::neighbour_list::NeighbourList;
+use crate::neighbours::moments::IDENTITY;
 use crate::particles::kind::{Kind, FLUID};
 use crate::particles::Particles;
 use rayon::prelude::*;
@@ -188,7 +189,7 @@ impl Sums {
         let mut h = [0.0; 3];
         for (a, h) in h.iter_mut().enumerate() {
             *h = (0..3)
-                .map(|e| (identity(a, e) - self.rest_moment[a][e]) * rho_g[e])
+                .map(|e| (IDENTITY[a][e] - self.rest_moment[a][e]) * rho_g[e])
                 .sum();
         }
         (self.rest.map(|v| -v), h)
@@ -207,7 +208,7 @@ impl Sums {
             let (mut missing, mut filled) = (0.0, 0.0);
             for a in 0..3 {
                 for e in 0..3 {
-                    missing += n[a] * (identity(a, e) - self.rest_moment[a][e]) * n[e];
+                    missing += n[a] * (IDENTITY[a][e] - self.rest_moment[a][e]) * n[e];
                     filled += n[a] * self.body_moment[a][e] * n[e];
                 }
             }
@@ -228,15 +229,5 @@ fn add(sum: &mut [f64; 3], moment: &mut [[f64; 3]; 3], v: [f64; 3], d: [f64; 3])
         for e in 0..3 {
             moment[a][e] -= v[a] * d[e];
         }
-    }
-}
-
-/// The identity matrix's entry (a, e).
-#[inline(always)]
-fn identity(a: usize, e: usize) -> f64 {
-    if a == e {
-        1.0
-    } else {
-        0.0
     }
 }

@@ -31,13 +31,10 @@
 use super::free_surface::{LAMBDA_INNER, SURFACE};
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
-use crate::neighbours::moments::{inverse, smallest_eigenvalue_up_to, Matrix3, OuterSum};
+use crate::neighbours::moments::{inverse, smallest_eigenvalue_up_to, times, Matrix3, OuterSum, IDENTITY};
 use crate::particles::kind::{Kind, FLUID};
 use crate::particles::Particles;
 use rayon::prelude::*;
-
-/// The identity.
-pub const IDENTITY: Matrix3 = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
 /// `L_i` of the module doc for every particle into `out` (the identity for solids, near the free
 /// surface and near bodies); `surface` holds the step's surface flags; `beside_body` is scratch.
@@ -119,10 +116,4 @@ impl PairVectors<'_> {
             self.solid(i, v)
         }
     }
-}
-
-/// `m v`.
-#[inline(always)]
-fn times(m: &Matrix3, v: [f64; 3]) -> [f64; 3] {
-    std::array::from_fn(|a| m[a][0] * v[0] + m[a][1] * v[1] + m[a][2] * v[2])
 }

@@ -33,7 +33,7 @@
 use super::free_surface::SURFACE;
 use super::kernel::Wendland;
 use super::neighbour_list::NeighbourList;
-use crate::neighbours::moments::{inverse, smallest_eigenvalue, OuterSum};
+use crate::neighbours::moments::{inverse, smallest_eigenvalue, times, OuterSum, IDENTITY};
 use crate::particles::kind::{Kind, FLUID};
 use crate::particles::Particles;
 use rayon::prelude::*;
@@ -83,9 +83,7 @@ pub fn completions(
             };
             for (r, row) in m.iter_mut().enumerate() {
                 for (s, v) in row.iter_mut().enumerate() {
-                    *v = (0..3)
-                        .map(|e| (if r == e { 1.0 } else { 0.0 } - fluid[r][e]) * inv[e][s])
-                        .sum();
+                    *v = (0..3).map(|e| (IDENTITY[r][e] - fluid[r][e]) * inv[e][s]).sum();
                 }
             }
         });
@@ -97,5 +95,5 @@ pub fn completed(t: [f64; 3], m: &[[f64; 3]; 3]) -> [f64; 3] {
     if m[0][0] == 0.0 && m[1][1] == 0.0 && m[2][2] == 0.0 {
         return t;
     }
-    std::array::from_fn(|r| m[r][0] * t[0] + m[r][1] * t[1] + m[r][2] * t[2])
+    times(m, t)
 }

@@ -24,6 +24,15 @@ pub trait RadialGradient: Sync {
 /// A symmetric 3×3 matrix.
 pub type Matrix3 = [[f64; 3]; 3];
 
+/// The identity.
+pub const IDENTITY: Matrix3 = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+
+/// `m v`.
+#[inline(always)]
+pub fn times(m: &Matrix3, v: [f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|a| m[a][0] * v[0] + m[a][1] * v[1] + m[a][2] * v[2])
+}
+
 /// A sum of symmetric outer products `Σ c d ⊗ d`, kept as its six distinct entries (the
 /// moment matrices' inner loop: 6 multiply-adds per neighbour instead of 9).
 #[derive(Debug, Clone, Copy, Default)]
@@ -151,9 +160,7 @@ fn cofactors(m: &Matrix3) -> Option<(Matrix3, f64)> {
 pub fn solve(m: &Matrix3, v: [f64; 3]) -> Option<[f64; 3]> {
     // Inverse = adjugate / det; for symmetric m the cofactor matrix is symmetric.
     let (c, det) = cofactors(m)?;
-    Some(std::array::from_fn(|a| {
-        (c[a][0] * v[0] + c[a][1] * v[1] + c[a][2] * v[2]) / det
-    }))
+    Some(times(&c, v).map(|x| x / det))
 }
 
 /// `m⁻¹` of a symmetric 3×3 `m`, or `None` when `m` is singular (as [`solve`]).
