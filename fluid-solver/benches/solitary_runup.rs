@@ -28,9 +28,6 @@ const EMPS_COURANT: f64 = 0.5;
 /// One run at Δs = d/`n` with `method`: (R [m], wall time [s], particles, steps).
 fn run(base: &FluidConfig, n: f64, method: FluidMethodName) -> Result<(f64, f64, usize, u64), String> {
     let mut cfg = base.clone();
-    if std::env::args().any(|a| a == "isph-default") {
-        cfg.isph = Some(IsphConfig::default());
-    }
     let scale = (DEPTH / n) / base.spacing;
     cfg.spacing = DEPTH / n;
     cfg.time_step = base.time_step * scale;
@@ -74,7 +71,7 @@ fn main() {
             return;
         }
     };
-    let Some(base) = case.fluid.get("flume").cloned() else {
+    let Some(mut base) = case.fluid.get("flume").cloned() else {
         println!("error: the case has no fluid section `flume`");
         return;
     };
@@ -86,13 +83,16 @@ fn main() {
         true => FluidMethodName::Emps,
         false => FluidMethodName::Isph,
     };
+    let isph_default = std::env::args().any(|a| a == "isph-default");
+    if isph_default {
+        base.isph = Some(IsphConfig::default());
+    }
     let law = DEPTH * 2.831 * COT_BETA.sqrt() * (HEIGHT / DEPTH).powf(1.25);
     println!(
         "solitary-runup, {}, to t = 1.3 s on {} threads; Synolakis' law R = {:.1} mm",
         match method {
             FluidMethodName::Emps => "E-MPS (c Δt/Δs = 0.5)",
-            FluidMethodName::Isph if std::env::args().any(|a| a == "isph-default") =>
-                "ISPH, default settings",
+            FluidMethodName::Isph if isph_default => "ISPH, default settings",
             FluidMethodName::Isph => "ISPH + Lind shifting",
         },
         rayon::current_num_threads(),
