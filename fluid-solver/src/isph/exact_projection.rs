@@ -98,8 +98,7 @@ pub fn known_gradient(
                     }
                     let d = [p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]];
                     let t = if p.kind[j] == FLUID {
-                        let c = k.volume * k.dw_over_r_at(q) * (pi + known(j));
-                        walls.vectors.fluid(i, j, d.map(|v| c * v))
+                        pair_laws::fluid_term(k, walls, (i, j), d, q, (pi, known(j)))
                     } else {
                         pair_laws::wall_term(k, walls, (i, j), d, q, pi)
                     };

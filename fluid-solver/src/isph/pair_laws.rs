@@ -58,10 +58,25 @@ pub fn symmetric_term(
 ) -> [f64; 3] {
     let p = walls.p;
     if p.kind[j] == FLUID {
-        let c = k.volume * k.dw_over_r_at(q) * (p.pressure[i] + p.pressure[j]);
-        return walls.vectors.fluid(i, j, d.map(|v| c * v));
+        return fluid_term(k, walls, (i, j), d, q, (p.pressure[i], p.pressure[j]));
     }
     wall_term(k, walls, (i, j), d, q, p.pressure[i])
+}
+
+/// The fluid part of [`symmetric_term`] with fluid particles i and j at pressures `(pi, pj)`:
+/// `V (p_i + p_j) ∇_i W_ij`, its kernel gradient corrected as the step's
+/// ([`super::kernel_correction`]).
+#[inline(always)]
+pub fn fluid_term(
+    k: &Wendland,
+    walls: &NeumannPair,
+    (i, j): (usize, usize),
+    d: [f64; 3],
+    q: f64,
+    (pi, pj): (f64, f64),
+) -> [f64; 3] {
+    let c = k.volume * k.dw_over_r_at(q) * (pi + pj);
+    walls.vectors.fluid(i, j, d.map(|v| c * v))
 }
 
 /// The wall part of [`symmetric_term`] with fluid particle i at pressure `pi`:
