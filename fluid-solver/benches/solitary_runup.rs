@@ -8,7 +8,9 @@
 //! c Δt/Δs); `… -- 8` a quick d/8 to check the bench itself; `emps` among the arguments runs
 //! E-MPS instead (at c Δt/Δs = 0.5, c the case's default sound speed); `isph-default` runs ISPH
 //! with its default settings (the exact projection with its kernel correction, no shifting)
-//! instead of the case's (S2-8's gradient with Lind's shifting).
+//! instead of the case's (S2-8's gradient with Lind's shifting); `width=N` makes the flume N
+//! spacings wide at every resolution (the case's is 0.025 m, four spacings at d/16) with the
+//! gauges on its centre line (docs/notes/standing-wave.md: narrow flumes slow waves).
 
 use fluid_solver::probes::ProbeSet;
 use fluid_solver::FluidSolver;
@@ -25,12 +27,26 @@ const COT_BETA: f64 = 3.0;
 /// E-MPS's acoustic Courant number c Δt/Δs in this bench.
 const EMPS_COURANT: f64 = 0.5;
 
-/// One run at Δs = d/`n` with `method`: (R [m], wall time [s], particles, steps).
-fn run(base: &FluidConfig, n: f64, method: FluidMethodName) -> Result<(f64, f64, usize, u64), String> {
+/// One run at Δs = d/`n` with `method`, `width` spacings wide if given: (R [m], wall time [s],
+/// particles, steps).
+fn run(
+    base: &FluidConfig,
+    n: f64,
+    method: FluidMethodName,
+    width: Option<f64>,
+) -> Result<(f64, f64, usize, u64), String> {
     let mut cfg = base.clone();
     let scale = (DEPTH / n) / base.spacing;
     cfg.spacing = DEPTH / n;
     cfg.time_step = base.time_step * scale;
+    if let Some(w) = width {
+        let across = w * cfg.spacing;
+        cfg.tank.max[1] = cfg.tank.min[1] + across;
+        cfg.block.iter_mut().for_each(|b| b.max[1] = cfg.tank.max[1]);
+        for p in cfg.probe.iter_mut().filter(|p| p.position.len() == 2) {
+            p.position[1] = cfg.tank.min[1] + 0.5 * across;
+        }
+    }
     if method == FluidMethodName::Emps {
         cfg.method = method;
         cfg.isph = None;
@@ -84,6 +100,7 @@ fn main() {
         false => FluidMethodName::Isph,
     };
     let isph_default = std::env::args().any(|a| a == "isph-default");
+    let width = std::env::args().find_map(|a| a.strip_prefix("width=").and_then(|w| w.parse::<f64>().ok()));
     if isph_default {
         base.isph = Some(IsphConfig::default());
     }
@@ -98,10 +115,13 @@ fn main() {
         rayon::current_num_threads(),
         1e3 * law
     );
+    if let Some(w) = width {
+        println!("the flume {w} spacings wide");
+    }
     println!("| Δs | particles | steps | R [mm] | R / law | wall time [s] | particle-steps/s |");
     println!("|---|---|---|---|---|---|---|");
     for n in sizes {
-        match run(&base, n, method) {
+        match run(&base, n, method, width) {
             Ok((r, wall, particles, steps)) => println!(
                 "| d/{n} | {particles} | {steps} | {:.1} | {:.2} | {wall:.1} | {:.3e} |",
                 1e3 * r,
