@@ -16,8 +16,9 @@ fn gauge(name: &str, x: f64) -> ProbeConfig {
 /// A flume 2 m long (still water d = 0.1 m from x = 0.1 m, a damping zone over its last 0.6 m)
 /// at `spacing` Δs, four particles wide, with a flap hinged on the floor at x = 0.1 m making
 /// regular waves H = 0.02 m, T = 0.7 s (kd = 1.05, L = 0.60 m, H/S = 0.556: the flap swings by
-/// ±10°), ramped in over two periods; ISPH with the solitary case's settings (S2-8's gradient,
-/// Lind shifting, no viscous term), Δt = 0.16 Δs/(m/s) (Courant 0.32 at u = 2√(gd)).
+/// ±10°), ramped in over two periods; ISPH with S2-8's gradient and Lind shifting (the solitary
+/// case's settings until 1 Dec 2026), no viscous term, Δt = 0.16 Δs/(m/s) (Courant 0.32 at
+/// u = 2√(gd)).
 fn regular_flap_flume(spacing: f64) -> schemas::case::FluidConfig {
     let width = 4.0 * spacing;
     let text = format!(

@@ -234,7 +234,7 @@ fn the_flap_turns_about_its_hinge_with_both_methods() {
 
 /// ISPH keeps a wall particle's normal once found; a flap's are kept as at rest and read turned
 /// by θ ([`TurnedSolids`]). At rest the normals of the flap's front layer away from its top and
-/// bottom (at least 3 Δs, beyond the 2.4 Δs support) point along +x in the x–z plane by the
+/// bottom (at least 3 Δs, beyond the kernel's support) point along +x in the x–z plane by the
 /// lattice's symmetry; after 0.954 s (θ = 11.7°, the crest at the paddle) the kept ones must point along the turned face's
 /// normal (cos θ, −sin θ), the analytic reference, to rounding (1e-12 rad). Freshly computed
 /// normals there are printed for comparison (their kernel sums also see the fixed side walls
@@ -242,7 +242,7 @@ fn the_flap_turns_about_its_hinge_with_both_methods() {
 #[test]
 fn the_flaps_isph_wall_normals_turn_with_it() {
     let (cfg, flap) = short_flap(FluidMethodName::Isph);
-    let radius = cfg.isph.as_ref().map_or(2.4, |s| s.support());
+    let radius = cfg.isph_settings().support();
     let k = Wendland::new(cfg.spacing, radius);
     let mut solver = FluidSolver::new(&cfg);
     let rest = paddle_at_rest(&solver);
@@ -393,26 +393,32 @@ kind = "run-up"
     assert!((later - 0.2).abs() <= cfg.spacing, "{later}");
 }
 
+/// A water-height gauge at x on the flume's centre line.
 fn gauge(name: &str, x: f64) -> ProbeConfig {
-    ProbeConfig::water_height(name, [x, 0.0125])
+    ProbeConfig::water_height(name, [x, 0.025])
 }
 
 /// The generated wave against the first-order solitary wave (H = 0.02 m, d = 0.1 m) with the
-/// case's settings at its resolution (d/16) in a flume cut to 1.85 m: its height at 5 and 10
-/// depths from the paddle within 10 % of H, and its speed between them within 2 % of
-/// √(g(d + H)) (the issue's bound), crest times by [`main_passage`]. Fails today with the case's
-/// ISPH default gradient and Lind shifting: 1.03 H and 0.97 H, but 0.99 m/s, √(g d), against
-/// 1.084 (`docs/notes/solitary-waves.md`); 11–17 min on 2 cores. With ISPH's defaults instead
-/// (the exact projection with its kernel correction; 1 Dec 2026, not the case's setting): 1.043 H
-/// and 1.030 H, 1.057 m/s (2.5 % slow), 151 s.
+/// case's settings (ISPH's defaults, d/16, eight particles wide) in a flume cut to 1.85 m: its
+/// height at 5 and 10 depths from the paddle within 10 % of H, and its speed between them within
+/// 2 % of √(g(d + H)) (the issue's bound), crest times by [`main_passage`], the gauges on the
+/// flume's centre line. Measured (1 Dec 2026, 2 cores, 325 s): 0.947 H and 0.912 H, 1.1007 m/s
+/// against 1.0844 (+1.5 %); on a line a quarter of the width off the centre, 1.018 H and 0.968 H,
+/// 1.0797 m/s (−0.4 %): a gauge reads the highest water within Δs of it, so it carries the
+/// surface particles' scatter. Four particles wide the wave read 1.043 H and 1.030 H at 2.5 %
+/// below c (off the centre): particle side walls read the pressure as flat along them, and in so
+/// narrow a flume that slows the wave (docs/notes/standing-wave.md). Off the centre, d/24 reads
+/// 1.014 H and 0.979 H at 1.7 % slow (25 min), d/12 0.960 H and 0.920 H at 4.4 % slow, d/8 1.07 H
+/// and 0.78 H at 3.9 % fast, so no CI-sized twin holds the bounds (docs/notes/solitary-waves.md).
 #[test]
-#[ignore = "fails today: the heights are met, the wave travels at √(gd), 8 % slow (docs/notes/solitary-waves.md)"]
+#[ignore = "a long run: about 5 min on 2 cores"]
 fn the_solitary_wave_keeps_its_height_and_speed_over_ten_depths() {
     let (_, mut cfg) = common::load_case("solitary-wave-flat");
     cfg.tank.max[0] = 1.85;
     cfg.block[0].max[0] = 1.85;
     cfg.probe = vec![gauge("g5", 0.55), gauge("g10", 1.05)];
     cfg.validate("fluid.flume").unwrap_or_else(|e| panic!("{e:?}"));
+    let started = std::time::Instant::now();
     let mut solver = FluidSolver::new(&cfg);
     let mut set = ProbeSet::new(&cfg.probe, &solver).unwrap_or_else(|e| panic!("{e}"));
     let level = set.row(&solver);
@@ -430,7 +436,36 @@ fn the_solitary_wave_keeps_its_height_and_speed_over_ten_depths() {
     let height = passages.map(|p| p.0);
     let speed = 0.5 / (passages[1].1 - passages[0].1);
     let c = (9.8f64 * 0.12).sqrt();
-    println!("heights {height:?} m (H = 0.02), speed {speed:.3} m/s (c = {c:.3})");
+    println!("heights {height:?} m (H = 0.02), speed {speed:.4} m/s (c = {c:.4})");
+    let row = Record {
+        case: "cases/solitary-wave-flat on a flume cut to 1.85 m: a Goring piston's solitary wave, H/d = 0.2, d = 0.1 m".into(),
+        resolution: "ISPH defaults, Δs = d/16, Δt = 1.25 ms, eight particles wide".into(),
+        source: "fluid-solver/tests/wave_maker.rs::the_solitary_wave_keeps_its_height_and_speed_over_ten_depths (ignored: a long run)".into(),
+        run_time_s: started.elapsed().as_secs_f64(),
+        ..Default::default()
+    };
+    record(Record {
+        id: "solitary-wave-flat-speed".into(),
+        capability: "wave maker: solitary wave speed over 5 to 10 depths".into(),
+        reference: "first-order solitary wave, c = √(g(d + H)) = 1.084 m/s".into(),
+        measure: "|speed / c − 1|".into(),
+        value: (speed / c - 1.0).abs(),
+        bound: Some(0.02),
+        bound_source: "issue 37: the speed within 2 %".into(),
+        unit: "".into(),
+        ..row.clone()
+    });
+    record(Record {
+        id: "solitary-wave-flat-height-10d".into(),
+        capability: "wave maker: solitary wave height after 10 depths".into(),
+        reference: "first-order solitary wave, height H = 0.02 m".into(),
+        measure: "|η_max / H − 1| at 10 depths".into(),
+        value: (height[1] / 0.02 - 1.0).abs(),
+        bound: Some(0.1),
+        bound_source: "10 % of H, this test's bound since issue 37; the resolution study off the centre line reads 0.92, 0.97 and 0.98 H at d/12, d/16 and d/24, and the two gauge lines differ by 0.06 H at d/16 (docs/notes/solitary-waves.md)".into(),
+        unit: "".into(),
+        ..row
+    });
     for h in height {
         assert!((h / 0.02 - 1.0).abs() <= 0.1, "height {h}");
     }

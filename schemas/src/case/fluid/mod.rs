@@ -80,6 +80,10 @@ pub use solids::{Loaded, PlaneConfig, SolidConfig, TerrainConfig, MAX_MESH_TO_TA
 pub use time_step::{MACH, MAX_ACOUSTIC_COURANT, MAX_ADVECTIVE_COURANT, MAX_VISCOUS_NUMBER};
 pub use wave_maker::{DampingConfig, PaddleKind, PaddleMotion, WaveMakerConfig};
 
+/// Fewest spacings across a flume (along y, across the waves' x) below which ISPH's particle side
+/// walls are warned to slow its waves ([`FluidConfig::warnings`]; docs/notes/standing-wave.md).
+pub const FEWEST_SPACINGS_ACROSS_A_WAVE: f64 = 8.0;
+
 use super::error::check;
 use super::FieldError;
 use schemars::JsonSchema;
@@ -501,12 +505,21 @@ impl FluidConfig {
             ));
         } else if isph_symmetric_wave {
             warnings.push(
-                "ISPH's exact projection with its kernel correction (the default) and a `wave_maker` or an `initial_wave`: it keeps 0.98 of a standing wave's amplitude at its first swing (a/d = 0.1, d/16) but then loses about 5 % a swing, its half periods 3 % long, a piston's solitary wave (H/d = 0.2, d/16) keeps 1.03 H after 10 depths at 2.5 % below √(g(d + H)), and it runs up a 1:3 beach to 0.55 of Synolakis' law at d/8 and 0.70 at d/16 (S2-8's gradient with Lind's shifting: 0.97 H, 8.5 % slow, run-up 1.10 and 0.75, momentum not conserved), so read wave heights and run-up with their resolution, at 16 or more particles per depth (docs/notes/standing-wave.md, docs/notes/solitary-runup.md)".into(),
+                "ISPH's exact projection with its kernel correction (the default) and a `wave_maker` or an `initial_wave`: in a flume eight particles wide it keeps 0.99 and 0.97 of a standing wave's amplitude at its first two swings (a/d = 0.1, d/16), and a piston's solitary wave (H/d = 0.2) reads 0.91–0.97 H after 10 depths within 1.5 % of √(g(d + H)) at d/16 and 0.98 H at 1.7 % below at d/24, but 0.92 H and 4.4 % slow at d/12 and 0.78 H at d/8; it runs up a 1:3 beach to 0.75 of Synolakis' law at d/16 (S2-8's gradient with Lind's shifting: 0.81, momentum not conserved), so read wave heights and run-up with their resolution, at 16 or more particles per depth (docs/notes/standing-wave.md, docs/notes/solitary-waves.md, docs/notes/solitary-runup.md)".into(),
             );
+        }
+        let across = (self.tank.max[1] - self.tank.min[1]) / self.spacing;
+        if self.method == FluidMethodName::Isph
+            && carries_a_wave
+            && across < FEWEST_SPACINGS_ACROSS_A_WAVE - 1e-9
+        {
+            warnings.push(format!(
+                "the tank is {across:.0} spacings wide across the wave (along y) with `method` = \"isph\" and a `wave_maker` or an `initial_wave`: particle side walls read the pressure as flat along them, so a narrow flume's walls hold its waves back by their share of the water (a standing wave's half periods ran 3.0 % long four spacings wide, 1.6 % eight wide and 1.05 % sixteen wide; a solitary wave of H/d = 0.2 at d/16, read on one gauge line, ran 2.5 % slow four wide and 0.4 % eight wide), so make the tank at least {FEWEST_SPACINGS_ACROSS_A_WAVE} spacings wide (docs/notes/standing-wave.md)"
+            ));
         }
         if self.method == FluidMethodName::Emps && carries_a_wave {
             warnings.push(
-                "`method` = \"emps\" with a `wave_maker` or an `initial_wave`: E-MPS damps gravity waves (a standing wave keeps 0.45 of its amplitude after one period at d/8, less at d/16; a solitary wave of H/d = 0.2 keeps 0.84 H after 10 depths at d/16 and travels about a quarter slow, and its run-up on a 1:3 beach reaches 0.30–0.33 of Synolakis' law), so read loads only where the wave has travelled a few depths; for waves use method = \"isph\" with isph = { shifting = \"lind\", pressure_gradient = \"corrected-difference\" } (docs/notes/emps-gravity-waves.md)".into(),
+                "`method` = \"emps\" with a `wave_maker` or an `initial_wave`: E-MPS damps gravity waves (a standing wave keeps 0.45 of its amplitude after one period at d/8, less at d/16; a solitary wave of H/d = 0.2 keeps 0.84 H after 10 depths at d/16 and travels about a quarter slow, and its run-up on a 1:3 beach reaches 0.30–0.33 of Synolakis' law), so read loads only where the wave has travelled a few depths; for waves use method = \"isph\" with its defaults (for run-up isph = { shifting = \"lind\", pressure_gradient = \"corrected-difference\" }, 0.81 of Synolakis' law at d/16 eight particles wide where the defaults reach 0.75) (docs/notes/emps-gravity-waves.md, docs/notes/solitary-waves.md)".into(),
             );
         }
         warnings
