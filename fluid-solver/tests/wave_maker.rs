@@ -409,7 +409,9 @@ fn gauge(name: &str, x: f64) -> ProbeConfig {
 /// below c (off the centre): particle side walls read the pressure as flat along them, and in so
 /// narrow a flume that slows the wave (docs/notes/standing-wave.md). Off the centre, d/24 reads
 /// 1.014 H and 0.979 H at 1.7 % slow (25 min), d/12 0.960 H and 0.920 H at 4.4 % slow, d/8 1.07 H
-/// and 0.78 H at 3.9 % fast, so no CI-sized twin holds the bounds (docs/notes/solitary-waves.md).
+/// and 0.78 H at 3.9 % fast (docs/notes/solitary-waves.md). Its CI-sized twin for the height is
+/// [`the_solitary_wave_keeps_its_height_over_five_depths_at_ci_size`]; no CI size holds the
+/// speed's bound.
 #[test]
 #[ignore = "a long run: about 5 min on 2 cores"]
 fn the_solitary_wave_keeps_its_height_and_speed_over_ten_depths() {
@@ -419,20 +421,7 @@ fn the_solitary_wave_keeps_its_height_and_speed_over_ten_depths() {
     cfg.probe = vec![gauge("g5", 0.55), gauge("g10", 1.05)];
     cfg.validate("fluid.flume").unwrap_or_else(|e| panic!("{e:?}"));
     let started = std::time::Instant::now();
-    let mut solver = FluidSolver::new(&cfg);
-    let mut set = ProbeSet::new(&cfg.probe, &solver).unwrap_or_else(|e| panic!("{e}"));
-    let level = set.row(&solver);
-    let mut series: [Vec<(f64, f64)>; 2] = [Vec::new(), Vec::new()];
-    let mut t = 0.0;
-    while t < 2.6 {
-        t += 0.005;
-        solver.advance_to(t).unwrap_or_else(|e| panic!("{e}"));
-        let row = set.row(&solver);
-        for g in 0..2 {
-            series[g].push((t, row[g] - level[g]));
-        }
-    }
-    let passages = series.map(|s| main_passage(&s));
+    let passages = passages(&cfg, 2.6);
     let height = passages.map(|p| p.0);
     let speed = 0.5 / (passages[1].1 - passages[0].1);
     let c = (9.8f64 * 0.12).sqrt();
@@ -470,6 +459,63 @@ fn the_solitary_wave_keeps_its_height_and_speed_over_ten_depths() {
         assert!((h / 0.02 - 1.0).abs() <= 0.1, "height {h}");
     }
     assert!((speed / c - 1.0).abs() <= 0.02, "speed {speed}");
+}
+
+/// The CI-sized twin of [`the_solitary_wave_keeps_its_height_and_speed_over_ten_depths`] for the
+/// height: the case at d/12 in a flume cut to 1.0 m and kept eight particles wide, its height at
+/// 3 and 5 depths from the paddle on the centre line within the same 10 % of H. Measured (1 Dec
+/// 2026, 36 s on 2 cores): 0.968 H and 0.960 H (the long flume at d/12 read 0.960 H at 5 depths
+/// off the centre). The speed is left to the long run: over these two depths the crest times
+/// still move with the wave's forming (0.975 m/s here) and at d/12 the long run reads 4.4 % slow.
+#[test]
+fn the_solitary_wave_keeps_its_height_over_five_depths_at_ci_size() {
+    let (_, mut cfg) = common::load_case("solitary-wave-flat");
+    cfg.spacing = 0.1 / 12.0;
+    cfg.time_step = 0.2 * cfg.spacing;
+    let width = 8.0 * cfg.spacing;
+    cfg.tank.max = [1.0, width, 0.16];
+    cfg.block[0].max = [1.0, width, 0.1];
+    if let Some(w) = cfg.wave_maker.as_mut() {
+        w.max[1] = width;
+    }
+    cfg.probe = [("g3", 0.35), ("g5", 0.55)]
+        .map(|(name, x)| ProbeConfig::water_height(name, [x, 0.5 * width]))
+        .to_vec();
+    cfg.validate("fluid.flume").unwrap_or_else(|e| panic!("{e:?}"));
+    let passages = passages(&cfg, 1.6);
+    println!(
+        "heights {:.3} H and {:.3} H at 3 and 5 depths, crests at {:.3} and {:.3} s",
+        passages[0].0 / 0.02,
+        passages[1].0 / 0.02,
+        passages[0].1,
+        passages[1].1
+    );
+    assert!(
+        passages[1].1 > passages[0].1,
+        "the crest reached 5 depths before 3: {passages:?}"
+    );
+    for (h, _) in passages {
+        assert!((h / 0.02 - 1.0).abs() <= 0.1, "height {h}");
+    }
+}
+
+/// [`main_passage`] of each of `cfg`'s two gauges, read every 5 ms to `end` [s], η from the
+/// gauge's reading at the start.
+fn passages(cfg: &schemas::case::FluidConfig, end: f64) -> [(f64, f64); 2] {
+    let mut solver = FluidSolver::new(cfg);
+    let mut set = ProbeSet::new(&cfg.probe, &solver).unwrap_or_else(|e| panic!("{e}"));
+    let level = set.row(&solver);
+    let mut series: [Vec<(f64, f64)>; 2] = [Vec::new(), Vec::new()];
+    let mut t = 0.0;
+    while t < end {
+        t += 0.005;
+        solver.advance_to(t).unwrap_or_else(|e| panic!("{e}"));
+        let row = set.row(&solver);
+        for g in 0..2 {
+            series[g].push((t, row[g] - level[g]));
+        }
+    }
+    series.map(|s| main_passage(&s))
 }
 
 /// A gauge's main passage: its highest η, and the η²-weighted mean time over the contiguous
