@@ -123,7 +123,7 @@ pub enum MethodState {
 }
 
 /// The diagnostic of a PPE that missed its tolerance: the run stops with it.
-fn ppe_failure(f: PpeFailure, tol: f64, step: u64, time: f64) -> Instability {
+pub(crate) fn ppe_failure(f: PpeFailure, tol: f64, step: u64, time: f64) -> Instability {
     Instability {
         step,
         time,

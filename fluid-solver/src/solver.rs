@@ -69,12 +69,12 @@ struct ReactionShares {
 pub struct FluidSolver {
     /// Everything a step changes (a checkpoint is a clone of it).
     pub(crate) state: FluidState,
-    method: FluidMethod,
+    pub(crate) method: FluidMethod,
     /// The MPS lattice constants the shared services read (probes: radii, n0).
     pub(crate) kernel: Kernel,
     pub(crate) physics: Physics,
     pub(crate) monitor: StabilityMonitor,
-    time_step: f64,
+    pub(crate) time_step: f64,
     /// ISPH's limit on each step's length from the fluid's speed (`None` for E-MPS, whose
     /// limit is acoustic and set by the case's sound speed).
     advective: Option<AdvectiveLimit>,
@@ -112,6 +112,8 @@ pub struct FluidSolver {
     pub(crate) host_copies: (u64, f64),
     /// Where the device steps' wall time went.
     pub(crate) device_seconds: crate::gpu::DeviceSeconds,
+    /// The fastest fluid particle's speed at the device's last step's end [m/s].
+    pub(crate) device_fastest: f64,
 }
 
 impl FluidSolver {
@@ -239,6 +241,7 @@ impl FluidSolver {
             escape_pending: None,
             host_copies: (0, 0.0),
             device_seconds: Default::default(),
+            device_fastest: 0.0,
         };
         solver.refresh_body_exchange();
         solver
@@ -470,11 +473,11 @@ impl FluidSolver {
 
     /// Whether a step of `dt` is ISPH's advective limit cutting Δt short
     /// ([`FluidSolver::next_step_towards`]); counts it.
-    fn advective_cut(&mut self, dt: f64) -> bool {
+    pub(crate) fn advective_cut(&mut self, dt: f64) -> bool {
         let Some(limit) = &self.advective else {
             return false;
         };
-        if let (longest, Some(fastest)) = limit.longest_step(&self.state.particles) {
+        if let (longest, Some(fastest)) = limit.longest_step_at(self.fastest_fluid()) {
             if (dt - longest).abs() <= self.time_step * LANDING_SLACK {
                 let totals = &mut self.state.totals;
                 totals.advective_cuts += 1;
@@ -483,6 +486,15 @@ impl FluidSolver {
             }
         }
         false
+    }
+
+    /// The fastest fluid particle's speed now [m/s]: the device's, reduced at its last step's
+    /// end, while it is ahead of the host's copy.
+    fn fastest_fluid(&self) -> f64 {
+        match self.device_ahead() {
+            Some(_) => self.device_fastest,
+            None => crate::isph::step_length::fastest_fluid(&self.state.particles),
+        }
     }
 
     /// The particles may have changed: shares found before are not used again.
@@ -705,7 +717,7 @@ impl FluidSolver {
     pub fn next_step_towards(&self, t_end: f64) -> Option<f64> {
         let left = t_end - self.state.time;
         let longest = match &self.advective {
-            Some(limit) => limit.longest_step(&self.state.particles).0,
+            Some(limit) => limit.longest_step_at(self.fastest_fluid()).0,
             None => self.time_step,
         };
         if left <= self.time_step * LANDING_SLACK {

@@ -31,6 +31,7 @@ mod gpu_far_from_origin;
 mod gpu_filtered_probes;
 mod gpu_front;
 mod gpu_hydrostatic;
+mod gpu_isph;
 mod gpu_large;
 mod gpu_mesh_bodies;
 mod gpu_open_boundaries;

@@ -8,7 +8,7 @@
 //! cell: start and count `u32` (8 B; the count's top bit flags a cell with fluid; after the
 //! counts 16 B of the open boundaries' counters), and 4 B per 4096 cells of the scan's block
 //! totals; with resolved bodies also the mask of bodies near it
-//! (`u32`, 4 B: 12 B). Per 256 particles one reduction partial (32 B). Resolved bodies
+//! (`u32`, 4 B: 12 B). Per 256 particles one reduction partial (48 B). Resolved bodies
 //! (`shaders/bodies.wgsl`, `shaders/reaction.wgsl`): per body particle its offset from the
 //! body's initial centre (f32), id and body (32 B); per body its pose and velocity (f32, 64 B),
 //! its three sums (loads, the fluid-side reaction, the walls' contact; f32, 3 × 32 B) and three

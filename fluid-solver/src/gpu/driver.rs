@@ -7,10 +7,12 @@
 use super::device::{GpuDevice, NoAdapter};
 use super::drag::{NOT_APPLIED, SPREAD_AT_CENTROID, SPREAD_AT_SAMPLE_POINT};
 use super::frame::Frame;
+use super::isph::IsphSetup;
 use super::paddle::{PaddlePlacement, PaddleSites};
 use super::solids::SolidBits;
 use super::step::{GpuEmps, GpuSetup};
-use crate::method::StepTotals;
+use crate::isph::step_length::pressure_step;
+use crate::method::{ppe_failure, FluidMethod, MethodState, StepTotals};
 use crate::particles::Particles;
 use crate::solver::FluidSolver;
 use crate::stability::Instability;
@@ -151,8 +153,21 @@ impl FluidSolver {
             headroom: self.inflow_headroom(),
             frame: Frame { origin, quantum },
         };
-        let step = GpuEmps::new(dev, &setup, &self.state.grid, &self.state.particles)
+        let mut step = GpuEmps::new(dev, &setup, &self.state.grid, &self.state.particles)
             .map_err(GpuStartError::Unsupported)?;
+        if let FluidMethod::Isph(isph) = &self.method {
+            let st = &self.state;
+            let isph_setup = IsphSetup {
+                kernel: isph.kernel,
+                physics: isph.physics,
+                settings: isph.settings,
+                n0_mps: self.kernel.n0,
+                particles: &st.particles,
+                grid: &st.grid,
+            };
+            step.use_isph(&isph_setup).map_err(GpuStartError::Unsupported)?;
+        }
+        self.device_fastest = crate::isph::step_length::fastest_fluid(&self.state.particles);
         self.device = Some(Box::new(step));
         self.host_stale = false;
         Ok(())
@@ -247,6 +262,12 @@ impl FluidSolver {
     /// last step happen on the device first, the detector's findings are explained by the host's
     /// detector on a copy.
     pub(crate) fn step_on_device(&mut self, dt: f64) -> Result<StepTotals, Instability> {
+        // ISPH's advective limit from the device's fastest particle, and its PPE's tolerance
+        let cut = self.advective_cut(dt);
+        let tolerance = match &self.method {
+            FluidMethod::Isph(s) => s.settings.ppe_tolerance,
+            FluidMethod::Emps(_) => 0.0,
+        };
         if !self.started {
             self.sync_host();
             self.monitor.start(&self.state.particles);
@@ -310,7 +331,20 @@ impl FluidSolver {
             dev.set_point_reactions(&r.reactions, &r.sample_points, &r.widths);
         }
         let started = std::time::Instant::now();
-        let report = dev.advance(dt);
+        let (step, time) = (self.state.steps + 1, self.state.time + dt);
+        let (report, ppe) = match &mut self.state.method {
+            MethodState::Isph(isph) => {
+                let pressure_step = pressure_step(dt, self.time_step, cut, isph.last_pressure_step);
+                let (report, ppe) = dev
+                    .advance_isph(dt, pressure_step)
+                    .map_err(|f| ppe_failure(f, tolerance, step, time))?;
+                isph.last_pressure_step = Some(pressure_step);
+                isph.ppe = ppe;
+                (report, ppe.iterations)
+            }
+            MethodState::Emps => (dev.advance(dt), 0),
+        };
+        self.device_fastest = report.fastest;
         self.device_seconds.steps += started.elapsed().as_secs_f64();
         let n = dev.len() as u64;
         self.host_stale = true;
@@ -323,6 +357,7 @@ impl FluidSolver {
         }
         st.totals.candidates += report.candidates;
         st.totals.particle_steps += n;
+        st.totals.ppe_iterations += u64::from(ppe);
         // the bodies' loads and the fluid's reaction, two sums on the device (by body particle,
         // by fluid particle) that the coupler's ledger compares
         st.body_exchange.loads.clear();
@@ -343,7 +378,7 @@ impl FluidSolver {
         Ok(StepTotals {
             force_from_walls: report.force_from_walls,
             candidates: report.candidates,
-            ppe_iterations: 0,
+            ppe_iterations: ppe,
             collisions: 0,
         })
     }

@@ -256,7 +256,7 @@ pub fn dispatch_layers(
 }
 
 /// Workgroups per row and rows for `groups` workgroups in rows of at most `row`.
-fn grid_of(groups: u32, row: u32) -> (u32, u32) {
+pub(super) fn grid_of(groups: u32, row: u32) -> (u32, u32) {
     if groups <= row {
         (groups, 1)
     } else {

@@ -19,6 +19,8 @@
 //! - [`open_boundary`]: inflow and outflow: the strip's new rows appended, particles removed and
 //!   the arrays compacted on the device;
 //! - [`escape`]: fluid that left through an open top, removed on the device;
+//! - [`isph`]: the ISPH step (`method = "isph"`) in place of E-MPS's stages, sharing the cell
+//!   sort, the collision stage and the reduction;
 //! - [`drag`]: the unresolved drag coupling: the flow sampled at the coupler's points and the
 //!   point reactions spread over the fluid;
 //! - [`gather`]: the particles around a filtered wall-pressure sensor or a local probe, copied
@@ -39,6 +41,7 @@ pub mod driver;
 pub mod escape;
 pub mod frame;
 pub mod gather;
+pub mod isph;
 pub mod kernels;
 pub mod open_boundary;
 pub mod paddle;

@@ -3,7 +3,7 @@
 
 use bytemuck::{Pod, Zeroable};
 
-/// Mirror of `Partial` in `shaders/common.wgsl` (32 B per workgroup of 256 particles).
+/// Mirror of `Partial` in `shaders/common.wgsl` (48 B per workgroup of 256 particles).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Pod, Zeroable)]
 pub struct Partial {
@@ -13,6 +13,8 @@ pub struct Partial {
     pub finding: u32,
     pub escaped: u32,
     pub fluid: u32,
+    pub fastest: f32,
+    pub pad: [u32; 3],
 }
 
 /// What the device found in one step (sums in f64 over the workgroups' f32 partials).
@@ -30,6 +32,8 @@ pub struct StepReport {
     /// Fluid particles that left through the open top (removed before the next step).
     pub escaped: u64,
     pub fluid: u64,
+    /// The fastest fluid particle's speed at the step's end [m/s] (ISPH's advective limit).
+    pub fastest: f64,
 }
 
 /// Sums the partials.
@@ -45,6 +49,7 @@ pub fn sum(partials: &[Partial]) -> StepReport {
         finding = finding.min(p.finding);
         r.escaped += u64::from(p.escaped);
         r.fluid += u64::from(p.fluid);
+        r.fastest = r.fastest.max(f64::from(p.fastest));
     }
     if finding != u32::MAX {
         r.finding = Some((finding / 8, finding % 8));

@@ -5,7 +5,7 @@
 //! (viscous) S1-4, then S1-10/S1-11, cell sort at r*, S1-15 with S1-14, S1-3 (with the artificial
 //! viscosity when on), S1-12/S1-13, the collision pass and its update, the damping zones (as
 //! [`crate::solver`] relaxes them after the method's step), and the device reduction of the
-//! detector and the totals. Only the 32 B per 256 particles of that reduction come back per step,
+//! detector and the totals. Only the 48 B per 256 particles of that reduction come back per step,
 //! and with resolved bodies 96 B per body (their loads, the fluid's reaction summed from the
 //! fluid's side and the walls' contact, each a force and a moment reduced on the device after each
 //! exchange: [`super::bodies`]).
@@ -21,6 +21,7 @@ use super::damping;
 use super::device::GpuDevice;
 use super::drag::DragState;
 use super::frame::Frame;
+use super::isph::GpuIsph;
 use super::kernels::{dispatch, dispatch_layers, Kernels, WG, WIDE_WG};
 use super::open_boundary::{OpenPass, StripCopy};
 use super::paddle::{PaddlePlacement, PaddleSites};
@@ -94,19 +95,19 @@ pub struct GpuEmps {
     pub(super) buffers: Buffers,
     pub(super) kernels: Kernels,
     pub(super) params: Params,
-    n: usize,
+    pub(super) n: usize,
     viscous: bool,
     /// Where the reduction's partials and the bodies' loads are read back (reused every step).
     staging: wgpu::Buffer,
     /// Bodies on the device; their loads and the fluid's reaction of the last step (6 per body
     /// each); a pose handed over and not yet applied to the body particles.
-    bodies: usize,
+    pub(super) bodies: usize,
     body_loads: Vec<f64>,
     body_reactions: Vec<f64>,
     place_pending: bool,
     /// Submit and wait after each stage to time it (the benchmark); off in runs.
-    profile: bool,
-    times: StageTimes,
+    pub(super) profile: bool,
+    pub(super) times: StageTimes,
     shape: Shape,
     /// Where the open boundaries' counts are read back.
     open_staging: wgpu::Buffer,
@@ -118,6 +119,8 @@ pub struct GpuEmps {
     pub(super) drag: Mutex<Option<DragState>>,
     /// Where the device measures positions from ([`super::frame`]).
     pub(super) frame: Frame,
+    /// The ISPH step, when the case's method is ISPH ([`super::isph`]).
+    pub(super) isph: Option<Box<GpuIsph>>,
 }
 
 impl fmt::Debug for GpuEmps {
@@ -300,6 +303,7 @@ impl GpuEmps {
             gathered: AtomicU64::new(0),
             drag: Mutex::new(None),
             frame,
+            isph: None,
         };
         step.upload(p)?;
         Ok(step)
@@ -528,7 +532,6 @@ impl GpuEmps {
         self.params.contact_c = (2.0 * mass * omega) as f32;
         self.buffers.write_params(&self.dev, &self.params);
         let (n, cells) = (self.n as u32, self.params.cells);
-        let groups = self.n.div_ceil(WIDE_WG as usize).max(1);
         let (bodies, place) = (self.bodies as u32, self.place_pending);
         let (av, damped) = (self.params.av_scale != 0.0, self.params.n_damping > 0);
         let paddle = self.params.paddle_count > 0;
@@ -596,35 +599,10 @@ impl GpuEmps {
         if damped {
             rec.passes("damping", |p, k| dispatch(p, k, &k.relax_damping, n, WG));
         }
-        rec.passes("detector and totals", |p, k| {
-            dispatch(p, k, &k.reduce_step, n, WIDE_WG)
-        });
-        let bytes = (groups * std::mem::size_of::<Partial>()) as u64;
-        let body_bytes = (SUMS as usize * bodies as usize * std::mem::size_of::<BodyLoad>()) as u64;
-        let (partials_buffer, staging) = (rec.step.buffers.at(PARTIALS), &rec.step.staging);
-        rec.enc
-            .copy_buffer_to_buffer(partials_buffer, 0, staging, 0, bytes);
-        if body_bytes > 0 {
-            let loads = rec.step.buffers.at(BODY_LOADS);
-            rec.enc
-                .copy_buffer_to_buffer(loads, 0, staging, bytes, body_bytes);
-        }
-        rec.finish("detector and totals");
-        let read: Vec<u8> = map_read(&self.dev, &self.staging.slice(..bytes + body_bytes));
-        self.buffers.downloaded += bytes + body_bytes;
-        let (head, tail) = read.split_at(bytes as usize);
-        let partials: Vec<Partial> = bytemuck::pod_collect_to_vec(head);
-        let sums = bytemuck::pod_collect_to_vec::<u8, BodyLoad>(tail);
-        (self.body_loads, self.body_reactions) = bodies::loads_and_reactions(&sums);
-        self.take_reaction_states(spreads);
+        let report = rec.report(spreads);
         if !self.profile {
             self.times.lap(t0, "step");
         }
-        let mut report = reduce::sum(&partials);
-        // Σ (½|u|² − g·(r − origin)) on the device: the potential back from the case's origin
-        let g = self.params.gravity.map(f64::from);
-        let lift: f64 = (0..3).map(|a| g[a] * self.frame.origin[a]).sum();
-        report.energy -= report.fluid as f64 * lift;
         report
     }
 }
@@ -643,14 +621,14 @@ fn staging_buffer(dev: &GpuDevice, label: &str, groups: usize, bodies: usize) ->
 }
 
 /// Records the step's passes into one command encoder, or (profiling) submits and times each.
-struct Recorder<'a> {
-    step: &'a mut GpuEmps,
-    enc: wgpu::CommandEncoder,
+pub(super) struct Recorder<'a> {
+    pub(super) step: &'a mut GpuEmps,
+    pub(super) enc: wgpu::CommandEncoder,
     clock: std::time::Instant,
 }
 
 impl<'a> Recorder<'a> {
-    fn new(step: &'a mut GpuEmps) -> Recorder<'a> {
+    pub(super) fn new(step: &'a mut GpuEmps) -> Recorder<'a> {
         let enc = step
             .dev
             .device
@@ -665,7 +643,11 @@ impl<'a> Recorder<'a> {
     }
 
     /// Records one compute pass filled by `f`, as stage `name`.
-    fn passes(&mut self, name: &'static str, f: impl FnOnce(&mut wgpu::ComputePass<'_>, &Kernels)) {
+    pub(super) fn passes(
+        &mut self,
+        name: &'static str,
+        f: impl FnOnce(&mut wgpu::ComputePass<'_>, &Kernels),
+    ) {
         {
             let mut pass = self.enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some(name),
@@ -677,13 +659,13 @@ impl<'a> Recorder<'a> {
     }
 
     /// Records the drag's spreading ([`GpuEmps::encode_spreading`]), as stage "drag spreading".
-    fn spread(&mut self) {
+    pub(super) fn spread(&mut self) {
         self.step.encode_spreading(&mut self.enc);
         self.lap("drag spreading");
     }
 
     /// Records a cell sort, as stage `name`.
-    fn sort(&mut self, name: &'static str, n: u32, cells: u32) {
+    pub(super) fn sort(&mut self, name: &'static str, n: u32, cells: u32) {
         cell_sort::encode(&mut self.enc, &self.step.kernels, &self.step.buffers, n, cells);
         self.lap(name);
     }
@@ -696,7 +678,8 @@ impl<'a> Recorder<'a> {
         }
     }
 
-    fn submit(&mut self) {
+    /// Submits what was recorded and waits.
+    pub(super) fn submit(&mut self) {
         let dev = &self.step.dev;
         let fresh = dev
             .device
@@ -708,8 +691,49 @@ impl<'a> Recorder<'a> {
         dev.wait();
     }
 
+    /// Records the detector's scan and the step's totals (reduced on the device), submits the
+    /// rest and reads back the partials and the bodies' sums (`spreads`: the drag's reactions
+    /// were spread this step, whose states the host then takes): the step's report.
+    pub(super) fn report(mut self, spreads: bool) -> StepReport {
+        let n = self.step.n as u32;
+        let groups = self.step.n.div_ceil(WIDE_WG as usize).max(1);
+        let bodies = self.step.bodies;
+        self.passes("detector and totals", |p, k| {
+            dispatch(p, k, &k.reduce_step, n, WIDE_WG)
+        });
+        let bytes = (groups * std::mem::size_of::<Partial>()) as u64;
+        let body_bytes = (SUMS as usize * bodies * std::mem::size_of::<BodyLoad>()) as u64;
+        let (partials_buffer, staging) = (self.step.buffers.at(PARTIALS), &self.step.staging);
+        self.enc
+            .copy_buffer_to_buffer(partials_buffer, 0, staging, 0, bytes);
+        if body_bytes > 0 {
+            let loads = self.step.buffers.at(BODY_LOADS);
+            self.enc
+                .copy_buffer_to_buffer(loads, 0, staging, bytes, body_bytes);
+        }
+        let clock = self.clock;
+        self.submit();
+        let step = self.step;
+        if step.profile {
+            step.times.lap(clock, "detector and totals");
+        }
+        let read: Vec<u8> = map_read(&step.dev, &step.staging.slice(..bytes + body_bytes));
+        step.buffers.downloaded += bytes + body_bytes;
+        let (head, tail) = read.split_at(bytes as usize);
+        let partials: Vec<Partial> = bytemuck::pod_collect_to_vec(head);
+        let sums = bytemuck::pod_collect_to_vec::<u8, BodyLoad>(tail);
+        (step.body_loads, step.body_reactions) = bodies::loads_and_reactions(&sums);
+        step.take_reaction_states(spreads);
+        let mut report = reduce::sum(&partials);
+        // Σ (½|u|² − g·(r − origin)) on the device: the potential back from the case's origin
+        let g = step.params.gravity.map(f64::from);
+        let lift: f64 = (0..3).map(|a| g[a] * step.frame.origin[a]).sum();
+        report.energy -= report.fluid as f64 * lift;
+        report
+    }
+
     /// Submits the rest; with profiling on, its time goes to stage `name`.
-    fn finish(mut self, name: &'static str) {
+    pub(super) fn finish(mut self, name: &'static str) {
         self.submit();
         if self.step.profile {
             self.step.times.lap(self.clock, name);

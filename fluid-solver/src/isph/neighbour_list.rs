@@ -51,6 +51,17 @@ struct Block {
 impl NeighbourList {
     /// Rebuilds the list for the particles in the grid's order; returns the candidates examined.
     pub fn build(&mut self, grid: &CellGrid, p: &Particles, k: &Wendland) -> u64 {
+        self.build_listing(grid, p, k, false)
+    }
+
+    /// [`Self::build`] with every particle listed, solids with no fluid near included (the
+    /// walls' geometry of the GPU path, [`crate::gpu::isph`]).
+    pub fn build_every(&mut self, grid: &CellGrid, p: &Particles, k: &Wendland) -> u64 {
+        self.build_listing(grid, p, k, true)
+    }
+
+    /// [`Self::build`], listing every particle when `every`.
+    fn build_listing(&mut self, grid: &CellGrid, p: &Particles, k: &Wendland, every: bool) -> u64 {
         let (k, radius) = (*k, k.radius);
         let reach = grid.reach(radius);
         let r2max = radius * radius;
@@ -71,7 +82,7 @@ impl NeighbourList {
                 // consecutive, so each cell is asked once).
                 let mut near: Option<(u32, bool)> = None;
                 for i in b * BLOCK..((b + 1) * BLOCK).min(n) {
-                    let listed = kind[i] == FLUID || {
+                    let listed = every || kind[i] == FLUID || {
                         let c = grid.cell(i);
                         match near {
                             Some((last, answer)) if last == c => answer,

@@ -40,7 +40,12 @@ impl AdvectiveLimit {
     /// The longest step from the present velocities: `min(Δt, max(0.4 Δs / u_max, Δt / 8))`, and
     /// u_max when that is shorter than Δt.
     pub fn longest_step(&self, p: &Particles) -> (f64, Option<f64>) {
-        let fastest = fastest_fluid(p);
+        self.longest_step_at(fastest_fluid(p))
+    }
+
+    /// [`Self::longest_step`] with the fastest fluid particle's speed `fastest` [m/s] given (the
+    /// GPU path reduces it on the device).
+    pub fn longest_step_at(&self, fastest: f64) -> (f64, Option<f64>) {
         if fastest * self.time_step <= self.reach {
             return (self.time_step, None);
         }

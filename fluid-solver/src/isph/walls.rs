@@ -225,6 +225,12 @@ fn geometry(
     )
 }
 
+/// The normal, depth and convexity flag of solid `w` ([`geometry`]) from all its solid
+/// neighbours in `list` (the GPU path keeps them by id: [`crate::gpu::isph`]).
+pub fn fixed_geometry(k: &Wendland, list: &NeighbourList, p: &Particles, w: usize) -> ([f64; 3], f64, u8) {
+    geometry(k, list, p, convex_fill_limit(k), w, |_| false)
+}
+
 /// The geometry of the solid particles ([`geometry`]), kept by particle id while every solid is
 /// fixed (walls and dummies only: no body, gate or inflow strip). A fixed solid's solid
 /// neighbours never change, nor their order in its list (the cell sort is stable and fixed

@@ -332,7 +332,7 @@ fn read(probe: &ProbeConfig, disc: &Option<Disc>, view: &ParticleView) -> f64 {
     };
     let near = view.around(lo, hi);
     match disc {
-        // the GPU path is E-MPS only (`FluidConfig::gpu_support`)
+        // the GPU path reads wall-pressure sensors with E-MPS only (`FluidConfig::gpu_support`)
         Some(disc) if solver.device_ahead().is_some() => {
             disc.pressure(&near, &pair_laws::pressure(solver.kernel(), &near), ds)
         }

@@ -142,6 +142,7 @@ struct BodyLoad {
 struct Partial {
     wall: vec3<f32>, energy: f32,
     candidates: u32, finding: u32, escaped: u32, fluid: u32,
+    fastest: f32, _p0: u32, _p1: u32, _p2: u32,
 };
 
 // Where an invocation is in a dispatch of rows of workgroups (kernels::dispatch: past the

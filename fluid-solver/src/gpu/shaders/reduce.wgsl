@@ -18,6 +18,7 @@ var<workgroup> r_cand: array<u32, 256>;
 var<workgroup> r_find: array<u32, 256>;
 var<workgroup> r_esc: array<u32, 256>;
 var<workgroup> r_fluid: array<u32, 256>;
+var<workgroup> r_fast: array<f32, 256>;
 
 fn is_finite(v: f32) -> bool {
     // NaN fails both comparisons; ±inf fails the bound.
@@ -99,6 +100,7 @@ fn reduce_step(v: Invocation) {
     var found = NONE;
     var esc = 0u;
     var fluid = 0u;
+    var fast = 0.0;
     if i < prm.n {
         var left = false;
         let f = finding(i, &left);
@@ -112,6 +114,7 @@ fn reduce_step(v: Invocation) {
             let u = vel[i].xyz;
             energy = 0.5 * dot(u, u) - dot(prm.gravity, pos[i].xyz);
             fluid = 1u;
+            fast = length(u);
             // a body particle's wallf holds the walls' contact on it (bodies.wgsl)
             wall = wallf[i].xyz;
         }
@@ -123,6 +126,7 @@ fn reduce_step(v: Invocation) {
     r_find[l] = found;
     r_esc[l] = esc;
     r_fluid[l] = fluid;
+    r_fast[l] = fast;
     workgroupBarrier();
     for (var s = 128u; s > 0u; s = s / 2u) {
         if l < s {
@@ -132,10 +136,12 @@ fn reduce_step(v: Invocation) {
             r_find[l] = min(r_find[l], r_find[l + s]);
             r_esc[l] = r_esc[l] + r_esc[l + s];
             r_fluid[l] = r_fluid[l] + r_fluid[l + s];
+            r_fast[l] = max(r_fast[l], r_fast[l + s]);
         }
         workgroupBarrier();
     }
     if l == 0u && group < reduction_groups() {
-        partials[group] = Partial(r_wall[0], r_energy[0], r_cand[0], r_find[0], r_esc[0], r_fluid[0]);
+        partials[group] = Partial(r_wall[0], r_energy[0], r_cand[0], r_find[0], r_esc[0], r_fluid[0],
+            r_fast[0], 0u, 0u, 0u);
     }
 }

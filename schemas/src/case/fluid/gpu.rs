@@ -1,6 +1,6 @@
 //! `backend = "gpu"`: what the GPU path of a fluid section refuses.
 
-use super::{FluidConfig, FluidMethodName};
+use super::{FluidConfig, FluidMethodName, PressureGradient, ProbeKind, Shifting};
 use crate::case::FieldError;
 
 /// The largest f32 rounding of a position the GPU path accepts, in spacings: 1e-3 Δs is 5 % of
@@ -29,14 +29,8 @@ impl FluidConfig {
     /// never goes on with a mix that silently differs from the CPU's. `key` is the section's
     /// dotted path; the error is at its `backend` key.
     pub fn gpu_support(&self, key: &str) -> Result<(), FieldError> {
-        let refuse = |feature: &str| {
-            Err(FieldError::new(
-                format!("{key}.backend"),
-                format!("the GPU path does not run {feature} yet; use backend = \"cpu\" (the default) for this case"),
-            ))
-        };
-        if self.method != FluidMethodName::Emps {
-            return refuse("method = \"isph\" (only E-MPS is on the GPU)");
+        if self.method == FluidMethodName::Isph {
+            self.gpu_isph_support(key)?;
         }
         // inflow and outflow boundaries run on the device, the strip's rule on the host's copy
         // of it (fluid-solver's gpu/open_boundary.rs)
@@ -45,6 +39,38 @@ impl FluidConfig {
         // filtered wall-pressure sensors read, after every step in their window, the device's
         // particles around their disc, gathered without the rest (fluid-solver's gpu/gather.rs)
         self.gpu_position_rounding(key)
+    }
+
+    /// Refuses what ISPH on the GPU does not run yet: it runs the default discretisation
+    /// (`pressure_gradient = "conservative"`, with or without the kernel correction) in tanks whose
+    /// solids are fixed (fluid-solver's `gpu/isph.rs`).
+    fn gpu_isph_support(&self, key: &str) -> Result<(), FieldError> {
+        let refuse = |feature: &str| {
+            Err(FieldError::new(
+                format!("{key}.backend"),
+                format!("the GPU path does not run {feature} with method = \"isph\" yet; use backend = \"cpu\" (the default) or method = \"emps\" for this case"),
+            ))
+        };
+        let s = self.isph_settings();
+        if s.pressure_gradient != PressureGradient::Conservative {
+            return refuse("isph.pressure_gradient other than \"conservative\" (the default)");
+        }
+        if s.shifting != Shifting::Off {
+            return refuse("isph.shifting = \"lind\"");
+        }
+        if !self.body.is_empty() {
+            return refuse("resolved bodies (`body` tables)");
+        }
+        if self.wave_maker.is_some() {
+            return refuse("a wave maker");
+        }
+        if self.inflow.is_some() || self.outflow.is_some() {
+            return refuse("inflow and outflow boundaries");
+        }
+        if self.probe.iter().any(|p| p.kind == ProbeKind::WallPressure) {
+            return refuse("wall-pressure sensors (kind = \"wall-pressure\")");
+        }
+        Ok(())
     }
 
     /// The point the GPU path measures positions from: the tank's lower corner. The device keeps
