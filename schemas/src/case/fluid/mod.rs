@@ -4,7 +4,7 @@
 //! ```toml
 //! [fluid.tank]
 //! method = "emps"           # or "isph" (then optionally [fluid.tank.isph], see IsphConfig)
-//! backend = "cpu"           # or "gpu": E-MPS on a Vulkan GPU (see FluidConfig::gpu_support)
+//! backend = "cpu"           # or "gpu": a Vulkan GPU (see FluidConfig::gpu_support)
 //! spacing = 0.01            # Δs [m]
 //! time_step = 5e-4          # Δt [s], checked against the acoustic and viscous limits
 //! sound_speed = 12.1        # c [m/s]; default u_max / 0.2 with u_max = √(2gH) (S1-16); E-MPS
@@ -115,8 +115,8 @@ pub enum FluidBackend {
     /// The CPU (rayon threads): every feature.
     #[default]
     Cpu,
-    /// A GPU through wgpu compute shaders (Vulkan): E-MPS, alone or coupled; see
-    /// [`FluidConfig::gpu_support`] for what it refuses.
+    /// A GPU through wgpu compute shaders (Vulkan): E-MPS, and ISPH with its default settings in
+    /// tanks of walls, alone or coupled; see [`FluidConfig::gpu_support`] for what it refuses.
     Gpu,
 }
 
