@@ -159,19 +159,5 @@ fn isph_surge_front_on_the_gpu_follows_the_experiments() {
             machine: format!("{gpu}; {}", schemas::validation::machine()),
         },
     );
-    assert!(
-        e.koshizuka_oka < 0.33,
-        "RMS against Koshizuka & Oka {}",
-        e.koshizuka_oka
-    );
-    assert!(
-        e.martin_moyce < 0.05,
-        "RMS against Martin & Moyce {}",
-        e.martin_moyce
-    );
-    assert!(
-        e.shift.abs() < 0.3,
-        "the best shift {} sits on the search bound",
-        e.shift
-    );
+    front_common::assert_within_the_e_mps_bounds(&e, true);
 }

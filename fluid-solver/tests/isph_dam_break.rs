@@ -26,7 +26,7 @@ fn isph_surge_front_follows_the_experiments() {
         "isph_surge_front_follows_the_experiments",
         started,
     );
-    assert_within_the_e_mps_bounds(&e, true);
+    front_common::assert_within_the_e_mps_bounds(&e, true);
 }
 
 /// The same with `pressure_gradient = "symmetric"` at a support of 2.0 Δs, same bounds.
@@ -45,7 +45,7 @@ fn isph_symmetric_gradient_surge_front_follows_the_experiments() {
         "isph_symmetric_gradient_surge_front_follows_the_experiments",
         started,
     );
-    assert_within_the_e_mps_bounds(&e, true);
+    front_common::assert_within_the_e_mps_bounds(&e, true);
 }
 
 /// The same with S2-8's gradient (`pressure_gradient = "corrected-difference"`) at its support
@@ -65,7 +65,7 @@ fn isph_s2_8_gradient_surge_front_follows_the_experiments() {
         "isph_s2_8_gradient_surge_front_follows_the_experiments",
         started,
     );
-    assert_within_the_e_mps_bounds(&e, true);
+    front_common::assert_within_the_e_mps_bounds(&e, true);
 }
 
 /// The same with particle shifting (`shifting = "lind"`, the default coefficient) on the
@@ -85,7 +85,7 @@ fn isph_shifting_surge_front_follows_the_experiments() {
         "isph_shifting_surge_front_follows_the_experiments",
         started,
     );
-    assert_within_the_e_mps_bounds(&e, true);
+    front_common::assert_within_the_e_mps_bounds(&e, true);
 }
 
 /// The symmetric gradient at a support of 2.0 Δs with `shifting = "lind"`.
@@ -148,7 +148,7 @@ fn isph_dam_break_released_by_a_gate_follows_the_experiments() {
         "isph_dam_break_released_by_a_gate_follows_the_experiments",
         started,
     );
-    assert_within_the_e_mps_bounds(&e, false);
+    front_common::assert_within_the_e_mps_bounds(&e, false);
 }
 
 /// The report's ISPH rung of `cases/dam-break-koshizuka` at Δs = L/10 (the case's tank, 5
@@ -418,27 +418,4 @@ fn record_fronts(
             machine: String::new(),
         },
     );
-}
-
-/// The bounds of the E-MPS front test at this resolution (`dam_break.rs`: 0.33 against
-/// Koshizuka & Oka, 0.05 against Martin & Moyce); with `shift`, also that the best time shift
-/// does not sit on the search bound.
-fn assert_within_the_e_mps_bounds(e: &front_common::FrontErrors, shift: bool) {
-    assert!(
-        e.koshizuka_oka < 0.33,
-        "RMS against Koshizuka & Oka {} (bound 0.33)",
-        e.koshizuka_oka
-    );
-    assert!(
-        e.martin_moyce < 0.05,
-        "RMS against Martin & Moyce {} (bound 0.05)",
-        e.martin_moyce
-    );
-    if shift {
-        assert!(
-            e.shift.abs() < 0.3,
-            "the best shift {} sits on the search bound",
-            e.shift
-        );
-    }
 }

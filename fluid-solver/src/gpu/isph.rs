@@ -39,8 +39,8 @@ pub const ITERATIONS_PER_READ: u32 = 8;
 /// ε of the exact projection's blend ([`crate::isph::exact_projection::CHECKERBOARD_SHARE`]).
 const EPSILON: f64 = crate::isph::exact_projection::CHECKERBOARD_SHARE;
 
-/// Storage buffers of the ISPH group (binding 1 … 19 of group 1; 0 is its uniform block).
-const STORAGE: usize = 19;
+/// Storage buffers of the ISPH group (binding 1 … 18 of group 1; 0 is its uniform block).
+const STORAGE: usize = 18;
 
 /// The bindings of group 0 the ISPH kernels read (`shaders/common.wgsl`): the uniform block, the
 /// particles, the step's sums and the cell list. The ISPH pipelines bind only these, so that
@@ -116,7 +116,6 @@ pub struct GpuIsph {
 /// One pipeline per ISPH kernel.
 struct Pipelines {
     density: wgpu::ComputePipeline,
-    lambda: wgpu::ComputePipeline,
     surface: wgpu::ComputePipeline,
     fields: wgpu::ComputePipeline,
     laplacian: wgpu::ComputePipeline,
@@ -365,9 +364,9 @@ fn bind_particles(dev: &GpuDevice, layout: &wgpu::BindGroupLayout, emps: &GpuEmp
 }
 
 /// Binding numbers of the ISPH group (see `shaders/isph.wgsl`).
-const GEOMETRY: usize = 7;
-const CONVEX: usize = 8;
-const SCALARS: usize = 19;
+const GEOMETRY: usize = 6;
+const CONVEX: usize = 7;
+const SCALARS: usize = 18;
 
 /// The ISPH group's arrays for `n` particles and `ids` particle ids, and their bind group.
 fn arrays(
@@ -384,22 +383,21 @@ fn arrays(
         4 * n,                                   // 1 ratio
         4 * n,                                   // 2 part
         4 * n,                                   // 3 surf
-        4 * n,                                   // 4 lam
-        48 * n,                                  // 5 lmat
-        48 * n,                                  // 6 smat
-        16 * ids,                                // 7 geom
-        4 * ids,                                 // 8 convex
-        4 * n,                                   // 9 dirich
-        16 * n,                                  // 10 yv
-        4 * n,                                   // 11 xs
-        4 * n,                                   // 12 rs
-        4 * n,                                   // 13 ds
-        4 * n,                                   // 14 qs
-        4 * n,                                   // 15 dg
-        4 * n,                                   // 16 bs
-        16 * n,                                  // 17 vstart
-        16 * groups,                             // 18 cgp
-        std::mem::size_of::<CgScalars>() as u64, // 19 cgs
+        48 * n,                                  // 4 lmat
+        48 * n,                                  // 5 smat
+        16 * ids,                                // 6 geom
+        4 * ids,                                 // 7 convex
+        4 * n,                                   // 8 dirich
+        16 * n,                                  // 9 yv
+        4 * n,                                   // 10 xs
+        4 * n,                                   // 11 rs
+        4 * n,                                   // 12 ds
+        4 * n,                                   // 13 qs
+        4 * n,                                   // 14 dg
+        4 * n,                                   // 15 bs
+        16 * n,                                  // 16 vstart
+        16 * groups,                             // 17 cgp
+        std::mem::size_of::<CgScalars>() as u64, // 18 cgs
     ];
     let storage: Vec<wgpu::Buffer> = sizes
         .iter()
@@ -471,7 +469,6 @@ impl Pipelines {
         };
         Pipelines {
             density: make("isph_density"),
-            lambda: make("isph_lambda"),
             surface: make("isph_surface"),
             fields: make("isph_fields"),
             laplacian: make("isph_laplacian"),
@@ -563,7 +560,6 @@ impl GpuEmps {
         }
         rec.passes("density and free surface", |p, k| {
             isph.run(p, k, &q.density, n, WG);
-            isph.run(p, k, &q.lambda, n, WG);
             isph.run(p, k, &q.surface, n, WG);
             isph.run(p, k, &q.fields, n, WG);
         });

@@ -125,3 +125,26 @@ pub fn front_errors(cfg: &FluidConfig, interval: f64, print_every: usize) -> Fro
         shift,
     }
 }
+
+/// The bounds of the E-MPS front test at this resolution (`dam_break.rs`: 0.33 against
+/// Koshizuka & Oka, 0.05 against Martin & Moyce); with `shift`, also that the best time shift
+/// does not sit on the search bound.
+pub fn assert_within_the_e_mps_bounds(e: &FrontErrors, shift: bool) {
+    assert!(
+        e.koshizuka_oka < 0.33,
+        "RMS against Koshizuka & Oka {} (bound 0.33)",
+        e.koshizuka_oka
+    );
+    assert!(
+        e.martin_moyce < 0.05,
+        "RMS against Martin & Moyce {} (bound 0.05)",
+        e.martin_moyce
+    );
+    if shift {
+        assert!(
+            e.shift.abs() < 0.3,
+            "the best shift {} sits on the search bound",
+            e.shift
+        );
+    }
+}

@@ -231,6 +231,24 @@ fn cell_index(p: vec3<f32>) -> u32 {
     return cc.x + prm.dims.x * (cc.y + prm.dims.y * cc.z);
 }
 
+// Whether a cell within `r` cells of cell c holds fluid (CellGrid::fluid_near): after the
+// scatter, a cell's count is 0 and only its FLUID_CELL flag is left.
+fn fluid_near(c: u32, r: u32) -> bool {
+    let nx = prm.dims.x;
+    let nxy = nx * prm.dims.y;
+    let base = c - r * nxy - r * nx - r;
+    for (var dz = 0u; dz <= 2u * r; dz = dz + 1u) {
+        for (var dy = 0u; dy <= 2u * r; dy = dy + 1u) {
+            for (var dx = 0u; dx <= 2u * r; dx = dx + 1u) {
+                if (atomicLoad(&cell_count[base + dz * nxy + dy * nx + dx]) & FLUID_CELL) != 0u {
+                    return true;
+                }
+            }
+        }
+    }
+    return false;
+}
+
 // First particle slot of the run of cells along x that starts `reach` cells before cell c,
 // shifted by (dy, dz) rows, and one past its last slot.
 fn row_range(c: u32, reach: u32, dy: u32, dz: u32) -> vec2<u32> {

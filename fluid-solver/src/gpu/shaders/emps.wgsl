@@ -11,25 +11,6 @@ fn clear_sums(v: Invocation) {
     }
 }
 
-// Whether a cell within reach_grad of cell c holds fluid (CellGrid::fluid_near): after the
-// scatter, a cell's count is 0 and only its FLUID_CELL flag is left.
-fn fluid_near(c: u32) -> bool {
-    let r = prm.reach_grad;
-    let nx = prm.dims.x;
-    let nxy = nx * prm.dims.y;
-    let base = c - r * nxy - r * nx - r;
-    for (var dz = 0u; dz <= 2u * r; dz = dz + 1u) {
-        for (var dy = 0u; dy <= 2u * r; dy = dy + 1u) {
-            for (var dx = 0u; dx <= 2u * r; dx = dx + 1u) {
-                if atomicLoad(&cell_count[base + dz * nxy + dy * nx + dx]) != 0u {
-                    return true;
-                }
-            }
-        }
-    }
-    return false;
-}
-
 // S1-4: ⟨∇²u⟩_i = 2d/(λ0 n0) Σ_j (u_j − u_i) w(r_ij) for fluid i (walls have u = 0: no slip);
 // the part from non-fluid j, times m ν, is the walls' viscous force.
 @compute @workgroup_size(64)
@@ -111,7 +92,7 @@ fn density(v: Invocation) {
     }
     let k = kind_of(i);
     let c = cell_sorted[i];
-    if k == DUMMY || (k != FLUID && !fluid_near(c)) {
+    if k == DUMMY || (k != FLUID && !fluid_near(c, prm.reach_grad)) {
         dens[i] = vec2<f32>(0.0, 0.0);
         return;
     }

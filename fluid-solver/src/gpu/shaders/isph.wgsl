@@ -23,36 +23,34 @@ struct IsphParams {
 @group(1) @binding(2) var<storage, read_write> part: array<u32>;
 // 1 for fluid on the free surface (p = Dirichlet value), and for fluid without fluid neighbours.
 @group(1) @binding(3) var<storage, read_write> surf: array<u32>;
-// λ_min of the moment matrix (S2-10, S2-11) of fluid particles; 1 elsewhere.
-@group(1) @binding(4) var<storage, read_write> lam: array<f32>;
 // The kernel correction L_i (rows 3i … 3i + 2; w of the first row 1 where it is not I).
-@group(1) @binding(5) var<storage, read_write> lmat: array<vec4<f32>>;
+@group(1) @binding(4) var<storage, read_write> lmat: array<vec4<f32>>;
 // The walls' completion M_i of surface water the PPE does not hold (src/isph/surface_walls.rs;
 // w of the first row 1 where there is one).
-@group(1) @binding(6) var<storage, read_write> smat: array<vec4<f32>>;
+@group(1) @binding(5) var<storage, read_write> smat: array<vec4<f32>>;
 // By particle id: a solid's normal into the fluid (xyz) and its depth behind its wall's face (w)
 // (src/isph/walls.rs), computed on the host once: the walls are fixed.
-@group(1) @binding(7) var<storage, read_write> geom: array<vec4<f32>>;
+@group(1) @binding(6) var<storage, read_write> geom: array<vec4<f32>>;
 // By particle id: 1 for a solid on a convex edge or corner (walls.rs CONVEX).
-@group(1) @binding(8) var<storage, read_write> convex: array<u32>;
+@group(1) @binding(7) var<storage, read_write> convex: array<u32>;
 // The Dirichlet pressure of each surface particle (free_surface::surface_pressure).
-@group(1) @binding(9) var<storage, read_write> dirich: array<f32>;
+@group(1) @binding(8) var<storage, read_write> dirich: array<f32>;
 // A vector field on the fluid: the known gradient's (ρ/Δt) v* − c, then G_x d (xyz).
-@group(1) @binding(10) var<storage, read_write> yv: array<vec4<f32>>;
+@group(1) @binding(9) var<storage, read_write> yv: array<vec4<f32>>;
 // The conjugate gradient's vectors by particle (0 off the unknowns): solution, residual,
 // direction, operator times direction; the Jacobi diagonal and the right-hand side.
-@group(1) @binding(11) var<storage, read_write> xs: array<f32>;
-@group(1) @binding(12) var<storage, read_write> rs: array<f32>;
-@group(1) @binding(13) var<storage, read_write> ds: array<f32>;
-@group(1) @binding(14) var<storage, read_write> qs: array<f32>;
-@group(1) @binding(15) var<storage, read_write> dg: array<f32>;
-@group(1) @binding(16) var<storage, read_write> bs: array<f32>;
+@group(1) @binding(10) var<storage, read_write> xs: array<f32>;
+@group(1) @binding(11) var<storage, read_write> rs: array<f32>;
+@group(1) @binding(12) var<storage, read_write> ds: array<f32>;
+@group(1) @binding(13) var<storage, read_write> qs: array<f32>;
+@group(1) @binding(14) var<storage, read_write> dg: array<f32>;
+@group(1) @binding(15) var<storage, read_write> bs: array<f32>;
 // The velocities at the step's start, kept over a short step (IsphStep::short_step).
-@group(1) @binding(17) var<storage, read_write> vstart: array<vec4<f32>>;
+@group(1) @binding(16) var<storage, read_write> vstart: array<vec4<f32>>;
 // Per-workgroup partial sums of the conjugate gradient's dot products (4 per workgroup).
-@group(1) @binding(18) var<storage, read_write> cgp: array<f32>;
+@group(1) @binding(17) var<storage, read_write> cgp: array<f32>;
 // The conjugate gradient's scalars (CG_* below).
-@group(1) @binding(19) var<storage, read_write> cgs: array<f32>;
+@group(1) @binding(18) var<storage, read_write> cgs: array<f32>;
 
 const CG_B2: u32 = 0u;
 const CG_R2: u32 = 1u;
@@ -91,24 +89,6 @@ fn dw_at(q: f32) -> f32 {
 
 fn is_unknown(i: u32) -> bool {
     return kind_of(i) == FLUID && surf[i] == 0u;
-}
-
-// Whether a cell within the support's reach of cell c holds fluid (CellGrid::fluid_near).
-fn fluid_near_isph(c: u32) -> bool {
-    let r = ip.reach;
-    let nx = prm.dims.x;
-    let nxy = nx * prm.dims.y;
-    let base = c - r * nxy - r * nx - r;
-    for (var dz = 0u; dz <= 2u * r; dz = dz + 1u) {
-        for (var dy = 0u; dy <= 2u * r; dy = dy + 1u) {
-            for (var dx = 0u; dx <= 2u * r; dx = dx + 1u) {
-                if (atomicLoad(&cell_count[base + dz * nxy + dy * nx + dx]) & FLUID_CELL) != 0u {
-                    return true;
-                }
-            }
-        }
-    }
-    return false;
 }
 
 // Symmetric 3×3 matrices as (xx, xy, xz) and (yy, yz, zz).
@@ -250,7 +230,7 @@ fn isph_density(v: Invocation) {
     let k = kind_of(i);
     let c = cell_sorted[i];
     var fill = 1.0;
-    if k == FLUID || fluid_near_isph(c) {
+    if k == FLUID || fluid_near(c, ip.reach) {
         let xi = pos[i].xyz;
         let li = low(i);
         let re2 = ip.radius * ip.radius;
@@ -282,47 +262,9 @@ fn isph_density(v: Invocation) {
     dens[i] = vec2<f32>(nd, dens[i].y);
 }
 
-// S2-10 over the neighbours that take part, normalised, and its λ_min (free_surface::lambda_min).
-@compute @workgroup_size(64)
-fn isph_lambda(v: Invocation) {
-    let i = item_index(v, WG);
-    if i >= prm.n {
-        return;
-    }
-    if kind_of(i) != FLUID {
-        lam[i] = 1.0;
-        return;
-    }
-    lam[i] = smallest_eigenvalue_up_to(sym_full(moment_of(i)), LAMBDA_INNER);
-}
-
-// S2-10 at fluid particle i over the neighbours that take part, normalised so that a full
-// lattice reads I (free_surface::moment_matrix).
-fn moment_of(i: u32) -> Sym {
-    let xi = pos[i].xyz;
-    let li = low(i);
-    let c = cell_sorted[i];
-    let re2 = ip.radius * ip.radius;
-    let scale = -ip.volume / ip.lattice_moment;
-    var m = Sym(vec3<f32>(0.0), vec3<f32>(0.0));
-    let r = ip.reach;
-    for (var dz = 0u; dz <= 2u * r; dz = dz + 1u) {
-        for (var dy = 0u; dy <= 2u * r; dy = dy + 1u) {
-            let range = row_range(c, r, dy, dz);
-            for (var j = range.x; j < range.y; j = j + 1u) {
-                let d = apart_near(pos[j].xyz, j, xi, li);
-                let r2 = dot(d, d);
-                if r2 < re2 && j != i && part[j] != 0u {
-                    m = sym_add(m, scale * dw_at(sqrt(r2) * ip.inv_radius), d);
-                }
-            }
-        }
-    }
-    return m;
-}
-
-// The surface flags (free_surface::detect): S2-11's thresholds, in between Marrone's normal and
-// the umbrella; and fluid without fluid neighbours (the PPE's rule, IsphStep::assemble).
+// The surface flags (free_surface::detect): λ_min of S2-10 over the neighbours that take part,
+// normalised (free_surface::lambda_min), S2-11's thresholds, in between Marrone's normal and the
+// umbrella; and fluid without fluid neighbours (the PPE's rule, IsphStep::assemble).
 @compute @workgroup_size(64)
 fn isph_surface(v: Invocation) {
     let i = item_index(v, WG);
@@ -362,7 +304,7 @@ fn isph_surface(v: Invocation) {
             }
         }
     }
-    let l = lam[i];
+    let l = smallest_eigenvalue_up_to(sym_full(m), LAMBDA_INNER);
     var s = 0u;
     if !fluid_neighbour || l <= LAMBDA_SPLASH {
         s = 1u;
@@ -1047,7 +989,7 @@ fn isph_wall_pressure(v: Invocation) {
         return;
     }
     let c = cell_sorted[w];
-    if !fluid_near_isph(c) {
+    if !fluid_near(c, ip.reach) {
         dens[w] = vec2<f32>(dens[w].x, 0.0);
         return;
     }
